@@ -1,0 +1,338 @@
+"""Motions, actions, powers and efficiency of a train (Laus Algorithm 1, steps 1-30).
+
+The solution runs on exact polynomials (python-flint); results are converted to sympy
+expressions only when asked for.  Primary variables are the input port magnitudes:
+the input speed (e.g. ``t_A``) for motions and the input torque (e.g. ``T_A``) for
+actions, as in Laus eqs. (16) and (23).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import sympy
+
+from .errors import DerivationError, MobilityError, Problem
+from .exact_linalg import Row, gauss_jordan
+from .model import Train
+from .network import ActionVariable, FrictionLaw, Network
+from .polynomials import PolynomialRing, RationalFunction
+from .screws import power
+from .signs import SignOracle
+from .symbols import make_symbol
+
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class SignCondition:
+    """A Coulomb friction sign the declared ports do not decide.
+
+    ``symbol`` (+1 or -1) stands for ``sign(expression)`` in the friction form.
+    """
+
+    coupling: str
+    symbol: sympy.Symbol
+    expression: sympy.Expr
+
+
+class Analysis:
+    """Davies' method on one train: build with :func:`davies_sym.analyse`.
+
+    ``coulomb_signs='resolve'`` (default) fixes every Coulomb sign from the lossless
+    solution with positive input power and keeps a sign symbol only where the sign
+    depends on the geometry; ``'symbolic'`` keeps a symbol for every Coulomb law
+    (the ``c`` and ``a`` of Laus eqs. (22)-(26)).
+    """
+
+    def __init__(self, train: Train, tree: Sequence[str] | None = None,
+                 action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
+                 progress: Progress | None = None):
+        if coulomb_signs not in ("resolve", "symbolic"):
+            raise ValueError("coulomb_signs must be 'resolve' or 'symbolic'")
+        self.train = train
+        self.coulomb_signs = coulomb_signs
+        self._progress = progress or (lambda message: None)
+        self._progress("building the coupling network")
+        self.network = Network(train, tree, action_tree)
+        net = self.network
+        self.input_motion = net.coupling_motions(train.ports.input)[0]
+        self.input_action = net.port_action(train.ports.input)
+        self.output_action = net.port_action(train.ports.output)
+        self.oracle = SignOracle(net.layout.positive_facts)
+        self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
+                             for law in net.laws if law.law == "coulomb"}
+        symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
+        symbols |= {self.input_motion.symbol, self.input_action.symbol}
+        for law in net.laws:
+            symbols |= law.coefficient.free_symbols
+        self.ring = PolynomialRing(symbols)
+
+    # -- helpers ---------------------------------------------------------------------
+    def _rf(self, expr: sympy.Expr) -> RationalFunction:
+        return self.ring.rational(expr)
+
+    def _rows(self, matrix: sympy.Matrix) -> list[Row]:
+        rows = []
+        for i in range(matrix.rows):
+            row: Row = {}
+            for j in range(matrix.cols):
+                if matrix[i, j] != 0:
+                    rf = self._rf(matrix[i, j])
+                    if not rf.den.is_one():
+                        raise DerivationError(f"matrix entry {matrix[i, j]} is not a polynomial")
+                    row[j] = rf.num
+            rows.append(row)
+        return rows
+
+    # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
+    @cached_property
+    def motion_coefficients(self) -> dict[str, RationalFunction]:
+        """psi_alpha / t_in for every motion magnitude."""
+        self._progress("solving the motions (null space of M_N)")
+        net = self.network
+        M_N = net.network_motion_matrix()
+        index = net.motions.index(self.input_motion)
+        elimination = gauss_jordan(self._rows(M_N), len(net.motions), prefer_free=[index])
+        free = elimination.free
+        dof = len(free)
+        problems = []
+        if index not in free:
+            problems.append(Problem(f"ports.input", f"the input coupling {self.train.ports.input!r} cannot "
+                                    "move: the train is locked"))
+        if self.train.degrees_of_freedom is not None and dof != self.train.degrees_of_freedom:
+            problems.append(Problem("degrees_of_freedom", f"the train has {dof} degree(s) of freedom, "
+                                    f"the file says {self.train.degrees_of_freedom}"))
+        elif dof != 1:
+            extra = [net.motions[j].name for j in free if j != index]
+            problems.append(Problem("ports", f"the train has {dof} degrees of freedom but one input port "
+                                    f"drives it; also free: {', '.join(extra)}" if dof > 1 else
+                                    "the train has no degree of freedom"))
+        if problems:
+            raise MobilityError(problems, self.train.path)
+        solution = elimination.solution(self.ring)
+        return {v.name: solution[k][index] for k, v in enumerate(net.motions)}
+
+    @property
+    def degrees_of_freedom(self) -> int:
+        self.motion_coefficients  # noqa: B018 - raises on a mobility mismatch
+        return 1
+
+    @cached_property
+    def motion_magnitudes(self) -> dict[str, RationalFunction]:
+        """Every motion magnitude in terms of the input speed."""
+        t_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_motion.symbol))
+        return {name: c * t_in for name, c in self.motion_coefficients.items()}
+
+    # -- lossless actions (eqs. (2), (60)-(62)) --------------------------------------
+    @cached_property
+    def lossless_action_coefficients(self) -> dict[str, RationalFunction]:
+        """Psi_alpha / T_in of the lossless network (friction columns removed)."""
+        self._progress("solving the lossless actions (null space of A_N)")
+        net = self.network
+        cols = net.action_columns(lossless=True)
+        index = cols.index(self.input_action)
+        elimination = gauss_jordan(self._rows(net.network_action_matrix(lossless=True)), len(cols),
+                                   prefer_free=[index])
+        self._check_action_nullity(elimination.free, index, cols)
+        solution = elimination.solution(self.ring)
+        return {v.name: solution[k][index] for k, v in enumerate(cols)}
+
+    def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
+        if index not in free:
+            raise MobilityError([Problem("ports.input", f"the input torque on {self.train.ports.input!r} is "
+                                         "determined by the other actions: the input does no work")],
+                                self.train.path)
+        others = [cols[j].name for j in free if j != index]
+        if others:
+            raise MobilityError([Problem("couplings", "the actions are not determined by the input: "
+                                         f"{', '.join(others)} stay free (the network is overconstrained "
+                                         "in this screw system, or a port is missing)")], self.train.path)
+
+    # -- friction signs (eqs. (21), (24), (41)) --------------------------------------
+    def _input_pairing(self) -> sympy.Expr:
+        return power(self.input_action.wrench, self.input_motion.twist)
+
+    @cached_property
+    def coulomb_sign_values(self) -> dict[str, sympy.Expr]:
+        """sign(transmitted force) * sign(relative motion) of every Coulomb law, with
+        positive input power, or its sign symbol where the ports do not decide it."""
+        out: dict[str, sympy.Expr] = {}
+        self.sign_conditions: list[SignCondition] = []
+        for law in self.network.laws:
+            if law.law != "coulomb":
+                continue
+            symbol = self.sign_symbols[law.coupling]
+            if self.coulomb_signs == "symbolic":
+                out[law.coupling] = symbol
+                continue
+            assert law.transmitted is not None
+            alpha = self.lossless_action_coefficients[law.transmitted]
+            beta = self.motion_coefficients[law.motion]
+            product = (alpha * beta).to_expr() * self._input_pairing()
+            sign = self.oracle.sign(product)
+            if sign in (1, -1):
+                out[law.coupling] = sympy.Integer(sign)
+            else:
+                out[law.coupling] = symbol
+                self.sign_conditions.append(SignCondition(law.coupling, symbol,
+                                                          self.oracle.undecided_factors(product)))
+        return out
+
+    # -- augmented action matrix (eqs. (22), (40), (51)-(52)) ------------------------
+    def _law_row(self, law: FrictionLaw) -> dict[str, sympy.Expr]:
+        if law.law == "coulomb":
+            assert law.transmitted is not None
+            return {law.variable: sympy.Integer(1),
+                    law.transmitted: self.coulomb_sign_values[law.coupling] * law.coefficient}
+        if law.law == "linear":
+            assert law.transmitted is not None
+            return {law.variable: sympy.Integer(1), law.transmitted: -law.coefficient}
+        return {law.variable: sympy.Integer(1)}
+
+    @cached_property
+    def augmented_action_matrix(self) -> sympy.Matrix:
+        """D_A: A_N stacked over the constitutive rows, then the source rows."""
+        net = self.network
+        names = [v.name for v in net.actions]
+        rows = []
+        ordered = [law for law in net.laws if law.law != "viscous"] + [law for law in net.laws if law.law == "viscous"]
+        for law in ordered:
+            entries = self._law_row(law)
+            rows.append([entries.get(n, 0) for n in names])
+        extra = sympy.Matrix(rows) if rows else sympy.zeros(0, len(names))
+        return sympy.Matrix.vstack(net.network_action_matrix(), extra)
+
+    @cached_property
+    def dependent_sources(self) -> sympy.Matrix:
+        """nu: right-hand side of the source rows, T = -b t (eqs. (50)-(51), (53))."""
+        values = []
+        for law in self.network.laws:
+            if law.law == "viscous":
+                speed = self.motion_magnitudes[law.motion].to_expr()
+                values.append(-law.coefficient * speed)
+        return sympy.Matrix(values)
+
+    @cached_property
+    def action_solution(self) -> dict[str, tuple[RationalFunction, RationalFunction]]:
+        """Every action magnitude as ``(a, b)`` with Psi = a T_in + b (b from sources)."""
+        self.coulomb_sign_values  # noqa: B018 - decide the signs first
+        self._progress("solving the actions with friction (null space of D_A)")
+        net = self.network
+        D = self.augmented_action_matrix
+        nu = self.dependent_sources
+        ncols = D.cols
+        const = ncols  # an extra column multiplying the constant 1
+        rows = self._rows(D)
+        for k in range(nu.rows):
+            rf = self._rf(nu[k])
+            row = rows[D.rows - nu.rows + k]
+            scaled = {j: v * rf.den for j, v in row.items()}
+            scaled[const] = -rf.num
+            rows[D.rows - nu.rows + k] = scaled
+        index = net.actions.index(self.input_action)
+        elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const])
+        free = [j for j in elimination.free if j != const]
+        self._check_action_nullity(tuple(free), index, list(net.actions))
+        if const in elimination.pivots:
+            raise DerivationError("the dependent sources are inconsistent with the network")
+        solution = elimination.solution(self.ring)
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return {v.name: (solution[k].get(index, zero), solution[k].get(const, zero))
+                for k, v in enumerate(net.actions)}
+
+    @cached_property
+    def action_magnitudes(self) -> dict[str, RationalFunction]:
+        """Every action magnitude in terms of the input torque (and speed, with sources)."""
+        T_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_action.symbol))
+        return {name: a * T_in + b for name, (a, b) in self.action_solution.items()}
+
+    def null_space(self) -> sympy.Matrix:
+        """The vector spanning Null(D_A), scaled so the input torque entry is 1 (eq. (23))."""
+        if self.dependent_sources.rows:
+            raise DerivationError("with dependent sources D_A Psi = [0; nu] has no plain null space")
+        return sympy.Matrix([a.to_expr() for a, _ in self.action_solution.values()])
+
+    def motion_null_space(self) -> sympy.Matrix:
+        """The vector spanning Null(M_N), scaled so the input speed entry is 1 (eq. (58))."""
+        return sympy.Matrix([c.to_expr() for c in self.motion_coefficients.values()])
+
+    # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
+    def coupling_twist(self, coupling: str) -> list[RationalFunction]:
+        """Condensed motion screw of a coupling (a column of M, eq. (59))."""
+        d = self.network.order
+        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
+        for v in self.network.coupling_motions(coupling):
+            for i in range(d):
+                if v.twist[i] != 0:
+                    out[i] = out[i] + self.motion_magnitudes[v.name] * self._rf(v.twist[i])
+        return out
+
+    def action_wrench(self, names: Sequence[str]) -> list[RationalFunction]:
+        """Sum of the wrenches of the given action variables."""
+        d = self.network.order
+        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
+        for name in names:
+            v = self.network.action(name)
+            for i in range(d):
+                if v.wrench[i] != 0:
+                    out[i] = out[i] + self.action_magnitudes[name] * self._rf(v.wrench[i])
+        return out
+
+    def coupling_wrench(self, coupling: str) -> list[RationalFunction]:
+        """Condensed action screw of a coupling (a column of A, eqs. (26), (65))."""
+        return self.action_wrench([v.name for v in self.network.coupling_actions(coupling)])
+
+    def _inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
+        total = RationalFunction.polynomial(self.ring, self.ring.zero)
+        for a, b in zip(wrench, twist):
+            if not a.is_zero() and not b.is_zero():
+                total = total + a * b
+        return total
+
+    def power_rf(self, coupling: str, actions: Sequence[str] | None = None) -> RationalFunction:
+        """Power through ``coupling`` (all its actions, or only ``actions``), eq. (5)."""
+        names = [v.name for v in self.network.coupling_actions(coupling)] if actions is None else list(actions)
+        return self._inner(self.action_wrench(names), self.coupling_twist(coupling))
+
+    def power(self, coupling: str, actions: Sequence[str] | None = None) -> sympy.Expr:
+        """Power through a coupling as a sympy expression (eqs. (27)-(29))."""
+        return self.power_rf(coupling, actions).to_expr()
+
+    def port_power_rf(self, coupling: str) -> RationalFunction:
+        """Power of the port action alone on its coupling (``S_TA . S_A`` of eq. (45))."""
+        return self.power_rf(coupling, [self.network.port_action(coupling).name])
+
+    @cached_property
+    def efficiency_rf(self) -> RationalFunction:
+        """Overall efficiency -P_out / P_in (Definition 5, eqs. (32), (49), (71))."""
+        self._progress("forming the efficiency")
+        p_in = self.port_power_rf(self.train.ports.input)
+        p_out = self.port_power_rf(self.train.ports.output)
+        return -(p_out / p_in)
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        """The efficiency in friction coefficients, numerator and denominator factored."""
+        return self.efficiency_rf.to_expr()
+
+    def motion_matrix(self) -> sympy.Matrix:
+        """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""
+        cols = [[c.to_expr() for c in self.coupling_twist(e)] for e in self.network.graph.edges]
+        return sympy.Matrix(cols).T
+
+    def action_matrix(self) -> sympy.Matrix:
+        """A (d x e), condensed per coupling, in terms of the input torque (eqs. (26), (65))."""
+        cols = [[c.to_expr() for c in self.coupling_wrench(e)] for e in self.network.graph.edges]
+        return sympy.Matrix(cols).T
+
+    def sign_conditions_list(self) -> list[SignCondition]:
+        self.coulomb_sign_values  # noqa: B018
+        return list(self.sign_conditions)
+
+
+def analyse(train: Train, **options: object) -> Analysis:
+    """Run Davies' method on ``train`` (see :class:`Analysis` for the options)."""
+    return Analysis(train, **options)  # type: ignore[arg-type]

@@ -1,0 +1,62 @@
+"""Reading entries of a topology file: every problem is collected with its location."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import sympy
+
+from .errors import Problem
+from .schema import Field
+from .symbols import QuantityError, parse_quantity
+from .yaml_source import SourceDocument
+
+
+class EntryReader:
+    """Collects problems (with line numbers) and the symbols of one topology file."""
+
+    def __init__(self, document: SourceDocument):
+        self.document = document
+        self.problems: list[Problem] = []
+        self.symbols: dict[str, sympy.Symbol] = {}
+
+    def problem(self, path: str, message: str) -> None:
+        self.problems.append(Problem(path, message, self.document.line(path)))
+
+    def mapping(self, value: Any, path: str) -> Mapping[str, Any] | None:
+        if isinstance(value, Mapping):
+            return value
+        self.problem(path, f"expected a mapping, got {_describe(value)}")
+        return None
+
+    def check_keys(self, entry: Mapping[str, Any], path: str, fields: Iterable[Field]) -> None:
+        """Report unknown and missing keys of ``entry`` against ``fields``."""
+        fields = tuple(fields)
+        known = {f.key for f in fields}
+        for key in entry:
+            if key not in known:
+                self.problem(f"{path}.{key}", f"unknown key {key!r} (known: {', '.join(sorted(known))})")
+        for f in fields:
+            if f.required and f.key not in entry:
+                self.problem(path, f"missing required key {f.key!r}")
+
+    def name(self, value: Any, path: str) -> str | None:
+        """A name (of a link, gear or coupling): strings and integers are accepted."""
+        if isinstance(value, bool) or value is None or isinstance(value, (list, dict, float)):
+            self.problem(path, f"expected a name, got {_describe(value)}")
+            return None
+        return str(value)
+
+    def quantity(self, value: Any, path: str, role: str) -> sympy.Expr | None:
+        try:
+            return parse_quantity(value, role, self.symbols)
+        except QuantityError as exc:
+            self.problem(path, str(exc))
+            return None
+
+
+def _describe(value: Any) -> str:
+    if value is None:
+        return "nothing"
+    return f"{type(value).__name__} {value!r}"

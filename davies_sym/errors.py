@@ -1,0 +1,73 @@
+"""Typed errors of davies_sym.
+
+Every problem found in a topology file is collected with its location (file, line,
+entry path) and raised once, so the user sees all of them together.  The command-line
+interface turns these errors into one-line messages and exit status 2.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One problem in an input file: where it is and what is wrong."""
+
+    entry: str
+    message: str
+    line: int | None = None
+
+    def format(self, source: str | None) -> str:
+        where = source or "<input>"
+        if self.line is not None:
+            where = f"{where}:{self.line}"
+        entry = f" {self.entry}:" if self.entry else ""
+        return f"{where}:{entry} {self.message}"
+
+
+class DaviesError(Exception):
+    """Base class of every error raised by davies_sym."""
+
+
+class InputError(DaviesError):
+    """A problem with what the user wrote; carries every problem found."""
+
+    kind = "input error"
+
+    def __init__(self, problems: list[Problem], source: str | None = None):
+        self.problems = list(problems)
+        self.source = source
+        super().__init__(self.report())
+
+    def report(self) -> str:
+        lines = [p.format(self.source) for p in self.problems]
+        return "\n".join(f"{self.kind}: {line}" for line in lines)
+
+
+class TopologySyntaxError(InputError):
+    """The file is not valid YAML."""
+
+    kind = "YAML syntax error"
+
+
+class TopologyError(InputError):
+    """The YAML is well formed but does not describe a valid train."""
+
+    kind = "topology error"
+
+
+class GeometryError(InputError):
+    """The gear geometry is inconsistent (e.g. a mesh loop that cannot close)."""
+
+    kind = "geometry error"
+
+
+class MobilityError(InputError):
+    """The degree of freedom does not match the declared one or the ports."""
+
+    kind = "mobility error"
+
+
+class DerivationError(DaviesError):
+    """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""

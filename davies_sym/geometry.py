@@ -1,0 +1,226 @@
+"""Layout of planar trains drawn on one line (Laus Figs. 5 and 7).
+
+All gear axes are parallel to z and lie in the plane x = 0; a position is a y value.
+Gears on one link share its axis; a revolute between two geared links makes them
+coaxial.  Axis positions follow from the meshes: external mesh, centre distance
+r_g + r_h; internal mesh, R - r with the pinion on the +y side of the annulus centre.
+A mesh that closes a loop gives a geometric constraint such as r1 - r3 = r2 - r4
+(Laus section 3.4.1.6), or an error when it cannot hold.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import sympy
+
+from .couplings import GearMesh, Revolute
+from .errors import GeometryError, Problem
+from .model import Gear, Train
+from .screws import Vector, vector
+from .signs import SignOracle
+
+Z_AXIS: Vector = vector((0, 0, 1))
+X_AXIS: Vector = vector((1, 0, 0))
+Y_AXIS: Vector = vector((0, 1, 0))
+
+
+@dataclass(frozen=True)
+class GeometricConstraint:
+    """An equation the radii must satisfy, ``lhs = rhs``, and the mesh that closes it."""
+
+    lhs: sympy.Expr
+    rhs: sympy.Expr
+    coupling: str
+
+    @property
+    def expression(self) -> sympy.Expr:
+        """``lhs - rhs``, which must vanish."""
+        return sympy.expand(self.lhs - self.rhs)
+
+    def __str__(self) -> str:
+        return f"{sympy.sstr(self.lhs)} = {sympy.sstr(self.rhs)}"
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Positions and directions the coupling kinds need to write their screws."""
+
+    gear_centres: Mapping[str, Vector]
+    coupling_points: Mapping[str, Vector]
+    mesh_tangents: Mapping[str, Vector]
+    mesh_normals: Mapping[str, Vector]
+    constraints: tuple[GeometricConstraint, ...]
+    #: Expressions known to be positive, e.g. R - r of every internal mesh.
+    positive_facts: tuple[sympy.Expr, ...] = ()
+    axis: Vector = Z_AXIS
+
+
+def _point(y: sympy.Expr) -> Vector:
+    return vector((0, y, 0))
+
+
+class _AxisGroups:
+    """Union-find of links that share one gear axis."""
+
+    def __init__(self, links: list[str]):
+        self.parent = {link: link for link in links}
+
+    def find(self, link: str) -> str:
+        while self.parent[link] != link:
+            self.parent[link] = self.parent[self.parent[link]]
+            link = self.parent[link]
+        return link
+
+    def union(self, a: str, b: str) -> None:
+        self.parent[self.find(a)] = self.find(b)
+
+
+def planar_line_layout(train: Train) -> Layout:
+    """Derive axis positions, pitch points and geometric constraints of a planar train."""
+    problems: list[Problem] = []
+    geared = {g.link for g in train.gears}
+    groups = _AxisGroups(list(train.link_names))
+    for c in train.couplings:
+        if isinstance(c, Revolute) and c.links[0] in geared and c.links[1] in geared:
+            groups.union(*c.links)
+    meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
+    gears = {g.name: g for g in train.gears}
+    positions: dict[str, sympy.Expr] = {}
+    root = _root_link(train, geared)
+    if root is not None:
+        positions[groups.find(root)] = sympy.Integer(0)
+    tree_meshes = _place_by_meshes(meshes, gears, groups, positions)
+    for c in train.couplings:
+        if isinstance(c, Revolute) and c.at is not None:
+            for link in c.links:
+                if link in geared and groups.find(link) not in positions:
+                    positions[groups.find(link)] = c.at
+                    tree_meshes |= _place_by_meshes(meshes, gears, groups, positions)
+    for g in train.gears:
+        if groups.find(g.link) not in positions:
+            problems.append(Problem(f"gears.{g.name}", "its position cannot be derived: no mesh or "
+                                    "revolute with `at` connects it to the rest of the train"))
+    if problems:
+        raise GeometryError(problems, train.path)
+    oracle = SignOracle()
+    centres = {g.name: positions[groups.find(g.link)] for g in train.gears}
+    points: dict[str, Vector] = {}
+    constraints: list[GeometricConstraint] = []
+    facts: list[sympy.Expr] = []
+    for mesh in meshes:
+        g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
+        if mesh.internal:
+            ann, pin = (g, h) if g.internal else (h, g)
+            facts.append(ann.radius - pin.radius)
+            offset = sympy.expand(centres[pin.name] - centres[ann.name])
+            points[mesh.name] = _point(centres[ann.name] + ann.radius)
+            if mesh.name not in tree_meshes:
+                _add_constraint(constraints, problems, offset, ann.radius - pin.radius, mesh.name, oracle)
+        else:
+            offset = sympy.expand(centres[h.name] - centres[g.name])
+            side = oracle.sign(offset) if offset != 0 else 0
+            if mesh.name not in tree_meshes:
+                if side is None or side == 0:
+                    problems.append(Problem(f"couplings.{mesh.name}", f"cannot tell on which side gear {h.name!r} "
+                                            f"lies from gear {g.name!r} (centre offset {offset}); this mesh "
+                                            "closes a loop that the line layout cannot decide"))
+                    continue
+                _add_constraint(constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
+            points[mesh.name] = _point(centres[g.name] + (side or 1) * g.radius)
+    for c in train.couplings:
+        if isinstance(c, Revolute):
+            point = _revolute_point(c, geared, groups, positions, problems)
+            if point is not None:
+                points[c.name] = point
+        elif not isinstance(c, GearMesh):
+            points[c.name] = vector((0, 0, 0))
+    if problems:
+        raise GeometryError(problems, train.path)
+    facts += _constraint_facts(constraints)
+    return Layout(
+        gear_centres={name: _point(y) for name, y in centres.items()},
+        coupling_points=points,
+        mesh_tangents={m.name: X_AXIS for m in meshes},
+        mesh_normals={m.name: Y_AXIS for m in meshes},
+        constraints=tuple(constraints),
+        positive_facts=tuple(facts),
+    )
+
+
+def _constraint_facts(constraints: list[GeometricConstraint]) -> list[sympy.Expr]:
+    """A positive radius solved from a linear constraint is a positive expression:
+    r1 - r3 = r2 - r4 gives r2 + r3 - r1 > 0 (it equals r4)."""
+    facts = []
+    for c in constraints:
+        expr = c.expression
+        for s in sorted(expr.free_symbols, key=str):
+            if s.is_positive and sympy.degree(expr, s) == 1:
+                solved = sympy.solve(expr, s)
+                if len(solved) == 1:
+                    facts.append(sympy.expand(solved[0]))
+    return facts
+
+
+def _root_link(train: Train, geared: set[str]) -> str | None:
+    if train.reference in geared:
+        return train.reference
+    return train.gears[0].link if train.gears else None
+
+
+def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: _AxisGroups,
+                     positions: dict[str, sympy.Expr]) -> set[str]:
+    """Place axis groups outward from the placed ones; returns the meshes used."""
+    used: set[str] = set()
+    progress = True
+    while progress:
+        progress = False
+        for mesh in meshes:
+            g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
+            ag, ah = groups.find(g.link), groups.find(h.link)
+            if (ag in positions) == (ah in positions):
+                continue
+            if mesh.internal:
+                ann, pin = (g, h) if g.internal else (h, g)
+                a_ann, a_pin = groups.find(ann.link), groups.find(pin.link)
+                distance = ann.radius - pin.radius
+                if a_ann in positions:
+                    positions[a_pin] = sympy.expand(positions[a_ann] + distance)
+                else:
+                    positions[a_ann] = sympy.expand(positions[a_pin] - distance)
+            elif ag in positions:
+                positions[ah] = sympy.expand(positions[ag] + g.radius + h.radius)
+            else:
+                positions[ag] = sympy.expand(positions[ah] - g.radius - h.radius)
+            used.add(mesh.name)
+            progress = True
+    return used
+
+
+def _add_constraint(constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
+                    distance: sympy.Expr, coupling: str, oracle: SignOracle) -> None:
+    difference = sympy.expand(offset - distance)
+    if difference == 0:
+        return
+    if difference.is_number or oracle.sign(difference) in (1, -1):
+        problems.append(Problem(f"couplings.{coupling}", f"inconsistent geometry: the centre distance "
+                                f"this mesh needs ({distance}) differs from the one the other meshes give "
+                                f"({offset})"))
+        return
+    constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
+
+
+def _revolute_point(c: Revolute, geared: set[str], groups: _AxisGroups, positions: Mapping[str, sympy.Expr],
+                    problems: list[Problem]) -> Vector | None:
+    derived = [positions[groups.find(link)] for link in c.links if link in geared]
+    if derived:
+        if c.at is not None and sympy.expand(c.at - derived[0]) != 0:
+            problems.append(Problem(f"couplings.{c.name}.at", f"inconsistent geometry: `at` is {c.at} "
+                                    f"but the gears put this axis at {derived[0]}"))
+        return _point(derived[0])
+    if c.at is None:
+        problems.append(Problem(f"couplings.{c.name}", f"neither link {c.links[0]!r} nor {c.links[1]!r} "
+                                "carries a gear: give the position of this revolute with `at`"))
+        return None
+    return _point(c.at)

@@ -1,0 +1,93 @@
+"""The validated, immutable model of a train (what :func:`davies_sym.load` returns)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import sympy
+
+from .couplings import Coupling
+
+
+@dataclass(frozen=True)
+class Link:
+    """A member of the machine (a node of the coupling graph)."""
+
+    name: str
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Gear:
+    """A gear fixed to a link, with its pitch radius (number or expression)."""
+
+    name: str
+    link: str
+    radius: sympy.Expr
+    internal: bool = False
+    teeth: int | None = None
+    module: sympy.Expr | None = None
+
+
+@dataclass(frozen=True)
+class Ports:
+    """The couplings that carry the input and the output action (Laus section 2.3)."""
+
+    input: str
+    output: str
+
+    def swapped(self) -> Ports:
+        return Ports(self.output, self.input)
+
+
+@dataclass(frozen=True)
+class Expected:
+    """A published number to reproduce: parameter values, expected value, tolerance."""
+
+    quantity: str
+    values: Mapping[str, str]
+    value: float
+    tolerance: float
+    source: str
+    input: str | None = None
+
+
+@dataclass(frozen=True)
+class Train:
+    """A gear train (or machine) as written in a topology file, validated."""
+
+    name: str
+    links: tuple[Link, ...]
+    gears: tuple[Gear, ...]
+    couplings: tuple[Coupling, ...]
+    ports: Ports
+    reference: str
+    symbols: Mapping[str, sympy.Symbol] = field(default_factory=lambda: MappingProxyType({}))
+    source: str = ""
+    degrees_of_freedom: int | None = None
+    expected: tuple[Expected, ...] = ()
+    path: str | None = None
+
+    def coupling(self, name: str) -> Coupling:
+        for c in self.couplings:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+    def gear(self, name: str) -> Gear:
+        for g in self.gears:
+            if g.name == name:
+                return g
+        raise KeyError(name)
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(link.name for link in self.links)
+
+    def with_ports(self, ports: Ports) -> Train:
+        """The same train with other input/output ports."""
+        from dataclasses import replace
+
+        return replace(self, ports=ports)

@@ -1,0 +1,165 @@
+"""Exact polynomials and rational functions on python-flint (``fmpz_mpoly``).
+
+One polynomial ring per derivation holds every symbol of the train.  Sympy
+expressions enter through :meth:`PolynomialRing.rational` and leave through
+:meth:`RationalFunction.to_expr`, which builds the product of flint's irreducible
+factors directly, so no sympy simplification runs in the pipeline.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from math import lcm
+
+import sympy
+from flint import fmpz_mpoly, fmpz_mpoly_ctx
+
+from .errors import DerivationError
+
+
+class PolynomialRing:
+    """Z[x1, ..., xn] over the given sympy symbols (ordered by name)."""
+
+    def __init__(self, symbols: Iterable[sympy.Symbol]):
+        unique = {s.name: s for s in symbols}
+        self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
+        names = tuple(s.name for s in self.symbols) or ("_one",)
+        self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
+        self._gens = dict(zip(self.symbols, self.ctx.gens()))
+        self._exprs = tuple(self.symbols)
+
+    @property
+    def zero(self) -> fmpz_mpoly:
+        return self.ctx.from_dict({})
+
+    @property
+    def one(self) -> fmpz_mpoly:
+        return self.ctx.constant(1)
+
+    def gen(self, symbol: sympy.Symbol) -> fmpz_mpoly:
+        return self._gens[symbol]
+
+    def _poly(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
+        """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d."""
+        if expr == 0:
+            return self.zero, 1
+        extra = expr.free_symbols - set(self.symbols)
+        if extra:
+            raise DerivationError(f"symbols {sorted(map(str, extra))} are not in the polynomial ring")
+        try:
+            poly = sympy.Poly(expr, *self.symbols, domain="QQ") if self.symbols else None
+        except sympy.PolynomialError as exc:
+            raise DerivationError(f"{expr} is not a polynomial in the train's symbols ({exc})") from None
+        if poly is None:
+            value = sympy.Rational(expr)
+            return self.ctx.constant(int(value.p)), int(value.q)
+        terms = poly.terms()
+        denominator = lcm(*(int(sympy.Rational(c).q) for _, c in terms))
+        data = {m: int(sympy.Rational(c) * denominator) for m, c in terms}
+        return self.ctx.from_dict(data), denominator
+
+    def rational(self, expr: sympy.Expr) -> RationalFunction:
+        """A sympy rational expression as a :class:`RationalFunction`."""
+        expr = sympy.sympify(expr)
+        num, den = sympy.fraction(sympy.together(expr))
+        pn, dn = self._poly(sympy.expand(num))
+        pd, dd = self._poly(sympy.expand(den))
+        return RationalFunction.make(self, pn * dd, pd * dn)
+
+    def polynomial(self, expr: sympy.Expr) -> fmpz_mpoly:
+        """A polynomial with integer coefficients (after clearing denominators)."""
+        return self._poly(sympy.expand(sympy.sympify(expr)))[0]
+
+    def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
+        """Expanded sympy expression of ``p``."""
+        terms = []
+        for monom, coeff in zip(p.monoms(), p.coeffs()):
+            term: sympy.Expr = sympy.Integer(int(coeff))
+            for sym, exp in zip(self._exprs, monom):
+                if exp:
+                    term *= sym ** int(exp)
+            terms.append(term)
+        return sympy.Add(*terms)
+
+    def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:
+        """``p`` as a product of its irreducible factors (no expansion)."""
+        if p.is_zero():
+            return sympy.Integer(0)
+        content, factors = p.factor()
+        parts = [self.to_expr(f) ** int(e) for f, e in factors]
+        return sympy.Mul(sympy.Integer(int(content)), *parts)
+
+    def evaluate(self, p: fmpz_mpoly, values: Sequence[object]) -> object:
+        return p(*values)
+
+
+@dataclass(frozen=True, eq=False)
+class RationalFunction:
+    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient."""
+
+    ring: PolynomialRing
+    num: fmpz_mpoly
+    den: fmpz_mpoly
+
+    @classmethod
+    def make(cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly) -> RationalFunction:
+        if den.is_zero():
+            raise ZeroDivisionError("rational function with zero denominator")
+        if num.is_zero():
+            return cls(ring, num, ring.one)
+        g = num.gcd(den)
+        if not g.is_one():
+            num, den = num / g, den / g
+        if den.leading_coefficient() < 0:
+            num, den = -num, -den
+        return cls(ring, num, den)
+
+    @classmethod
+    def polynomial(cls, ring: PolynomialRing, p: fmpz_mpoly) -> RationalFunction:
+        return cls.make(ring, p, ring.one)
+
+    def is_zero(self) -> bool:
+        return bool(self.num.is_zero())
+
+    def __add__(self, other: RationalFunction) -> RationalFunction:
+        if self.den == other.den:
+            return RationalFunction.make(self.ring, self.num + other.num, self.den)
+        g = self.den.gcd(other.den)
+        a, b = self.den / g, other.den / g
+        return RationalFunction.make(self.ring, self.num * b + other.num * a, self.den * b)
+
+    def __neg__(self) -> RationalFunction:
+        return RationalFunction(self.ring, -self.num, self.den)
+
+    def __sub__(self, other: RationalFunction) -> RationalFunction:
+        return self + (-other)
+
+    def __mul__(self, other: RationalFunction) -> RationalFunction:
+        # Cross-cancel first so the products stay small.
+        g1, g2 = self.num.gcd(other.den), other.num.gcd(self.den)
+        num = (self.num / g1) * (other.num / g2)
+        den = (self.den / g2) * (other.den / g1)
+        return RationalFunction.make(self.ring, num, den)
+
+    def inverse(self) -> RationalFunction:
+        return RationalFunction.make(self.ring, self.den, self.num)
+
+    def __truediv__(self, other: RationalFunction) -> RationalFunction:
+        return self * other.inverse()
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, RationalFunction):
+            return NotImplemented
+        return bool(self.num * other.den == other.num * self.den)
+
+    def __hash__(self) -> int:  # pragma: no cover - not used as a key
+        return hash((str(self.num), str(self.den)))
+
+    def to_expr(self, factored: bool = True) -> sympy.Expr:
+        """Sympy expression: product of factors over product of factors (default)."""
+        convert = self.ring.factored_expr if factored else self.ring.to_expr
+        num = convert(self.num)
+        if self.den.is_one():
+            return num
+        return num / convert(self.den)

@@ -1,0 +1,82 @@
+"""Sign reasoning on polynomials and factored rational functions.
+
+Used to decide which way a force or a relative motion points from the symbols'
+assumptions (radii positive) and known geometric facts (an annulus is larger than the
+pinion it meshes).  An undecided sign is reported as such, never guessed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import sympy
+
+
+def _poly_sign(expr: sympy.Expr) -> int | None:
+    """+1 or -1 if every coefficient has that sign and every symbol is positive."""
+    expr = sympy.expand(expr)
+    if expr == 0:
+        return 0
+    if expr.is_number:
+        return 1 if expr > 0 else -1
+    if not all(s.is_positive for s in expr.free_symbols):
+        return None
+    coeffs = sympy.Poly(expr, *sorted(expr.free_symbols, key=str)).coeffs()
+    if all(c > 0 for c in coeffs):
+        return 1
+    if all(c < 0 for c in coeffs):
+        return -1
+    return None
+
+
+class SignOracle:
+    """Decides signs of polynomial factors under positivity and known positive facts."""
+
+    def __init__(self, facts: Iterable[sympy.Expr] = ()):
+        self.facts = tuple(sympy.expand(f) for f in facts)
+
+    def factor_sign(self, factor: sympy.Expr) -> int | None:
+        """Sign of one (irreducible) polynomial factor, or None if undecided."""
+        sign = _poly_sign(factor)
+        if sign is not None:
+            return sign
+        expanded = sympy.expand(factor)
+        for fact in self.facts:
+            # The factor may be a positive multiple of a fact, or of its negative.
+            ratio = sympy.cancel(expanded / fact)
+            if ratio.is_number and ratio != 0:
+                return 1 if ratio > 0 else -1
+        return None
+
+    def sign(self, expr: sympy.Expr) -> int | None:
+        """Sign of a product/quotient of factors; None if any factor is undecided."""
+        num, den = sympy.fraction(sympy.factor(expr))
+        total = 1
+        for part in (num, den):
+            for base, power in sympy.factor_list(part)[1]:
+                s = self.factor_sign(base)
+                if s is None:
+                    return None
+                if s == 0:
+                    return 0
+                total *= s ** power
+            total *= 1 if sympy.factor_list(part)[0] > 0 else -1
+        return total
+
+    def undecided_factors(self, expr: sympy.Expr) -> sympy.Expr:
+        """The product of the factors whose sign is undecided, with the sign of the rest
+        folded in: ``sign(expr) == sign(result)``."""
+        num, den = sympy.fraction(sympy.factor(expr))
+        kept: list[sympy.Expr] = []
+        total = 1
+        for part in (num, den):
+            content, factors = sympy.factor_list(part)
+            total *= 1 if content > 0 else -1
+            for base, power in factors:
+                s = self.factor_sign(base)
+                if s is None:
+                    if power % 2:
+                        kept.append(base)
+                else:
+                    total *= s ** power
+        return total * sympy.Mul(*kept)

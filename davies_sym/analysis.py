@@ -100,14 +100,14 @@ class Analysis:
         dof = len(free)
         problems = []
         if index not in free:
-            problems.append(Problem(f"ports.input", f"the input coupling {self.train.ports.input!r} cannot "
+            problems.append(self.train.problem("ports.input", f"the input coupling {self.train.ports.input!r} cannot "
                                     "move: the train is locked"))
         if self.train.degrees_of_freedom is not None and dof != self.train.degrees_of_freedom:
-            problems.append(Problem("degrees_of_freedom", f"the train has {dof} degree(s) of freedom, "
+            problems.append(self.train.problem("degrees_of_freedom", f"the train has {dof} degree(s) of freedom, "
                                     f"the file says {self.train.degrees_of_freedom}"))
         elif dof != 1:
             extra = [net.motions[j].name for j in free if j != index]
-            problems.append(Problem("ports", f"the train has {dof} degrees of freedom but one input port "
+            problems.append(self.train.problem("ports", f"the train has {dof} degrees of freedom but one input port "
                                     f"drives it; also free: {', '.join(extra)}" if dof > 1 else
                                     "the train has no degree of freedom"))
         if problems:
@@ -130,6 +130,7 @@ class Analysis:
     @cached_property
     def lossless_action_coefficients(self) -> dict[str, RationalFunction]:
         """Psi_alpha / T_in of the lossless network (friction columns removed)."""
+        self.motion_coefficients  # noqa: B018 - check the mobility before the actions
         self._progress("solving the lossless actions (null space of A_N)")
         net = self.network
         cols = net.action_columns(lossless=True)
@@ -142,12 +143,12 @@ class Analysis:
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
         if index not in free:
-            raise MobilityError([Problem("ports.input", f"the input torque on {self.train.ports.input!r} is "
+            raise MobilityError([self.train.problem("ports.input", f"the input torque on {self.train.ports.input!r} is "
                                          "determined by the other actions: the input does no work")],
                                 self.train.path)
         others = [cols[j].name for j in free if j != index]
         if others:
-            raise MobilityError([Problem("couplings", "the actions are not determined by the input: "
+            raise MobilityError([self.train.problem("couplings", "the actions are not determined by the input: "
                                          f"{', '.join(others)} stay free (the network is overconstrained "
                                          "in this screw system, or a port is missing)")], self.train.path)
 
@@ -171,14 +172,13 @@ class Analysis:
             assert law.transmitted is not None
             alpha = self.lossless_action_coefficients[law.transmitted]
             beta = self.motion_coefficients[law.motion]
-            product = (alpha * beta).to_expr() * self._input_pairing()
-            sign = self.oracle.sign(product)
+            content, factors = (alpha * beta * self._rf(self._input_pairing())).factor_list()
+            sign, undecided = self.oracle.classify(content, factors)
             if sign in (1, -1):
                 out[law.coupling] = sympy.Integer(sign)
             else:
                 out[law.coupling] = symbol
-                self.sign_conditions.append(SignCondition(law.coupling, symbol,
-                                                          self.oracle.undecided_factors(product)))
+                self.sign_conditions.append(SignCondition(law.coupling, symbol, undecided))
         return out
 
     # -- augmented action matrix (eqs. (22), (40), (51)-(52)) ------------------------

@@ -145,6 +145,7 @@ class Revolute(Coupling):
     """A revolute pair (bearing): one rotation about the axis through its point."""
 
     at: sympy.Expr | None = None
+    axis: str | None = None
 
     kind: ClassVar[str] = "revolute"
     DOC: ClassVar[str] = ("Revolute pair between two links. Its axis is parallel to the gear "
@@ -153,6 +154,9 @@ class Revolute(Coupling):
         Field("links", "[link, link]", True, "The two links; the edge goes from the first to the second."),
         Field("at", "number or expression", False,
               "Position of the axis on the layout line (y), needed only when neither link carries a gear."),
+        Field("axis", "link", False,
+              "The link whose gear axis this bearing is on, when both links carry gears but are not "
+              "coaxial (a planet pin in a carrier that also has teeth). Default: the two links are coaxial."),
     )
 
     @classmethod
@@ -160,7 +164,11 @@ class Revolute(Coupling):
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "length") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
-        return None if links is None else cls(name, links, friction, at)
+        axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
+        if links is not None and axis is not None and axis not in links:
+            reader.problem(f"{path}.axis", f"{axis!r} is not one of the coupling's links {list(links)}")
+            axis = None
+        return None if links is None else cls(name, links, friction, at, axis)
 
     def screws(self, layout: Layout) -> CouplingScrews:
         point, axis = layout.coupling_points[self.name], layout.axis

@@ -83,7 +83,7 @@ def planar_line_layout(train: Train) -> Layout:
     geared = {g.link for g in train.gears}
     groups = _AxisGroups(list(train.link_names))
     for c in train.couplings:
-        if isinstance(c, Revolute) and c.links[0] in geared and c.links[1] in geared:
+        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
             groups.union(*c.links)
     meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
     gears = {g.name: g for g in train.gears}
@@ -100,7 +100,7 @@ def planar_line_layout(train: Train) -> Layout:
                     tree_meshes |= _place_by_meshes(meshes, gears, groups, positions)
     for g in train.gears:
         if groups.find(g.link) not in positions:
-            problems.append(Problem(f"gears.{g.name}", "its position cannot be derived: no mesh or "
+            problems.append(train.problem(f"gears.{g.name}", "its position cannot be derived: no mesh or "
                                     "revolute with `at` connects it to the rest of the train"))
     if problems:
         raise GeometryError(problems, train.path)
@@ -117,21 +117,21 @@ def planar_line_layout(train: Train) -> Layout:
             offset = sympy.expand(centres[pin.name] - centres[ann.name])
             points[mesh.name] = _point(centres[ann.name] + ann.radius)
             if mesh.name not in tree_meshes:
-                _add_constraint(constraints, problems, offset, ann.radius - pin.radius, mesh.name, oracle)
+                _add_constraint(train, constraints, problems, offset, ann.radius - pin.radius, mesh.name, oracle)
         else:
             offset = sympy.expand(centres[h.name] - centres[g.name])
             side = oracle.sign(offset) if offset != 0 else 0
             if mesh.name not in tree_meshes:
                 if side is None or side == 0:
-                    problems.append(Problem(f"couplings.{mesh.name}", f"cannot tell on which side gear {h.name!r} "
+                    problems.append(train.problem(f"couplings.{mesh.name}", f"cannot tell on which side gear {h.name!r} "
                                             f"lies from gear {g.name!r} (centre offset {offset}); this mesh "
                                             "closes a loop that the line layout cannot decide"))
                     continue
-                _add_constraint(constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
+                _add_constraint(train, constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
             points[mesh.name] = _point(centres[g.name] + (side or 1) * g.radius)
     for c in train.couplings:
         if isinstance(c, Revolute):
-            point = _revolute_point(c, geared, groups, positions, problems)
+            point = _revolute_point(train, c, geared, groups, positions, problems)
             if point is not None:
                 points[c.name] = point
         elif not isinstance(c, GearMesh):
@@ -198,29 +198,30 @@ def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: 
     return used
 
 
-def _add_constraint(constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
+def _add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
                     distance: sympy.Expr, coupling: str, oracle: SignOracle) -> None:
     difference = sympy.expand(offset - distance)
     if difference == 0:
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
-        problems.append(Problem(f"couplings.{coupling}", f"inconsistent geometry: the centre distance "
+        problems.append(train.problem(f"couplings.{coupling}", f"inconsistent geometry: the centre distance "
                                 f"this mesh needs ({distance}) differs from the one the other meshes give "
                                 f"({offset})"))
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
 
-def _revolute_point(c: Revolute, geared: set[str], groups: _AxisGroups, positions: Mapping[str, sympy.Expr],
+def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGroups, positions: Mapping[str, sympy.Expr],
                     problems: list[Problem]) -> Vector | None:
-    derived = [positions[groups.find(link)] for link in c.links if link in geared]
+    on = [c.axis] if c.axis is not None else c.links
+    derived = [positions[groups.find(link)] for link in on if link in geared]
     if derived:
         if c.at is not None and sympy.expand(c.at - derived[0]) != 0:
-            problems.append(Problem(f"couplings.{c.name}.at", f"inconsistent geometry: `at` is {c.at} "
+            problems.append(train.problem(f"couplings.{c.name}.at", f"inconsistent geometry: `at` is {c.at} "
                                     f"but the gears put this axis at {derived[0]}"))
         return _point(derived[0])
     if c.at is None:
-        problems.append(Problem(f"couplings.{c.name}", f"neither link {c.links[0]!r} nor {c.links[1]!r} "
+        problems.append(train.problem(f"couplings.{c.name}", f"neither link {c.links[0]!r} nor {c.links[1]!r} "
                                 "carries a gear: give the position of this revolute with `at`"))
         return None
     return _point(c.at)

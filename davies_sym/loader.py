@@ -77,6 +77,7 @@ def build_train(document: SourceDocument) -> Train:
         degrees_of_freedom=dof,
         expected=expected,
         path=document.name,
+        locations=MappingProxyType(dict(document.lines)),
     )
 
 

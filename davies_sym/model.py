@@ -9,6 +9,7 @@ from types import MappingProxyType
 import sympy
 
 from .couplings import Coupling
+from .errors import Problem
 
 
 @dataclass(frozen=True)
@@ -69,6 +70,15 @@ class Train:
     degrees_of_freedom: int | None = None
     expected: tuple[Expected, ...] = ()
     path: str | None = None
+    #: Line of each entry path of the source file (``couplings.C.gears`` -> 12).
+    locations: Mapping[str, int] = field(default_factory=lambda: MappingProxyType({}))
+
+    def problem(self, entry: str, message: str) -> Problem:
+        """A :class:`Problem` at ``entry`` with the line it has in the source file."""
+        path = entry
+        while path and path not in self.locations:
+            path = path.rpartition(".")[0]
+        return Problem(entry, message, self.locations.get(path))
 
     def coupling(self, name: str) -> Coupling:
         for c in self.couplings:

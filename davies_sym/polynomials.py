@@ -8,7 +8,7 @@ factors directly, so no sympy simplification runs in the pipeline.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass
 from math import lcm
 
@@ -90,8 +90,10 @@ class PolynomialRing:
         parts = [self.to_expr(f) ** int(e) for f, e in factors]
         return sympy.Mul(sympy.Integer(int(content)), *parts)
 
-    def evaluate(self, p: fmpz_mpoly, values: Sequence[object]) -> object:
-        return p(*values)
+    def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
+        """Integer content and irreducible factors (as sympy expressions) of ``p``."""
+        content, factors = p.factor()
+        return int(content), [(self.to_expr(f), int(e)) for f, e in factors]
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,6 +143,13 @@ class RationalFunction:
         num = (self.num / g1) * (other.num / g2)
         den = (self.den / g2) * (other.den / g1)
         return RationalFunction.make(self.ring, num, den)
+
+    def factor_list(self) -> tuple[int, list[tuple[sympy.Expr, int]]]:
+        """Sign of the content and the factors of numerator and denominator together
+        (denominator factors are listed too: only their parity matters for signs)."""
+        cn, fn = self.ring.factor_list(self.num)
+        cd, fd = self.ring.factor_list(self.den)
+        return (1 if cn * cd > 0 else -1), fn + fd
 
     def inverse(self) -> RationalFunction:
         return RationalFunction.make(self.ring, self.den, self.num)

@@ -48,35 +48,35 @@ class SignOracle:
                 return 1 if ratio > 0 else -1
         return None
 
+    def classify(self, content_sign: int, factors: Iterable[tuple[sympy.Expr, int]]) -> tuple[int | None, sympy.Expr]:
+        """Sign of ``content_sign * prod(f**e)`` and the product of the undecided odd-power
+        factors times the sign of the rest (so that both have the same sign)."""
+        total, kept = content_sign, []
+        for base, power in factors:
+            s = self.factor_sign(base)
+            if s is None:
+                if power % 2:
+                    kept.append(base)
+            elif s == 0:
+                return 0, sympy.Integer(0)
+            else:
+                total *= s ** power
+        return (total if not kept else None), total * sympy.Mul(*kept)
+
+    def _factors(self, expr: sympy.Expr) -> tuple[int, list[tuple[sympy.Expr, int]]]:
+        num, den = sympy.fraction(sympy.together(expr))
+        sign, factors = 1, []
+        for part in (num, den):
+            content, parts = sympy.factor_list(part)
+            sign *= 1 if content > 0 else -1
+            factors += parts
+        return sign, factors
+
     def sign(self, expr: sympy.Expr) -> int | None:
         """Sign of a product/quotient of factors; None if any factor is undecided."""
-        num, den = sympy.fraction(sympy.factor(expr))
-        total = 1
-        for part in (num, den):
-            for base, power in sympy.factor_list(part)[1]:
-                s = self.factor_sign(base)
-                if s is None:
-                    return None
-                if s == 0:
-                    return 0
-                total *= s ** power
-            total *= 1 if sympy.factor_list(part)[0] > 0 else -1
-        return total
+        return self.classify(*self._factors(expr))[0]
 
     def undecided_factors(self, expr: sympy.Expr) -> sympy.Expr:
         """The product of the factors whose sign is undecided, with the sign of the rest
         folded in: ``sign(expr) == sign(result)``."""
-        num, den = sympy.fraction(sympy.factor(expr))
-        kept: list[sympy.Expr] = []
-        total = 1
-        for part in (num, den):
-            content, factors = sympy.factor_list(part)
-            total *= 1 if content > 0 else -1
-            for base, power in factors:
-                s = self.factor_sign(base)
-                if s is None:
-                    if power % 2:
-                        kept.append(base)
-                else:
-                    total *= s ** power
-        return total * sympy.Mul(*kept)
+        return self.classify(*self._factors(expr))[1]

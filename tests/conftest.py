@@ -1,0 +1,45 @@
+"""Shared helpers: catalog paths built from this file's location, and train variants."""
+
+from __future__ import annotations
+
+import os
+import random
+
+import pytest
+import sympy
+
+import davies_sym
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CATALOG = os.path.join(ROOT, "catalog")
+MALFORMED = os.path.join(ROOT, "tests", "malformed")
+
+
+def catalog_path(name: str) -> str:
+    return os.path.join(CATALOG, f"{name}.yaml")
+
+
+def variant(name: str, replacements: dict[str, str]) -> davies_sym.Train:
+    """A catalog train with text replacements applied (each must match)."""
+    text = open(catalog_path(name), encoding="utf-8").read()
+    for old, new in replacements.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    return davies_sym.loads(text, f"{name}-variant")
+
+
+def S(name: str, role: str = "length") -> sympy.Symbol:
+    return davies_sym.symbols.make_symbol(name, role)
+
+
+def equal(a: sympy.Expr, b: sympy.Expr, subs: dict | None = None) -> bool:
+    """Exact identity a == b (after optional substitution), on a canonical form."""
+    diff = a - b
+    if subs:
+        diff = diff.subs(subs)
+    return sympy.cancel(sympy.together(diff)) == 0
+
+
+@pytest.fixture
+def rng() -> random.Random:
+    return random.Random(20111)

@@ -16,6 +16,7 @@ import sympy
 
 from .errors import DerivationError, MobilityError, Problem
 from .exact_linalg import Row, gauss_jordan
+from .geometry import constraint_substitutions
 from .model import Train
 from .network import ActionVariable, FrictionLaw, Network
 from .polynomials import PolynomialRing, RationalFunction
@@ -61,7 +62,7 @@ class Analysis:
         self.input_motion = net.coupling_motions(train.ports.input)[0]
         self.input_action = net.port_action(train.ports.input)
         self.output_action = net.port_action(train.ports.output)
-        self.oracle = SignOracle(net.layout.positive_facts)
+        self.oracle = SignOracle(net.layout.positive_facts, constraint_substitutions(net.layout.constraints))
         self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
                              for law in net.laws if law.law == "coulomb"}
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())

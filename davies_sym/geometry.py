@@ -149,18 +149,25 @@ def planar_line_layout(train: Train) -> Layout:
     )
 
 
-def _constraint_facts(constraints: list[GeometricConstraint]) -> list[sympy.Expr]:
-    """A positive radius solved from a linear constraint is a positive expression:
-    r1 - r3 = r2 - r4 gives r2 + r3 - r1 > 0 (it equals r4)."""
-    facts = []
+def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> list[dict[sympy.Symbol, sympy.Expr]]:
+    """Every way to eliminate one symbol with one linear constraint: r1 - r3 = r2 - r4
+    gives r4 -> r2 + r3 - r1, r1 -> r2 + r3 - r4, ..."""
+    out = []
     for c in constraints:
         expr = c.expression
         for s in sorted(expr.free_symbols, key=str):
-            if s.is_positive and sympy.degree(expr, s) == 1:
+            if sympy.degree(expr, s) == 1:
                 solved = sympy.solve(expr, s)
                 if len(solved) == 1:
-                    facts.append(sympy.expand(solved[0]))
-    return facts
+                    out.append({s: sympy.expand(solved[0])})
+    return out
+
+
+def _constraint_facts(constraints: list[GeometricConstraint]) -> list[sympy.Expr]:
+    """A positive radius solved from a linear constraint is a positive expression:
+    r1 - r3 = r2 - r4 gives r2 + r3 - r1 > 0 (it equals r4)."""
+    return [value for sub in constraint_substitutions(tuple(constraints))
+            for s, value in sub.items() if s.is_positive]
 
 
 def _root_link(train: Train, geared: set[str]) -> str | None:

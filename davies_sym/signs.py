@@ -7,7 +7,7 @@ pinion it meshes).  An undecided sign is reported as such, never guessed.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 
 import sympy
 
@@ -32,8 +32,11 @@ def _poly_sign(expr: sympy.Expr) -> int | None:
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
-    def __init__(self, facts: Iterable[sympy.Expr] = ()):
+    def __init__(self, facts: Iterable[sympy.Expr] = (),
+                 substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()):
         self.facts = tuple(sympy.expand(f) for f in facts)
+        #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
+        self.substitutions = tuple(dict(s) for s in substitutions)
 
     def factor_sign(self, factor: sympy.Expr) -> int | None:
         """Sign of one (irreducible) polynomial factor, or None if undecided."""
@@ -46,6 +49,11 @@ class SignOracle:
             ratio = sympy.cancel(expanded / fact)
             if ratio.is_number and ratio != 0:
                 return 1 if ratio > 0 else -1
+        for substitution in self.substitutions:
+            # On the constraint the factor may have a plain sign (rr - rp - rs = rp).
+            sign = _poly_sign(expanded.subs(substitution))
+            if sign in (1, -1):
+                return sign
         return None
 
     def classify(self, content_sign: int, factors: Iterable[tuple[sympy.Expr, int]]) -> tuple[int | None, sympy.Expr]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sys
 import time
+from itertools import pairwise
 
 import davies_sym
 
@@ -45,10 +46,10 @@ def main(sizes: list[int]) -> None:
             times.append(time.perf_counter())
             getattr(a, step)
         times.append(time.perf_counter())
-        a.efficiency  # conversion of the factored result to sympy
+        _ = a.efficiency  # conversion of the factored result to sympy
         times.append(time.perf_counter())
         D = a.augmented_action_matrix
-        steps = [b - a_ for a_, b in zip(times, times[1:])]
+        steps = [b - a_ for a_, b in pairwise(times)]
         print(f"{k:>3} {D.rows:>4}x{D.cols:<4} " + " ".join(f"{t:>7.3f}s" for t in steps[:4])
               + f" {steps[4] + steps[5]:>9.3f}s {times[-1] - times[0]:>7.2f}s")
 

@@ -14,7 +14,7 @@ from functools import cached_property
 
 import sympy
 
-from .errors import DerivationError, MobilityError, Problem
+from .errors import DerivationError, MobilityError
 from .exact_linalg import Row, gauss_jordan
 from .geometry import constraint_substitutions
 from .model import Train
@@ -288,7 +288,7 @@ class Analysis:
 
     def _inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
         total = RationalFunction.polynomial(self.ring, self.ring.zero)
-        for a, b in zip(wrench, twist):
+        for a, b in zip(wrench, twist, strict=True):
             if not a.is_zero() and not b.is_zero():
                 total = total + a * b
         return total

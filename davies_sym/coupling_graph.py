@@ -10,7 +10,7 @@ the incidence matrix and the reduced incidence matrix A_i.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from itertools import combinations
+from itertools import combinations, pairwise
 
 import networkx as nx
 import sympy
@@ -79,7 +79,7 @@ class CouplingGraph:
             a, b = self.ends[chord]
             B[i, self.edges.index(chord)] = 1
             path = nx.shortest_path(tg, b, a)
-            for u, v in zip(path, path[1:]):
+            for u, v in pairwise(path):
                 name = next(iter(tg.get_edge_data(u, v)))
                 B[i, self.edges.index(name)] = 1 if self.ends[name] == (u, v) else -1
         return B

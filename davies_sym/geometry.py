@@ -123,7 +123,8 @@ def planar_line_layout(train: Train) -> Layout:
             side = oracle.sign(offset) if offset != 0 else 0
             if mesh.name not in tree_meshes:
                 if side is None or side == 0:
-                    problems.append(train.problem(f"couplings.{mesh.name}", f"cannot tell on which side gear {h.name!r} "
+                    problems.append(train.problem(f"couplings.{mesh.name}",
+                                                  f"cannot tell on which side gear {h.name!r} "
                                             f"lies from gear {g.name!r} (centre offset {offset}); this mesh "
                                             "closes a loop that the line layout cannot decide"))
                     continue
@@ -218,7 +219,8 @@ def _add_constraint(train: Train, constraints: list[GeometricConstraint], proble
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
 
-def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGroups, positions: Mapping[str, sympy.Expr],
+def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGroups,
+                    positions: Mapping[str, sympy.Expr],
                     problems: list[Problem]) -> Vector | None:
     on = [c.axis] if c.axis is not None else c.links
     derived = [positions[groups.find(link)] for link in on if link in geared]

@@ -110,7 +110,8 @@ class Network:
         for c in self.train.couplings:
             red = self.reduced[c.name]
             names = _unique([m.name for m in red.motions])
-            cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw) for n, m in zip(names, red.motions)]
+            cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw)
+                  for n, m in zip(names, red.motions, strict=True)]
             motions += cm
             needs_axis = c.name in ports or not c.friction.lossless
             if needs_axis and (len(cm) > 1 and not isinstance(c, GearMesh)):
@@ -127,9 +128,9 @@ class Network:
             if has_port:
                 actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
             constraints = self._constraint_actions(c, red)
-            transmitted = self._transmitted(c, constraints) if (c.friction.coulomb is not None
-                                                                or c.friction.linear is not None) else None
-            load_law = "coulomb" if c.friction.coulomb is not None else "linear" if c.friction.linear is not None else None
+            load_law = ("coulomb" if c.friction.coulomb is not None
+                        else "linear" if c.friction.linear is not None else None)
+            transmitted = self._transmitted(c, constraints) if load_law is not None else None
             if load_law is not None:
                 name = f"{base}star_{c.name}" if has_port else f"{base}_{c.name}"
                 actions.append(ActionVariable(name, c.name, wrench, "friction"))
@@ -144,7 +145,8 @@ class Network:
 
     def _constraint_actions(self, c: Coupling, red: ReducedCoupling) -> list[ActionVariable]:
         names = _unique([w.name for w in red.constraints])
-        return [ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint") for n, w in zip(names, red.constraints)]
+        return [ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint")
+                for n, w in zip(names, red.constraints, strict=True)]
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.

@@ -26,7 +26,7 @@ class PolynomialRing:
         self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
         names = tuple(s.name for s in self.symbols) or ("_one",)
         self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
-        self._gens = dict(zip(self.symbols, self.ctx.gens()))
+        self._gens = dict(zip(self.symbols, self.ctx.gens(), strict=False))
         self._exprs = tuple(self.symbols)
 
     @property
@@ -74,9 +74,9 @@ class PolynomialRing:
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
         terms = []
-        for monom, coeff in zip(p.monoms(), p.coeffs()):
+        for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
             term: sympy.Expr = sympy.Integer(int(coeff))
-            for sym, exp in zip(self._exprs, monom):
+            for sym, exp in zip(self._exprs, monom, strict=False):
                 if exp:
                     term *= sym ** int(exp)
             terms.append(term)

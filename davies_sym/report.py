@@ -34,7 +34,7 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         if isinstance(c, GearMesh):
             entry["gears"] = list(c.gears)
             entry["mesh"] = "internal" if c.internal else "external"
-        if isinstance(c, Revolute) or isinstance(c, GearMesh):
+        if isinstance(c, (Revolute, GearMesh)):
             point = net.layout.coupling_points[c.name]
             entry["position"] = [sympy.sstr(v) for v in point]
         entry["friction"] = _friction(c)

@@ -53,7 +53,7 @@ class ScrewSystem:
     def contains(self, twist: Screw) -> bool:
         """Whether ``twist`` lies in the system (its lift reproduces it)."""
         back = self.lift * sympy.Matrix(self.reduce_twist(twist))
-        return all(sympy.expand(a - b) == 0 for a, b in zip(back, twist))
+        return all(sympy.expand(a - b) == 0 for a, b in zip(back, twist, strict=True))
 
 
 def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
@@ -71,7 +71,7 @@ def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
     # General case: keep independent coordinate rows, express the others through them.
     chosen: list[int] = []
     for i in used:
-        if sympy.Matrix([W.row(k) for k in chosen + [i]]).rank(simplify=True) > len(chosen):
+        if sympy.Matrix([W.row(k) for k in [*chosen, i]]).rank(simplify=True) > len(chosen):
             chosen.append(i)
         if len(chosen) == rank:
             break
@@ -109,7 +109,7 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
         if any(sympy.expand(power(candidate.screw, m.screw)) != 0 for m in motions):
             continue
         row = list(system.reduce_wrench(candidate.screw))
-        if sympy.Matrix(rows + [row]).rank(simplify=True) > len(rows):
+        if sympy.Matrix([*rows, row]).rank(simplify=True) > len(rows):
             rows.append(row)
             chosen.append(NamedScrew(candidate.name, tuple(row)))  # type: ignore[arg-type]
         if len(chosen) == system.order - freedom:

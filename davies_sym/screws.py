@@ -64,7 +64,7 @@ def power(wrench: Sequence[sympy.Expr], twist: Sequence[sympy.Expr]) -> sympy.Ex
     (Laus eq. (5)); works on full or reduced coordinates alike."""
     if len(wrench) != len(twist):
         raise ValueError("wrench and twist must have the same number of coordinates")
-    return sympy.Add(*(a * b for a, b in zip(wrench, twist)))
+    return sympy.Add(*(a * b for a, b in zip(wrench, twist, strict=True)))
 
 
 def action_along_motion(twist: Screw) -> Screw:
@@ -84,7 +84,7 @@ def axis_letter(direction: Vector) -> str | None:
     for index, name in enumerate(AXES):
         unit = [0, 0, 0]
         unit[index] = 1
-        if all(d == u for d, u in zip(direction, unit)):
+        if all(d == u for d, u in zip(direction, unit, strict=True)):
             return name
     return None
 

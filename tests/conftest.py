@@ -19,9 +19,15 @@ def catalog_path(name: str) -> str:
     return os.path.join(CATALOG, f"{name}.yaml")
 
 
+def read_text(path: str) -> str:
+    with open(path, encoding="utf-8") as handle:
+        return handle.read()
+
+
 def variant(name: str, replacements: dict[str, str]) -> davies_sym.Train:
     """A catalog train with text replacements applied (each must match)."""
-    text = open(catalog_path(name), encoding="utf-8").read()
+    with open(catalog_path(name), encoding="utf-8") as handle:
+        text = handle.read()
     for old, new in replacements.items():
         assert old in text, old
         text = text.replace(old, new)

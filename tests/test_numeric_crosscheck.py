@@ -12,6 +12,7 @@ import pytest
 import sympy
 
 import davies_sym
+
 from conftest import catalog_path, variant
 
 
@@ -34,7 +35,7 @@ def numeric_efficiency(a: davies_sym.Analysis, values: dict[sympy.Symbol, float]
     def port_power(coupling: str) -> float:
         act = net.port_action(coupling)
         mot = net.coupling_motions(coupling)[0]
-        pairing = float(sum(sympy.sympify(w * t).subs(subs) for w, t in zip(act.wrench, mot.twist)))
+        pairing = float(sum(sympy.sympify(w * t).subs(subs) for w, t in zip(act.wrench, mot.twist, strict=True)))
         return Psi[net.actions.index(act)] * psi[net.motions.index(mot)] * pairing
 
     return -port_power(a.train.ports.output) / port_power(a.train.ports.input)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy
 
 import davies_sym
+
 from conftest import S, catalog_path, equal, variant
 
 r1, r2 = S("r1"), S("r2")
@@ -21,7 +22,7 @@ def test_motion_matrix_eq16():
     """Laus eq. (16): M = [[r2, -r1, -r1-r2], [0, -r1(r1+r2), -r1(r1+r2)]] t_A / r2."""
     M = analysis().motion_matrix()
     expected = sympy.Matrix([[r2, -r1, -r1 - r2], [0, -r1 * (r1 + r2), -r1 * (r1 + r2)]]) * tA / r2
-    assert all(equal(a, b) for a, b in zip(M, expected))
+    assert all(equal(a, b) for a, b in zip(M, expected, strict=True))
 
 
 def test_unit_and_network_action_matrices_eqs17_20():
@@ -39,7 +40,7 @@ def test_augmented_matrix_and_null_space_eqs22_23():
     assert a.augmented_action_matrix.row(4) == sympy.Matrix([[0, 0, 0, 0, 1, c * zC]])
     den = r1 + c * zC
     expected = [1, -1 / den, (r2 - c * zC) / den, 1 / den, c * zC / den, -1 / den]
-    assert all(equal(x, y) for x, y in zip(a.null_space(), expected))
+    assert all(equal(x, y) for x, y in zip(a.null_space(), expected, strict=True))
 
 
 def test_condensed_action_matrix_eq26():
@@ -52,7 +53,7 @@ def test_condensed_action_matrix_eq26():
         A = analysis(**options).action_matrix()
         den = r1 + a_value * zC
         expected = sympy.Matrix([[1, -1, 1], [-1 / den, 1 / den, -1 / den]]) * TA
-        assert all(equal(x, y) for x, y in zip(A, expected))
+        assert all(equal(x, y) for x, y in zip(A, expected, strict=True))
 
 
 def test_powers_eqs27_29_sum_to_zero():
@@ -108,7 +109,7 @@ def test_bearing_losses_eqs40_42():
                                      [0, 0, 0, 0, 0, 0, 1, zC]])
     den = r1 + zA + zC
     expected = [1, -zA / den, -1 / den, (r2 - zB - zC) / den, zB / den, 1 / den, zC / den, -1 / den]
-    assert all(equal(x, y) for x, y in zip(a.null_space(), expected))
+    assert all(equal(x, y) for x, y in zip(a.null_space(), expected, strict=True))
     rows = {"Tstar_A": (-zA, 0), "U_A": (0, -1), "T_B": (r2 - zB - zC, 0), "Tstar_B": (zB, 0),
             "U_B": (-r1 - r2, 1), "T_C": (zC, 0), "U_C": (r1, -1)}
     for name, (T, U) in rows.items():
@@ -150,7 +151,7 @@ def test_viscous_losses_after_eq53():
     assert [v.name for v in a.network.actions] == [
         "T_A", "Tddag_A", "U_A", "T_B", "Tddag_B", "U_B", "T_C", "Tddag_C", "U_C"]
     assert all(equal(x, y) for x, y in zip(a.dependent_sources, [-bA * tA, bB * r1 / r2 * tA,
-                                                                   bC * (r1 + r2) / r2 * tA]))
+                                                                   bC * (r1 + r2) / r2 * tA], strict=True))
     printed_a = bA * (r2 - zC) * r1 * r2 - bB * (r1 + zC) * r1**2 - bC * r1 * (r1 + r2) ** 2
     printed = (TA * ((r2 - zC) * r1 * r2) - printed_a * tA) / (TA * r2**2 * (r1 + zC))
     assert equal(a.efficiency.subs({bB: -bB, bC: -bC}), printed)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy
 
 import davies_sym
+
 from conftest import S, catalog_path, equal, variant
 
 r1, r2, r3, r4 = (S(f"r{i}") for i in range(1, 5))
@@ -44,10 +45,10 @@ def test_unit_motion_matrix_circuits_and_network_matrix_eqs54_57():
 def test_motion_null_space_eq58_and_motion_matrix_eq59():
     a = davies_sym.analyse(train())
     expected = [1, (r1 - r2) * (r1 - r3) / (r2 * r3), 1 - r1 / r3, -r1 * (r1 - r3) / (r2 * r3), r1 / r3]
-    assert all(equal(x, y) for x, y in zip(a.motion_null_space(), expected))
+    assert all(equal(x, y) for x, y in zip(a.motion_null_space(), expected, strict=True))
     M59 = sympy.Matrix([[r2 * r3, (r1 - r2) * (r1 - r3), -r2 * (r1 - r3), -r1 * (r1 - r3), r1 * r2],
                         [0, 0, -r1 * r2 * (r1 - r3), -r1 * r2 * (r1 - r3), r1 * r2 * (r1 - r3)]]) * tA / (r2 * r3)
-    assert all(equal(x, y) for x, y in zip(a.motion_matrix(), M59))
+    assert all(equal(x, y) for x, y in zip(a.motion_matrix(), M59, strict=True))
 
 
 def test_lossless_actions_eqs60_62():
@@ -61,7 +62,7 @@ def test_lossless_actions_eqs60_62():
     k = r2 * r3 - r1 * r4
     A62 = sympy.Matrix([[k, -r2 * r3, r1 * r4, -r2 * r3, r1 * r4 - r2 * r3],
                         [r2 - r1, r3, -r4, r3, r1 - r2]]) * TA / k
-    assert all(equal(x, y, PLANAR) for x, y in zip(a.action_matrix(), A62))
+    assert all(equal(x, y, PLANAR) for x, y in zip(a.action_matrix(), A62, strict=True))
 
 
 def test_lossy_actions_eq65_and_efficiency_eq71():
@@ -108,5 +109,5 @@ def test_result_independent_of_spanning_tree():
             a = davies_sym.analyse(train(), tree=tree, action_tree=action_tree)
             assert equal(a.efficiency, reference), (tree, action_tree)
             B, Q = a.network.circuit_matrix(), a.network.cutset_matrix()
-            assert B * a.network.graph.cutset_matrix(tree).T == sympy.zeros(B.rows, len(tree))
+            assert sympy.zeros(B.rows, len(tree)) == B * a.network.graph.cutset_matrix(tree).T
             assert Q.rows == 3

@@ -92,6 +92,11 @@ class Analysis:
     @cached_property
     def motion_coefficients(self) -> dict[str, RationalFunction]:
         """psi_alpha / t_in for every motion magnitude."""
+        return self._motion_solution[1]
+
+    @cached_property
+    def _motion_solution(self) -> tuple[int, dict[str, RationalFunction]]:
+        """The mobility (nullity of M_N) and psi_alpha / t_in; raises on a mismatch."""
         self._progress("solving the motions (null space of M_N)")
         net = self.network
         M_N = net.network_motion_matrix()
@@ -114,12 +119,12 @@ class Analysis:
         if problems:
             raise MobilityError(problems, self.train.path)
         solution = elimination.solution(self.ring)
-        return {v.name: solution[k][index] for k, v in enumerate(net.motions)}
+        return dof, {v.name: solution[k][index] for k, v in enumerate(net.motions)}
 
     @property
     def degrees_of_freedom(self) -> int:
-        self.motion_coefficients  # noqa: B018 - raises on a mobility mismatch
-        return 1
+        """Net degree of freedom F_N, the nullity of M_N (eq. (1))."""
+        return self._motion_solution[0]
 
     @cached_property
     def motion_magnitudes(self) -> dict[str, RationalFunction]:
@@ -131,7 +136,7 @@ class Analysis:
     @cached_property
     def lossless_action_coefficients(self) -> dict[str, RationalFunction]:
         """Psi_alpha / T_in of the lossless network (friction columns removed)."""
-        self.motion_coefficients  # noqa: B018 - check the mobility before the actions
+        _ = self._motion_solution  # check the mobility before the actions
         self._progress("solving the lossless actions (null space of A_N)")
         net = self.network
         cols = net.action_columns(lossless=True)
@@ -157,12 +162,21 @@ class Analysis:
     def _input_pairing(self) -> sympy.Expr:
         return power(self.input_action.wrench, self.input_motion.twist)
 
-    @cached_property
+    @property
     def coulomb_sign_values(self) -> dict[str, sympy.Expr]:
         """sign(transmitted force) * sign(relative motion) of every Coulomb law, with
         positive input power, or its sign symbol where the ports do not decide it."""
+        return self._coulomb_signs[0]
+
+    @property
+    def sign_conditions(self) -> list[SignCondition]:
+        """The Coulomb signs left as symbols, each with the expression that decides it."""
+        return list(self._coulomb_signs[1])
+
+    @cached_property
+    def _coulomb_signs(self) -> tuple[dict[str, sympy.Expr], tuple[SignCondition, ...]]:
         out: dict[str, sympy.Expr] = {}
-        self.sign_conditions: list[SignCondition] = []
+        conditions: list[SignCondition] = []
         for law in self.network.laws:
             if law.law != "coulomb":
                 continue
@@ -179,8 +193,8 @@ class Analysis:
                 out[law.coupling] = sympy.Integer(sign)
             else:
                 out[law.coupling] = symbol
-                self.sign_conditions.append(SignCondition(law.coupling, symbol, undecided))
-        return out
+                conditions.append(SignCondition(law.coupling, symbol, undecided))
+        return out, tuple(conditions)
 
     # -- augmented action matrix (eqs. (22), (40), (51)-(52)) ------------------------
     def _law_row(self, law: FrictionLaw) -> dict[str, sympy.Expr]:
@@ -219,7 +233,7 @@ class Analysis:
     @cached_property
     def action_solution(self) -> dict[str, tuple[RationalFunction, RationalFunction]]:
         """Every action magnitude as ``(a, b)`` with Psi = a T_in + b (b from sources)."""
-        self.coulomb_sign_values  # noqa: B018 - decide the signs first
+        _ = self._coulomb_signs  # decide the signs before forming D_A
         self._progress("solving the actions with friction (null space of D_A)")
         net = self.network
         D = self.augmented_action_matrix
@@ -328,10 +342,6 @@ class Analysis:
         """A (d x e), condensed per coupling, in terms of the input torque (eqs. (26), (65))."""
         cols = [[c.to_expr() for c in self.coupling_wrench(e)] for e in self.network.graph.edges]
         return sympy.Matrix(cols).T
-
-    def sign_conditions_list(self) -> list[SignCondition]:
-        self.coulomb_sign_values  # noqa: B018
-        return list(self.sign_conditions)
 
 
 def analyse(train: Train, **options: object) -> Analysis:

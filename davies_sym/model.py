@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 
 import sympy
@@ -98,6 +98,4 @@ class Train:
 
     def with_ports(self, ports: Ports) -> Train:
         """The same train with other input/output ports."""
-        from dataclasses import replace
-
         return replace(self, ports=ports)

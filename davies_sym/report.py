@@ -44,7 +44,7 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         couplings.append(entry)
     efficiency = analysis.efficiency
     conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
-                   "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions_list()]
+                   "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
     return {
         "name": train.name,
         "source": train.source,

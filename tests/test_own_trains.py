@@ -69,7 +69,7 @@ def mesh_external(r_driver, r_driven, zeta):
 def test_idler_chain_is_product_of_mesh_efficiencies():
     r1, r2, r3 = S("r1"), S("r2"), S("r3")
     a = davies_sym.analyse(davies_sym.loads(IDLER, "idler"))
-    assert a.sign_conditions_list() == []
+    assert a.sign_conditions == []
     assert equal(a.efficiency, mesh_external(r1, r2, zC) * mesh_external(r2, r3, zD))
 
 
@@ -81,7 +81,7 @@ def test_planetary_matches_the_classic_formula():
     a = davies_sym.analyse(davies_sym.loads(PLANETARY, "planetary"))
     (constraint,) = a.network.layout.constraints
     assert equal(constraint.expression, rs + 2 * rp - rr) or equal(constraint.expression, rr - rs - 2 * rp)
-    assert a.sign_conditions_list() == []
+    assert a.sign_conditions == []
     # Speed ratio: w_carrier / w_sun = rs / (rs + rr).
     ratio = a.motion_magnitudes["t_B"].to_expr() / a.motion_magnitudes["t_A"].to_expr()
     assert equal(ratio, rs / (rs + rr), {rr: rs + 2 * rp})
@@ -115,7 +115,7 @@ def test_invariants_on_every_train():
         if "r4" in {s.name for s in nominal}:
             nominal[S("r4")] = nominal[S("r2")] - nominal[S("r1")] + nominal[S("r3")]
         nominal.update({z: sympy.Rational(1, 10) for z in zetas})
-        signs = {c.symbol: sympy.sign(c.expression.subs(nominal)) for c in a.sign_conditions_list()}
+        signs = {c.symbol: sympy.sign(c.expression.subs(nominal)) for c in a.sign_conditions}
         eta = a.efficiency.subs(signs)
         for z in zetas:
             assert sympy.diff(eta, z).subs(nominal) < 0, (train.name, z)
@@ -160,5 +160,5 @@ def test_teeth_and_modules_give_radii_and_decide_the_signs():
     a = davies_sym.analyse(davies_sym.loads(text, "tuplin-teeth"))
     assert [g.radius for g in a.train.gears] == [40, 60, 15, 35]
     assert a.network.layout.constraints == ()
-    assert a.sign_conditions_list() == []
+    assert a.sign_conditions == []
     assert a.coulomb_sign_values == {"C": -1, "D": 1}

@@ -80,14 +80,14 @@ def test_lossy_actions_eq65_and_efficiency_eq71():
     assert all(equal(A[0, j], row[j] * TA / (r1 - r3), PLANAR) for j in range(5))
     eta71 = (r2 - r1) * (zD - r2) * (zC - r3) / (r2 * r3 * (zC - zD - r1 + r2))
     assert equal(a.efficiency, eta71)
-    assert a.sign_conditions_list() == []
+    assert a.sign_conditions == []
 
 
 def test_coulomb_signs_reported_not_guessed():
     """With Coulomb friction the sign of the friction on C and D depends on r1 < r2 (the
     turning condition of Table 5); the engine keeps sigma_C, sigma_D and says so."""
     a = davies_sym.analyse(train())
-    conditions = {c.coupling: c.expression for c in a.sign_conditions_list()}
+    conditions = {c.coupling: c.expression for c in a.sign_conditions}
     assert set(conditions) == {"C", "D"}
     assert equal(conditions["C"], r1 - r2) and equal(conditions["D"], r2 - r1)
     sC, sD = S("sigma_C", "sign"), S("sigma_D", "sign")

@@ -106,16 +106,18 @@ class Analysis:
         dof = len(free)
         problems = []
         if index not in free:
-            problems.append(self.train.problem("ports.input", f"the input coupling {self.train.ports.input!r} cannot "
-                                    "move: the train is locked"))
+            problems.append(self.train.problem(
+                "ports.input", f"the input coupling {self.train.ports.input!r} cannot move: the train is locked"))
         if self.train.degrees_of_freedom is not None and dof != self.train.degrees_of_freedom:
-            problems.append(self.train.problem("degrees_of_freedom", f"the train has {dof} degree(s) of freedom, "
-                                    f"the file says {self.train.degrees_of_freedom}"))
+            problems.append(self.train.problem(
+                "degrees_of_freedom",
+                f"the train has {dof} degree(s) of freedom, the file says {self.train.degrees_of_freedom}"))
         elif dof != 1:
             extra = [net.motions[j].name for j in free if j != index]
-            problems.append(self.train.problem("ports", f"the train has {dof} degrees of freedom but one input port "
-                                    f"drives it; also free: {', '.join(extra)}" if dof > 1 else
-                                    "the train has no degree of freedom"))
+            problems.append(self.train.problem(
+                "ports",
+                f"the train has {dof} degrees of freedom but one input port drives it; also free: "
+                f"{', '.join(extra)}" if dof > 1 else "the train has no degree of freedom"))
         if problems:
             raise MobilityError(problems, self.train.path)
         solution = elimination.solution(self.ring)
@@ -149,14 +151,14 @@ class Analysis:
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
         if index not in free:
-            raise MobilityError([self.train.problem("ports.input", f"the input torque on {self.train.ports.input!r} is "
-                                         "determined by the other actions: the input does no work")],
-                                self.train.path)
+            raise MobilityError([self.train.problem(
+                "ports.input", f"the input torque on {self.train.ports.input!r} is determined by the other "
+                "actions: the input does no work")], self.train.path)
         others = [cols[j].name for j in free if j != index]
         if others:
-            raise MobilityError([self.train.problem("couplings", "the actions are not determined by the input: "
-                                         f"{', '.join(others)} stay free (the network is overconstrained "
-                                         "in this screw system, or a port is missing)")], self.train.path)
+            raise MobilityError([self.train.problem(
+                "couplings", f"the actions are not determined by the input: {', '.join(others)} stay free "
+                "(the network is overconstrained in this screw system, or a port is missing)")], self.train.path)
 
     # -- friction signs (eqs. (21), (24), (41)) --------------------------------------
     def _input_pairing(self) -> sympy.Expr:

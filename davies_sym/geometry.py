@@ -100,8 +100,9 @@ def planar_line_layout(train: Train) -> Layout:
                     tree_meshes |= _place_by_meshes(meshes, gears, groups, positions)
     for g in train.gears:
         if groups.find(g.link) not in positions:
-            problems.append(train.problem(f"gears.{g.name}", "its position cannot be derived: no mesh or "
-                                    "revolute with `at` connects it to the rest of the train"))
+            problems.append(train.problem(
+                f"gears.{g.name}", "its position cannot be derived: no mesh or revolute with `at` connects it "
+                "to the rest of the train"))
     if problems:
         raise GeometryError(problems, train.path)
     oracle = SignOracle()
@@ -123,10 +124,10 @@ def planar_line_layout(train: Train) -> Layout:
             side = oracle.sign(offset) if offset != 0 else 0
             if mesh.name not in tree_meshes:
                 if side is None or side == 0:
-                    problems.append(train.problem(f"couplings.{mesh.name}",
-                                                  f"cannot tell on which side gear {h.name!r} "
-                                            f"lies from gear {g.name!r} (centre offset {offset}); this mesh "
-                                            "closes a loop that the line layout cannot decide"))
+                    problems.append(train.problem(
+                        f"couplings.{mesh.name}",
+                        f"cannot tell on which side gear {h.name!r} lies from gear {g.name!r} (centre offset "
+                        f"{offset}); this mesh closes a loop that the line layout cannot decide"))
                     continue
                 _add_constraint(train, constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
             points[mesh.name] = _point(centres[g.name] + (side or 1) * g.radius)
@@ -139,7 +140,6 @@ def planar_line_layout(train: Train) -> Layout:
             points[c.name] = vector((0, 0, 0))
     if problems:
         raise GeometryError(problems, train.path)
-    facts += _constraint_facts(constraints)
     return Layout(
         gear_centres={name: _point(y) for name, y in centres.items()},
         coupling_points=points,
@@ -162,13 +162,6 @@ def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> li
                 if len(solved) == 1:
                     out.append({s: sympy.expand(solved[0])})
     return out
-
-
-def _constraint_facts(constraints: list[GeometricConstraint]) -> list[sympy.Expr]:
-    """A positive radius solved from a linear constraint is a positive expression:
-    r1 - r3 = r2 - r4 gives r2 + r3 - r1 > 0 (it equals r4)."""
-    return [value for sub in constraint_substitutions(tuple(constraints))
-            for s, value in sub.items() if s.is_positive]
 
 
 def _root_link(train: Train, geared: set[str]) -> str | None:
@@ -212,9 +205,9 @@ def _add_constraint(train: Train, constraints: list[GeometricConstraint], proble
     if difference == 0:
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
-        problems.append(train.problem(f"couplings.{coupling}", f"inconsistent geometry: the centre distance "
-                                f"this mesh needs ({distance}) differs from the one the other meshes give "
-                                f"({offset})"))
+        problems.append(train.problem(
+            f"couplings.{coupling}", f"inconsistent geometry: the centre distance this mesh needs ({distance}) "
+            f"differs from the one the other meshes give ({offset})"))
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
@@ -226,11 +219,14 @@ def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGr
     derived = [positions[groups.find(link)] for link in on if link in geared]
     if derived:
         if c.at is not None and sympy.expand(c.at - derived[0]) != 0:
-            problems.append(train.problem(f"couplings.{c.name}.at", f"inconsistent geometry: `at` is {c.at} "
-                                    f"but the gears put this axis at {derived[0]}"))
+            problems.append(train.problem(
+                f"couplings.{c.name}.at",
+                f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {derived[0]}"))
         return _point(derived[0])
     if c.at is None:
-        problems.append(train.problem(f"couplings.{c.name}", f"neither link {c.links[0]!r} nor {c.links[1]!r} "
-                                "carries a gear: give the position of this revolute with `at`"))
+        problems.append(train.problem(
+            f"couplings.{c.name}",
+            f"neither link {c.links[0]!r} nor {c.links[1]!r} carries a gear: give the position of this "
+            "revolute with `at`"))
         return None
     return _point(c.at)

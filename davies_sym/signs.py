@@ -83,8 +83,3 @@ class SignOracle:
     def sign(self, expr: sympy.Expr) -> int | None:
         """Sign of a product/quotient of factors; None if any factor is undecided."""
         return self.classify(*self._factors(expr))[0]
-
-    def undecided_factors(self, expr: sympy.Expr) -> sympy.Expr:
-        """The product of the factors whose sign is undecided, with the sign of the rest
-        folded in: ``sign(expr) == sign(result)``."""
-        return self.classify(*self._factors(expr))[1]

@@ -14,6 +14,7 @@ from functools import cached_property
 
 import sympy
 
+from .couplings import GearMesh
 from .errors import DerivationError, MobilityError
 from .exact_linalg import Row, gauss_jordan
 from .geometry import constraint_substitutions
@@ -45,14 +46,18 @@ class Analysis:
     ``coulomb_signs='resolve'`` (default) fixes every Coulomb sign from the lossless
     solution with positive input power and keeps a sign symbol only where the sign
     depends on the geometry; ``'symbolic'`` keeps a symbol for every Coulomb law
-    (the ``c`` and ``a`` of Laus eqs. (22)-(26)).
+    (the ``c`` and ``a`` of Laus eqs. (22)-(26)); ``'mesh-linear'`` writes every gear
+    mesh as the signed linear law T = zeta U of eqs. (63)-(64), so that one formula
+    covers both power directions (zeta < 0 when the flow reverses, section 3.3.5), and
+    resolves the other Coulomb laws.  ``extra_symbols`` join the polynomial ring (the
+    ordinary efficiencies substituted later).
     """
 
     def __init__(self, train: Train, tree: Sequence[str] | None = None,
                  action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
-                 progress: Progress | None = None):
-        if coulomb_signs not in ("resolve", "symbolic"):
-            raise ValueError("coulomb_signs must be 'resolve' or 'symbolic'")
+                 progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = ()):
+        if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
+            raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
         self.train = train
         self.coulomb_signs = coulomb_signs
         self._progress = progress or (lambda message: None)
@@ -66,7 +71,7 @@ class Analysis:
         self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
                              for law in net.laws if law.law == "coulomb"}
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
-        symbols |= {self.input_motion.symbol, self.input_action.symbol}
+        symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
         for law in net.laws:
             symbols |= law.coefficient.free_symbols
         self.ring = PolynomialRing(symbols)
@@ -186,6 +191,9 @@ class Analysis:
             if self.coulomb_signs == "symbolic":
                 out[law.coupling] = symbol
                 continue
+            if self.coulomb_signs == "mesh-linear" and isinstance(self.train.coupling(law.coupling), GearMesh):
+                out[law.coupling] = sympy.Integer(-1)  # T + (-1) zeta U = 0, i.e. T = zeta U
+                continue
             assert law.transmitted is not None
             alpha = self.lossless_action_coefficients[law.transmitted]
             beta = self.motion_coefficients[law.motion]
@@ -302,17 +310,22 @@ class Analysis:
         """Condensed action screw of a coupling (a column of A, eqs. (26), (65))."""
         return self.action_wrench([v.name for v in self.network.coupling_actions(coupling)])
 
-    def _inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
+    def inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
         total = RationalFunction.polynomial(self.ring, self.ring.zero)
         for a, b in zip(wrench, twist, strict=True):
             if not a.is_zero() and not b.is_zero():
                 total = total + a * b
         return total
 
+    def lossless_input_power(self) -> RationalFunction:
+        """Input power of the lossless network per unit input torque (T_in = 1)."""
+        wrench = [self._rf(v) for v in self.input_action.wrench]
+        return self.inner(wrench, self.coupling_twist(self.train.ports.input))
+
     def power_rf(self, coupling: str, actions: Sequence[str] | None = None) -> RationalFunction:
         """Power through ``coupling`` (all its actions, or only ``actions``), eq. (5)."""
         names = [v.name for v in self.network.coupling_actions(coupling)] if actions is None else list(actions)
-        return self._inner(self.action_wrench(names), self.coupling_twist(coupling))
+        return self.inner(self.action_wrench(names), self.coupling_twist(coupling))
 
     def power(self, coupling: str, actions: Sequence[str] | None = None) -> sympy.Expr:
         """Power through a coupling as a sympy expression (eqs. (27)-(29))."""

@@ -189,6 +189,8 @@ class GearMesh(Coupling):
 
     mesh_gears: tuple[str, str] = ("", "")
     internal: bool = False
+    #: Ordinary efficiencies: (first gear drives, second gear drives), Laus eqs. (32), (34).
+    efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
 
     kind: ClassVar[str] = "mesh"
     DOC: ClassVar[str] = ("Gear mesh between two gears. The edge goes from the link of the first gear "
@@ -197,6 +199,10 @@ class GearMesh(Coupling):
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("gears", "[gear, gear]", True, "The two meshing gears."),
         Field("mesh", "`external` or `internal`", False, "Checked against the gears."),
+        Field("efficiency", "symbol or number, or a list of two", False,
+              "Ordinary efficiency of the mesh (carrier held). One value serves both power "
+              "directions; a list gives [first gear drives, second gear drives]. "
+              "Default: `eta_<coupling>`."),
     )
 
     @property
@@ -235,7 +241,8 @@ class GearMesh(Coupling):
                            f"{'internal' if internal else 'external'} mesh")
         default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default)
-        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal)
+        efficiencies = _read_efficiencies(entry.get("efficiency", f"eta_{name}"), f"{path}.efficiency", reader)
+        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
 
     def screws(self, layout: Layout) -> CouplingScrews:
         point, axis = layout.coupling_points[self.name], layout.axis
@@ -243,6 +250,25 @@ class GearMesh(Coupling):
         motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
         separating = NamedScrew(translation_magnitude_name(normal), translation_twist(normal))
         return CouplingScrews((motion,), (separating,), _point_constraints(point, (tangent,)))
+
+
+def _read_efficiencies(value: Any, path: str, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
+    values = value if isinstance(value, list) else [value]
+    if len(values) not in (1, 2):
+        reader.problem(path, f"expected one efficiency or a list of two, got {len(values)}")
+        return None
+    read = [reader.quantity(v, f"{path}[{i}]" if len(values) > 1 else path, "efficiency")
+            for i, v in enumerate(values)]
+    if any(r is None for r in read):
+        return None
+    for i, r in enumerate(read):
+        if r is not None and r.is_number and not 0 < r <= 1:
+            reader.problem(path, f"an ordinary efficiency must lie in (0, 1], got {values[i]!r}")
+            return None
+    first = read[0]
+    second = read[-1]
+    assert first is not None and second is not None
+    return first, second
 
 
 @dataclass(frozen=True)

@@ -8,12 +8,12 @@ factors directly, so no sympy simplification runs in the pipeline.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from math import lcm
 
 import sympy
-from flint import fmpz_mpoly, fmpz_mpoly_ctx
+from flint import fmpq, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
 from .errors import DerivationError
 
@@ -90,6 +90,22 @@ class PolynomialRing:
         parts = [self.to_expr(f) ** int(e) for f, e in factors]
         return sympy.Mul(sympy.Integer(int(content)), *parts)
 
+    def evaluate(self, p: fmpz_mpoly, point: Mapping[sympy.Symbol, object]) -> fmpq:
+        """Exact value of ``p`` at rational ``point`` (symbols ``p`` does not hold may be absent)."""
+        args = []
+        for symbol, degree in zip(self.symbols, p.degrees(), strict=False):
+            if symbol in point:
+                value = sympy.Rational(point[symbol])  # type: ignore[arg-type]
+                args.append(fmpq(int(value.p), int(value.q)))
+            elif degree:
+                raise KeyError(symbol)
+            else:
+                args.append(fmpq(0))
+        if not self.symbols:
+            return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
+        qctx = fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex")
+        return qctx.from_dict(p.to_dict())(*args)
+
     def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
         """Integer content and irreducible factors (as sympy expressions) of ``p``."""
         content, factors = p.factor()
@@ -164,6 +180,44 @@ class RationalFunction:
 
     def __hash__(self) -> int:  # pragma: no cover - not used as a key
         return hash((str(self.num), str(self.den)))
+
+    def substitute(self, symbol: sympy.Symbol, value: RationalFunction) -> RationalFunction:
+        """``self`` with ``symbol`` replaced by ``value = n / d``, without expanding the
+        whole fraction: N(n/d) d^K / (D(n/d) d^K), K the larger degree in ``symbol``."""
+        name = symbol.name
+        index = self.ring.symbols.index(symbol)
+        degree = max(self.num.degrees()[index], self.den.degrees()[index])
+        if degree == 0:
+            return self
+        n, d = value.num, value.den
+
+        def homogenise(p: fmpz_mpoly) -> fmpz_mpoly:
+            # p = sum_k c_k x^k, c_k = (d^k p / dx^k)(0) / k!; multilinear p needs two terms.
+            total, derivative, factorial = self.ring.zero, p, 1
+            for k in range(degree + 1):
+                if k:
+                    derivative = derivative.derivative(name)
+                    factorial *= k
+                    if derivative.is_zero():
+                        break
+                coefficient = derivative.subs({name: 0})
+                if not coefficient.is_zero():
+                    total += (coefficient / factorial) * n ** k * d ** (degree - k)
+            return total
+
+        return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))
+
+    def evaluate(self, point: Mapping[sympy.Symbol, object]) -> fmpq:
+        """Exact value at a rational point; ZeroDivisionError on a pole."""
+        return self.ring.evaluate(self.num, point) / self.ring.evaluate(self.den, point)
+
+    def derivative(self, symbol: sympy.Symbol) -> RationalFunction:
+        """Partial derivative with respect to ``symbol``."""
+        if symbol not in self.ring.symbols:
+            return RationalFunction.polynomial(self.ring, self.ring.zero)
+        name = symbol.name
+        num = self.num.derivative(name) * self.den - self.num * self.den.derivative(name)
+        return RationalFunction.make(self.ring, num, self.den * self.den)
 
     def to_expr(self, factored: bool = True) -> sympy.Expr:
         """Sympy expression: product of factors over product of factors (default)."""

@@ -1,0 +1,222 @@
+"""The overall efficiency in ordinary mesh efficiencies, in every variant (Laus
+sections 3.4.1.5 and 3.5.1.1, Tables 5 and 6).
+
+One derivation gives the efficiency F(zeta) = -P_out / P_in with every mesh on the
+signed law T = zeta U (eqs. (63)-(64), (71)).  For each mesh and each power direction
+zeta is the solution of the ordinary-efficiency equation (eqs. (74)-(75), (92)-(94));
+substituting it gives the variant's formula, put over factored numerator and
+denominator (eq. (76)).  A variant is a choice of input port and a sign of every
+turning condition; swapping input and output reverses every mesh and inverts the
+efficiency (eqs. (78)-(79)).  Each variant is checked by the partial-derivative rule
+(section 3.6.2) at a sampled point of its region; regions no sampled geometry reaches
+are reported as infeasible, and sampled points where the efficiency is not positive
+as self-locking.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import sympy
+
+from .analysis import Analysis
+from .errors import DerivationError, InputError, Problem
+from .model import Train
+from .parameter_domain import ParameterDomain, Point, efficiency_symbols
+from .polynomials import RationalFunction
+from .turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
+from .virtual_power import mesh_power_flow
+
+Progress = Callable[[str], None]
+
+#: Ordinary efficiency used for the partial-derivative check (Glover's external value).
+NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
+
+
+@dataclass(frozen=True, eq=False)
+class Variant:
+    """One formula of the overall efficiency and where it holds."""
+
+    number: int
+    input: str
+    output: str
+    #: Required sign of each turning condition (condition name -> +1 or -1).
+    signs: Mapping[str, int]
+    #: Mesh -> True when its first gear drives.
+    first_drives: Mapping[str, bool]
+    efficiency_rf: RationalFunction = field(repr=False)
+    #: Whether a sampled admissible geometry lies in the region.
+    feasible: bool = True
+    #: "positive", "failed: <symbols>" or "not checked" (no sample in the region).
+    derivative_check: str = "not checked"
+    #: A sampled point of the region where the efficiency is <= 0, if any was found.
+    self_locking_point: Point | None = None
+    #: Product whose sign is that of the efficiency (positive factors removed); the
+    #: variant self-locks where it is <= 0.  None when provably positive.
+    locking_expression: sympy.Expr | None = None
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        """The formula, numerator and denominator factored."""
+        return self.efficiency_rf.to_expr()
+
+    @property
+    def name(self) -> str:
+        """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
+        parts = [f"{self.input}_to_{self.output}"]
+        parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
+        return "_".join(_identifier(p) for p in parts)
+
+
+def _identifier(text: str) -> str:
+    return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in text)
+
+
+@dataclass(frozen=True, eq=False)
+class VariantSet:
+    """Every variant of one train, its turning conditions and mesh roles."""
+
+    train: Train
+    analysis: Analysis = field(repr=False)
+    roles: tuple[MeshRole, ...]
+    conditions: tuple[TurningCondition, ...]
+    variants: tuple[Variant, ...]
+    #: The efficiency with the signed friction law, declared input (eq. (71)).
+    friction_form: RationalFunction = field(repr=False)
+
+    @property
+    def symbols(self) -> list[sympy.Symbol]:
+        """Every symbol a formula or a condition may need, sorted by name."""
+        out: set[sympy.Symbol] = set()
+        for v in self.variants:
+            out |= v.efficiency.free_symbols  # type: ignore[arg-type]
+        for c in self.conditions:
+            out |= c.expression.free_symbols  # type: ignore[arg-type]
+        return sorted(out, key=str)
+
+    def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
+        """The variant whose conditions hold at ``values`` with ``input`` as input port."""
+        port = input or self.train.ports.input
+        if port not in (self.train.ports.input, self.train.ports.output):
+            raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
+                                      f"{self.train.ports.input}, {self.train.ports.output})")], self.train.path)
+        signs = {}
+        for c in self.conditions:
+            value = sympy.sympify(c.expression.subs(values))
+            if not value.is_number:
+                missing = sorted(map(str, value.free_symbols))
+                raise InputError([Problem("--eval", f"condition {c.name} needs values for {', '.join(missing)}")],
+                                 self.train.path)
+            signs[c.name] = 1 if value >= 0 else -1
+        for v in self.variants:
+            if v.input == port and dict(v.signs) == signs:
+                return v
+        raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+
+    def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
+        """The efficiency at ``values`` (exact when the values are), right variant chosen."""
+        variant = self.variant_for(values, input)
+        value = variant.efficiency.subs(values)
+        if not sympy.sympify(value).is_number:
+            missing = sorted(map(str, value.free_symbols))
+            raise InputError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
+                             self.train.path)
+        return value
+
+
+def _zeta_forms(analysis: Analysis, roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
+    """zeta of every mesh for both directions, in ``analysis``'s ring."""
+    out = {}
+    for role in roles:
+        mesh = analysis.train.coupling(role.coupling)
+        flow = mesh_power_flow(analysis, mesh)  # type: ignore[arg-type]
+        for first in (True, False):
+            eta = role.efficiencies[0] if first else role.efficiencies[1]
+            out[(role.coupling, first)] = flow.friction_for(eta, first)
+    return out
+
+
+def _substituted(form: RationalFunction, roles: Sequence[MeshRole],
+                 zetas: Mapping[tuple[str, bool], RationalFunction], first: Mapping[str, bool]) -> RationalFunction:
+    for role in roles:
+        form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])
+    return form
+
+
+def derive_variants(train: Train, progress: Progress | None = None, samples: int = 200,
+                    seed: int = 0) -> VariantSet:
+    """Derive every variant of ``train``'s efficiency in ordinary efficiencies."""
+    say = progress or (lambda message: None)
+    etas = efficiency_symbols(train)
+    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas)
+    say("virtual power flow through the meshes")
+    roles, conditions = mesh_roles(analysis)
+    declared = analysis.efficiency_rf
+    zetas = _zeta_forms(analysis, roles)
+    role_names = {r.coupling for r in roles}
+    # Other friction laws (bearings, viscous) change with the input side: derive again.
+    resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
+    if resolve_again:
+        swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
+                                    progress=progress, extra_symbols=etas)
+        swapped_form = swapped_analysis.efficiency_rf
+        swapped_zetas = _zeta_forms(swapped_analysis, roles)
+    domain = ParameterDomain.of(train, analysis.network.layout)
+    extra = _other_symbols(analysis, etas, roles)
+    points = list(domain.samples(samples, seed=seed, extra=extra))
+    regions: dict[tuple[int, ...], list[Point]] = {}
+    for point in points:
+        key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
+        regions.setdefault(key, []).append(point)
+    variants: list[Variant] = []
+    combos = condition_signs(conditions)
+    rng = random.Random(seed)
+    for declared_input in (True, False):
+        port_in = train.ports.input if declared_input else train.ports.output
+        port_out = train.ports.output if declared_input else train.ports.input
+        for signs in combos:
+            say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
+            first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
+            if declared_input:
+                rf = _substituted(declared, roles, zetas, first)
+            elif resolve_again:
+                rf = _substituted(swapped_form, roles, swapped_zetas, first)
+            else:
+                rf = _substituted(declared, roles, zetas, first).inverse()
+            region = regions.get(tuple(signs[c.name] for c in conditions), [])
+            variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
+            variants.append(_checked(variant, region, etas, analysis, rng))
+    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared)
+
+
+def _other_symbols(analysis: Analysis, etas: Sequence[sympy.Symbol],
+                   roles: Sequence[MeshRole]) -> list[sympy.Symbol]:
+    """Symbols left in the formulas besides geometry and efficiencies (bearing
+    friction, viscous coefficients, input torque and speed)."""
+    out = set(analysis.ring.symbols) - set(etas)
+    out -= {r.flow.friction_symbol for r in roles}
+    return sorted(out, key=str)  # type: ignore[arg-type]
+
+
+def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Symbol], analysis: Analysis,
+             rng: random.Random) -> Variant:
+    """Partial-derivative rule at a region sample; self-locking by sampling."""
+    rf = variant.efficiency_rf
+    content, factors = variant.efficiency_rf.factor_list()
+    sign, locking = analysis.oracle.classify(content, factors)
+    locking_expression = None if sign == 1 else locking
+    derivative_check = "not checked"
+    locked: Point | None = None
+    if region:
+        nominal = {**region[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
+        failed = [str(e) for e in etas if not rf.derivative(e).is_zero() and not rf.derivative(e).evaluate(nominal) > 0]
+        derivative_check = "positive" if not failed else f"failed: {', '.join(failed)}"
+        for point in region[:40]:
+            values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
+            if rf.evaluate(values) <= 0:
+                locked = values
+                break
+    return Variant(variant.number, variant.input, variant.output, variant.signs, variant.first_drives,
+                   variant.efficiency_rf, variant.feasible, derivative_check, locked, locking_expression)

@@ -1,0 +1,249 @@
+"""Efficiency by virtual-power balance (Chen 2006, chapter 4): an independent route.
+
+No screws, no coupling-graph matrices, no friction coefficients: members, angular
+speeds and torques about their axes, and Chen's loss formula, evaluated exactly at one
+parameter point.  The eight steps of Chen section 4.6:
+
+(i)    kinematics: one Willis equation per mesh, the pitch-point speeds of both gears
+       equal when seen from the mesh's carrier, ``(w_p - w_c) a_p = (w_q - w_c) a_q``
+       with ``a`` the signed distance from the gear axis to the pitch point;
+(ii)   power flow without loss: the torques of the lossless train;
+(iii)  virtual-power flow without loss in each carrier frame: the virtual power a
+       member delivers to a mesh is ``-M (w - w_c)`` (eq. (4.6): a member's virtual
+       power is its torque times its speed relative to the carrier); the side that
+       delivers power drives;
+(iv-v) losses added: the driven side receives ``eta`` times the virtual power the
+       driver delivers, ``L = (1 - eta) P^v`` (eq. (4.4) with lambda = 1 - eta);
+(vi)   balances: each member's torques about its axis sum to zero, which is its
+       virtual-power balance (4.5) divided by its carrier-frame speed; a carrier
+       receives from each planet the moments that the planet's meshes exert on it
+       (about the carrier axis: minus the moment on the partner gear, which is coaxial);
+(vii)  the linear system is solved for the mesh torques and the output torque;
+(viii) ``eta = (P_0 - L) / P_0``, checked against ``-P_out / P_in`` and the power
+       balance (4.3b).
+
+Applies to 1-DOF trains with parallel axes drawn on a line (planets on carriers whose
+partner gears are coaxial with the carrier); other trains get a clear error.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import sympy
+
+from .couplings import GearMesh, Revolute
+from .errors import DerivationError
+from .geometry import planar_line_layout
+from .model import Train
+
+Values = Mapping[sympy.Symbol, sympy.Expr]
+
+
+@dataclass(frozen=True)
+class BalanceResult:
+    """Outcome of the virtual-power balance at one point."""
+
+    efficiency: sympy.Rational
+    input_power: sympy.Rational
+    output_power: sympy.Rational
+    #: Power lost in each mesh (frame-invariant, eq. (4.4)).
+    losses: Mapping[str, sympy.Rational]
+    #: Mesh -> True when its first gear drives.
+    first_drives: Mapping[str, bool]
+    speeds: Mapping[str, sympy.Rational]
+
+
+class _Members:
+    """Axes of the members and which carrier holds which planet."""
+
+    def __init__(self, train: Train, values: Values):
+        self.train = train
+        layout = planar_line_layout(train)
+
+        def y(point: object) -> sympy.Rational:
+            return sympy.Rational(sympy.sympify(point[1]).subs(values))  # type: ignore[index]
+
+        self.gear_axis = {g.name: y(layout.gear_centres[g.name]) for g in train.gears}
+        self.pitch = {c.name: y(layout.coupling_points[c.name]) for c in train.couplings if isinstance(c, GearMesh)}
+        self.revolutes = [c for c in train.couplings if isinstance(c, Revolute)]
+        self.bearing_axis = {c.name: y(layout.coupling_points[c.name]) for c in self.revolutes}
+        # A geared link turns about its gears' axis; any other link about the bearing by
+        # which it is first reached from the reference.
+        self.axis: dict[str, sympy.Rational] = {}
+        for g in train.gears:
+            self.axis.setdefault(g.link, self.gear_axis[g.name])
+        self.axis.setdefault(train.reference, sympy.Integer(0))
+        frontier, reached = [train.reference], {train.reference}
+        while frontier:
+            nxt = []
+            for link in frontier:
+                for c in self.revolutes:
+                    if link in c.links:
+                        other = c.links[1] if c.links[0] == link else c.links[0]
+                        if other not in reached:
+                            reached.add(other)
+                            self.axis.setdefault(other, self.bearing_axis[c.name])
+                            nxt.append(other)
+            frontier = nxt
+        missing = [link for link in train.link_names if link not in reached]
+        if missing:
+            raise DerivationError(f"virtual-power balance: links {missing} hang on no bearing chain from the "
+                                  f"reference {train.reference!r}")
+
+    def coaxial_group(self, link: str, axis: sympy.Rational) -> set[str]:
+        """Links joined to ``link`` by bearings on ``axis``: they hold that axis."""
+        group, frontier = {link}, [link]
+        while frontier:
+            current = frontier.pop()
+            for c in self.revolutes:
+                if current in c.links and self.bearing_axis[c.name] == axis:
+                    other = c.links[1] if c.links[0] == current else c.links[0]
+                    if other not in group:
+                        group.add(other)
+                        frontier.append(other)
+        return group
+
+    def carrier(self, mesh: GearMesh) -> str:
+        """The link holding both gear axes of ``mesh``."""
+        groups = [self.coaxial_group(link, self.gear_axis[gear]) - set(mesh.links)
+                  for gear, link in zip(mesh.gears, mesh.links, strict=True)]
+        common = [link for link in self.train.link_names if link in groups[0] and link in groups[1]]
+        if not common:
+            raise DerivationError(f"virtual-power balance: no carrier found for mesh {mesh.name}")
+        return common[0]
+
+    def carries(self, carrier: str, planet: str) -> bool:
+        """Whether ``planet`` turns in a bearing of ``carrier`` off the carrier's axis."""
+        return self.axis[planet] != self.axis[carrier] and any(
+            set(c.links) == {carrier, planet} and self.bearing_axis[c.name] == self.axis[planet]
+            for c in self.revolutes)
+
+
+def virtual_power_balance(train: Train, values: Values, input: str | None = None) -> BalanceResult:
+    """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one)."""
+    members = _Members(train, values)
+    port_in = input or train.ports.input
+    port_out = train.ports.output if port_in == train.ports.input else train.ports.input
+    meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
+    carriers = {m.name: members.carrier(m) for m in meshes}
+    links = [link for link in train.link_names if link != train.reference]
+    col = {link: i for i, link in enumerate(links)}
+
+    # (i) kinematics: Willis equations and the input speed set to 1.
+    rows, rhs = [], []
+    for m in meshes:
+        row = [sympy.Integer(0)] * len(links)
+        c = carriers[m.name]
+        for sign, gear, link in ((1, m.gears[0], m.links[0]), (-1, m.gears[1], m.links[1])):
+            arm = members.pitch[m.name] - members.gear_axis[gear]
+            if link in col:
+                row[col[link]] += sign * arm
+            if c in col:
+                row[col[c]] -= sign * arm
+        rows.append(row)
+        rhs.append(0)
+    a, b = train.coupling(port_in).links
+    row = [sympy.Integer(0)] * len(links)
+    if b in col:
+        row[col[b]] += 1
+    if a in col:
+        row[col[a]] -= 1
+    rows.append(row)
+    rhs.append(1)
+    K = sympy.Matrix(rows)
+    if K.rank() != len(links):
+        raise DerivationError("virtual-power balance: the kinematics do not have one degree of freedom")
+    w = dict(zip(links, K.solve(sympy.Matrix(rhs)), strict=True))
+    w[train.reference] = sympy.Integer(0)
+
+    def rel(link: str, carrier: str) -> sympy.Expr:
+        return w[link] - w[carrier]
+
+    def solve(first_drives: Mapping[str, bool] | None) -> tuple[dict[str, tuple[sympy.Expr, sympy.Expr]], sympy.Expr]:
+        # Unknowns: (M_p, M_q) per mesh, then the output torque; the input torque is 1.
+        n = 2 * len(meshes) + 1
+        out_col = n - 1
+        eqs: list[list[sympy.Expr]] = []
+        rhs: list[sympy.Expr] = []
+        for k, m in enumerate(meshes):  # (iv-v) loss formula per mesh
+            c = carriers[m.name]
+            s_p, s_q = rel(m.links[0], c), rel(m.links[1], c)
+            row = [sympy.Integer(0)] * n
+            if first_drives is None:
+                row[2 * k], row[2 * k + 1] = s_p, s_q
+            elif first_drives[m.name]:
+                row[2 * k], row[2 * k + 1] = _efficiency(m, 0, values) * s_p, s_q
+            else:
+                row[2 * k], row[2 * k + 1] = s_p, _efficiency(m, 1, values) * s_q
+            eqs.append(row)
+            rhs.append(0)
+        for link in links:  # (vi) torque balance of every member about its axis
+            row = [sympy.Integer(0)] * n
+            const = sympy.Integer(0)
+            for k, m in enumerate(meshes):
+                for side in (0, 1):
+                    if m.links[side] == link:
+                        if members.gear_axis[m.gears[side]] != members.axis[link]:
+                            raise DerivationError(f"virtual-power balance: gear {m.gears[side]} is not on the "
+                                                  f"axis of its link {link}")
+                        row[2 * k + side] += 1
+                    planet = m.links[side]
+                    partner = 1 - side
+                    if planet != link and m.links[partner] != link and members.carries(link, planet):
+                        if members.gear_axis[m.gears[partner]] != members.axis[link]:
+                            raise DerivationError(f"virtual-power balance: planet {planet} meshes gear "
+                                                  f"{m.gears[partner]}, which is not coaxial with its carrier {link}")
+                        row[2 * k + partner] -= 1
+            for port, col_or_const in ((port_in, None), (port_out, out_col)):
+                pa, pb = train.coupling(port).links
+                for end, sign in ((pb, 1), (pa, -1)):
+                    if end == link:
+                        if col_or_const is None:
+                            const += sign
+                        else:
+                            row[col_or_const] += sign
+            eqs.append(row)
+            rhs.append(-const)
+        A = sympy.Matrix(eqs)
+        if A.rank() != n:
+            raise DerivationError("virtual-power balance: the torque balances do not determine the torques")
+        x = A.solve(sympy.Matrix(rhs))
+        torques = {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}
+        return torques, x[out_col]
+
+    # (ii-iii) lossless flow: the side delivering virtual power drives.
+    lossless, _ = solve(None)
+    first = {}
+    for m in meshes:
+        c = carriers[m.name]
+        delivered = -lossless[m.name][0] * rel(m.links[0], c)
+        first[m.name] = bool(delivered >= 0)
+    # (vii) with losses
+    torques, t_out = solve(first)
+    pa, pb = train.coupling(port_in).links
+    p_in = 1 * (w[pb] - w[pa])
+    qa, qb = train.coupling(port_out).links
+    p_out = t_out * (w[qb] - w[qa])
+    losses = {}
+    for m in meshes:
+        c = carriers[m.name]
+        m_p, m_q = torques[m.name]
+        losses[m.name] = sympy.Rational(-(m_p * rel(m.links[0], c) + m_q * rel(m.links[1], c)))
+    # (viii) efficiency, with the power balance (4.3b) as a check.
+    total_loss = sum(losses.values(), sympy.Integer(0))
+    if p_in + p_out != total_loss:
+        # The net power entering the train is what its meshes dissipate.
+        raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
+    efficiency = sympy.Rational((p_in - total_loss) / p_in)
+    if efficiency != -p_out / p_in:
+        raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
+    return BalanceResult(efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first,
+                         {k: sympy.Rational(v) for k, v in w.items()})
+
+
+def _efficiency(mesh: GearMesh, index: int, values: Values) -> sympy.Expr:
+    if mesh.efficiencies is None or (mesh.friction.coulomb is None and mesh.friction.linear is None):
+        return sympy.Integer(1)
+    return sympy.sympify(mesh.efficiencies[index]).subs(values)

@@ -126,7 +126,8 @@ class Analysis:
         if problems:
             raise MobilityError(problems, self.train.path)
         solution = elimination.solution(self.ring)
-        return dof, {v.name: solution[k][index] for k, v in enumerate(net.motions)}
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return dof, {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
 
     @property
     def degrees_of_freedom(self) -> int:
@@ -152,7 +153,8 @@ class Analysis:
                                    prefer_free=[index])
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
-        return {v.name: solution[k][index] for k, v in enumerate(cols)}
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return {v.name: solution[k].get(index, zero) for k, v in enumerate(cols)}
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
         if index not in free:

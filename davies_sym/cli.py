@@ -1,4 +1,4 @@
-"""Command line: ``derive FILE [--json] [-o OUT] [--quiet]``."""
+"""Command line: ``derive FILE [--json | --latex] [--python OUT.py] [--eval NAME=VALUE ...]``."""
 
 from __future__ import annotations
 
@@ -8,21 +8,101 @@ import os
 import sys
 from collections.abc import Sequence
 
+import sympy
+
 from .analysis import Analysis
 from .atomic import write_atomic
-from .errors import DaviesError, InputError
+from .errors import DaviesError, InputError, Problem
+from .latex_report import latex_document
 from .loader import load
+from .model import Train
+from .python_module import python_module
 from .report import text_summary, train_document
+from .symbols import exact_number
+from .variant_report import variants_document, variants_text
+from .variants import VariantSet, derive_variants
 
 
 def _parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="derive", description="Derive the efficiency of a gear train "
-                                "(or machine) described in a YAML topology file, by Davies' method.")
+    p = argparse.ArgumentParser(
+        prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
+        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
     p.add_argument("file", help="topology file (YAML)")
-    p.add_argument("--json", action="store_true", help="print the JSON document")
-    p.add_argument("-o", "--output", help="write the output to this file (atomically) instead of stdout")
+    form = p.add_mutually_exclusive_group()
+    form.add_argument("--json", action="store_true", help="print the JSON document")
+    form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants")
+    p.add_argument("-o", "--out", metavar="FILE", help="write the document to FILE (atomically) instead of stdout")
+    p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant")
+    p.add_argument("--eval", nargs="+", metavar="NAME=VALUE",
+                   help="print the efficiency at these values as the last line (exact rationals where possible)")
+    p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
+    p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
+
+
+def _values(train: Train, pairs: Sequence[str]) -> dict[sympy.Symbol, sympy.Expr]:
+    """``NAME=VALUE`` pairs as exact values of the train's symbols."""
+    problems, out = [], {}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            problems.append(Problem("--eval", f"expected NAME=VALUE, got {pair!r}"))
+            continue
+        if name not in train.symbols:
+            problems.append(Problem("--eval", f"unknown symbol {name!r} (the train has: "
+                                    f"{', '.join(sorted(train.symbols))})"))
+            continue
+        value = exact_number(text.strip())
+        if value is None:
+            try:
+                value = sympy.nsimplify(sympy.sympify(text, rational=True), rational=True)
+            except (sympy.SympifyError, TypeError, SyntaxError):
+                value = None
+        if value is None or not value.is_number or not value.is_real:
+            problems.append(Problem("--eval", f"{name}: {text!r} is not a number"))
+            continue
+        out[train.symbols[name]] = value
+    if problems:
+        raise InputError(problems, train.path)
+    return out
+
+
+def _eval_port(train: Train, args: argparse.Namespace) -> str:
+    ports = (train.ports.input, train.ports.output)
+    chosen = args.input
+    if args.output is not None:
+        if args.output not in ports:
+            raise InputError([Problem("--output", f"{args.output!r} is not a port (ports: {', '.join(ports)})")],
+                             train.path)
+        other = ports[1] if args.output == ports[0] else ports[0]
+        if chosen is not None and chosen != other:
+            raise InputError([Problem("--input", f"input {chosen!r} and output {args.output!r} are not the two "
+                                      f"ports of the train ({', '.join(ports)})")], train.path)
+        chosen = other
+    if chosen is not None and chosen not in ports:
+        raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
+    return chosen or train.ports.input
+
+
+def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
+    train = variants.train
+    values = _values(train, args.eval)
+    port = _eval_port(train, args)
+    missing = [str(s) for s in variants.symbols if s not in values]
+    if missing:
+        raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
+    for c in variants.analysis.network.layout.constraints:
+        if sympy.sympify(c.expression.subs(values)) != 0:
+            print(f"derive: warning: the values break the geometric constraint {c}", file=sys.stderr)
+    variant = variants.variant_for(values, port)
+    value = variants.evaluate(values, port)
+    if value <= 0:
+        print(f"derive: warning: efficiency {sympy.N(value, 6)} <= 0: the train self-locks at these values",
+              file=sys.stderr)
+    return [f"variant ({variant.number}): input {variant.input}, output {variant.output}",
+            str(sympy.Float(value, 15))]
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -34,22 +114,36 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"derive: {message}", file=sys.stderr, flush=True)
 
     try:
-        if args.output and os.path.exists(args.output) and os.path.samefile(args.output, args.file):
-            print(f"derive: refusing to overwrite the input file {args.file}", file=sys.stderr)
-            return 2
+        for target in (args.out, args.python):
+            if target and os.path.exists(target) and os.path.samefile(target, args.file):
+                print(f"derive: refusing to overwrite the input file {args.file}", file=sys.stderr)
+                return 2
         train = load(args.file)
-        document = train_document(Analysis(train, progress=progress))
+        variants = derive_variants(train, progress=progress)
+        if args.json:
+            document = train_document(Analysis(train, progress=progress))
+            document.update(variants_document(variants))
+            text = json.dumps(document, indent=2) + "\n"
+        elif args.latex:
+            text = latex_document(variants)
+        else:
+            text = text_summary(train_document(Analysis(train, progress=progress))) + "\n"
+            text += variants_text(variants) + "\n"
+        if args.python:
+            write_atomic(args.python, python_module(variants))
+        evaluation = _evaluate(variants, args) if args.eval else None
     except InputError as exc:
         print(exc.report(), file=sys.stderr)
         return 2
     except DaviesError as exc:
         print(f"derive: {args.file}: {exc}", file=sys.stderr)
         return 2
-    text = json.dumps(document, indent=2) + "\n" if args.json else text_summary(document) + "\n"
-    if args.output:
-        write_atomic(args.output, text)
-    else:
+    if args.out:
+        write_atomic(args.out, text)
+    elif evaluation is None or args.json or args.latex:
         sys.stdout.write(text)
+    if evaluation is not None:
+        sys.stdout.write("\n".join(evaluation) + "\n")
     return 0
 
 

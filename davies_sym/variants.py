@@ -164,7 +164,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
         swapped_form = swapped_analysis.efficiency_rf
         swapped_zetas = _zeta_forms(swapped_analysis, roles)
     domain = ParameterDomain.of(train, analysis.network.layout)
-    extra = _other_symbols(analysis, etas, roles)
+    extra = _other_symbols(declared, etas, roles)
     points = list(domain.samples(samples, seed=seed, extra=extra))
     regions: dict[tuple[int, ...], list[Point]] = {}
     for point in points:
@@ -187,26 +187,49 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
                 rf = _substituted(declared, roles, zetas, first).inverse()
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
             variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
-            variants.append(_checked(variant, region, etas, analysis, rng))
+            variants.append(_checked(variant, region, etas, analysis, conditions, rng))
     return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared)
 
 
-def _other_symbols(analysis: Analysis, etas: Sequence[sympy.Symbol],
+def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
                    roles: Sequence[MeshRole]) -> list[sympy.Symbol]:
     """Symbols left in the formulas besides geometry and efficiencies (bearing
     friction, viscous coefficients, input torque and speed)."""
-    out = set(analysis.ring.symbols) - set(etas)
+    out = set(form.to_expr().free_symbols) - set(etas)
     out -= {r.flow.friction_symbol for r in roles}
     return sorted(out, key=str)  # type: ignore[arg-type]
 
 
+def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
+                    analysis: Analysis) -> sympy.Expr | None:
+    """A product with the sign of the efficiency inside the variant's region: factors
+    the symbols' assumptions decide, and factors that are a turning condition (whose
+    sign the region fixes), are replaced by their signs.  None when always positive."""
+    content, factors = variant.efficiency_rf.factor_list()
+    sign, kept = content, []
+    for base, power in factors:
+        s = analysis.oracle.factor_sign(base)
+        if s is None:
+            for c in conditions:
+                if sympy.expand(base - c.simplified) == 0:
+                    s = variant.signs[c.name]
+                elif sympy.expand(base + c.simplified) == 0:
+                    s = -variant.signs[c.name]
+        if s is None:
+            if power % 2:
+                kept.append(base)
+        else:
+            sign *= s ** power
+    if not kept and sign > 0:
+        return None
+    return sign * sympy.Mul(*kept)
+
+
 def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Symbol], analysis: Analysis,
-             rng: random.Random) -> Variant:
+             conditions: Sequence[TurningCondition], rng: random.Random) -> Variant:
     """Partial-derivative rule at a region sample; self-locking by sampling."""
     rf = variant.efficiency_rf
-    content, factors = variant.efficiency_rf.factor_list()
-    sign, locking = analysis.oracle.classify(content, factors)
-    locking_expression = None if sign == 1 else locking
+    locking_expression = _sign_in_region(variant, conditions, analysis)
     derivative_check = "not checked"
     locked: Point | None = None
     if region:
@@ -216,7 +239,8 @@ def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Sym
         for point in region[:40]:
             values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
             if rf.evaluate(values) <= 0:
-                locked = values
+                used = variant.efficiency.free_symbols
+                locked = {k: v for k, v in values.items() if k in used}
                 break
     return Variant(variant.number, variant.input, variant.output, variant.signs, variant.first_drives,
                    variant.efficiency_rf, variant.feasible, derivative_check, locked, locking_expression)

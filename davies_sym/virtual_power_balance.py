@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import sympy
 
-from .couplings import GearMesh, Revolute
+from .couplings import GearMesh, Prismatic, Revolute
 from .errors import DerivationError
 from .geometry import planar_line_layout
 from .model import Train
@@ -127,6 +127,14 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
     meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
+    # A lossless prismatic pair in a planar train (an Oldham coupling) keeps its two
+    # links at one angular speed and passes a couple between them.
+    sliders = [c for c in train.couplings if isinstance(c, Prismatic)]
+    lossy = [c.name for c in sliders if not c.friction.lossless]
+    others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Prismatic, Revolute))]
+    if lossy or others:
+        raise DerivationError(f"virtual-power balance: couplings {lossy + others} are outside its scope "
+                              "(lossy sliders, explicit screws)")
     carriers = {m.name: members.carrier(m) for m in meshes}
     links = [link for link in train.link_names if link != train.reference]
     col = {link: i for i, link in enumerate(links)}
@@ -142,6 +150,13 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                 row[col[link]] += sign * arm
             if c in col:
                 row[col[c]] -= sign * arm
+        rows.append(row)
+        rhs.append(0)
+    for k in sliders:
+        row = [sympy.Integer(0)] * len(links)
+        for link, sign in zip(k.links, (-1, 1), strict=True):
+            if link in col:
+                row[col[link]] += sign
         rows.append(row)
         rhs.append(0)
     a, b = train.coupling(port_in).links
@@ -162,8 +177,9 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
         return w[link] - w[carrier]
 
     def solve(first_drives: Mapping[str, bool] | None) -> tuple[dict[str, tuple[sympy.Expr, sympy.Expr]], sympy.Expr]:
-        # Unknowns: (M_p, M_q) per mesh, then the output torque; the input torque is 1.
-        n = 2 * len(meshes) + 1
+        # Unknowns: (M_p, M_q) per mesh, a couple per slider, then the output torque;
+        # the input torque is 1.
+        n = 2 * len(meshes) + len(sliders) + 1
         out_col = n - 1
         eqs: list[list[sympy.Expr]] = []
         rhs: list[sympy.Expr] = []
@@ -191,11 +207,21 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                         row[2 * k + side] += 1
                     planet = m.links[side]
                     partner = 1 - side
-                    if planet != link and m.links[partner] != link and members.carries(link, planet):
+                    # A planet-planet mesh of one carrier acts on it with equal and opposite
+                    # wrenches: nothing reaches the carrier.
+                    if (planet != link and m.links[partner] != link and members.carries(link, planet)
+                            and not members.carries(link, m.links[partner])):
                         if members.gear_axis[m.gears[partner]] != members.axis[link]:
                             raise DerivationError(f"virtual-power balance: planet {planet} meshes gear "
                                                   f"{m.gears[partner]}, which is not coaxial with its carrier {link}")
                         row[2 * k + partner] -= 1
+            for j, k in enumerate(sliders):
+                slider_col = 2 * len(meshes) + j
+                for end, sign in zip(k.links, (-1, 1), strict=True):
+                    if end == link:
+                        row[slider_col] += sign
+                    elif link not in k.links and members.carries(link, end):
+                        row[slider_col] += sign  # the couple on a planet reaches its carrier
             for port, col_or_const in ((port_in, None), (port_out, out_col)):
                 pa, pb = train.coupling(port).links
                 for end, sign in ((pb, 1), (pa, -1)):

@@ -1,0 +1,188 @@
+"""Every turning-condition variant in ordinary efficiencies (Laus Table 5, Chen Table 4.1,
+Chen example 1), and the two independent routes (Davies, Chen's virtual-power balance)
+agreeing on catalog trains and on trains described here."""
+
+from __future__ import annotations
+
+import glob
+import os
+import random
+
+import pytest
+import sympy
+
+import davies_sym
+from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
+from davies_sym.variants import derive_variants
+from davies_sym.virtual_power_balance import virtual_power_balance
+
+from conftest import CATALOG, ROOT, S, catalog_path, equal
+
+r1, r2, r3, r4 = (S(f"r{i}") for i in range(1, 5))
+eC, eD = S("eta_C", "efficiency"), S("eta_D", "efficiency")
+PLANAR = {r4: r2 - r1 + r3}
+DATA = os.path.join(ROOT, "tests", "data")
+
+
+def tuplin_variants():
+    return derive_variants(davies_sym.load(catalog_path("tuplin")))
+
+
+def test_tuplin_table5_all_four_variants_exact():
+    """Laus Table 5, eqs. (76)-(79), with eta_13 = eta_31 = eta_C, eta_42 = eta_24 = eta_D
+    and the condition r1 < r2 (derived as the sign of r2 - r1 on r1 - r3 = r2 - r4)."""
+    vs = tuplin_variants()
+    (c1,) = vs.conditions
+    assert equal(c1.simplified, r2 - r1)
+    k = eC * eD
+    table = {
+        ("A", 1): k * (r1 * r4 - r2 * r3) / (r1 * r4 - k * r2 * r3),  # (76)
+        ("A", -1): (r2 * r3 - r1 * r4) / (r2 * r3 - k * r1 * r4),  # (77)
+        ("B", 1): (r2 * r3 - k * r1 * r4) / (r2 * r3 - r1 * r4),  # (78)
+        ("B", -1): (r1 * r4 - k * r2 * r3) / (k * (r1 * r4 - r2 * r3)),  # (79)
+    }
+    assert len(vs.variants) == 4
+    for v in vs.variants:
+        assert equal(v.efficiency, table[(v.input, v.signs["c1"])], PLANAR), v.number
+        assert v.feasible and v.derivative_check == "positive"
+    # Gear 1 drives gear 3 and gear 4 drives gear 2 for A input and r1 < r2 (eqs. (69)-(70)).
+    first = vs.variant_for({r1: 40, r2: 60, r3: 15}, "A")
+    assert dict(first.first_drives) == {"C": True, "D": False}
+
+
+def test_tuplin_published_numbers_and_wrong_variant():
+    """Laus p. 1247-1256: r = 40, 60, 15, 35 mm, eta = 0.99: eq. (76) gives 0.9462; the
+    wrong variant (78) would give 0.9443."""
+    vs = tuplin_variants()
+    values = {r1: 40, r2: 60, r3: 15, r4: 35, eC: sympy.Rational(99, 100), eD: sympy.Rational(99, 100)}
+    assert round(float(vs.evaluate(values)), 4) == 0.9462
+    wrong = next(v for v in vs.variants if v.input == "B" and v.signs["c1"] == 1)
+    assert round(float(wrong.efficiency.subs(values)), 4) == 0.9443
+
+
+def test_chen_angeles_form_for_r1_greater_than_r2():
+    """Laus after Table 5: eq. (77) = 1 / ((l1 + l2 - l1 l2)(k - 1) + 1), l1 = 1 - eta_31,
+    l2 = 1 - eta_24, k = r2 r3 / (r2 r3 - r1 r4)."""
+    vs = tuplin_variants()
+    v = next(v for v in vs.variants if v.input == "A" and v.signs["c1"] == -1)
+    l1, l2 = 1 - eC, 1 - eD
+    k = r2 * r3 / (r2 * r3 - r1 * r4)
+    assert equal(v.efficiency, 1 / ((l1 + l2 - l1 * l2) * (k - 1) + 1), PLANAR)
+
+
+def tooth_train(na: int, nb: int, nc: int, nd: int) -> davies_sym.Train:
+    """Chen Fig. 4.6 with Chen's names: pinion A meshes annulus B (mesh C of Laus),
+    pinion C meshes annulus D (mesh D); modules chosen so the centre distances match
+    (Chen footnote 2, Laus section 3.4.1.6)."""
+    m1, m2 = nd - nc, nb - na
+    return davies_sym.loads(f"""
+name: Tuplin train, Chen Table 4.1 ({na}/{nb}/{nc}/{nd})
+links: [1, 2, 3/4, 5]
+reference: 1
+gears:
+  1: {{link: 1, teeth: {nb}, module: {m1}, internal: true}}
+  2: {{link: 2, teeth: {nd}, module: {m2}, internal: true}}
+  3: {{link: 3/4, teeth: {na}, module: {m1}}}
+  4: {{link: 3/4, teeth: {nc}, module: {m2}}}
+couplings:
+  A: {{type: revolute, links: [1, 5]}}
+  B: {{type: revolute, links: [1, 2]}}
+  C: {{type: mesh, gears: [1, 3]}}
+  D: {{type: mesh, gears: [2, 4]}}
+  E: {{type: revolute, links: [3/4, 5]}}
+ports: {{input: A, output: B}}
+""", "chen-table-4.1")
+
+
+@pytest.mark.parametrize(("teeth", "published"), [
+    ((16, 34, 15, 32), 0.223), ((48, 102, 45, 96), 0.462), ((96, 119, 90, 112), 0.824)])
+def test_chen_table_4_1(teeth, published):
+    """Chen 2006 Table 4.1 ('This work' column): lambda = (1/N_pinion - 1/N_gear)/5,
+    eta = 1 - lambda per mesh, carrier input."""
+    na, nb, nc, nd = teeth
+    train = tooth_train(*teeth)
+    vs = derive_variants(train)
+    eta1 = 1 - (sympy.Rational(1, na) - sympy.Rational(1, nb)) / 5
+    eta2 = 1 - (sympy.Rational(1, nc) - sympy.Rational(1, nd)) / 5
+    value = vs.evaluate({eC: eta1, eD: eta2}, "A")
+    assert round(float(value), 3) == published
+    assert value == virtual_power_balance(train, {eC: eta1, eD: eta2}).efficiency
+
+
+def test_planetary_simple_chen_example_1():
+    """Chen section 4.7: eta = (gamma + 1)(1 - lambda) / (gamma + 1 - lambda), gamma = N_A / N_B."""
+    vs = derive_variants(davies_sym.load(catalog_path("planetary_simple")))
+    rA, rB, eG = S("rA"), S("rB"), S("eta_G", "efficiency")
+    gamma, lam = rA / rB, 1 - eG
+    (forward,) = [v for v in vs.variants if v.input == "I"]
+    assert equal(forward.efficiency, (gamma + 1) * (1 - lam) / (gamma + 1 - lam))
+    assert forward.derivative_check == "positive"
+
+
+def test_simple_pair_eqs36_37():
+    """Laus eqs. (36)-(37): P_B = -eta_12 T_A t_A with A as input, and with B as input
+    P_B = -T_A t_A / eta_21: the efficiency is the ordinary efficiency both ways."""
+    vs = derive_variants(davies_sym.load(catalog_path("simple_pair")))
+    assert [(v.input, v.efficiency) for v in vs.variants] == [("A", eC), ("B", eC)]
+    assert [dict(v.first_drives) for v in vs.variants] == [{"C": True}, {"C": False}]
+
+
+def _both_routes(train: davies_sym.Train, points: int = 6, seed: int = 7) -> int:
+    """Compare the Davies variant and the virtual-power balance at sampled points."""
+    vs = derive_variants(train)
+    rng = random.Random(seed)
+    domain = ParameterDomain.of(train, vs.analysis.network.layout)
+    etas = efficiency_symbols(train)
+    checked = 0
+    for point in domain.samples(points, seed=seed):
+        values = {**point, **{e: sympy.Rational(rng.randint(90, 99), 100) for e in etas}}
+        for port in (train.ports.input, train.ports.output):
+            davies = vs.evaluate(values, port)
+            chen = virtual_power_balance(train, values, port)
+            assert davies == chen.efficiency, (train.name, port, values)
+            assert dict(vs.variant_for(values, port).first_drives) == dict(chen.first_drives)
+            assert chen.input_power + chen.output_power == sum(chen.losses.values())
+            checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("path", sorted(glob.glob(f"{CATALOG}/*.yaml")))
+def test_both_routes_agree_on_every_catalog_train(path):
+    assert _both_routes(davies_sym.load(path)) > 0
+
+
+OWN_TRAINS = ["double_pinion", "two_carriers", "idler_internal"]
+
+
+def own(name: str) -> davies_sym.Train:
+    """Trains described here (tests/data): not from the references."""
+    return davies_sym.load(os.path.join(DATA, f"{name}.yaml"))
+
+
+@pytest.mark.parametrize("name", OWN_TRAINS)
+def test_both_routes_agree_on_trains_described_here(name):
+    """Planet-planet mesh, two carriers (each mesh measured from its own), an internal
+    idler: exact agreement of efficiency and driving gears, and the power balance."""
+    train = own(name)
+    assert _both_routes(train) > 0
+    vs = derive_variants(train)
+    for v in vs.variants:
+        if v.feasible:
+            assert v.derivative_check == "positive", (v.number, v.derivative_check)
+
+
+def test_two_carriers_are_found_per_mesh():
+    vs = derive_variants(own("two_carriers"))
+    assert {r.coupling: r.flow.carrier for r in vs.roles} == {"C": "c1", "D": "c1", "E": "c2", "F": "c2"}
+
+
+def test_ideal_limit_and_self_locking():
+    """Every variant -> 1 when every mesh efficiency -> 1; Tuplin driven from the output
+    self-locks for some admissible radii (the sampled point proves it)."""
+    vs = tuplin_variants()
+    for v in vs.variants:
+        assert sympy.cancel(v.efficiency.subs({eC: 1, eD: 1})) == 1
+    back = [v for v in vs.variants if v.input == "B"]
+    assert all(v.self_locking_point is not None for v in back)
+    for v in back:
+        assert v.efficiency_rf.evaluate(v.self_locking_point) <= 0

@@ -77,12 +77,23 @@ class ParameterDomain:
         checks = [g.radius for g in self.train.gears] + list(self.layout.positive_facts)
         return [self._ring.rational(e) for e in checks]
 
+    def _converted(self, expr: sympy.Expr) -> RationalFunction:
+        cache = self._conversions
+        if expr not in cache:
+            cache[expr] = self._ring.rational(expr)
+        return cache[expr]
+
+    @cached_property
+    def _conversions(self) -> dict[sympy.Expr, RationalFunction]:
+        return {}
+
     def _admissible(self, point: Point) -> bool:
-        return all(e.evaluate(point) > 0 for e in self._positive)
+        args = self._ring.point_args(point)
+        return all(e.evaluate(args) > 0 for e in self._positive)
 
     def value(self, expr: sympy.Expr, point: Point) -> sympy.Rational:
         """Exact value of a rational expression of the train's symbols at ``point``."""
-        v = self._ring.rational(expr).evaluate(point)
+        v = self._converted(sympy.sympify(expr)).evaluate(point)
         return sympy.Rational(int(v.p), int(v.q))
 
     def samples(self, count: int, seed: int = 0, extra: Iterable[sympy.Symbol] = (),

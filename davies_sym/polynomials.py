@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from math import lcm
 
 import sympy
@@ -90,21 +91,33 @@ class PolynomialRing:
         parts = [self.to_expr(f) ** int(e) for f, e in factors]
         return sympy.Mul(sympy.Integer(int(content)), *parts)
 
-    def evaluate(self, p: fmpz_mpoly, point: Mapping[sympy.Symbol, object]) -> fmpq:
-        """Exact value of ``p`` at rational ``point`` (symbols ``p`` does not hold may be absent)."""
-        args = []
-        for symbol, degree in zip(self.symbols, p.degrees(), strict=False):
-            if symbol in point:
-                value = sympy.Rational(point[symbol])  # type: ignore[arg-type]
-                args.append(fmpq(int(value.p), int(value.q)))
-            elif degree:
-                raise KeyError(symbol)
+    def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq, ...]:
+        """The generators' values at ``point`` (absent symbols: None), for :meth:`evaluate`."""
+        out = []
+        for symbol in self.symbols:
+            value = point.get(symbol)
+            if value is None:
+                out.append(None)
             else:
-                args.append(fmpq(0))
+                r = sympy.Rational(value)  # type: ignore[arg-type]
+                out.append(fmpq(int(r.p), int(r.q)))
+        return tuple(out)  # type: ignore[return-value]
+
+    def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq, ...], rational: object = None) -> fmpq:
+        """Exact value of ``p`` at ``args`` (from :meth:`point_args`); KeyError names a
+        symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
         if not self.symbols:
             return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
-        qctx = fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex")
-        return qctx.from_dict(p.to_dict())(*args)
+        if None in args:
+            for symbol, value, degree in zip(self.symbols, args, p.degrees(), strict=True):
+                if value is None and degree > 0:
+                    raise KeyError(symbol)
+            args = tuple(fmpq(0) if a is None else a for a in args)
+        return (rational if rational is not None else self.to_rational(p))(*args)  # type: ignore[operator]
+
+    def to_rational(self, p: fmpz_mpoly) -> object:
+        """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
+        return fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex").from_dict(p.to_dict())
 
     def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
         """Integer content and irreducible factors (as sympy expressions) of ``p``."""
@@ -207,17 +220,29 @@ class RationalFunction:
 
         return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))
 
-    def evaluate(self, point: Mapping[sympy.Symbol, object]) -> fmpq:
-        """Exact value at a rational point; ZeroDivisionError on a pole."""
-        return self.ring.evaluate(self.num, point) / self.ring.evaluate(self.den, point)
+    def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq, ...]) -> fmpq:
+        """Exact value at a rational point (a mapping, or the ring's ``point_args``);
+        ZeroDivisionError on a pole."""
+        args = point if isinstance(point, tuple) else self.ring.point_args(point)
+        num_q, den_q = self._rational_parts
+        return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
 
-    def derivative(self, symbol: sympy.Symbol) -> RationalFunction:
-        """Partial derivative with respect to ``symbol``."""
+    @cached_property
+    def _rational_parts(self) -> tuple[object, object]:
+        return self.ring.to_rational(self.num), self.ring.to_rational(self.den)
+
+    def derivative_at(self, symbol: sympy.Symbol, point: Mapping[sympy.Symbol, object]) -> fmpq:
+        """Value of the partial derivative at ``point``, without forming it
+        ((N' D - N D') / D^2 evaluated number by number)."""
         if symbol not in self.ring.symbols:
-            return RationalFunction.polynomial(self.ring, self.ring.zero)
+            return fmpq(0)
+        args = self.ring.point_args(point)
         name = symbol.name
-        num = self.num.derivative(name) * self.den - self.num * self.den.derivative(name)
-        return RationalFunction.make(self.ring, num, self.den * self.den)
+        num_q, den_q = self._rational_parts
+        n, d = self.ring.evaluate(self.num, args, num_q), self.ring.evaluate(self.den, args, den_q)
+        dn = self.ring.evaluate(self.num.derivative(name), args)
+        dd = self.ring.evaluate(self.den.derivative(name), args)
+        return (dn * d - n * dd) / (d * d)
 
     def to_expr(self, factored: bool = True) -> sympy.Expr:
         """Sympy expression: product of factors over product of factors (default)."""

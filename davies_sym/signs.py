@@ -37,9 +37,15 @@ class SignOracle:
         self.facts = tuple(sympy.expand(f) for f in facts)
         #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
         self.substitutions = tuple(dict(s) for s in substitutions)
+        self._decided: dict[sympy.Expr, int | None] = {}  # memo: the same factors recur
 
     def factor_sign(self, factor: sympy.Expr) -> int | None:
         """Sign of one (irreducible) polynomial factor, or None if undecided."""
+        if factor not in self._decided:
+            self._decided[factor] = self._factor_sign(factor)
+        return self._decided[factor]
+
+    def _factor_sign(self, factor: sympy.Expr) -> int | None:
         sign = _poly_sign(factor)
         if sign is not None:
             return sign

@@ -1,0 +1,162 @@
+"""Outputs of ``derive``: LaTeX document, JSON variants, generated Python module, ``--eval``,
+and every published check in the catalog."""
+
+from __future__ import annotations
+
+import glob
+import importlib.util
+import json
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import sympy
+from sympy.parsing.latex import parse_latex
+
+import davies_sym
+from davies_sym.variants import derive_variants
+
+from conftest import CATALOG, S, catalog_path, read_text
+
+TUPLIN_VALUES = ["r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99", "eta_D=0.99"]
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "davies_sym.cli", *args], capture_output=True, text=True,
+                          check=False)
+
+
+def from_latex(text: str, symbols: list[sympy.Symbol]) -> sympy.Expr:
+    """Parse sympy's LaTeX back, mapping r_{1} -> r1 and \\eta_{C} -> eta_C."""
+    expr = parse_latex(text, backend="lark")
+    names = {sympy.Symbol(sympy.latex(s).lstrip("\\")): s for s in symbols}
+    return expr.subs({k: names[k] for k in expr.free_symbols if k in names})
+
+
+def test_latex_document_structure_and_formulas_parse_back(tmp_path):
+    """`derive catalog/tuplin.yaml --latex -o t.tex`: a standalone document with the
+    conditions table, the variants table and one equation per variant whose LaTeX parses
+    back to the derived formula."""
+    out = tmp_path / "t.tex"
+    result = run(catalog_path("tuplin"), "--latex", "-o", str(out))
+    assert result.returncode == 0, result.stderr
+    text = out.read_text()
+    assert text.startswith(r"\documentclass") and text.rstrip().endswith(r"\end{document}")
+    assert text.count(r"\begin{document}") == 1 and "Turning conditions" in text
+    assert text.count("{") == text.count("}")
+    for env in ("tabular", "equation", "center"):
+        assert text.count(rf"\begin{{{env}}}") == text.count(rf"\end{{{env}}}")
+    vs = derive_variants(davies_sym.load(catalog_path("tuplin")))
+    equations = re.findall(r"\\eta = (.*)\n\\tag\{(\d+)\}", text)
+    assert len(equations) == len(vs.variants) == 4
+    symbols = sorted(davies_sym.load(catalog_path("tuplin")).symbols.values(), key=str)
+    for body, number in equations:
+        parsed = from_latex(body, symbols)
+        expected = vs.variants[int(number) - 1].efficiency
+        assert sympy.cancel(parsed - expected) == 0
+
+
+def test_json_variants():
+    """`--json` adds `turning_conditions`, `meshes` and `variants` (input, output,
+    conditions with their signs, efficiency as a sympy string, latex)."""
+    result = run(catalog_path("tuplin"), "--json")
+    assert result.returncode == 0, result.stderr
+    doc = json.loads(result.stdout)
+    assert [c["simplified"] for c in doc["turning_conditions"]] == ["-r1 + r2"]
+    assert {m["coupling"]: m["carrier"] for m in doc["meshes"]} == {"C": "5", "D": "5"}
+    variants = doc["variants"]
+    assert [(v["input"], v["output"], v["conditions"][0]["sign"]) for v in variants] == [
+        ("A", "B", 1), ("A", "B", -1), ("B", "A", 1), ("B", "A", -1)]
+    symbols = davies_sym.load(catalog_path("tuplin")).symbols
+    vs = derive_variants(davies_sym.load(catalog_path("tuplin")))
+    for item, v in zip(variants, vs.variants, strict=True):
+        parsed = sympy.sympify(item["efficiency"], locals=dict(symbols))
+        assert sympy.cancel(parsed - v.efficiency) == 0
+        assert item["latex"] == sympy.latex(v.efficiency)
+        assert item["derivative_check"] == "positive"
+
+
+def test_eval_prints_the_efficiency_last():
+    """Laus 0.9462 (A input) and 0.9443 (B input, eq. (78)) as the last output line."""
+    a = run(catalog_path("tuplin"), "--eval", *TUPLIN_VALUES)
+    assert a.returncode == 0, a.stderr
+    assert round(float(a.stdout.strip().splitlines()[-1]), 4) == 0.9462
+    b = run(catalog_path("tuplin"), "--eval", *TUPLIN_VALUES, "--input", "B")
+    assert round(float(b.stdout.strip().splitlines()[-1]), 4) == 0.9443
+    same = run(catalog_path("tuplin"), "--eval", *TUPLIN_VALUES, "--output", "A")
+    assert same.stdout.strip().splitlines()[-1] == b.stdout.strip().splitlines()[-1]
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["--eval", "r9=1"], "unknown symbol 'r9'"),
+    (["--eval", "r1=40"], "missing values for"),
+    (["--eval", "r1=abc"], "'abc' is not a number"),
+    ([*["--eval", *TUPLIN_VALUES], "--input", "Z"], "'Z' is not a port"),
+])
+def test_eval_errors_are_clear(args, message):
+    result = run(catalog_path("tuplin"), *args)
+    assert result.returncode == 2 and message in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_eval_warns_when_the_values_break_the_geometry():
+    values = [v if not v.startswith("r4") else "r4=30" for v in TUPLIN_VALUES]
+    result = run(catalog_path("tuplin"), "--eval", *values)
+    assert result.returncode == 0 and "geometric constraint r1 - r3 = r2 - r4" in result.stderr
+
+
+def test_python_module_picks_the_variant_element_by_element(tmp_path):
+    """The generated module: one function per variant, conditions, and `efficiency` on
+    arrays that straddle the turning condition r1 = r2, checked against the exact result."""
+    out = tmp_path / "tuplin_eff.py"
+    assert run(catalog_path("tuplin"), "--python", str(out)).returncode == 0
+    spec = importlib.util.spec_from_file_location("tuplin_eff", out)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    vs = derive_variants(davies_sym.load(catalog_path("tuplin")))
+    assert all(hasattr(module, v.name) for v in vs.variants)
+    r1 = np.array([30.0, 40.0, 70.0, 80.0])
+    r2 = np.array([60.0, 60.0, 60.0, 60.0])
+    r3 = np.array([15.0, 15.0, 20.0, 25.0])
+    for port in ("A", "B"):
+        got = module.efficiency(input=port, r1=r1, r2=r2, r3=r3, eta_C=0.99, eta_D=0.98)
+        for i in range(len(r1)):
+            values = {S("r1"): sympy.Rational(r1[i]), S("r2"): sympy.Rational(r2[i]),
+                      S("r3"): sympy.Rational(r3[i]), S("eta_C", "efficiency"): sympy.Rational(99, 100),
+                      S("eta_D", "efficiency"): sympy.Rational(98, 100)}
+            assert got[i] == pytest.approx(float(vs.evaluate(values, port)), rel=1e-12)
+    with pytest.raises(ValueError, match="input must be one of"):
+        module.efficiency(input="Z", r1=1.0, r2=2.0, r3=0.5, eta_C=0.9, eta_D=0.9)
+
+
+def test_generated_module_is_deterministic(tmp_path):
+    a, b = tmp_path / "a.py", tmp_path / "b.py"
+    run(catalog_path("tuplin"), "--python", str(a))
+    run(catalog_path("tuplin"), "--python", str(b))
+    assert a.read_bytes() == b.read_bytes()
+
+
+def _expected_checks():
+    for path in sorted(glob.glob(f"{CATALOG}/*.yaml")):
+        train = davies_sym.load(path)
+        for i, check in enumerate(train.expected):
+            yield pytest.param(path, check, id=f"{train.path.rsplit('/', 1)[-1]}[{i}]")
+
+
+@pytest.mark.parametrize(("path", "check"), list(_expected_checks()))
+def test_catalog_published_numbers(path, check):
+    """Every `expected` entry of every catalog file, through `derive --eval`."""
+    args = [path, "--eval", *(f"{k}={v}" for k, v in check.values.items())]
+    if check.input:
+        args += ["--input", check.input]
+    result = run(*args)
+    assert result.returncode == 0, result.stderr
+    value = float(result.stdout.strip().splitlines()[-1])
+    assert abs(value - check.value) <= check.tolerance, (check.source, value)
+
+
+def test_catalog_files_have_sources():
+    for path in sorted(glob.glob(f"{CATALOG}/*.yaml")):
+        assert "source:" in read_text(path), path

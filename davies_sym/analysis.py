@@ -17,7 +17,7 @@ import sympy
 from .couplings import GearMesh
 from .errors import DerivationError, MobilityError
 from .exact_linalg import Row, gauss_jordan
-from .geometry import constraint_substitutions
+from .geometry import constraint_substitutions, joint_substitution
 from .model import Train
 from .network import ActionVariable, FrictionLaw, Network
 from .polynomials import PolynomialRing, RationalFunction
@@ -67,7 +67,11 @@ class Analysis:
         self.input_motion = net.coupling_motions(train.ports.input)[0]
         self.input_action = net.port_action(train.ports.input)
         self.output_action = net.port_action(train.ports.output)
-        self.oracle = SignOracle(net.layout.positive_facts, constraint_substitutions(net.layout.constraints))
+        constraints = net.layout.constraints
+        substitutions = constraint_substitutions(constraints)
+        if len(constraints) > 1:
+            substitutions.append(joint_substitution(constraints))
+        self.oracle = SignOracle(net.layout.positive_facts, substitutions)
         self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
                              for law in net.laws if law.law == "coulomb"}
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())

@@ -164,6 +164,25 @@ def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> li
     return out
 
 
+def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sympy.Symbol, sympy.Expr]:
+    """One symbol eliminated per constraint, all at once (r4 -> r2 + r3 - r1, rb -> ...),
+    so that a sign needing several constraints together can be decided."""
+    eliminated: dict[sympy.Symbol, sympy.Expr] = {}
+    for constraint in constraints:
+        # Prefer eliminating a symbol that is a positive combination of the others
+        # (the annulus: ra -> sa + 2 pa), so that positivity arguments still apply.
+        options = sorted(constraint_substitutions((constraint,)),
+                         key=lambda sub: not all(c > 0 for c in sympy.Poly(*sub.values()).coeffs()))
+        for substitution in options:
+            (symbol, expr), = substitution.items()
+            expr = sympy.expand(expr.subs(eliminated))
+            if symbol not in eliminated and symbol not in expr.free_symbols:
+                eliminated = {k: sympy.expand(v.subs(symbol, expr)) for k, v in eliminated.items()}
+                eliminated[symbol] = expr
+                break
+    return eliminated
+
+
 def _root_link(train: Train, geared: set[str]) -> str | None:
     if train.reference in geared:
         return train.reference

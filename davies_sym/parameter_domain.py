@@ -18,7 +18,7 @@ from functools import cached_property
 import sympy
 
 from .couplings import GearMesh, Revolute
-from .geometry import Layout, constraint_substitutions
+from .geometry import Layout, joint_substitution
 from .model import Train
 from .polynomials import PolynomialRing, RationalFunction
 
@@ -59,14 +59,7 @@ class ParameterDomain:
 
     @classmethod
     def of(cls, train: Train, layout: Layout) -> ParameterDomain:
-        eliminated: dict[sympy.Symbol, sympy.Expr] = {}
-        for constraint in layout.constraints:
-            for substitution in constraint_substitutions((constraint,)):
-                (symbol, expr), = substitution.items()
-                if symbol not in eliminated and not (expr.free_symbols & set(eliminated)):
-                    eliminated[symbol] = expr
-                    break
-        return cls(train, layout, eliminated)
+        return cls(train, layout, joint_substitution(layout.constraints))
 
     @cached_property
     def _ring(self) -> PolynomialRing:

@@ -29,6 +29,7 @@ MALFORMED_CASES = {
     "inconsistent_geometry.yaml": ("couplings.D", "inconsistent geometry", 13),
     "unknown_key.yaml": ("gears.2.radus", "unknown key 'radus'", 5),
     "revolute_without_position.yaml": ("couplings.K", "give the position of this revolute with `at`", 10),
+    "bad_efficiency.yaml": ("couplings.C.efficiency", "an ordinary efficiency must lie in (0, 1], got 1.5", 9),
 }
 
 

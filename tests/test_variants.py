@@ -186,3 +186,13 @@ def test_ideal_limit_and_self_locking():
     assert all(v.self_locking_point is not None for v in back)
     for v in back:
         assert v.efficiency_rf.evaluate(v.self_locking_point) <= 0
+
+
+def test_two_efficiency_symbols_per_mesh():
+    """`efficiency: [eta_12, eta_21]`: eta_12 when gear 1 drives (A input), eta_21 when
+    gear 2 drives (B input), Laus eqs. (32) and (34)."""
+    text = open(catalog_path("simple_pair"), encoding="utf-8").read().replace(
+        "friction: {coulomb: zeta_C}}", "friction: {coulomb: zeta_C}, efficiency: [eta_12, eta_21]}")
+    vs = derive_variants(davies_sym.loads(text, "pair-two-etas"))
+    e12, e21 = S("eta_12", "efficiency"), S("eta_21", "efficiency")
+    assert [(v.input, v.efficiency) for v in vs.variants] == [("A", e12), ("B", e21)]

@@ -16,7 +16,7 @@ from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.variants import derive_variants
 from davies_sym.virtual_power_balance import virtual_power_balance
 
-from conftest import CATALOG, ROOT, S, catalog_path, equal
+from conftest import CATALOG, ROOT, S, catalog_path, equal, read_text
 
 r1, r2, r3, r4 = (S(f"r{i}") for i in range(1, 5))
 eC, eD = S("eta_C", "efficiency"), S("eta_D", "efficiency")
@@ -191,7 +191,7 @@ def test_ideal_limit_and_self_locking():
 def test_two_efficiency_symbols_per_mesh():
     """`efficiency: [eta_12, eta_21]`: eta_12 when gear 1 drives (A input), eta_21 when
     gear 2 drives (B input), Laus eqs. (32) and (34)."""
-    text = open(catalog_path("simple_pair"), encoding="utf-8").read().replace(
+    text = read_text(catalog_path("simple_pair")).replace(
         "friction: {coulomb: zeta_C}}", "friction: {coulomb: zeta_C}, efficiency: [eta_12, eta_21]}")
     vs = derive_variants(davies_sym.loads(text, "pair-two-etas"))
     e12, e21 = S("eta_12", "efficiency"), S("eta_21", "efficiency")

@@ -81,6 +81,8 @@ class ParameterDomain:
         return {}
 
     def _admissible(self, point: Point) -> bool:
+        if any(point[s] <= 0 for s in self.eliminated):
+            return False  # every geometric symbol is positive, eliminated ones too
         args = self._ring.point_args(point)
         return all(e.evaluate(args) > 0 for e in self._positive)
 

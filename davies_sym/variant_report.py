@@ -37,7 +37,7 @@ def notes(variant: Variant) -> list[str]:
     out.append(f"partial derivatives in the mesh efficiencies: {variant.derivative_check}")
     if variant.self_locking_point is not None:
         point = ", ".join(f"{k}={v}" for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
-        out.append(f"self-locking: efficiency <= 0 at sampled point {point}")
+        out.append(f"self-locking: efficiency outside (0, 1] at sampled point {point}")
     if variant.locking_expression is not None:
         out.append(f"the efficiency has the sign of {sympy.sstr(variant.locking_expression)}; "
                    "it self-locks where that is <= 0")

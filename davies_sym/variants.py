@@ -51,7 +51,8 @@ class Variant:
     feasible: bool = True
     #: "positive", "failed: <symbols>" or "not checked" (no sample in the region).
     derivative_check: str = "not checked"
-    #: A sampled point of the region where the efficiency is <= 0, if any was found.
+    #: A sampled point of the region where the efficiency is outside (0, 1] (the train
+    #: self-locks there), if any was found.
     self_locking_point: Point | None = None
     #: Product whose sign is that of the efficiency (positive factors removed); the
     #: variant self-locks where it is <= 0.  None when provably positive.
@@ -237,14 +238,22 @@ def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Sym
     locking_expression = _sign_in_region(variant, conditions, analysis)
     derivative_check = "not checked"
     locked: Point | None = None
-    if region:
-        nominal = {**region[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
+    # Laus 3.6.2 applies where the formula describes a working train: check it at a
+    # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
+    working = [p for p in region[:40] if 0 < rf.evaluate({**p, **{e: NOMINAL_EFFICIENCY for e in etas}}) <= 1]
+    if region and not working:
+        derivative_check = "not checked: the train self-locks at every sampled point"
+    if working:
+        nominal = {**working[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
         failed = [str(e) for e in etas
                   if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0]
         derivative_check = "positive" if not failed else f"failed: {', '.join(failed)}"
+    if region:
         for point in region[:40]:
             values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
-            if rf.evaluate(values) <= 0:
+            # Outside (0, 1] the power directions the variant assumes do not hold: the
+            # train (or one of its stages, when two locked stages multiply) self-locks.
+            if not 0 < rf.evaluate(values) <= 1:
                 used = variant.efficiency.free_symbols
                 locked = {k: v for k, v in values.items() if k in used}
                 break

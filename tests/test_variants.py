@@ -151,7 +151,7 @@ def test_both_routes_agree_on_every_catalog_train(path):
     assert _both_routes(davies_sym.load(path)) > 0
 
 
-OWN_TRAINS = ["double_pinion", "two_carriers", "idler_internal"]
+OWN_TRAINS = ["double_pinion", "two_carriers", "idler_internal", "dependent_conditions"]
 
 
 def own(name: str) -> davies_sym.Train:
@@ -196,3 +196,18 @@ def test_two_efficiency_symbols_per_mesh():
     vs = derive_variants(davies_sym.loads(text, "pair-two-etas"))
     e12, e21 = S("eta_12", "efficiency"), S("eta_21", "efficiency")
     assert [(v.input, v.efficiency) for v in vs.variants] == [("A", e12), ("B", e21)]
+
+
+def test_unreachable_condition_combination_is_reported_infeasible():
+    """Stage 2 has annuli ra1 and rb1 + dd: its condition dd - ra1 + rb1 is positive
+    whenever stage 1's rb1 - ra1 is, so (c1 > 0, c2 < 0) is reported infeasible (no
+    admissible sample), not dropped; the other three regions are reached."""
+    vs = derive_variants(own("dependent_conditions"))
+    c1, c2 = vs.conditions
+    assert equal(c1.expression, S("rb1") - S("ra1")) and equal(c2.expression, S("dd") - S("ra1") + S("rb1"))
+    assert len(vs.variants) == 8
+    infeasible = {(v.input, v.signs["c1"], v.signs["c2"]) for v in vs.variants if not v.feasible}
+    assert infeasible == {("A1", 1, -1), ("B2", 1, -1)}
+    for v in vs.variants:
+        if v.feasible:
+            assert v.derivative_check == "positive"

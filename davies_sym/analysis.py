@@ -144,6 +144,11 @@ class Analysis:
         t_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_motion.symbol))
         return {name: c * t_in for name, c in self.motion_coefficients.items()}
 
+    def speed_ratio(self) -> RationalFunction:
+        """Input speed over output speed, t_in / t_out (the transmission ratio)."""
+        out = self.network.coupling_motions(self.train.ports.output)[0]
+        return self.motion_coefficients[out.name].inverse()
+
     # -- lossless actions (eqs. (2), (60)-(62)) --------------------------------------
     @cached_property
     def lossless_action_coefficients(self) -> dict[str, RationalFunction]:

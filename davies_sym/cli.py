@@ -6,7 +6,7 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import sympy
 
@@ -27,11 +27,14 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
         "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
-    p.add_argument("file", help="topology file (YAML)")
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="topology file (YAML); several files need --out DIR")
     form = p.add_mutually_exclusive_group()
     form.add_argument("--json", action="store_true", help="print the JSON document")
     form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants")
-    p.add_argument("-o", "--out", metavar="FILE", help="write the document to FILE (atomically) instead of stdout")
+    p.add_argument("-o", "--out", metavar="FILE|DIR",
+                   help="write the document to FILE (atomically) instead of stdout; with a directory, write "
+                   "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out derivations/)")
     p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant")
     p.add_argument("--eval", nargs="+", metavar="NAME=VALUE",
                    help="print the efficiency at these values as the last line (exact rationals where possible)")
@@ -105,6 +108,28 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
             str(sympy.Float(value, 15))]
 
 
+def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str], None]) -> int:
+    """LaTeX and Python module of every train, named after its file (``derivations/``)."""
+    os.makedirs(directory, exist_ok=True)
+    status = 0
+    for path in files:
+        stem = os.path.splitext(os.path.basename(path))[0]
+        try:
+            variants = derive_variants(load(path), progress=progress)
+        except InputError as exc:
+            print(exc.report(), file=sys.stderr)
+            status = 2
+            continue
+        except DaviesError as exc:
+            print(f"derive: {path}: {exc}", file=sys.stderr)
+            status = 2
+            continue
+        write_atomic(os.path.join(directory, f"{stem}.tex"), latex_document(variants))
+        write_atomic(os.path.join(directory, f"{stem}.py"), python_module(variants))
+        progress(f"wrote {stem}.tex and {stem}.py")
+    return status
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     show = not args.quiet and sys.stderr.isatty()
@@ -113,6 +138,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         if show:
             print(f"derive: {message}", file=sys.stderr, flush=True)
 
+    if len(args.files) > 1 or (args.out and os.path.isdir(args.out)):
+        if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
+            print("derive: several files need --out DIR (a directory)", file=sys.stderr)
+            return 2
+        if args.json or args.latex or args.python or args.eval:
+            print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python and --eval "
+                  "take one file", file=sys.stderr)
+            return 2
+        return _derive_into(args.out, args.files, progress)
+    args.file = args.files[0]
     try:
         for target in (args.out, args.python):
             if target and os.path.exists(target) and os.path.samefile(target, args.file):

@@ -6,6 +6,7 @@ from __future__ import annotations
 import glob
 import importlib.util
 import json
+import os
 import re
 import subprocess
 import sys
@@ -16,9 +17,10 @@ import sympy
 from sympy.parsing.latex import parse_latex
 
 import davies_sym
+from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.variants import derive_variants
 
-from conftest import CATALOG, S, catalog_path, read_text
+from conftest import CATALOG, ROOT, S, catalog_path, read_text
 
 TUPLIN_VALUES = ["r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99", "eta_D=0.99"]
 
@@ -160,3 +162,47 @@ def test_catalog_published_numbers(path, check):
 def test_catalog_files_have_sources():
     for path in sorted(glob.glob(f"{CATALOG}/*.yaml")):
         assert "source:" in read_text(path), path
+
+
+DERIVATIONS = os.path.join(ROOT, "derivations")
+
+
+def test_derivations_are_current(tmp_path):
+    """`derive catalog/*.yaml --out derivations/` gives exactly the committed files
+    (regenerate with that command when this fails)."""
+    files = sorted(glob.glob(f"{CATALOG}/*.yaml"))
+    result = run(*files, "--out", str(tmp_path))
+    assert result.returncode == 0, result.stderr
+    fresh = sorted(p.name for p in tmp_path.iterdir())
+    committed = sorted(n for n in os.listdir(DERIVATIONS) if n.endswith((".py", ".tex")))
+    assert fresh == committed
+    for name in fresh:
+        with open(os.path.join(DERIVATIONS, name), "rb") as handle:
+            assert handle.read() == (tmp_path / name).read_bytes(), f"derivations/{name} is stale"
+
+
+@pytest.mark.parametrize("path", sorted(glob.glob(f"{CATALOG}/*.yaml")))
+def test_generated_catalog_modules_match_the_symbolic_result(path):
+    """Each derivations/<train>.py against the exact variant at sampled admissible points,
+    for both input ports."""
+    stem = os.path.splitext(os.path.basename(path))[0]
+    spec = importlib.util.spec_from_file_location(f"gen_{stem}", os.path.join(DERIVATIONS, f"{stem}.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    train = davies_sym.load(path)
+    vs = derive_variants(train)
+    domain = ParameterDomain.of(train, vs.analysis.network.layout)
+    for point in domain.samples(5, seed=3):
+        values = {**point, **{e: sympy.Rational(97, 100) for e in efficiency_symbols(train)}}
+        kwargs = {str(s): float(values[s]) for s in vs.symbols}
+        for port in (train.ports.input, train.ports.output):
+            assert float(module.efficiency(input=port, **kwargs)) == pytest.approx(
+                float(vs.evaluate(values, port)), rel=1e-12)
+
+
+def test_code_and_generated_code_pass_the_lint():
+    """ruff (configuration in pyproject.toml) on the package, tests, benchmarks and the
+    generated modules."""
+    result = subprocess.run([sys.executable, "-m", "ruff", "check", "davies_sym", "tests", "benchmarks",
+                             "derivations"], cwd=ROOT, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr

@@ -13,11 +13,12 @@ import sympy
 from .analysis import Analysis
 from .atomic import write_atomic
 from .errors import DaviesError, InputError, Problem
-from .latex_report import latex_document
+from .latex_report import latex_document, latex_states_document
 from .loader import load
 from .model import Train
 from .python_module import python_module
 from .report import text_summary, train_document
+from .states import train_in_state
 from .symbols import exact_number
 from .variant_report import variants_document, variants_text
 from .variants import VariantSet, derive_variants
@@ -40,6 +41,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="print the efficiency at these values as the last line (exact rationals where possible)")
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
+    p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
+                   "--eval and --python need one)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 
@@ -108,14 +111,59 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
             str(sympy.Float(value, 15))]
 
 
+def _derive_sets(train: Train, state: str | None, progress: Callable[[str], None]) -> list[tuple[str, VariantSet]]:
+    """The variants of the train, or of each of its states (only ``state`` if given)."""
+    if not train.states:
+        if state is not None:
+            raise InputError([Problem("--state", "the train has no states")], train.path)
+        return [("", derive_variants(train, progress=progress))]
+    names = [st.name for st in train.states]
+    if state is not None and state not in names:
+        raise InputError([Problem("--state", f"unknown state {state!r} (states: {', '.join(names)})")], train.path)
+    chosen = [st for st in train.states if state is None or st.name == state]
+    out = []
+    for st in chosen:
+        progress(f"state {st.name}")
+        out.append((st.name, derive_variants(train_in_state(train, st), progress=progress)))
+    return out
+
+
+def _state_entry(vs: VariantSet) -> dict[str, object]:
+    ratio = vs.analysis.speed_ratio().to_expr()
+    return {"name": vs.train.name, "input": vs.train.ports.input, "output": vs.train.ports.output,
+            "speed_ratio": sympy.sstr(ratio), **variants_document(vs)}
+
+
+def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool,
+              progress: Callable[[str], None]) -> str:
+    if not train.states:
+        ((_, vs),) = sets
+        document = train_document(Analysis(train, progress=progress))
+        if as_json:
+            document.update(variants_document(vs))
+            return json.dumps(document, indent=2) + "\n"
+        return text_summary(document) + "\n" + variants_text(vs) + "\n"
+    if as_json:
+        return json.dumps({"name": train.name, "source": train.source, "file": train.path,
+                           "states": {name: _state_entry(vs) for name, vs in sets}}, indent=2) + "\n"
+    parts = [train.name]
+    for name, vs in sets:
+        parts.append(f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "
+                     f"{vs.train.ports.output}; speed ratio {sympy.sstr(vs.analysis.speed_ratio().to_expr())}")
+        parts.append(variants_text(vs))
+    return "\n".join(parts) + "\n"
+
+
 def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str], None]) -> int:
-    """LaTeX and Python module of every train, named after its file (``derivations/``)."""
+    """LaTeX and Python module of every train, named after its file (``derivations/``);
+    a train with states gets one LaTeX file and a module per state."""
     os.makedirs(directory, exist_ok=True)
     status = 0
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0]
         try:
-            variants = derive_variants(load(path), progress=progress)
+            train = load(path)
+            sets = _derive_sets(train, None, progress)
         except InputError as exc:
             print(exc.report(), file=sys.stderr)
             status = 2
@@ -124,9 +172,14 @@ def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str],
             print(f"derive: {path}: {exc}", file=sys.stderr)
             status = 2
             continue
-        write_atomic(os.path.join(directory, f"{stem}.tex"), latex_document(variants))
-        write_atomic(os.path.join(directory, f"{stem}.py"), python_module(variants))
-        progress(f"wrote {stem}.tex and {stem}.py")
+        if train.states:
+            write_atomic(os.path.join(directory, f"{stem}.tex"), latex_states_document([vs for _, vs in sets]))
+            for name, vs in sets:
+                write_atomic(os.path.join(directory, f"{stem}_{name}.py"), python_module(vs))
+        else:
+            write_atomic(os.path.join(directory, f"{stem}.tex"), latex_document(sets[0][1]))
+            write_atomic(os.path.join(directory, f"{stem}.py"), python_module(sets[0][1]))
+        progress(f"wrote the derivations of {stem}")
     return status
 
 
@@ -154,19 +207,17 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"derive: refusing to overwrite the input file {args.file}", file=sys.stderr)
                 return 2
         train = load(args.file)
-        variants = derive_variants(train, progress=progress)
-        if args.json:
-            document = train_document(Analysis(train, progress=progress))
-            document.update(variants_document(variants))
-            text = json.dumps(document, indent=2) + "\n"
-        elif args.latex:
-            text = latex_document(variants)
+        sets = _derive_sets(train, args.state, progress)
+        if (args.python or args.eval) and len(sets) > 1:
+            raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
+                                      f"{', '.join(st.name for st in train.states)})")], train.path)
+        if args.latex:
+            text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
         else:
-            text = text_summary(train_document(Analysis(train, progress=progress))) + "\n"
-            text += variants_text(variants) + "\n"
+            text = _document(train, sets, args.json, progress)
         if args.python:
-            write_atomic(args.python, python_module(variants))
-        evaluation = _evaluate(variants, args) if args.eval else None
+            write_atomic(args.python, python_module(sets[0][1]))
+        evaluation = _evaluate(sets[0][1], args) if args.eval else None
     except InputError as exc:
         print(exc.report(), file=sys.stderr)
         return 2

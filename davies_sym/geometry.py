@@ -91,6 +91,13 @@ def planar_line_layout(train: Train) -> Layout:
     root = _root_link(train, geared)
     if root is not None:
         positions[groups.find(root)] = sympy.Integer(0)
+    # A bearing with `at` fixes its geared link's axis (a ring on the main axis); the
+    # meshes then place the rest and any mesh that closes a loop gives a constraint.
+    for c in train.couplings:
+        if isinstance(c, Revolute) and c.at is not None and c.axis is None:
+            for link in c.links:
+                if link in geared and groups.find(link) not in positions:
+                    positions[groups.find(link)] = c.at
     tree_meshes = _place_by_meshes(meshes, gears, groups, positions)
     for c in train.couplings:
         if isinstance(c, Revolute) and c.at is not None:
@@ -133,7 +140,7 @@ def planar_line_layout(train: Train) -> Layout:
             points[mesh.name] = _point(centres[g.name] + (side or 1) * g.radius)
     for c in train.couplings:
         if isinstance(c, Revolute):
-            point = _revolute_point(train, c, geared, groups, positions, problems)
+            point = _revolute_point(train, c, geared, groups, positions, problems, constraints, oracle)
             if point is not None:
                 points[c.name] = point
         elif not isinstance(c, GearMesh):
@@ -225,22 +232,26 @@ def _add_constraint(train: Train, constraints: list[GeometricConstraint], proble
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
         problems.append(train.problem(
-            f"couplings.{coupling}", f"inconsistent geometry: the centre distance this mesh needs ({distance}) "
-            f"differs from the one the other meshes give ({offset})"))
+            f"couplings.{coupling}", f"inconsistent geometry: the centre distance this coupling needs ({distance}) "
+            f"differs from the one the other couplings give ({offset})"))
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
 
 def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGroups,
-                    positions: Mapping[str, sympy.Expr],
-                    problems: list[Problem]) -> Vector | None:
+                    positions: Mapping[str, sympy.Expr], problems: list[Problem],
+                    constraints: list[GeometricConstraint], oracle: SignOracle) -> Vector | None:
     on = [c.axis] if c.axis is not None else c.links
     derived = [positions[groups.find(link)] for link in on if link in geared]
     if derived:
-        if c.at is not None and sympy.expand(c.at - derived[0]) != 0:
+        difference = sympy.expand(derived[0] - c.at) if c.at is not None else sympy.Integer(0)
+        if difference != 0 and (difference.is_number or oracle.sign(difference) in (1, -1)):
             problems.append(train.problem(
                 f"couplings.{c.name}.at",
                 f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {derived[0]}"))
+        elif difference != 0:
+            # The bearing fixes an axis the meshes leave open: a ring on the main axis.
+            constraints.append(GeometricConstraint(derived[0], c.at, c.name))
         return _point(derived[0])
     if c.at is None:
         problems.append(train.problem(

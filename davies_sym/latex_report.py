@@ -26,18 +26,25 @@ def _sign(sign: int) -> str:
     return "$> 0$" if sign > 0 else "$< 0$"
 
 
+_PREAMBLE = [r"\documentclass[11pt]{article}", r"\usepackage{amsmath}", r"\usepackage{booktabs}",
+             r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}"]
+
+
 def latex_document(variants: VariantSet) -> str:
-    """The whole document as a string."""
+    """The whole document of one train (or one state) as a string."""
+    return "\n".join([*_PREAMBLE, *_section(variants), r"\end{document}", ""])
+
+
+def latex_states_document(sets: list[VariantSet]) -> str:
+    """One document with a section per operating state."""
+    body = [line for vs in sets for line in [*_section(vs), r"\clearpage"]]
+    return "\n".join([*_PREAMBLE, *body[:-1], r"\end{document}", ""])
+
+
+def _section(variants: VariantSet) -> list[str]:
+    """Title, conditions, variants table and formulas of one train."""
     train = variants.train
-    out = [
-        r"\documentclass[11pt]{article}",
-        r"\usepackage{amsmath}",
-        r"\usepackage{booktabs}",
-        r"\usepackage[margin=2cm]{geometry}",
-        r"\allowdisplaybreaks",
-        r"\begin{document}",
-        rf"\section*{{{escape(train.name)}}}",
-    ]
+    out = [rf"\section*{{{escape(train.name)}}}"]
     if train.source:
         out.append(rf"\noindent Source: {escape(train.source)}.\\")
     out.append(rf"Ports: input {escape(train.ports.input)}, output {escape(train.ports.output)}; "
@@ -74,5 +81,4 @@ def latex_document(variants: VariantSet) -> str:
                 r"\end{equation}"]
         for n in notes(v):
             out.append(rf"\noindent {escape(n)}.\\")
-    out += [r"\end{document}", ""]
-    return "\n".join(out)
+    return out

@@ -17,8 +17,8 @@ import networkx as nx
 from .couplings import KINDS, Coupling, GearMesh, coupling_fields
 from .entries import EntryReader
 from .errors import Problem, TopologyError
-from .model import Expected, Gear, Link, Ports, Train
-from .schema import FORMAT_VERSION, GEAR, LINK, PORTS, TOP_LEVEL
+from .model import Expected, Gear, Link, Ports, State, Train
+from .schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
 from .yaml_source import SourceDocument, parse_yaml
 
 
@@ -60,6 +60,10 @@ def build_train(document: SourceDocument) -> Train:
         reader.problem("degrees_of_freedom", f"expected a positive integer, got {dof!r}")
         dof = None
     expected = _read_expected(data.get("expected", []), reader)
+    states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings)
+    for i, check in enumerate(expected):
+        if check.state is not None and check.state not in {st.name for st in states}:
+            reader.problem(f"expected[{i}].state", f"unknown state {check.state!r}")
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
             reader.problem(key, f"expected text, got {data[key]!r}")
@@ -78,6 +82,7 @@ def build_train(document: SourceDocument) -> Train:
         expected=expected,
         path=document.name,
         locations=MappingProxyType(dict(document.lines)),
+        states=states,
     )
 
 
@@ -235,6 +240,55 @@ def _read_reference(value: Any, reader: EntryReader, links: list[Link],
     return common.pop()
 
 
+def _read_states(value: Any, reader: EntryReader, links: set[str],
+                 couplings: Mapping[str, Coupling]) -> tuple[State, ...]:
+    """The ``states`` mapping: ports, brakes, clutches and free members per state."""
+    states = reader.mapping(value, "states")
+    if states is None:
+        return ()
+    out = []
+    for name, entry in states.items():
+        path = f"states.{name}"
+        entry = reader.mapping(entry, path)
+        if entry is None:
+            continue
+        reader.check_keys(entry, path, STATE)
+        ports = []
+        for key in ("input", "output"):
+            port = reader.name(entry.get(key), f"{path}.{key}") if key in entry else None
+            if port is not None and port not in couplings:
+                reader.problem(f"{path}.{key}", f"port on a missing coupling {port!r}")
+                port = None
+            ports.append(port)
+
+        def members(key: str, items: Any, path: str = path) -> list[str]:
+            if not isinstance(items, list):
+                reader.problem(f"{path}.{key}", "expected a list")
+                return []
+            found = []
+            for i, item in enumerate(items):
+                link = reader.name(item, f"{path}.{key}[{i}]")
+                if link is not None and link not in links:
+                    reader.problem(f"{path}.{key}[{i}]", f"unknown link {link!r}")
+                elif link is not None:
+                    found.append(link)
+            return found
+
+        brake = members("brake", entry.get("brake", []))
+        free = members("free", entry.get("free", []))
+        clutch: list[tuple[str, str]] = []
+        for i, pair in enumerate(entry.get("clutch", []) if isinstance(entry.get("clutch", []), list) else []):
+            found = members(f"clutch[{i}]", pair)
+            if len(found) != 2 or found[0] == found[1]:
+                reader.problem(f"{path}.clutch[{i}]", "a clutch joins two different links: [link, link]")
+            else:
+                clutch.append((found[0], found[1]))
+        if ports[0] is not None and ports[1] is not None:
+            out.append(State(str(name), ports[0], ports[1], tuple(brake), tuple(clutch), tuple(free),
+                             str(entry.get("description", ""))))
+    return tuple(out)
+
+
 def _read_expected(value: Any, reader: EntryReader) -> tuple[Expected, ...]:
     if not isinstance(value, list):
         reader.problem("expected", "expected a list of checks")
@@ -253,6 +307,7 @@ def _read_expected(value: Any, reader: EntryReader) -> tuple[Expected, ...]:
                 tolerance=float(entry.get("tolerance", 5e-5)),
                 source=str(entry.get("source", "")),
                 input=None if entry.get("input") is None else str(entry["input"]),
+                state=None if entry.get("state") is None else str(entry["state"]),
             ))
         except (KeyError, TypeError, ValueError) as exc:
             reader.problem(path, f"malformed check ({exc})")

@@ -44,6 +44,20 @@ class Ports:
 
 
 @dataclass(frozen=True)
+class State:
+    """An operating state of a multi-speed set: its ports, the members braked to the
+    housing, the members clutched together and the members running free (unloaded)."""
+
+    name: str
+    input: str
+    output: str
+    brake: tuple[str, ...] = ()
+    clutch: tuple[tuple[str, str], ...] = ()
+    free: tuple[str, ...] = ()
+    description: str = ""
+
+
+@dataclass(frozen=True)
 class Expected:
     """A published number to reproduce: parameter values, expected value, tolerance."""
 
@@ -53,6 +67,7 @@ class Expected:
     tolerance: float
     source: str
     input: str | None = None
+    state: str | None = None
 
 
 @dataclass(frozen=True)
@@ -72,6 +87,7 @@ class Train:
     path: str | None = None
     #: Line of each entry path of the source file (``couplings.C.gears`` -> 12).
     locations: Mapping[str, int] = field(default_factory=lambda: MappingProxyType({}))
+    states: tuple[State, ...] = ()
 
     def problem(self, entry: str, message: str) -> Problem:
         """A :class:`Problem` at ``entry`` with the line it has in the source file."""
@@ -95,6 +111,12 @@ class Train:
     @property
     def link_names(self) -> tuple[str, ...]:
         return tuple(link.name for link in self.links)
+
+    def state(self, name: str) -> State:
+        for st in self.states:
+            if st.name == name:
+                return st
+        raise KeyError(name)
 
     def with_ports(self, ports: Ports) -> Train:
         """The same train with other input/output ports."""

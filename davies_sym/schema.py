@@ -39,6 +39,8 @@ TOP_LEVEL = (
     Field("ports", "mapping", True, "Ports: `input` and `output`, each a coupling name."),
     Field("degrees_of_freedom", "integer", False,
           "Expected mobility; a mismatch with the derived one is an error."),
+    Field("states", "mapping", False,
+          "Operating states of a multi-speed set: name -> state entry (see *States*)."),
     Field("expected", "list", False, "Published numbers to check (used by the catalog tests)."),
     Field("notes", "string", False, "Free text."),
 )
@@ -57,6 +59,17 @@ GEAR = (
 PORTS = (
     Field("input", "coupling", True, "Coupling that carries the input torque (or force)."),
     Field("output", "coupling", True, "Coupling that carries the output torque (or force)."),
+)
+
+STATE = (
+    Field("input", "coupling", True, "Input port in this state."),
+    Field("output", "coupling", True, "Output port in this state."),
+    Field("brake", "list of links", False,
+          "Members braked to the housing (the reference link): each is joined rigidly to it."),
+    Field("clutch", "list of [link, link]", False, "Pairs of members clutched together (joined rigidly)."),
+    Field("free", "list of links", False,
+          "Members running free (unloaded): removed with their couplings, they carry no power and no loss."),
+    Field("description", "string", False, "What the state is (e.g. first gear)."),
 )
 
 COUPLING_COMMON = (

@@ -6,7 +6,7 @@ import sys
 
 from .atomic import write_atomic
 from .couplings import KINDS, coupling_fields
-from .schema import FORMAT_VERSION, FRICTION, GEAR, LINK, PORTS, TOP_LEVEL, fields_table
+from .schema import FORMAT_VERSION, FRICTION, GEAR, LINK, PORTS, STATE, TOP_LEVEL, fields_table
 
 INTRO = f"""# Topology language, version {FORMAT_VERSION}
 
@@ -80,6 +80,9 @@ def render() -> str:
         parts += [f"\n### `type: {name}`\n", kind.DOC + "\n", fields_table(coupling_fields(kind))]
     parts += ["\n## Friction\n", "`friction: none`, or a mapping of laws to coefficients:\n",
               fields_table(FRICTION)]
+    parts += ["\n## States\n", "Operating states of a multi-speed set (`states: {name: entry}`). "
+              "`derive` derives every state; `--state NAME` picks one for `--eval`, `--latex` and "
+              "`--python`.\n", fields_table(STATE)]
     return "\n".join(parts) + "\n"
 
 

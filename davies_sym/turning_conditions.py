@@ -90,14 +90,14 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
         if c.friction.coulomb is None and c.friction.linear is None:
             continue
         flow = mesh_power_flow(analysis, c)
+        if flow.flow_ratio.is_zero():
+            # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
+            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies))
+            continue
         content, factors = flow.flow_ratio.factor_list()
         sign, undecided = analysis.oracle.classify(content, factors)
         if sign in (1, -1):
             roles.append(MeshRole(c.name, flow, sign, None, 1, c.efficiencies))
-            continue
-        if sign == 0:
-            # No virtual power crosses the mesh: its efficiency does not matter.
-            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies))
             continue
         orientation, general = _normalised(sympy.expand(undecided))
         shorter = _shorter(analysis, general)

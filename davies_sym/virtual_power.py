@@ -63,6 +63,8 @@ class MeshPowerFlow:
         driver, driven = (0, 1) if first_drives else (1, 0)
         num = eta * self.transmitted_power[driver] - self.transmitted_power[driven]
         den = self.friction_power[driven] - eta * self.friction_power[driver]
+        if den.is_zero() and all(p.is_zero() for p in (*self.transmitted_power, *self.friction_power)):
+            return num  # the mesh does not turn in its carrier (a locked set): no loss, any zeta
         if den.is_zero():
             raise DerivationError(f"mesh {self.coupling}: its friction torque does no virtual work "
                                   f"seen from carrier {self.carrier!r}")
@@ -70,9 +72,8 @@ class MeshPowerFlow:
 
 
 def _parallel(a: Twist, b: list[RationalFunction]) -> bool:
-    """Whether twist ``a`` is a non-zero multiple of ``b`` (all 2x2 minors vanish)."""
-    if all(x.is_zero() for x in a):
-        return False
+    """Whether twist ``a`` is a multiple of ``b`` (all 2x2 minors vanish); zero counts: in
+    a locked set (a clutch closing it) the gear does not turn in its carrier."""
     n = len(a)
     return all((a[i] * b[j] - a[j] * b[i]).is_zero() for i in range(n) for j in range(i + 1, n))
 
@@ -93,11 +94,17 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> str:
     links move together)."""
     p, q = mesh.links
     axes = [_gear_axis(analysis, g) for g in mesh.gears]
+    locked = None
     for c in analysis.train.link_names:
         if c in (p, q):
             continue
-        if _parallel(_relative(analysis, c, p), axes[0]) and _parallel(_relative(analysis, c, q), axes[1]):
-            return c
+        sides = (_relative(analysis, c, p), _relative(analysis, c, q))
+        if _parallel(sides[0], axes[0]) and _parallel(sides[1], axes[1]):
+            if any(not x.is_zero() for twist in sides for x in twist):
+                return c
+            locked = locked or c  # the whole set turns as one block: any member will do
+    if locked is not None:
+        return locked
     raise DerivationError(f"mesh {mesh.name}: no link holds both gear axes (no carrier), so its "
                           "ordinary efficiency is not defined")
 

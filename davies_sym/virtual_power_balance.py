@@ -184,15 +184,19 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
         eqs: list[list[sympy.Expr]] = []
         rhs: list[sympy.Expr] = []
         for k, m in enumerate(meshes):  # (iv-v) loss formula per mesh
+            # M_q s_q + eta M_p s_p = 0 (driver p) divided by the carrier-frame speed through
+            # Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, regular in a locked set.
             c = carriers[m.name]
-            s_p, s_q = rel(m.links[0], c), rel(m.links[1], c)
+            a_p = members.pitch[m.name] - members.gear_axis[m.gears[0]]
+            a_q = members.pitch[m.name] - members.gear_axis[m.gears[1]]
+            turning = rel(m.links[0], c) != 0 or rel(m.links[1], c) != 0
             row = [sympy.Integer(0)] * n
-            if first_drives is None:
-                row[2 * k], row[2 * k + 1] = s_p, s_q
+            if first_drives is None or not turning:
+                row[2 * k], row[2 * k + 1] = a_q, a_p
             elif first_drives[m.name]:
-                row[2 * k], row[2 * k + 1] = _efficiency(m, 0, values) * s_p, s_q
+                row[2 * k], row[2 * k + 1] = _efficiency(m, 0, values) * a_q, a_p
             else:
-                row[2 * k], row[2 * k + 1] = s_p, _efficiency(m, 1, values) * s_q
+                row[2 * k], row[2 * k + 1] = a_q, _efficiency(m, 1, values) * a_p
             eqs.append(row)
             rhs.append(0)
         for link in links:  # (vi) torque balance of every member about its axis

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import glob
 import os
 import random
 
@@ -49,3 +50,19 @@ def equal(a: sympy.Expr, b: sympy.Expr, subs: dict | None = None) -> bool:
 @pytest.fixture
 def rng() -> random.Random:
     return random.Random(20111)
+
+
+def catalog_trains() -> list[tuple[str, davies_sym.Train]]:
+    """Every 1-DOF train of the catalog: each file, or each operating state of a file
+    that lists states, with an id such as ``simpson[first]``."""
+    from davies_sym.states import train_in_state
+
+    out = []
+    for path in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))):
+        train = davies_sym.load(path)
+        stem = os.path.splitext(os.path.basename(path))[0]
+        if train.states:
+            out += [(f"{stem}[{st.name}]", train_in_state(train, st)) for st in train.states]
+        else:
+            out.append((stem, train))
+    return out

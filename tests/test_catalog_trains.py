@@ -6,6 +6,8 @@ from __future__ import annotations
 import sympy
 
 import davies_sym
+from davies_sym.states import train_in_state
+from davies_sym.variants import derive_variants
 
 from conftest import S, catalog_path, equal
 
@@ -35,3 +37,25 @@ def test_tuplin_ratio_chen_k():
     r1, r2, r3, r4 = (S(f"r{i}") for i in range(1, 5))
     k = r3 * r2 / (r3 * r2 - r1 * r4)
     assert equal(a.speed_ratio().to_expr(), k, {r4: r2 - r1 + r3})
+
+
+def test_simpson_ratios_in_every_state():
+    """Simpson set, textbook ratios with S the sun and R1, R2 the rings:
+    1st (R1 + R2 + S)/R1, 2nd 1 + S/R1, 3rd 1, reverse -R2/S."""
+    train = davies_sym.load(catalog_path("simpson"))
+    rs, rr1, rr2 = S("rs"), S("rr1"), S("rr2")
+    rp1, rp2 = S("rp1"), S("rp2")
+    on_constraints = {rr1: rs + 2 * rp1, rr2: rs + 2 * rp2}
+    textbook = {"first": (rr1 + rr2 + rs) / rr1, "second": 1 + rs / rr1, "third": sympy.Integer(1),
+                "reverse": -rr2 / rs}
+    for state in train.states:
+        a = davies_sym.analyse(train_in_state(train, state))
+        assert equal(a.speed_ratio().to_expr(), textbook[state.name], on_constraints), state.name
+
+
+def test_third_gear_is_direct_with_no_loss():
+    """A clutch locks the front set: no mesh turns in its carrier, the efficiency is 1."""
+    train = train_in_state(davies_sym.load(catalog_path("simpson")), davies_sym.load(
+        catalog_path("simpson")).state("third"))
+    vs = derive_variants(train)
+    assert all(v.efficiency == 1 for v in vs.variants)

@@ -4,7 +4,6 @@ agreeing on catalog trains and on trains described here."""
 
 from __future__ import annotations
 
-import glob
 import os
 import random
 
@@ -16,7 +15,7 @@ from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.variants import derive_variants
 from davies_sym.virtual_power_balance import virtual_power_balance
 
-from conftest import CATALOG, ROOT, S, catalog_path, equal, read_text
+from conftest import ROOT, S, catalog_path, catalog_trains, equal, read_text
 
 r1, r2, r3, r4 = (S(f"r{i}") for i in range(1, 5))
 eC, eD = S("eta_C", "efficiency"), S("eta_D", "efficiency")
@@ -140,15 +139,19 @@ def _both_routes(train: davies_sym.Train, points: int = 6, seed: int = 7) -> int
             davies = vs.evaluate(values, port)
             chen = virtual_power_balance(train, values, port)
             assert davies == chen.efficiency, (train.name, port, values)
-            assert dict(vs.variant_for(values, port).first_drives) == dict(chen.first_drives)
+            # Which gear drives matters only where virtual power crosses the mesh.
+            loaded = {m for m, loss in chen.losses.items() if loss != 0}
+            davies_roles = dict(vs.variant_for(values, port).first_drives)
+            assert {m: davies_roles[m] for m in loaded} == {m: chen.first_drives[m] for m in loaded}
             assert chen.input_power + chen.output_power == sum(chen.losses.values())
             checked += 1
     return checked
 
 
-@pytest.mark.parametrize("path", sorted(glob.glob(f"{CATALOG}/*.yaml")))
-def test_both_routes_agree_on_every_catalog_train(path):
-    assert _both_routes(davies_sym.load(path)) > 0
+@pytest.mark.parametrize(("name", "train"), catalog_trains(), ids=[n for n, _ in catalog_trains()])
+def test_both_routes_agree_on_every_catalog_train(name, train):
+    """Every catalog train and every operating state of the multi-speed sets."""
+    assert _both_routes(train) > 0, name
 
 
 OWN_TRAINS = ["double_pinion", "two_carriers", "idler_internal", "dependent_conditions"]

@@ -121,7 +121,7 @@ class Analysis:
             problems.append(self.train.problem(
                 "degrees_of_freedom",
                 f"the train has {dof} degree(s) of freedom, the file says {self.train.degrees_of_freedom}"))
-        elif dof != 1:
+        elif dof != 1 and self.train.degrees_of_freedom is None:
             extra = [net.motions[j].name for j in free if j != index]
             problems.append(self.train.problem(
                 "ports",
@@ -132,6 +132,20 @@ class Analysis:
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
         return dof, {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
+
+    @cached_property
+    def motion_basis(self) -> dict[str, dict[str, RationalFunction]]:
+        """Every motion magnitude as a combination of the primary ones (the free
+        variables of Null(M_N), the input speed first): eq. (1) for any mobility."""
+        _ = self._motion_solution  # the mobility check
+        net = self.network
+        # Primary speeds: the input, then the other couplings on the reference (shaft speeds).
+        on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
+                        for v in net.coupling_motions(c.name) if v is not self.input_motion]
+        prefer = [net.motions.index(self.input_motion), *on_reference]
+        elimination = gauss_jordan(self._rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer)
+        solution = elimination.solution(self.ring)
+        return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
 
     @property
     def degrees_of_freedom(self) -> int:

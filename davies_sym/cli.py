@@ -17,7 +17,7 @@ from .latex_report import latex_document, latex_states_document
 from .loader import load
 from .model import Train
 from .python_module import python_module
-from .report import text_summary, train_document
+from .report import kinematics_document, kinematics_text, text_summary, train_document
 from .states import train_in_state
 from .symbols import exact_number
 from .variant_report import variants_document, variants_text
@@ -163,6 +163,10 @@ def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str],
         stem = os.path.splitext(os.path.basename(path))[0]
         try:
             train = load(path)
+            if train.degrees_of_freedom is not None and train.degrees_of_freedom > 1:
+                print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom, kinematics only: "
+                      "nothing written", file=sys.stderr)
+                continue
             sets = _derive_sets(train, None, progress)
         except InputError as exc:
             print(exc.report(), file=sys.stderr)
@@ -207,6 +211,18 @@ def main(argv: Sequence[str] | None = None) -> int:
                 print(f"derive: refusing to overwrite the input file {args.file}", file=sys.stderr)
                 return 2
         train = load(args.file)
+        if train.degrees_of_freedom is not None and train.degrees_of_freedom > 1:
+            if args.latex or args.python or args.eval or args.state:
+                raise InputError([Problem("degrees_of_freedom", f"the train has {train.degrees_of_freedom} degrees "
+                                          "of freedom: only its kinematics are derived (no efficiency with several "
+                                          "inputs yet)")], train.path)
+            document = kinematics_document(Analysis(train, progress=progress))
+            text = json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n"
+            if args.out:
+                write_atomic(args.out, text)
+            else:
+                sys.stdout.write(text)
+            return 0
         sets = _derive_sets(train, args.state, progress)
         if (args.python or args.eval) and len(sets) > 1:
             raise InputError([Problem("--state", "the train has states: choose one with --state (states: "

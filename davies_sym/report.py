@@ -9,6 +9,7 @@ import sympy
 
 from .analysis import Analysis
 from .couplings import GearMesh, Revolute
+from .symbols import make_symbol
 
 FRICTION_CONVENTION = (
     "Coulomb friction (default for gear meshes): friction torque T = -zeta |U| sign(t) about the "
@@ -88,4 +89,28 @@ def text_summary(document: dict[str, Any]) -> str:
     lines.append(f"  efficiency ({eff['input']} -> {eff['output']}) = {eff['expression']}")
     for s in eff["sign_conditions"]:
         lines.append(f"    where {s['symbol']} = {s['equals']} (not decided by the ports alone)")
+    return "\n".join(lines)
+
+
+def kinematics_document(analysis: Analysis) -> dict[str, Any]:
+    """Motions of a train with several degrees of freedom in its primary speeds (eq. (1));
+    the efficiency with several inputs is not derived."""
+    basis = analysis.motion_basis
+    primaries = sorted({f for combo in basis.values() for f in combo}, key=list(basis).index)
+    relations = {}
+    for name, combo in basis.items():
+        if name in primaries:
+            continue
+        expr = sympy.Add(*(c.to_expr() * make_symbol(f, "magnitude") for f, c in combo.items()))
+        relations[name] = sympy.sstr(expr)
+    return {"name": analysis.train.name, "source": analysis.train.source, "file": analysis.train.path,
+            "degrees_of_freedom": analysis.degrees_of_freedom, "primary_speeds": primaries,
+            "kinematics": relations}
+
+
+def kinematics_text(document: dict[str, Any]) -> str:
+    lines = [document["name"], f"  degrees of freedom: {document['degrees_of_freedom']}; primary speeds: "
+             f"{', '.join(document['primary_speeds'])}"]
+    lines += [f"  {name} = {expr}" for name, expr in document["kinematics"].items()]
+    lines.append("  (the efficiency with several inputs is not derived yet)")
     return "\n".join(lines)

@@ -61,6 +61,8 @@ def catalog_trains() -> list[tuple[str, davies_sym.Train]]:
     for path in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))):
         train = davies_sym.load(path)
         stem = os.path.splitext(os.path.basename(path))[0]
+        if (train.degrees_of_freedom or 1) > 1:
+            continue
         if train.states:
             out += [(f"{stem}[{st.name}]", train_in_state(train, st)) for st in train.states]
         else:

@@ -59,3 +59,27 @@ def test_third_gear_is_direct_with_no_loss():
         catalog_path("simpson")).state("third"))
     vs = derive_variants(train)
     assert all(v.efficiency == 1 for v in vs.variants)
+
+
+def test_sr20_two_degree_of_freedom_kinematics():
+    """Mantriota & Pennestri 2003, section 6: w_o = (w_d1 + w_d2)/2 for z = 36, 32, 20, 45,
+    e.g. 180 = (309 + 51)/2 of their tables; the engine finds it from M_N (two primaries)."""
+    a = davies_sym.analyse(davies_sym.load(catalog_path("sr20_differential")))
+    assert a.degrees_of_freedom == 2
+    basis = {k: {f: c.to_expr() for f, c in v.items()} for k, v in a.motion_basis.items()}
+    tA, tK, tO = S("t_A", "magnitude"), S("t_K", "magnitude"), S("t_O", "magnitude")
+    speed = {name: sum(c * S(f, "magnitude") for f, c in combo.items()) for name, combo in basis.items()}
+    # t_A = w_d1, t_K = w_d2 (carrier), t_O = w_o, all relative to the housing.
+    assert sympy.expand(speed["t_O"] - (speed["t_A"] + speed["t_K"]) / 2) == 0
+    free = {tA, tK, tO} & set().union(*(e.free_symbols for e in speed.values()))
+    assert len(free) == 2
+
+
+def test_sr20_cli_prints_the_kinematics():
+    import subprocess
+    import sys
+
+    result = subprocess.run([sys.executable, "-m", "davies_sym.cli", catalog_path("sr20_differential")],
+                            capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stderr
+    assert "degrees of freedom: 2" in result.stdout and "t_A = -t_K + 2*t_O" in result.stdout

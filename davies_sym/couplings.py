@@ -171,7 +171,7 @@ class Revolute(Coupling):
         return None if links is None else cls(name, links, friction, at, axis)
 
     def screws(self, layout: Layout) -> CouplingScrews:
-        point, axis = layout.coupling_points[self.name], layout.axis
+        point, axis = layout.coupling_points[self.name], layout.coupling_axes.get(self.name, layout.axis)
         motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
         return CouplingScrews((motion,), (), _point_constraints(point))
 
@@ -245,7 +245,7 @@ class GearMesh(Coupling):
         return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
 
     def screws(self, layout: Layout) -> CouplingScrews:
-        point, axis = layout.coupling_points[self.name], layout.axis
+        point, axis = layout.coupling_points[self.name], layout.coupling_axes.get(self.name, layout.axis)
         tangent, normal = layout.mesh_tangents[self.name], layout.mesh_normals[self.name]
         motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
         separating = NamedScrew(translation_magnitude_name(normal), translation_twist(normal))
@@ -287,7 +287,7 @@ class Prismatic(Coupling):
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Prismatic | None:
         links = _read_links(entry, path, reader)
-        direction = _read_direction(entry.get("direction"), f"{path}.direction", reader)
+        direction = read_direction(entry.get("direction"), f"{path}.direction", reader)
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
         if links is None or direction is None:
             return None
@@ -298,9 +298,12 @@ class Prismatic(Coupling):
         return CouplingScrews((motion,), (), _point_constraints(vector((0, 0, 0))))
 
 
-def _read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
+def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
+    """A direction: ``x``, ``y``, ``z`` (``-x`` ...), or a list of three quantities."""
     if isinstance(value, str) and value in _UNIT:
         return _UNIT[value]
+    if isinstance(value, str) and value.startswith("-") and value[1:] in _UNIT:
+        return vector([-v for v in _UNIT[value[1:]]])
     if isinstance(value, list) and len(value) == 3:
         parts = [reader.quantity(v, f"{path}[{i}]", "length") for i, v in enumerate(value)]
         if any(p is None for p in parts):

@@ -11,7 +11,7 @@ A mesh that closes a loop gives a geometric constraint such as r1 - r3 = r2 - r4
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy
 
@@ -55,6 +55,10 @@ class Layout:
     #: Expressions known to be positive, e.g. R - r of every internal mesh.
     positive_facts: tuple[sympy.Expr, ...] = ()
     axis: Vector = Z_AXIS
+    #: Axis direction of each gear and of each coupling's rotation, where it is not ``axis``
+    #: (intersecting-axis trains).
+    gear_axes: Mapping[str, Vector] = field(default_factory=dict)
+    coupling_axes: Mapping[str, Vector] = field(default_factory=dict)
 
 
 def _point(y: sympy.Expr) -> Vector:
@@ -260,3 +264,85 @@ def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGr
             "revolute with `at`"))
         return None
     return _point(c.at)
+
+
+def train_layout(train: Train) -> Layout:
+    """The layout of ``train``: conical when its gears give axis directions, else planar."""
+    if any(g.axis is not None for g in train.gears):
+        return conical_layout(train)
+    return planar_line_layout(train)
+
+
+def _unit(v: Vector) -> Vector:
+    norm = sympy.sqrt(sympy.expand(sum(x**2 for x in v)))
+    return vector([sympy.expand(x / norm) for x in v])
+
+
+def _cross(a: Vector, b: Vector) -> Vector:
+    return vector((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
+
+
+def conical_layout(train: Train) -> Layout:
+    """Bevel and face-gear trains whose axes all meet at the origin (Laus section 3.5).
+
+    A mesh of gears with unit axes a, b and pitch radii r_a, r_b has its pitch point in the
+    plane of the axes, at r_a from axis a and r_b from axis b: P = (r_b a + r_a b) / sin S,
+    S the angle between the axes (Laus eqs. (80)-(84), App. C).  The relative motion is a
+    rotation about the line OP (the pitch cones roll), the tooth force acts at P along
+    a x b, and a bearing turns about the axis of the gears of its link.
+    """
+    problems: list[Problem] = []
+    axes: dict[str, Vector] = {}
+    for g in train.gears:
+        if g.axis is None:
+            problems.append(train.problem(f"gears.{g.name}.axis", "in a train with intersecting axes every gear "
+                                          "needs its axis direction"))
+            continue
+        axis = _unit(g.axis)
+        previous = axes.get(g.link)
+        if previous is not None and any(sympy.expand(x) != 0 for x in _cross(previous, axis)):
+            problems.append(train.problem(f"gears.{g.name}.axis", f"gears of link {g.link!r} must share one axis"))
+        axes.setdefault(g.link, axis)
+    if problems:
+        raise GeometryError(problems, train.path)
+    gear_axes = {g.name: _unit(g.axis) for g in train.gears if g.axis is not None}
+    origin = vector((0, 0, 0))
+    points: dict[str, Vector] = {}
+    coupling_axes: dict[str, Vector] = {}
+    tangents: dict[str, Vector] = {}
+    for c in train.couplings:
+        if isinstance(c, GearMesh):
+            g, h = (train.gear(n) for n in c.gears)
+            a, b = gear_axes[g.name], gear_axes[h.name]
+            normal = _cross(a, b)
+            sin = sympy.sqrt(sympy.expand(sum(x**2 for x in normal)))
+            if sin == 0:
+                problems.append(train.problem(f"couplings.{c.name}", "the gear axes are parallel: give the train "
+                                              "without axis directions (planar layout)"))
+                continue
+            pitch = vector([sympy.expand((h.radius * x + g.radius * y) / sin) for x, y in zip(a, b, strict=True)])
+            points[c.name] = pitch
+            coupling_axes[c.name] = pitch
+            tangents[c.name] = normal
+        elif isinstance(c, Revolute):
+            on = [c.axis] if c.axis is not None else [link for link in c.links if link in axes]
+            if not on or on[0] not in axes:
+                problems.append(train.problem(f"couplings.{c.name}", "neither link carries a gear: this bearing's "
+                                              "axis direction is unknown"))
+                continue
+            points[c.name] = origin
+            coupling_axes[c.name] = axes[on[0]]
+        else:
+            points[c.name] = origin
+    if problems:
+        raise GeometryError(problems, train.path)
+    return Layout(
+        gear_centres={g.name: origin for g in train.gears},
+        coupling_points=points,
+        mesh_tangents=tangents,
+        mesh_normals={name: _unit(p) for name, p in coupling_axes.items() if name in tangents},
+        constraints=(),
+        positive_facts=(),
+        gear_axes=gear_axes,
+        coupling_axes=coupling_axes,
+    )

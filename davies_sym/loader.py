@@ -14,7 +14,7 @@ from typing import Any
 
 import networkx as nx
 
-from .couplings import KINDS, Coupling, GearMesh, coupling_fields
+from .couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
 from .entries import EntryReader
 from .errors import Problem, TopologyError
 from .model import Expected, Gear, Link, Ports, State, Train
@@ -128,8 +128,9 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
             reader.problem(f"{path}.internal", f"expected true or false, got {internal!r}")
             internal = False
         radius, teeth, module = _read_size(entry, path, reader)
+        axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry else None
         if link is not None and radius is not None:
-            gears[name] = Gear(name, link, radius, internal, teeth, module)
+            gears[name] = Gear(name, link, radius, internal, teeth, module, axis)
     return gears
 
 

@@ -30,6 +30,9 @@ class Gear:
     internal: bool = False
     teeth: int | None = None
     module: sympy.Expr | None = None
+    #: Direction of the gear axis through the common apex (intersecting-axis trains);
+    #: None for parallel-axis trains (axes along z).
+    axis: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
 
 
 @dataclass(frozen=True)

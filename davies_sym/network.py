@@ -17,7 +17,7 @@ import sympy
 from .coupling_graph import CouplingGraph
 from .couplings import Coupling, GearMesh, ScrewCoupling
 from .errors import DerivationError, Problem, TopologyError
-from .geometry import Layout, planar_line_layout
+from .geometry import Layout, train_layout
 from .model import Train
 from .screw_system import ReducedCoupling, ScrewSystem, minimal_screw_system, reduce_coupling
 from .screws import action_along_motion, power, torque_magnitude_name
@@ -84,7 +84,7 @@ class Network:
     def __init__(self, train: Train, tree: Sequence[str] | None = None,
                  action_tree: Sequence[str] | None = None, layout: Layout | None = None):
         self.train = train
-        self.layout = layout if layout is not None else planar_line_layout(train)
+        self.layout = layout if layout is not None else train_layout(train)
         self.graph = CouplingGraph(train.link_names, [(c.name, *c.links) for c in train.couplings])
         self.tree = tuple(tree) if tree is not None else self.graph.default_tree(train.reference)
         self.action_tree = tuple(action_tree) if action_tree is not None else self.tree

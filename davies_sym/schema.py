@@ -54,6 +54,10 @@ GEAR = (
     Field("teeth", "integer", False, "Tooth count; with `module` gives radius = module*teeth/2."),
     Field("module", "number or expression", False, "Module (used with `teeth`)."),
     Field("internal", "boolean", False, "True for an annulus (internal teeth). Default false."),
+    Field("axis", "`x`, `y`, `z`, `-z`, ... or [x, y, z]", False,
+          "Direction of the gear axis through the common apex, for bevel and face-gear trains "
+          "(all axes meet at the origin). The pitch point of a mesh lies on the side the two axis "
+          "directions point to. Omit for parallel-axis trains."),
 )
 
 PORTS = (

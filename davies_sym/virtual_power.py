@@ -81,7 +81,7 @@ def _parallel(a: Twist, b: list[RationalFunction]) -> bool:
 def _gear_axis(analysis: Analysis, gear: str) -> list[RationalFunction]:
     """Unit twist about a gear's axis, reduced to the network's screw system."""
     layout, system = analysis.network.layout, analysis.network.system
-    twist = rotation_twist(layout.axis, layout.gear_centres[gear])
+    twist = rotation_twist(layout.gear_axes.get(gear, layout.axis), layout.gear_centres[gear])
     return [analysis.ring.rational(v) for v in system.reduce_twist(twist)]
 
 

@@ -60,6 +60,9 @@ class _Members:
 
     def __init__(self, train: Train, values: Values):
         self.train = train
+        if any(g.axis is not None for g in train.gears):
+            raise DerivationError("virtual-power balance: this route covers parallel-axis trains drawn on a line; "
+                                  "the train has intersecting axes")
         layout = planar_line_layout(train)
 
         def y(point: object) -> sympy.Rational:

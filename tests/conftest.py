@@ -52,9 +52,10 @@ def rng() -> random.Random:
     return random.Random(20111)
 
 
-def catalog_trains() -> list[tuple[str, davies_sym.Train]]:
+def catalog_trains(parallel_axes_only: bool = False) -> list[tuple[str, davies_sym.Train]]:
     """Every 1-DOF train of the catalog: each file, or each operating state of a file
-    that lists states, with an id such as ``simpson[first]``."""
+    that lists states, with an id such as ``simpson[first]``; optionally only the trains
+    with parallel axes (those Chen's virtual-power balance route covers)."""
     from davies_sym.states import train_in_state
 
     out = []
@@ -62,6 +63,8 @@ def catalog_trains() -> list[tuple[str, davies_sym.Train]]:
         train = davies_sym.load(path)
         stem = os.path.splitext(os.path.basename(path))[0]
         if (train.degrees_of_freedom or 1) > 1:
+            continue
+        if parallel_axes_only and any(g.axis is not None for g in train.gears):
             continue
         if train.states:
             out += [(f"{stem}[{st.name}]", train_in_state(train, st)) for st in train.states]

@@ -3,11 +3,13 @@ the efficiencies are cross-checked by the virtual-power balance in test_variants
 
 from __future__ import annotations
 
+import pytest
 import sympy
 
 import davies_sym
 from davies_sym.states import train_in_state
 from davies_sym.variants import derive_variants
+from davies_sym.virtual_power_balance import virtual_power_balance
 
 from conftest import S, catalog_path, equal
 
@@ -83,3 +85,36 @@ def test_sr20_cli_prints_the_kinematics():
                             capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
     assert "degrees of freedom: 2" in result.stdout and "t_A = -t_K + 2*t_O" in result.stdout
+
+
+def test_litvin_face_gear_drive_chen_eqs_4_17_and_4_24():
+    """Chen 2006 section 4.9: w_c / w_1 = N1 N3 / (N1 N3 - N2 N4) (eq. 4.17) and, carrier
+    input with N1 N3 > N2 N4, eta = (N1 N3 - N2 N4) / (N1 N3 - eta1 eta2 N2 N4) (eq. 4.24);
+    the turning condition is the sign of N1 N3 - N2 N4 (no planar constraint here)."""
+    train = davies_sym.load(catalog_path("litvin_face_drive"))
+    n1, n2, n3, n4 = (S(f"N{i}") for i in range(1, 5))
+    e1, e2 = S("eta_1", "efficiency"), S("eta_2", "efficiency")
+    a = davies_sym.analyse(train)
+    assert a.network.order == 2 and a.network.system.twist_names == ("s", "t")
+    assert equal(a.speed_ratio().to_expr(), n1 * n3 / (n1 * n3 - n2 * n4))
+    vs = derive_variants(train)
+    (c1,) = vs.conditions
+    assert equal(c1.expression, n1 * n3 - n2 * n4)
+    forward = next(v for v in vs.variants if v.input == "A" and v.signs["c1"] == 1)
+    assert equal(forward.efficiency, (n1 * n3 - n2 * n4) / (n1 * n3 - e1 * e2 * n2 * n4))
+    value = vs.evaluate({n1: 100, n2: 17, n3: 17, n4: 88, e1: sympy.Rational(98, 100), e2: sympy.Rational(98, 100)})
+    assert round(float(value), 3) == 0.775
+
+
+def test_litvin_pitch_points_on_both_pitch_cones():
+    """Conical layout: each pitch point lies at the face-gear radius from the main axis and
+    at the pinion radius from the planet axis (all axes through the origin)."""
+    layout = davies_sym.analyse(davies_sym.load(catalog_path("litvin_face_drive"))).network.layout
+    n1, n2, n3, n4 = (S(f"N{i}") for i in range(1, 5))
+    assert tuple(layout.coupling_points["G1"]) == (0, n1, n2)
+    assert tuple(layout.coupling_points["G2"]) == (0, n4, n3)
+
+
+def test_balance_route_says_it_does_not_cover_intersecting_axes():
+    with pytest.raises(davies_sym.DerivationError, match="intersecting axes"):
+        virtual_power_balance(davies_sym.load(catalog_path("litvin_face_drive")), {})

@@ -100,7 +100,9 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
     for c in variants.analysis.network.layout.constraints:
-        if sympy.sympify(c.expression.subs(values)) != 0:
+        # Only a constraint whose every symbol has a value can be broken (r4 may be left out).
+        residual = sympy.sympify(c.expression.subs(values))
+        if residual.is_number and residual != 0:
             print(f"derive: warning: the values break the geometric constraint {c}", file=sys.stderr)
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)

@@ -15,10 +15,11 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from .coupling_graph import LinkGroups
 from .couplings import GearMesh, Revolute
 from .errors import GeometryError, Problem
 from .model import Gear, Train
-from .screws import Vector, vector
+from .screws import Vector, cross, vector
 from .signs import SignOracle
 
 Z_AXIS: Vector = vector((0, 0, 1))
@@ -65,27 +66,11 @@ def _point(y: sympy.Expr) -> Vector:
     return vector((0, y, 0))
 
 
-class _AxisGroups:
-    """Union-find of links that share one gear axis."""
-
-    def __init__(self, links: list[str]):
-        self.parent = {link: link for link in links}
-
-    def find(self, link: str) -> str:
-        while self.parent[link] != link:
-            self.parent[link] = self.parent[self.parent[link]]
-            link = self.parent[link]
-        return link
-
-    def union(self, a: str, b: str) -> None:
-        self.parent[self.find(a)] = self.find(b)
-
-
 def planar_line_layout(train: Train) -> Layout:
     """Derive axis positions, pitch points and geometric constraints of a planar train."""
     problems: list[Problem] = []
     geared = {g.link for g in train.gears}
-    groups = _AxisGroups(list(train.link_names))
+    groups = LinkGroups(list(train.link_names))
     for c in train.couplings:
         if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
             groups.union(*c.links)
@@ -200,7 +185,7 @@ def _root_link(train: Train, geared: set[str]) -> str | None:
     return train.gears[0].link if train.gears else None
 
 
-def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: _AxisGroups,
+def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: LinkGroups,
                      positions: dict[str, sympy.Expr]) -> set[str]:
     """Place axis groups outward from the placed ones; returns the meshes used."""
     used: set[str] = set()
@@ -230,32 +215,31 @@ def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: 
 
 
 def _add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
-                    distance: sympy.Expr, coupling: str, oracle: SignOracle) -> None:
+                    distance: sympy.Expr, coupling: str, oracle: SignOracle, entry: str | None = None,
+                    message: str | None = None) -> None:
+    """``offset = distance`` holds, is impossible (a problem), or is a constraint on the radii."""
     difference = sympy.expand(offset - distance)
     if difference == 0:
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
         problems.append(train.problem(
-            f"couplings.{coupling}", f"inconsistent geometry: the centre distance this coupling needs ({distance}) "
+            entry or f"couplings.{coupling}",
+            message or f"inconsistent geometry: the centre distance this coupling needs ({distance}) "
             f"differs from the one the other couplings give ({offset})"))
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
 
-def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: _AxisGroups,
+def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: LinkGroups,
                     positions: Mapping[str, sympy.Expr], problems: list[Problem],
                     constraints: list[GeometricConstraint], oracle: SignOracle) -> Vector | None:
     on = [c.axis] if c.axis is not None else c.links
     derived = [positions[groups.find(link)] for link in on if link in geared]
     if derived:
-        difference = sympy.expand(derived[0] - c.at) if c.at is not None else sympy.Integer(0)
-        if difference != 0 and (difference.is_number or oracle.sign(difference) in (1, -1)):
-            problems.append(train.problem(
-                f"couplings.{c.name}.at",
-                f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {derived[0]}"))
-        elif difference != 0:
-            # The bearing fixes an axis the meshes leave open: a ring on the main axis.
-            constraints.append(GeometricConstraint(derived[0], c.at, c.name))
+        if c.at is not None:
+            # Where the meshes leave the axis open, the bearing's `at` is a constraint.
+            _add_constraint(train, constraints, problems, derived[0], c.at, c.name, oracle, f"couplings.{c.name}.at",
+                            f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {derived[0]}")
         return _point(derived[0])
     if c.at is None:
         problems.append(train.problem(
@@ -278,10 +262,6 @@ def _unit(v: Vector) -> Vector:
     return vector([sympy.expand(x / norm) for x in v])
 
 
-def _cross(a: Vector, b: Vector) -> Vector:
-    return vector((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]))
-
-
 def conical_layout(train: Train) -> Layout:
     """Bevel and face-gear trains whose axes all meet at the origin (Laus section 3.5).
 
@@ -300,7 +280,7 @@ def conical_layout(train: Train) -> Layout:
             continue
         axis = _unit(g.axis)
         previous = axes.get(g.link)
-        if previous is not None and any(sympy.expand(x) != 0 for x in _cross(previous, axis)):
+        if previous is not None and any(sympy.expand(x) != 0 for x in cross(previous, axis)):
             problems.append(train.problem(f"gears.{g.name}.axis", f"gears of link {g.link!r} must share one axis"))
         axes.setdefault(g.link, axis)
     if problems:
@@ -314,7 +294,7 @@ def conical_layout(train: Train) -> Layout:
         if isinstance(c, GearMesh):
             g, h = (train.gear(n) for n in c.gears)
             a, b = gear_axes[g.name], gear_axes[h.name]
-            normal = _cross(a, b)
+            normal = cross(a, b)
             sin = sympy.sqrt(sympy.expand(sum(x**2 for x in normal)))
             if sin == 0:
                 problems.append(train.problem(f"couplings.{c.name}", "the gear axes are parallel: give the train "

@@ -29,6 +29,15 @@ def _poly_sign(expr: sympy.Expr) -> int | None:
     return None
 
 
+def _known_sign(base: sympy.Expr, known: Mapping[sympy.Expr, int]) -> int | None:
+    for expr, sign in known.items():
+        if sympy.expand(base - expr) == 0:
+            return sign
+        if sympy.expand(base + expr) == 0:
+            return -sign
+    return None
+
+
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
@@ -62,12 +71,17 @@ class SignOracle:
                 return sign
         return None
 
-    def classify(self, content_sign: int, factors: Iterable[tuple[sympy.Expr, int]]) -> tuple[int | None, sympy.Expr]:
+    def classify(self, content_sign: int, factors: Iterable[tuple[sympy.Expr, int]],
+                 known: Mapping[sympy.Expr, int] | None = None) -> tuple[int | None, sympy.Expr]:
         """Sign of ``content_sign * prod(f**e)`` and the product of the undecided odd-power
-        factors times the sign of the rest (so that both have the same sign)."""
+        factors times the sign of the rest (so that both have the same sign).  ``known``
+        gives the signs of some expressions in a region (a variant's turning conditions);
+        a factor equal to one of them, or to its negative, takes that sign."""
         total, kept = content_sign, []
         for base, power in factors:
             s = self.factor_sign(base)
+            if s is None and known:
+                s = _known_sign(base, known)
             if s is None:
                 if power % 2:
                     kept.append(base)

@@ -11,34 +11,20 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from .coupling_graph import LinkGroups
 from .couplings import Coupling, Revolute
 from .errors import Problem, TopologyError
 from .model import Link, Ports, State, Train
 
 
-class _Union:
-    def __init__(self, links: tuple[str, ...]):
-        self.parent = {link: link for link in links}
-
-    def find(self, link: str) -> str:
-        while self.parent[link] != link:
-            link = self.parent[link]
-        return link
-
-    def union(self, keep: str, other: str) -> None:
-        a, b = self.find(keep), self.find(other)
-        if a != b:
-            self.parent[b] = a
-
-
 def train_in_state(train: Train, state: State) -> Train:
     """``train`` with ``state``'s ports, brakes, clutches and free members applied."""
     problems: list[Problem] = []
-    joined = _Union(train.link_names)
+    joined = LinkGroups(train.link_names)
     for link in state.brake:
-        joined.union(train.reference, link)
+        joined.union(link, train.reference)
     for a, b in state.clutch:
-        joined.union(a, b)
+        joined.union(b, a)
     groups: dict[str, list[str]] = {}
     for link in train.link_names:
         groups.setdefault(joined.find(link), []).append(link)

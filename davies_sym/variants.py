@@ -27,7 +27,7 @@ from .model import Train
 from .parameter_domain import ParameterDomain, Point, efficiency_symbols
 from .polynomials import RationalFunction
 from .turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from .virtual_power import mesh_power_flow
+from .virtual_power import MeshPowerFlow, mesh_power_flow
 
 Progress = Callable[[str], None]
 
@@ -127,12 +127,12 @@ class VariantSet:
         return value
 
 
-def _zeta_forms(analysis: Analysis, roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
-    """zeta of every mesh for both directions, in ``analysis``'s ring."""
+def _zeta_forms(flows: Mapping[str, MeshPowerFlow],
+                roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
+    """zeta of every mesh for both directions, in the ring of ``flows``."""
     out = {}
     for role in roles:
-        mesh = analysis.train.coupling(role.coupling)
-        flow = mesh_power_flow(analysis, mesh)  # type: ignore[arg-type]
+        flow = flows[role.coupling]
         for first in (True, False):
             eta = role.efficiencies[0] if first else role.efficiencies[1]
             out[(role.coupling, first)] = flow.friction_for(eta, first)
@@ -155,7 +155,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
     declared = analysis.efficiency_rf
-    zetas = _zeta_forms(analysis, roles)
+    zetas = _zeta_forms({r.coupling: r.flow for r in roles}, roles)
     role_names = {r.coupling for r in roles}
     # Other friction laws (bearings, viscous) change with the input side: derive again.
     resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
@@ -163,7 +163,9 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
                                     progress=progress, extra_symbols=etas)
         swapped_form = swapped_analysis.efficiency_rf
-        swapped_zetas = _zeta_forms(swapped_analysis, roles)
+        swapped_flows = {r.coupling: mesh_power_flow(swapped_analysis, swapped_analysis.train.coupling(r.coupling))
+                         for r in roles}  # type: ignore[arg-type]
+        swapped_zetas = _zeta_forms(swapped_flows, roles)
     domain = ParameterDomain.of(train, analysis.network.layout)
     extra = _other_symbols(declared, etas, roles)
     points = list(domain.samples(samples, seed=seed, extra=extra))
@@ -206,24 +208,9 @@ def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
     """A product with the sign of the efficiency inside the variant's region: factors
     the symbols' assumptions decide, and factors that are a turning condition (whose
     sign the region fixes), are replaced by their signs.  None when always positive."""
-    content, factors = variant.efficiency_rf.factor_list()
-    sign, kept = content, []
-    for base, power in factors:
-        s = analysis.oracle.factor_sign(base)
-        if s is None:
-            for c in conditions:
-                if sympy.expand(base - c.simplified) == 0:
-                    s = variant.signs[c.name]
-                elif sympy.expand(base + c.simplified) == 0:
-                    s = -variant.signs[c.name]
-        if s is None:
-            if power % 2:
-                kept.append(base)
-        else:
-            sign *= s ** power
-    if not kept and sign > 0:
-        return None
-    return sign * sympy.Mul(*kept)
+    known = {c.simplified: variant.signs[c.name] for c in conditions}
+    sign, expression = analysis.oracle.classify(*variant.efficiency_rf.factor_list(), known=known)
+    return None if sign == 1 else expression
 
 
 def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:

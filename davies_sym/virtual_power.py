@@ -89,9 +89,10 @@ def _relative(analysis: Analysis, start: str, end: str) -> Twist:
     return motion_along_path(analysis, walk_path(analysis, start, end))
 
 
-def find_carrier(analysis: Analysis, mesh: GearMesh) -> str:
-    """The link holding both gear axes of ``mesh`` (first in link order if several
-    links move together)."""
+def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, Twist]]:
+    """The link holding both gear axes of ``mesh`` (the first in link order that sees the
+    gears turn, or any when the set is locked) and the motions of the mesh's two links
+    seen from it."""
     p, q = mesh.links
     axes = [_gear_axis(analysis, g) for g in mesh.gears]
     locked = None
@@ -101,8 +102,8 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> str:
         sides = (_relative(analysis, c, p), _relative(analysis, c, q))
         if _parallel(sides[0], axes[0]) and _parallel(sides[1], axes[1]):
             if any(not x.is_zero() for twist in sides for x in twist):
-                return c
-            locked = locked or c  # the whole set turns as one block: any member will do
+                return c, sides
+            locked = locked or (c, sides)  # the whole set turns as one block: any member will do
     if locked is not None:
         return locked
     raise DerivationError(f"mesh {mesh.name}: no link holds both gear axes (no carrier), so its "
@@ -121,8 +122,7 @@ def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
     if len(lossless) != 1 or law.transmitted != lossless[0].name:
         raise DerivationError(f"mesh {mesh.name} transmits {len(lossless)} actions in this screw "
                               "system; its ordinary efficiency needs exactly one (the tooth force)")
-    carrier = find_carrier(analysis, mesh)
-    sides = [_relative(analysis, carrier, link) for link in mesh.links]
+    carrier, sides = find_carrier(analysis, mesh)
     ring = analysis.ring
     w_u = [ring.rational(v) for v in lossless[0].wrench]
     w_t = [ring.rational(v) for v in net.action(law.variable).wrench]

@@ -139,6 +139,8 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
         raise DerivationError(f"virtual-power balance: couplings {lossy + others} are outside its scope "
                               "(lossy sliders, explicit screws)")
     carriers = {m.name: members.carrier(m) for m in meshes}
+    # Signed distance from each gear's axis to the pitch point: s_p a_p = s_q a_q (Willis).
+    arms = {m.name: tuple(members.pitch[m.name] - members.gear_axis[g] for g in m.gears) for m in meshes}
     links = [link for link in train.link_names if link != train.reference]
     col = {link: i for i, link in enumerate(links)}
 
@@ -147,8 +149,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
     for m in meshes:
         row = [sympy.Integer(0)] * len(links)
         c = carriers[m.name]
-        for sign, gear, link in ((1, m.gears[0], m.links[0]), (-1, m.gears[1], m.links[1])):
-            arm = members.pitch[m.name] - members.gear_axis[gear]
+        for sign, arm, link in zip((1, -1), arms[m.name], m.links, strict=True):
             if link in col:
                 row[col[link]] += sign * arm
             if c in col:
@@ -190,8 +191,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
             # M_q s_q + eta M_p s_p = 0 (driver p) divided by the carrier-frame speed through
             # Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, regular in a locked set.
             c = carriers[m.name]
-            a_p = members.pitch[m.name] - members.gear_axis[m.gears[0]]
-            a_q = members.pitch[m.name] - members.gear_axis[m.gears[1]]
+            a_p, a_q = arms[m.name]
             turning = rel(m.links[0], c) != 0 or rel(m.links[1], c) != 0
             row = [sympy.Integer(0)] * n
             if first_drives is None or not turning:

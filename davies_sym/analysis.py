@@ -17,7 +17,7 @@ import sympy
 from .couplings import GearMesh
 from .errors import DerivationError, MobilityError
 from .exact_linalg import Row, gauss_jordan
-from .geometry import constraint_substitutions, joint_substitution
+from .geometry import Layout, constraint_substitutions, joint_substitution
 from .model import Train
 from .network import ActionVariable, FrictionLaw, Network
 from .polynomials import PolynomialRing, RationalFunction
@@ -50,19 +50,21 @@ class Analysis:
     mesh as the signed linear law T = zeta U of eqs. (63)-(64), so that one formula
     covers both power directions (zeta < 0 when the flow reverses, section 3.3.5), and
     resolves the other Coulomb laws.  ``extra_symbols`` join the polynomial ring (the
-    ordinary efficiencies substituted later).
+    ordinary efficiencies substituted later).  ``layout`` replaces the one derived from
+    the train (to study a geometry given otherwise, e.g. a published screw table).
     """
 
     def __init__(self, train: Train, tree: Sequence[str] | None = None,
                  action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
-                 progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = ()):
+                 progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = (),
+                 layout: Layout | None = None):
         if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
             raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
         self.train = train
         self.coulomb_signs = coulomb_signs
         self._progress = progress or (lambda message: None)
         self._progress("building the coupling network")
-        self.network = Network(train, tree, action_tree)
+        self.network = Network(train, tree, action_tree, layout)
         net = self.network
         self.input_motion = net.coupling_motions(train.ports.input)[0]
         self.input_action = net.port_action(train.ports.input)
@@ -78,23 +80,24 @@ class Analysis:
         symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
         for law in net.laws:
             symbols |= law.coefficient.free_symbols
-        self.ring = PolynomialRing(symbols)
+        self.ring = PolynomialRing(symbols, net.layout.radicals)
+        self._reduce = self.ring.reduce if self.ring.radicals else None
 
     # -- helpers ---------------------------------------------------------------------
     def _rf(self, expr: sympy.Expr) -> RationalFunction:
         return self.ring.rational(expr)
 
     def _rows(self, matrix: sympy.Matrix) -> list[Row]:
+        """Sparse polynomial rows; a row with fractions (pitch points of tilted bevel
+        axes) is multiplied by the lcm of its denominators, which leaves its equation."""
         rows = []
         for i in range(matrix.rows):
-            row: Row = {}
-            for j in range(matrix.cols):
-                if matrix[i, j] != 0:
-                    rf = self._rf(matrix[i, j])
-                    if not rf.den.is_one():
-                        raise DerivationError(f"matrix entry {matrix[i, j]} is not a polynomial")
-                    row[j] = rf.num
-            rows.append(row)
+            entries = {j: self._rf(matrix[i, j]) for j in range(matrix.cols) if matrix[i, j] != 0}
+            common = self.ring.one
+            for rf in entries.values():
+                if not rf.den.is_one():
+                    common = common * (rf.den / common.gcd(rf.den))
+            rows.append({j: rf.num * (common / rf.den) for j, rf in entries.items()})
         return rows
 
     # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
@@ -110,7 +113,8 @@ class Analysis:
         net = self.network
         M_N = net.network_motion_matrix()
         index = net.motions.index(self.input_motion)
-        elimination = gauss_jordan(self._rows(M_N), len(net.motions), prefer_free=[index])
+        elimination = gauss_jordan(self._rows(M_N), len(net.motions), prefer_free=[index],
+                                   reduce=self._reduce)
         free = elimination.free
         dof = len(free)
         problems = []
@@ -143,7 +147,8 @@ class Analysis:
         on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
                         for v in net.coupling_motions(c.name) if v is not self.input_motion]
         prefer = [net.motions.index(self.input_motion), *on_reference]
-        elimination = gauss_jordan(self._rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer)
+        elimination = gauss_jordan(self._rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
+                                   reduce=self._reduce)
         solution = elimination.solution(self.ring)
         return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
 
@@ -173,7 +178,7 @@ class Analysis:
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
         elimination = gauss_jordan(self._rows(net.network_action_matrix(lossless=True)), len(cols),
-                                   prefer_free=[index])
+                                   prefer_free=[index], reduce=self._reduce)
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -275,15 +280,12 @@ class Analysis:
         nu = self.dependent_sources
         ncols = D.cols
         const = ncols  # an extra column multiplying the constant 1
-        rows = self._rows(D)
+        sources = sympy.zeros(D.rows, 1)
         for k in range(nu.rows):
-            rf = self._rf(nu[k])
-            row = rows[D.rows - nu.rows + k]
-            scaled = {j: v * rf.den for j, v in row.items()}
-            scaled[const] = -rf.num
-            rows[D.rows - nu.rows + k] = scaled
+            sources[D.rows - nu.rows + k] = -nu[k]
+        rows = self._rows(D.row_join(sources))
         index = net.actions.index(self.input_action)
-        elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const])
+        elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const], reduce=self._reduce)
         free = [j for j in elimination.free if j != const]
         self._check_action_nullity(tuple(free), index, list(net.actions))
         if const in elimination.pivots:

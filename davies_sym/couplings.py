@@ -21,6 +21,8 @@ from .screws import (
     WRENCH_COORDINATES,
     Screw,
     Vector,
+    axis_letter,
+    cross,
     force_magnitude_name,
     force_wrench,
     rotation_magnitude_name,
@@ -96,12 +98,19 @@ class Coupling:
         return None
 
 
-def _point_constraints(point: Vector, forces_first: tuple[Vector, ...] = ()) -> tuple[NamedScrew, ...]:
+def _point_constraints(point: Vector, forces_first: tuple[Vector, ...] = (),
+                       axis: Vector | None = None) -> tuple[NamedScrew, ...]:
     """Candidate constraint wrenches at ``point``: given forces, then forces along the
-    axes, then torques about the axes."""
+    axes, then torques about the axes, then torques normal to a bearing's ``axis``
+    (a tilted planet bearing carries the torque P_G of Laus eq. (81))."""
     out = [NamedScrew(force_magnitude_name(d), force_wrench(d, point)) for d in forces_first]
     out += [NamedScrew(force_magnitude_name(_UNIT[a]), force_wrench(_UNIT[a], point)) for a in AXES]
     out += [NamedScrew(torque_magnitude_name(_UNIT[a]), torque_wrench(_UNIT[a])) for a in AXES]
+    if axis is not None and axis_letter(axis) is None:
+        for a in AXES:
+            normal = cross(axis, _UNIT[a])
+            if any(sympy.expand(x) != 0 for x in normal):
+                out.append(NamedScrew(torque_magnitude_name(normal), torque_wrench(normal)))
     return tuple(out)
 
 
@@ -173,7 +182,7 @@ class Revolute(Coupling):
     def screws(self, layout: Layout) -> CouplingScrews:
         point, axis = layout.coupling_points[self.name], layout.coupling_axes.get(self.name, layout.axis)
         motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
-        return CouplingScrews((motion,), (), _point_constraints(point))
+        return CouplingScrews((motion,), (), _point_constraints(point, axis=axis))
 
 
 @dataclass(frozen=True)

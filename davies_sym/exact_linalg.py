@@ -18,6 +18,7 @@ from flint import fmpz_mpoly
 from .polynomials import PolynomialRing, RationalFunction
 
 Row = dict[int, fmpz_mpoly]
+Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
 
 
 def _remove_content(row: Row) -> Row:
@@ -33,8 +34,9 @@ def _remove_content(row: Row) -> Row:
     return {c: v / g for c, v in row.items()}
 
 
-def _eliminate(target: Row, pivot_row: Row, col: int) -> Row:
-    """``target`` with column ``col`` eliminated by a fraction-free combination."""
+def _eliminate(target: Row, pivot_row: Row, col: int, reduce: Reduce | None = None) -> Row:
+    """``target`` with column ``col`` eliminated by a fraction-free combination;
+    ``reduce`` brings entries to canonical form (radical relations) before zero tests."""
     p, a = pivot_row[col], target[col]
     g = p.gcd(a)
     if not g.is_one():
@@ -47,6 +49,8 @@ def _eliminate(target: Row, pivot_row: Row, col: int) -> Row:
         if c in pivot_row:
             term = a * pivot_row[c]
             value = -term if value is None else value - term
+        if value is not None and reduce is not None:
+            value = reduce(value)
         if value is not None and not value.is_zero():
             out[c] = value
     return _remove_content(out)
@@ -81,8 +85,11 @@ class Elimination:
 
 
 def gauss_jordan(rows: Iterable[Row], ncols: int, prefer_free: Iterable[int] = (),
-                 progress: Callable[[int, int], None] | None = None) -> Elimination:
-    """Fraction-free Gauss-Jordan elimination of sparse polynomial ``rows``."""
+                 progress: Callable[[int, int], None] | None = None, reduce: Reduce | None = None) -> Elimination:
+    """Fraction-free Gauss-Jordan elimination of sparse polynomial ``rows``; ``reduce``
+    (the ring's radical relations) keeps entries canonical, so zero tests are exact."""
+    if reduce is not None:
+        rows = [{c: v for c, v in ((c, reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
     work = [_remove_content(dict(r)) for r in rows if r]
     late = set(prefer_free)
     pivot_row_of: dict[int, int] = {}
@@ -106,7 +113,7 @@ def gauss_jordan(rows: Iterable[Row], ncols: int, prefer_free: Iterable[int] = (
         pending.remove(i)
         for j, row in enumerate(work):
             if j != i and col in row:
-                work[j] = _eliminate(row, work[i], col)
+                work[j] = _eliminate(row, work[i], col, reduce)
         pivot_row_of[col] = i
         pending = [j for j in pending if work[j]]
         if progress is not None:

@@ -13,12 +13,14 @@ from types import MappingProxyType
 from typing import Any
 
 import networkx as nx
+import sympy
 
 from .couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
 from .entries import EntryReader
 from .errors import Problem, TopologyError
 from .model import Expected, Gear, Link, Ports, State, Train
 from .schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
+from .symbols import exact_number
 from .yaml_source import SourceDocument, parse_yaml
 
 
@@ -64,6 +66,7 @@ def build_train(document: SourceDocument) -> Train:
     for i, check in enumerate(expected):
         if check.state is not None and check.state not in {st.name for st in states}:
             reader.problem(f"expected[{i}].state", f"unknown state {check.state!r}")
+    placement = _read_placement(data["placement"], reader) if "placement" in data else None
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
             reader.problem(key, f"expected text, got {data[key]!r}")
@@ -83,7 +86,31 @@ def build_train(document: SourceDocument) -> Train:
         path=document.name,
         locations=MappingProxyType(dict(document.lines)),
         states=states,
+        placement=placement,
     )
+
+
+def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """``[x, y]`` (exact) or an angle in degrees whose sine and cosine are square roots."""
+    if isinstance(value, list) and len(value) == 2:
+        parts = [reader.quantity(v, f"placement[{i}]", "length") for i, v in enumerate(value)]
+        if any(p is None for p in parts):
+            return None
+        if all(p == 0 for p in parts):
+            reader.problem("placement", "the direction must not be zero")
+            return None
+        return (parts[0], parts[1])  # type: ignore[return-value]
+    angle = exact_number(value)
+    if angle is None:
+        reader.problem("placement", f"expected [x, y] or an angle in degrees, got {value!r}")
+        return None
+    radians = angle * sympy.pi / 180
+    cos, sin = sympy.cos(radians), sympy.sin(radians)
+    if any(p.has(sympy.cos, sympy.sin) for p in (cos, sin)):
+        reader.problem("placement", f"the sine and cosine of {angle} degrees are not square roots; give the "
+                       "direction as [x, y] instead")
+        return None
+    return (cos, sin)
 
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:
@@ -128,9 +155,10 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
             reader.problem(f"{path}.internal", f"expected true or false, got {internal!r}")
             internal = False
         radius, teeth, module = _read_size(entry, path, reader)
-        axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry else None
+        tilted = entry.get("axis") == "tilted"
+        axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry and not tilted else None
         if link is not None and radius is not None:
-            gears[name] = Gear(name, link, radius, internal, teeth, module, axis)
+            gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
     return gears
 
 

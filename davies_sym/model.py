@@ -33,6 +33,9 @@ class Gear:
     #: Direction of the gear axis through the common apex (intersecting-axis trains);
     #: None for parallel-axis trains (axes along z).
     axis: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
+    #: The axis is tilted by the cone geometry: derived from the two coaxial gears this
+    #: gear meshes (the Humpage planet, Laus eq. (80)).
+    tilted: bool = False
 
 
 @dataclass(frozen=True)
@@ -91,6 +94,8 @@ class Train:
     #: Line of each entry path of the source file (``couplings.C.gears`` -> 12).
     locations: Mapping[str, int] = field(default_factory=lambda: MappingProxyType({}))
     states: tuple[State, ...] = ()
+    #: Placement direction (x, y) of a planar train drawn in 2-D; None: drawn on a line.
+    placement: tuple[sympy.Expr, sympy.Expr] | None = None
 
     def problem(self, entry: str, message: str) -> Problem:
         """A :class:`Problem` at ``entry`` with the line it has in the source file."""

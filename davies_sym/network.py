@@ -10,15 +10,16 @@ speed-dependent friction, constraints, as in eqs. (17), (40) and (52).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import sympy
 
 from .coupling_graph import CouplingGraph
-from .couplings import Coupling, GearMesh, ScrewCoupling
+from .couplings import Coupling, CouplingScrews, GearMesh, NamedScrew, ScrewCoupling
 from .errors import DerivationError, Problem, TopologyError
 from .geometry import Layout, train_layout
 from .model import Train
+from .radicals import RadicalTable, has_square_root
 from .screw_system import ReducedCoupling, ScrewSystem, minimal_screw_system, reduce_coupling
 from .screws import action_along_motion, power, torque_magnitude_name
 from .symbols import make_symbol
@@ -91,7 +92,7 @@ class Network:
         for label, t in (("tree", self.tree), ("action tree", self.action_tree)):
             if not self.graph.is_spanning_tree(t):
                 raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
-        full = {c.name: c.screws(self.layout) for c in train.couplings}
+        full = self._absorb_radicals({c.name: c.screws(self.layout) for c in train.couplings})
         self.system: ScrewSystem = minimal_screw_system([m.screw for s in full.values() for m in s.motions])
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:
@@ -100,6 +101,25 @@ class Network:
             self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
         self.motions, self.actions, self.laws = self._variables()
         self._check_names()
+
+    def _absorb_radicals(self, full: dict[str, CouplingScrews]) -> dict[str, CouplingScrews]:
+        """Square roots written in low-level screws become radical symbols of the layout
+        (positive radicands), so the exact algebra treats them like tilted bevel axes."""
+        if not any(has_square_root(x) for screws in full.values() for group in (screws.motions, screws.constraints)
+                   for named in group for x in named.screw):
+            return full
+        table = RadicalTable(list(self.layout.radicals))
+
+        def absorb(group: tuple[NamedScrew, ...]) -> tuple[NamedScrew, ...]:
+            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw))  # type: ignore[arg-type]
+                         for n in group)
+
+        out = {name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
+               for name, s in full.items()}
+        added = tuple(r for r in table.radicals if r not in self.layout.radicals)
+        self.layout = replace(self.layout, radicals=tuple(table.radicals),
+                              positive_facts=self.layout.positive_facts + tuple(r.radicand for r in added))
+        return out
 
     # -- variables -------------------------------------------------------------------
     def _variables(self) -> tuple[tuple[MotionVariable, ...], tuple[ActionVariable, ...], tuple[FrictionLaw, ...]]:

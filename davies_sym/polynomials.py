@@ -17,18 +17,56 @@ import sympy
 from flint import fmpq, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
 from .errors import DerivationError
+from .radicals import Radical
 
 
 class PolynomialRing:
     """Z[x1, ..., xn] over the given sympy symbols (ordered by name)."""
 
-    def __init__(self, symbols: Iterable[sympy.Symbol]):
+    def __init__(self, symbols: Iterable[sympy.Symbol], radicals: Iterable[Radical] = ()):
+        radicals = tuple(radicals)
         unique = {s.name: s for s in symbols}
+        unique.update({r.symbol.name: r.symbol for r in radicals})
+        for r in radicals:
+            unique.update({s.name: s for s in r.radicand.free_symbols})  # type: ignore[attr-defined]
         self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
         names = tuple(s.name for s in self.symbols) or ("_one",)
         self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
         self._gens = dict(zip(self.symbols, self.ctx.gens(), strict=False))
+        self.radicals = radicals
+        # Radical symbols stay symbols (positive) in expressions: sign reasoning needs
+        # polynomials; documents write them as square roots (RadicalTable.restore).
         self._exprs = tuple(self.symbols)
+        #: (generator index, radicand) of every radical symbol: s^2 = m.
+        self._relations = tuple((self.symbols.index(r.symbol), self.polynomial(r.radicand)) for r in radicals)
+
+    def reduce(self, p: fmpz_mpoly) -> fmpz_mpoly:
+        """``p`` modulo ``s^2 - m`` for every radical: degree at most one in each ``s``
+        (a canonical form, so ``is_zero`` is exact)."""
+        for index, radicand in self._relations:
+            if p.degrees()[index] < 2:
+                continue
+            parts: dict[int, dict[tuple[int, ...], int]] = {}
+            for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
+                k = monom[index]
+                stripped = (*monom[:index], k % 2, *monom[index + 1:])
+                parts.setdefault(k // 2, {})[stripped] = int(coeff)
+            total = self.zero
+            for half, data in parts.items():
+                total += self.ctx.from_dict(data) * radicand**half
+            p = total
+        return p
+
+    def rationalised(self, num: fmpz_mpoly, den: fmpz_mpoly) -> tuple[fmpz_mpoly, fmpz_mpoly]:
+        """``num / den`` reduced, with every radical moved out of the denominator by
+        multiplying with its conjugate ``den(-s)``."""
+        num, den = self.reduce(num), self.reduce(den)
+        for index, _ in self._relations:
+            if den.degrees()[index] == 0:
+                continue
+            conjugate = self.ctx.from_dict({m: (-c if m[index] % 2 else c) for m, c in den.to_dict().items()})
+            num, den = self.reduce(num * conjugate), self.reduce(den * conjugate)
+        return num, den
 
     @property
     def zero(self) -> fmpz_mpoly:
@@ -101,6 +139,16 @@ class PolynomialRing:
             else:
                 r = sympy.Rational(value)  # type: ignore[arg-type]
                 out.append(fmpq(int(r.p), int(r.q)))
+        for radical in self.radicals:
+            # A radical has a rational value only where its radicand is a square.
+            index = self.symbols.index(radical.symbol)
+            if out[index] is None:
+                try:
+                    root = sympy.sqrt(radical.radicand.xreplace(dict(point)))  # type: ignore[arg-type]
+                except TypeError:
+                    continue
+                if root.is_Rational:
+                    out[index] = fmpq(int(root.p), int(root.q))
         return tuple(out)  # type: ignore[return-value]
 
     def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq, ...], rational: object = None) -> fmpq:
@@ -137,6 +185,8 @@ class RationalFunction:
     def make(cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly) -> RationalFunction:
         if den.is_zero():
             raise ZeroDivisionError("rational function with zero denominator")
+        if ring.radicals:
+            num, den = ring.rationalised(num, den)
         if num.is_zero():
             return cls(ring, num, ring.one)
         g = num.gcd(den)

@@ -43,7 +43,9 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         entry["actions"] = {v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]}
                             for v in net.coupling_actions(c.name)}
         couplings.append(entry)
-    efficiency = analysis.efficiency
+    # Radical symbols of a tilted bevel geometry are written as the square roots they are.
+    roots = {r.symbol: r.expression for r in analysis.network.layout.radicals}
+    efficiency = analysis.efficiency.xreplace(roots)
     conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
                    "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
     return {

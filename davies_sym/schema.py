@@ -41,6 +41,10 @@ TOP_LEVEL = (
           "Expected mobility; a mismatch with the derived one is an error."),
     Field("states", "mapping", False,
           "Operating states of a multi-speed set: name -> state entry (see *States*)."),
+    Field("placement", "[x, y] or an angle in degrees", False,
+          "Draw a planar train in 2-D (planet-planet meshes off the centre line): the direction "
+          "from the main axis along which the first planet is placed. Planets meshing two placed "
+          "gears close their triangle. Omit to draw the train on one line."),
     Field("expected", "list", False, "Published numbers to check (used by the catalog tests)."),
     Field("notes", "string", False, "Free text."),
 )
@@ -54,10 +58,13 @@ GEAR = (
     Field("teeth", "integer", False, "Tooth count; with `module` gives radius = module*teeth/2."),
     Field("module", "number or expression", False, "Module (used with `teeth`)."),
     Field("internal", "boolean", False, "True for an annulus (internal teeth). Default false."),
-    Field("axis", "`x`, `y`, `z`, `-z`, ... or [x, y, z]", False,
+    Field("axis", "`x`, `y`, `z`, `-z`, ... or [x, y, z], or `tilted`", False,
           "Direction of the gear axis through the common apex, for bevel and face-gear trains "
-          "(all axes meet at the origin). The pitch point of a mesh lies on the side the two axis "
-          "directions point to. Omit for parallel-axis trains."),
+          "(all axes meet at the origin; entries may use `sqrt`). The pitch point of a mesh lies "
+          "on the side the two axis directions point to. `tilted`: a bevel planet meshing two "
+          "coaxial gears that face each other; its axis follows from the cone geometry, in the "
+          "plane of the main axis and +y (Laus eq. (80)). Another gear on the same link may omit "
+          "the axis. Omit for parallel-axis trains."),
 )
 
 PORTS = (

@@ -23,6 +23,7 @@ import sympy
 
 from .analysis import Analysis
 from .errors import DerivationError, InputError, Problem
+from .geometry import Layout
 from .model import Train
 from .parameter_domain import ParameterDomain, Point, efficiency_symbols
 from .polynomials import RationalFunction
@@ -147,11 +148,12 @@ def _substituted(form: RationalFunction, roles: Sequence[MeshRole],
 
 
 def derive_variants(train: Train, progress: Progress | None = None, samples: int = 200,
-                    seed: int = 0) -> VariantSet:
-    """Derive every variant of ``train``'s efficiency in ordinary efficiencies."""
+                    seed: int = 0, layout: Layout | None = None) -> VariantSet:
+    """Derive every variant of ``train``'s efficiency in ordinary efficiencies
+    (``layout``: a geometry other than the one derived from the train)."""
     say = progress or (lambda message: None)
     etas = efficiency_symbols(train)
-    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas)
+    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas, layout=layout)
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
     declared = analysis.efficiency_rf
@@ -161,7 +163,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
     if resolve_again:
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
-                                    progress=progress, extra_symbols=etas)
+                                    progress=progress, extra_symbols=etas, layout=layout)
         swapped_form = swapped_analysis.efficiency_rf
         swapped_flows = {r.coupling: mesh_power_flow(swapped_analysis, swapped_analysis.train.coupling(r.coupling))
                          for r in roles}  # type: ignore[arg-type]

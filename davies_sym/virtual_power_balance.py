@@ -23,7 +23,11 @@ parameter point.  The eight steps of Chen section 4.6:
        balance (4.3b).
 
 Applies to 1-DOF trains with parallel axes drawn on a line (planets on carriers whose
-partner gears are coaxial with the carrier); other trains get a clear error.
+partner gears are coaxial with the carrier), and to bevel and face-gear trains whose
+axes meet at one apex (:func:`_conical_balance`: a planet's speed is its spin about its
+own axis relative to its carrier, and the Willis equation of a mesh equates the
+carrier-frame speeds of the pitch point, ``s_p (u_p x P).t = s_q (u_q x P).t``);
+other trains get a clear error.
 """
 
 from __future__ import annotations
@@ -35,10 +39,20 @@ import sympy
 
 from .couplings import GearMesh, Prismatic, Revolute
 from .errors import DerivationError
-from .geometry import planar_line_layout
+from .geometry import Layout, conical_layout, train_layout
 from .model import Train
 
 Values = Mapping[sympy.Symbol, sympy.Expr]
+Point2 = tuple[sympy.Expr, sympy.Expr]
+
+
+def _exact(x: object) -> sympy.Expr:
+    """Canonical form of an exact number with square roots: a + b sqrt(m) expanded."""
+    return sympy.expand(sympy.radsimp(sympy.sympify(x)))
+
+
+def _same(p: Point2, q: Point2) -> bool:
+    return all(_exact(a - b) == 0 for a, b in zip(p, q, strict=True))
 
 
 @dataclass(frozen=True)
@@ -60,24 +74,26 @@ class _Members:
 
     def __init__(self, train: Train, values: Values):
         self.train = train
-        if any(g.axis is not None for g in train.gears):
-            raise DerivationError("virtual-power balance: this route covers parallel-axis trains drawn on a line; "
-                                  "the train has intersecting axes")
-        layout = planar_line_layout(train)
+        layout = train_layout(train)
+        at = {r.symbol: sympy.sqrt(r.radicand.subs(values)) for r in layout.radicals}
 
-        def y(point: object) -> sympy.Rational:
-            return sympy.Rational(sympy.sympify(point[1]).subs(values))  # type: ignore[index]
+        def pt(point: object) -> Point2:
+            # Exact numbers (square roots of the 2-D layout evaluated by sympy).
+            return tuple(_exact(sympy.sympify(point[i]).subs(values).subs(at))  # type: ignore[index]
+                         for i in (0, 1))  # type: ignore[return-value]
 
-        self.gear_axis = {g.name: y(layout.gear_centres[g.name]) for g in train.gears}
-        self.pitch = {c.name: y(layout.coupling_points[c.name]) for c in train.couplings if isinstance(c, GearMesh)}
+        self.gear_axis = {g.name: pt(layout.gear_centres[g.name]) for g in train.gears}
+        self.pitch = {c.name: pt(layout.coupling_points[c.name]) for c in train.couplings if isinstance(c, GearMesh)}
+        self.tangent = {c.name: pt(layout.mesh_tangents[c.name]) for c in train.couplings
+                        if isinstance(c, GearMesh)}
         self.revolutes = [c for c in train.couplings if isinstance(c, Revolute)]
-        self.bearing_axis = {c.name: y(layout.coupling_points[c.name]) for c in self.revolutes}
+        self.bearing_axis = {c.name: pt(layout.coupling_points[c.name]) for c in self.revolutes}
         # A geared link turns about its gears' axis; any other link about the bearing by
         # which it is first reached from the reference.
-        self.axis: dict[str, sympy.Rational] = {}
+        self.axis: dict[str, Point2] = {}
         for g in train.gears:
             self.axis.setdefault(g.link, self.gear_axis[g.name])
-        self.axis.setdefault(train.reference, sympy.Integer(0))
+        self.axis.setdefault(train.reference, (sympy.Integer(0), sympy.Integer(0)))
         frontier, reached = [train.reference], {train.reference}
         while frontier:
             nxt = []
@@ -95,13 +111,19 @@ class _Members:
             raise DerivationError(f"virtual-power balance: links {missing} hang on no bearing chain from the "
                                   f"reference {train.reference!r}")
 
-    def coaxial_group(self, link: str, axis: sympy.Rational) -> set[str]:
+    def arm(self, mesh: str, gear: str) -> sympy.Expr:
+        """(z x (P - C)) . t: the pitch-point speed per unit carrier-frame speed of
+        ``gear`` along the tooth-force direction (a signed distance on a line layout)."""
+        (px, py), (cx, cy), (tx, ty) = self.pitch[mesh], self.gear_axis[gear], self.tangent[mesh]
+        return _exact(-(py - cy) * tx + (px - cx) * ty)
+
+    def coaxial_group(self, link: str, axis: Point2) -> set[str]:
         """Links joined to ``link`` by bearings on ``axis``: they hold that axis."""
         group, frontier = {link}, [link]
         while frontier:
             current = frontier.pop()
             for c in self.revolutes:
-                if current in c.links and self.bearing_axis[c.name] == axis:
+                if current in c.links and _same(self.bearing_axis[c.name], axis):
                     other = c.links[1] if c.links[0] == current else c.links[0]
                     if other not in group:
                         group.add(other)
@@ -119,16 +141,20 @@ class _Members:
 
     def carries(self, carrier: str, planet: str) -> bool:
         """Whether ``planet`` turns in a bearing of ``carrier`` off the carrier's axis."""
-        return self.axis[planet] != self.axis[carrier] and any(
-            set(c.links) == {carrier, planet} and self.bearing_axis[c.name] == self.axis[planet]
+        return not _same(self.axis[planet], self.axis[carrier]) and any(
+            set(c.links) == {carrier, planet} and _same(self.bearing_axis[c.name], self.axis[planet])
             for c in self.revolutes)
 
 
-def virtual_power_balance(train: Train, values: Values, input: str | None = None) -> BalanceResult:
-    """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one)."""
-    members = _Members(train, values)
+def virtual_power_balance(train: Train, values: Values, input: str | None = None,
+                          layout: Layout | None = None) -> BalanceResult:
+    """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one);
+    ``layout`` replaces the derived geometry of a bevel train (to study a published one)."""
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
+    if any(g.axis is not None or g.tilted for g in train.gears):
+        return _conical_balance(train, values, port_in, port_out, layout or conical_layout(train))
+    members = _Members(train, values)
     meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
     # A lossless prismatic pair in a planar train (an Oldham coupling) keeps its two
     # links at one angular speed and passes a couple between them.
@@ -140,7 +166,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                               "(lossy sliders, explicit screws)")
     carriers = {m.name: members.carrier(m) for m in meshes}
     # Signed distance from each gear's axis to the pitch point: s_p a_p = s_q a_q (Willis).
-    arms = {m.name: tuple(members.pitch[m.name] - members.gear_axis[g] for g in m.gears) for m in meshes}
+    arms = {m.name: tuple(members.arm(m.name, g) for g in m.gears) for m in meshes}
     links = [link for link in train.link_names if link != train.reference]
     col = {link: i for i, link in enumerate(links)}
 
@@ -174,7 +200,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
     K = sympy.Matrix(rows)
     if K.rank() != len(links):
         raise DerivationError("virtual-power balance: the kinematics do not have one degree of freedom")
-    w = dict(zip(links, K.solve(sympy.Matrix(rhs)), strict=True))
+    w = {k: _exact(v) for k, v in zip(links, K.solve(sympy.Matrix(rhs)), strict=True)}
     w[train.reference] = sympy.Integer(0)
 
     def rel(link: str, carrier: str) -> sympy.Expr:
@@ -208,7 +234,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
             for k, m in enumerate(meshes):
                 for side in (0, 1):
                     if m.links[side] == link:
-                        if members.gear_axis[m.gears[side]] != members.axis[link]:
+                        if not _same(members.gear_axis[m.gears[side]], members.axis[link]):
                             raise DerivationError(f"virtual-power balance: gear {m.gears[side]} is not on the "
                                                   f"axis of its link {link}")
                         row[2 * k + side] += 1
@@ -218,7 +244,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                     # wrenches: nothing reaches the carrier.
                     if (planet != link and m.links[partner] != link and members.carries(link, planet)
                             and not members.carries(link, m.links[partner])):
-                        if members.gear_axis[m.gears[partner]] != members.axis[link]:
+                        if not _same(members.gear_axis[m.gears[partner]], members.axis[link]):
                             raise DerivationError(f"virtual-power balance: planet {planet} meshes gear "
                                                   f"{m.gears[partner]}, which is not coaxial with its carrier {link}")
                         row[2 * k + partner] -= 1
@@ -242,7 +268,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
         A = sympy.Matrix(eqs)
         if A.rank() != n:
             raise DerivationError("virtual-power balance: the torque balances do not determine the torques")
-        x = A.solve(sympy.Matrix(rhs))
+        x = [_exact(v) for v in A.solve(sympy.Matrix(rhs))]
         torques = {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}
         return torques, x[out_col]
 
@@ -263,7 +289,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
     for m in meshes:
         c = carriers[m.name]
         m_p, m_q = torques[m.name]
-        losses[m.name] = sympy.Rational(-(m_p * rel(m.links[0], c) + m_q * rel(m.links[1], c)))
+        losses[m.name] = sympy.Rational(_exact(-(m_p * rel(m.links[0], c) + m_q * rel(m.links[1], c))))
     # (viii) efficiency, with the power balance (4.3b) as a check.
     total_loss = sum(losses.values(), sympy.Integer(0))
     if p_in + p_out != total_loss:
@@ -280,3 +306,150 @@ def _efficiency(mesh: GearMesh, index: int, values: Values) -> sympy.Expr:
     if mesh.efficiencies is None or (mesh.friction.coulomb is None and mesh.friction.linear is None):
         return sympy.Integer(1)
     return sympy.sympify(mesh.efficiencies[index]).subs(values)
+
+
+def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, layout: Layout) -> BalanceResult:
+    """Chen's eight steps for a train whose axes meet at one apex (bevel, face gears).
+
+    Members on the main axis turn at w about it; a planet spins at s about its own axis
+    relative to the carrier whose bearing holds it.  Moments are taken about each
+    member's axis.  Square roots of the geometry are evaluated exactly (sympy numbers).
+    """
+    at = {r.symbol: sympy.sqrt(r.radicand.subs(values)) for r in layout.radicals}
+
+    def number(expr: sympy.Expr) -> sympy.Expr:
+        return _exact(sympy.sympify(expr).subs(values).subs(at))
+
+    def vec(v: object) -> tuple[sympy.Expr, ...]:
+        return tuple(number(x) for x in v)  # type: ignore[attr-defined]
+
+    main = vec(layout.axis)
+    meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
+    others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Revolute))]
+    if others:
+        raise DerivationError(f"virtual-power balance: couplings {others} are outside its scope in a bevel train")
+    axis = {link: vec(layout.gear_axes[g.name]) for g in train.gears for link in [g.link]}
+    carrier_of: dict[str, str] = {}
+    for c in train.couplings:
+        if isinstance(c, Revolute):
+            for planet, holder in (c.links, c.links[::-1]):
+                bearing = vec(layout.coupling_axes[c.name])
+                if planet in axis and _cross_norm(axis[planet], main) != 0 and _cross_norm(bearing, axis[planet]) == 0:
+                    carrier_of[planet] = holder
+    planets = set(carrier_of)
+    links = [link for link in train.link_names if link != train.reference]
+    col = {link: i for i, link in enumerate(links)}
+    arms, carriers = {}, {}
+    for m in meshes:
+        point, tangent = vec(layout.coupling_points[m.name]), vec(layout.mesh_tangents[m.name])
+        held = {carrier_of[link] for link in m.links if link in planets}
+        if len(held) != 1:
+            raise DerivationError(f"virtual-power balance: mesh {m.name} needs exactly one carrier in a bevel train")
+        carriers[m.name] = held.pop()
+        arms[m.name] = tuple(_dot(_cross(axis[link] if link in planets else main, point), tangent) for link in m.links)
+
+    def speed_row(link: str, carrier: str, factor: sympy.Expr, row: list[sympy.Expr]) -> None:
+        # Carrier-frame speed: a planet's spin, or w - w_c about the main axis.
+        if link in planets:
+            if carrier_of[link] != carrier:
+                raise DerivationError(f"virtual-power balance: planet {link} meshes in a frame other than its carrier")
+            row[col[link]] += factor
+            return
+        if link in col:
+            row[col[link]] += factor
+        if carrier in col:
+            row[col[carrier]] -= factor
+
+    rows, rhs = [], []
+    for m in meshes:
+        row = [sympy.Integer(0)] * len(links)
+        for sign, arm, link in zip((1, -1), arms[m.name], m.links, strict=True):
+            speed_row(link, carriers[m.name], sign * arm, row)
+        rows.append(row)
+        rhs.append(0)
+    a, b = train.coupling(port_in).links
+    row = [sympy.Integer(0)] * len(links)
+    for end, sign in ((b, 1), (a, -1)):
+        if end in col:
+            row[col[end]] += sign
+    rows.append(row)
+    rhs.append(1)
+    K = sympy.Matrix(rows)
+    if K.rank(simplify=True) != len(links):
+        raise DerivationError("virtual-power balance: the kinematics do not have one degree of freedom")
+    w = {k: _exact(v) for k, v in zip(links, K.LUsolve(sympy.Matrix(rhs)), strict=True)}
+    w[train.reference] = sympy.Integer(0)
+
+    def rel(link: str, carrier: str) -> sympy.Expr:
+        return w[link] if link in planets else w[link] - w[carrier]
+
+    def solve(first_drives: Mapping[str, bool] | None) -> tuple[dict[str, tuple[sympy.Expr, sympy.Expr]], sympy.Expr]:
+        n = 2 * len(meshes) + 1
+        eqs: list[list[sympy.Expr]] = []
+        rhs: list[sympy.Expr] = []
+        for k, m in enumerate(meshes):
+            a_p, a_q = arms[m.name]
+            row = [sympy.Integer(0)] * n
+            eta_p = _efficiency(m, 0, values) if first_drives is not None and first_drives[m.name] else 1
+            eta_q = _efficiency(m, 1, values) if first_drives is not None and not first_drives[m.name] else 1
+            row[2 * k], row[2 * k + 1] = eta_p * a_q, eta_q * a_p
+            eqs.append(row)
+            rhs.append(0)
+        for link in links:
+            row = [sympy.Integer(0)] * n
+            const = sympy.Integer(0)
+            for k, m in enumerate(meshes):
+                for side in (0, 1):
+                    if m.links[side] == link:
+                        row[2 * k + side] += 1
+                    partner = m.links[1 - side]
+                    # The planet's bearing passes to its carrier the mesh's moment about the
+                    # main axis: minus the moment on the partner gear, which turns about it.
+                    if (m.links[side] in planets and carrier_of[m.links[side]] == link and partner != link
+                            and partner not in planets):
+                        row[2 * k + 1 - side] -= 1
+            for port, out in ((port_in, False), (port_out, True)):
+                pa, pb = train.coupling(port).links
+                for end, sign in ((pb, 1), (pa, -1)):
+                    if end == link:
+                        if out:
+                            row[n - 1] += sign
+                        else:
+                            const += sign
+            eqs.append(row)
+            rhs.append(-const)
+        A = sympy.Matrix(eqs)
+        x = A.LUsolve(sympy.Matrix(rhs))
+        x = [_exact(v) for v in x]
+        return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
+
+    lossless, _ = solve(None)
+    first = {m.name: bool(-lossless[m.name][0] * rel(m.links[0], carriers[m.name]) >= 0) for m in meshes}
+    torques, t_out = solve(first)
+    p_in = w[b] - w[a]
+    qa, qb = train.coupling(port_out).links
+    p_out = t_out * (w[qb] - w[qa])
+    losses = {m.name: _exact(-(torques[m.name][0] * rel(m.links[0], carriers[m.name])
+                               + torques[m.name][1] * rel(m.links[1], carriers[m.name])))
+              for m in meshes}
+    total_loss = sum(losses.values(), sympy.Integer(0))
+    if _exact(p_in + p_out - total_loss) != 0:
+        raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
+    efficiency = _exact((p_in - total_loss) / p_in)
+    if _exact(efficiency + p_out / p_in) != 0:
+        raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
+    return BalanceResult(sympy.Rational(efficiency), sympy.Rational(_exact(p_in)),
+                         sympy.Rational(_exact(p_out)), losses, first,
+                         {k: _exact(v) for k, v in w.items()})
+
+
+def _cross(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> tuple[sympy.Expr, ...]:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _cross_norm(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> sympy.Expr:
+    return _exact(sum(x**2 for x in _cross(a, b)))
+
+
+def _dot(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> sympy.Expr:
+    return _exact(sum(x * y for x, y in zip(a, b, strict=True)))

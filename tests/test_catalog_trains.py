@@ -3,7 +3,6 @@ the efficiencies are cross-checked by the virtual-power balance in test_variants
 
 from __future__ import annotations
 
-import pytest
 import sympy
 
 import davies_sym
@@ -115,6 +114,13 @@ def test_litvin_pitch_points_on_both_pitch_cones():
     assert tuple(layout.coupling_points["G2"]) == (0, n4, n3)
 
 
-def test_balance_route_says_it_does_not_cover_intersecting_axes():
-    with pytest.raises(davies_sym.DerivationError, match="intersecting axes"):
-        virtual_power_balance(davies_sym.load(catalog_path("litvin_face_drive")), {})
+def test_balance_route_on_litvin_face_drive():
+    """Chen 2006, eq. (4.24) and the example after it: 77.5 % by the virtual-power balance
+    (carrier-frame Willis equation of each face-gear mesh), exactly Chen's formula."""
+    train = davies_sym.load(catalog_path("litvin_face_drive"))
+    N1, N2, N3, N4, e1, e2 = (train.symbols[n] for n in ("N1", "N2", "N3", "N4", "eta_1", "eta_2"))
+    values = {N1: 100, N2: 17, N3: 17, N4: 88, e1: sympy.Rational(98, 100), e2: sympy.Rational(98, 100)}
+    result = virtual_power_balance(train, values)
+    chen = (N1 * N3 - N2 * N4) / (N1 * N3 - e1 * e2 * N2 * N4)
+    assert result.efficiency == chen.subs(values)
+    assert abs(float(result.efficiency) - 0.775) < 5e-4

@@ -293,8 +293,9 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
             axis = _tilted_axis(train, g, axes, radicals, problems)
             if axis is not None:
                 axes[g.link] = axis
+    tilted_links = {g.link for g in train.gears if g.tilted}
     for g in train.gears:
-        if g.link not in axes:
+        if g.link not in axes and g.link not in tilted_links:  # a failed tilt is reported already
             problems.append(train.problem(f"gears.{g.name}.axis", "in a train with intersecting axes every gear "
                                           "needs its axis direction (a direction, or `tilted`)"))
     return axes

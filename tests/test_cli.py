@@ -30,6 +30,9 @@ MALFORMED_CASES = {
     "unknown_key.yaml": ("gears.2.radus", "unknown key 'radus'", 5),
     "revolute_without_position.yaml": ("couplings.K", "give the position of this revolute with `at`", 10),
     "bad_efficiency.yaml": ("couplings.C.efficiency", "an ordinary efficiency must lie in (0, 1], got 1.5", 9),
+    "tilted_one_mesh.yaml": ("gears.2.axis", "a tilted axis needs two meshes with gears of known axes, found 1", 6),
+    "bad_placement.yaml": ("placement", "expected [x, y] or an angle in degrees, got 'sideways'", 3),
+    "two_pitch_circles.yaml": ("couplings.D", "one gear has one pitch circle", 21),
 }
 
 

@@ -72,11 +72,7 @@ def _point(y: sympy.Expr) -> Vector:
 def planar_line_layout(train: Train) -> Layout:
     """Derive axis positions, pitch points and geometric constraints of a planar train."""
     problems: list[Problem] = []
-    geared = {g.link for g in train.gears}
-    groups = LinkGroups(list(train.link_names))
-    for c in train.couplings:
-        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
-            groups.union(*c.links)
+    geared, groups = axis_groups(train)
     meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
     gears = {g.name: g for g in train.gears}
     positions: dict[str, sympy.Expr] = {}
@@ -97,13 +93,7 @@ def planar_line_layout(train: Train) -> Layout:
                 if link in geared and groups.find(link) not in positions:
                     positions[groups.find(link)] = c.at
                     tree_meshes |= _place_by_meshes(meshes, gears, groups, positions)
-    for g in train.gears:
-        if groups.find(g.link) not in positions:
-            problems.append(train.problem(
-                f"gears.{g.name}", "its position cannot be derived: no mesh or revolute with `at` connects it "
-                "to the rest of the train"))
-    if problems:
-        raise GeometryError(problems, train.path)
+    check_placed(train, groups, positions, problems)
     oracle = SignOracle()
     centres = {g.name: positions[groups.find(g.link)] for g in train.gears}
     points: dict[str, Vector] = {}
@@ -117,7 +107,7 @@ def planar_line_layout(train: Train) -> Layout:
             offset = sympy.expand(centres[pin.name] - centres[ann.name])
             points[mesh.name] = _point(centres[ann.name] + ann.radius)
             if mesh.name not in tree_meshes:
-                _add_constraint(train, constraints, problems, offset, ann.radius - pin.radius, mesh.name, oracle)
+                add_constraint(train, constraints, problems, offset, ann.radius - pin.radius, mesh.name, oracle)
         else:
             offset = sympy.expand(centres[h.name] - centres[g.name])
             side = oracle.sign(offset) if offset != 0 else 0
@@ -128,7 +118,7 @@ def planar_line_layout(train: Train) -> Layout:
                         f"cannot tell on which side gear {h.name!r} lies from gear {g.name!r} (centre offset "
                         f"{offset}); this mesh closes a loop that the line layout cannot decide"))
                     continue
-                _add_constraint(train, constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
+                add_constraint(train, constraints, problems, side * offset, g.radius + h.radius, mesh.name, oracle)
             points[mesh.name] = _point(centres[g.name] + (side or 1) * g.radius)
     for c in train.couplings:
         if isinstance(c, Revolute):
@@ -147,6 +137,28 @@ def planar_line_layout(train: Train) -> Layout:
         constraints=tuple(constraints),
         positive_facts=tuple(facts),
     )
+
+
+def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
+    """The geared links, and the groups of them that share one axis (joined by a revolute
+    that names no axis: coaxial members)."""
+    geared = {g.link for g in train.gears}
+    groups = LinkGroups(list(train.link_names))
+    for c in train.couplings:
+        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
+            groups.union(*c.links)
+    return geared, groups
+
+
+def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, object], problems: list[Problem]) -> None:
+    """Every gear's axis group has a position, or the layout fails with all problems."""
+    for g in train.gears:
+        if groups.find(g.link) not in positions:
+            problems.append(train.problem(
+                f"gears.{g.name}", "its position cannot be derived: no mesh or revolute with `at` connects it "
+                "to the rest of the train"))
+    if problems:
+        raise GeometryError(problems, train.path)
 
 
 def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> list[dict[sympy.Symbol, sympy.Expr]]:
@@ -217,7 +229,7 @@ def _place_by_meshes(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: 
     return used
 
 
-def _add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
+def add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
                     distance: sympy.Expr, coupling: str, oracle: SignOracle, entry: str | None = None,
                     message: str | None = None) -> None:
     """``offset = distance`` holds, is impossible (a problem), or is a constraint on the radii."""
@@ -241,7 +253,7 @@ def _revolute_point(train: Train, c: Revolute, geared: set[str], groups: LinkGro
     if derived:
         if c.at is not None:
             # Where the meshes leave the axis open, the bearing's `at` is a constraint.
-            _add_constraint(train, constraints, problems, derived[0], c.at, c.name, oracle, f"couplings.{c.name}.at",
+            add_constraint(train, constraints, problems, derived[0], c.at, c.name, oracle, f"couplings.{c.name}.at",
                             f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {derived[0]}")
         return _point(derived[0])
     if c.at is None:

@@ -21,7 +21,7 @@ import sympy
 from .coupling_graph import LinkGroups
 from .couplings import GearMesh, Revolute
 from .errors import GeometryError, Problem
-from .geometry import GeometricConstraint, Layout, _add_constraint
+from .geometry import GeometricConstraint, Layout, add_constraint, axis_groups, check_placed
 from .model import Gear, Train
 from .radicals import RadicalTable, has_square_root
 from .screws import Vector, vector
@@ -46,11 +46,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
-    geared = {g.link for g in train.gears}
-    groups = LinkGroups(list(train.link_names))
-    for c in train.couplings:
-        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
-            groups.union(*c.links)
+    geared, groups = axis_groups(train)
     gears = {g.name: g for g in train.gears}
     meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
     positions: dict[str, Point] = {}
@@ -63,12 +59,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
                 if link in geared and groups.find(link) not in positions:
                     positions[groups.find(link)] = (c.at * unit[0], c.at * unit[1])
     used = _place(meshes, gears, groups, positions, unit, radicals, train, problems)
-    for g in train.gears:
-        if groups.find(g.link) not in positions:
-            problems.append(train.problem(f"gears.{g.name}", "its position cannot be derived: no mesh or revolute "
-                                          "with `at` connects it to the rest of the train"))
-    if problems:
-        raise GeometryError(problems, train.path)
+    check_placed(train, groups, positions, problems)
     oracle = SignOracle()
     centres = {g.name: positions[groups.find(g.link)] for g in train.gears}
     points: dict[str, Vector] = {}
@@ -93,9 +84,9 @@ def plane_layout(train: Train, direction: Point) -> Layout:
             except ValueError:
                 actual = None
             if actual is None or has_square_root(radicals.restore(actual)):
-                _add_constraint(train, constraints, problems, squared, distance**2, mesh.name, oracle)
+                add_constraint(train, constraints, problems, squared, distance**2, mesh.name, oracle)
             else:
-                _add_constraint(train, constraints, problems, actual, distance, mesh.name, oracle)
+                add_constraint(train, constraints, problems, actual, distance, mesh.name, oracle)
         # The line of centres has length `distance` on an admissible design.
         u = (radicals.reduce(offset[0] / distance), radicals.reduce(offset[1] / distance))
         points[mesh.name] = vector((radicals.reduce(base[0] + reach * u[0]),

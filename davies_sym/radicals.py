@@ -11,6 +11,7 @@ denominators, so zero tests stay exact and results that are rational in the radi
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import sympy
@@ -95,7 +96,12 @@ class RadicalTable:
 
     def restore(self, expr: sympy.Expr) -> sympy.Expr:
         """Radical symbols replaced by their square roots (for output)."""
-        return expr.xreplace({r.symbol: r.expression for r in self.radicals})
+        return restore(expr, self.radicals)
+
+
+def restore(expr: sympy.Expr, radicals: Iterable[Radical]) -> sympy.Expr:
+    """``expr`` with the symbols of ``radicals`` written as the square roots they are."""
+    return expr.xreplace({r.symbol: r.expression for r in radicals})
 
 
 def _is_half_power(expr: object) -> bool:

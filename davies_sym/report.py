@@ -9,6 +9,7 @@ import sympy
 
 from .analysis import Analysis
 from .couplings import GearMesh, Revolute
+from .radicals import restore
 from .symbols import make_symbol
 
 FRICTION_CONVENTION = (
@@ -43,9 +44,7 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         entry["actions"] = {v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]}
                             for v in net.coupling_actions(c.name)}
         couplings.append(entry)
-    # Radical symbols of a tilted bevel geometry are written as the square roots they are.
-    roots = {r.symbol: r.expression for r in analysis.network.layout.radicals}
-    efficiency = analysis.efficiency.xreplace(roots)
+    efficiency = restore(analysis.efficiency, analysis.network.layout.radicals)
     conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
                    "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
     return {

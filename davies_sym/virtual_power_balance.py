@@ -32,7 +32,7 @@ other trains get a clear error.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import sympy
@@ -41,6 +41,7 @@ from .couplings import GearMesh, Prismatic, Revolute
 from .errors import DerivationError
 from .geometry import Layout, conical_layout, train_layout
 from .model import Train
+from .screws import cross
 
 Values = Mapping[sympy.Symbol, sympy.Expr]
 Point2 = tuple[sympy.Expr, sympy.Expr]
@@ -49,6 +50,12 @@ Point2 = tuple[sympy.Expr, sympy.Expr]
 def _exact(x: object) -> sympy.Expr:
     """Canonical form of an exact number with square roots: a + b sqrt(m) expanded."""
     return sympy.expand(sympy.radsimp(sympy.sympify(x)))
+
+
+def _numbers(layout: Layout, values: Values) -> Callable[[object], sympy.Expr]:
+    """Exact value of a layout expression at ``values``, its square roots evaluated by sympy."""
+    roots = {r.symbol: sympy.sqrt(r.radicand.subs(values)) for r in layout.radicals}
+    return lambda expr: _exact(sympy.sympify(expr).subs(values).subs(roots))
 
 
 def _same(p: Point2, q: Point2) -> bool:
@@ -75,12 +82,10 @@ class _Members:
     def __init__(self, train: Train, values: Values):
         self.train = train
         layout = train_layout(train)
-        at = {r.symbol: sympy.sqrt(r.radicand.subs(values)) for r in layout.radicals}
+        number = _numbers(layout, values)
 
         def pt(point: object) -> Point2:
-            # Exact numbers (square roots of the 2-D layout evaluated by sympy).
-            return tuple(_exact(sympy.sympify(point[i]).subs(values).subs(at))  # type: ignore[index]
-                         for i in (0, 1))  # type: ignore[return-value]
+            return (number(point[0]), number(point[1]))  # type: ignore[index]
 
         self.gear_axis = {g.name: pt(layout.gear_centres[g.name]) for g in train.gears}
         self.pitch = {c.name: pt(layout.coupling_points[c.name]) for c in train.couplings if isinstance(c, GearMesh)}
@@ -171,7 +176,7 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
     col = {link: i for i, link in enumerate(links)}
 
     # (i) kinematics: Willis equations and the input speed set to 1.
-    rows, rhs = [], []
+    rows = []
     for m in meshes:
         row = [sympy.Integer(0)] * len(links)
         c = carriers[m.name]
@@ -181,56 +186,26 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
             if c in col:
                 row[col[c]] -= sign * arm
         rows.append(row)
-        rhs.append(0)
     for k in sliders:
         row = [sympy.Integer(0)] * len(links)
         for link, sign in zip(k.links, (-1, 1), strict=True):
             if link in col:
                 row[col[link]] += sign
         rows.append(row)
-        rhs.append(0)
-    a, b = train.coupling(port_in).links
-    row = [sympy.Integer(0)] * len(links)
-    if b in col:
-        row[col[b]] += 1
-    if a in col:
-        row[col[a]] -= 1
-    rows.append(row)
-    rhs.append(1)
-    K = sympy.Matrix(rows)
-    if K.rank() != len(links):
-        raise DerivationError("virtual-power balance: the kinematics do not have one degree of freedom")
-    w = {k: _exact(v) for k, v in zip(links, K.solve(sympy.Matrix(rhs)), strict=True)}
-    w[train.reference] = sympy.Integer(0)
+    w = _speeds(train, port_in, links, rows)
 
     def rel(link: str, carrier: str) -> sympy.Expr:
         return w[link] - w[carrier]
 
-    def solve(first_drives: Mapping[str, bool] | None) -> tuple[dict[str, tuple[sympy.Expr, sympy.Expr]], sympy.Expr]:
+    def solve(first_drives: Mapping[str, bool] | None) -> tuple[Torques, sympy.Expr]:
         # Unknowns: (M_p, M_q) per mesh, a couple per slider, then the output torque;
         # the input torque is 1.
         n = 2 * len(meshes) + len(sliders) + 1
-        out_col = n - 1
-        eqs: list[list[sympy.Expr]] = []
-        rhs: list[sympy.Expr] = []
-        for k, m in enumerate(meshes):  # (iv-v) loss formula per mesh
-            # M_q s_q + eta M_p s_p = 0 (driver p) divided by the carrier-frame speed through
-            # Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, regular in a locked set.
-            c = carriers[m.name]
-            a_p, a_q = arms[m.name]
-            turning = rel(m.links[0], c) != 0 or rel(m.links[1], c) != 0
-            row = [sympy.Integer(0)] * n
-            if first_drives is None or not turning:
-                row[2 * k], row[2 * k + 1] = a_q, a_p
-            elif first_drives[m.name]:
-                row[2 * k], row[2 * k + 1] = _efficiency(m, 0, values) * a_q, a_p
-            else:
-                row[2 * k], row[2 * k + 1] = a_q, _efficiency(m, 1, values) * a_p
-            eqs.append(row)
-            rhs.append(0)
+        eqs = [_loss_row(m, k, n, arms[m.name], rel, carriers[m.name], first_drives, values)
+               for k, m in enumerate(meshes)]
+        rhs: list[sympy.Expr] = [sympy.Integer(0)] * len(meshes)
         for link in links:  # (vi) torque balance of every member about its axis
             row = [sympy.Integer(0)] * n
-            const = sympy.Integer(0)
             for k, m in enumerate(meshes):
                 for side in (0, 1):
                     if m.links[side] == link:
@@ -255,51 +230,105 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                         row[slider_col] += sign
                     elif link not in k.links and members.carries(link, end):
                         row[slider_col] += sign  # the couple on a planet reaches its carrier
-            for port, col_or_const in ((port_in, None), (port_out, out_col)):
-                pa, pb = train.coupling(port).links
-                for end, sign in ((pb, 1), (pa, -1)):
-                    if end == link:
-                        if col_or_const is None:
-                            const += sign
-                        else:
-                            row[col_or_const] += sign
+            const, row[n - 1] = _port_terms(train, link, port_in, port_out)
             eqs.append(row)
             rhs.append(-const)
-        A = sympy.Matrix(eqs)
-        if A.rank() != n:
-            raise DerivationError("virtual-power balance: the torque balances do not determine the torques")
-        x = [_exact(v) for v in A.solve(sympy.Matrix(rhs))]
-        torques = {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}
-        return torques, x[out_col]
+        x = _solve_exact(eqs, rhs, "the torque balances do not determine the torques")
+        return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
 
+    return _balance_result(train, meshes, carriers, w, rel, solve, port_in, port_out)
+
+
+Torques = dict[str, tuple[sympy.Expr, sympy.Expr]]
+
+
+def _is_zero(x: object) -> bool:
+    return bool(_exact(x) == 0)
+
+
+def _solve_exact(rows: list[list[sympy.Expr]], rhs: list[sympy.Expr], failure: str) -> list[sympy.Expr]:
+    """The unique solution of ``rows x = rhs`` (exact, square roots allowed), or an error."""
+    A = sympy.Matrix(rows)
+    if A.rank(iszerofunc=_is_zero) != A.cols:
+        raise DerivationError(f"virtual-power balance: {failure}")
+    return [_exact(v) for v in A.LUsolve(sympy.Matrix(rhs), iszerofunc=_is_zero)]
+
+
+def _speeds(train: Train, port_in: str, links: list[str], rows: list[list[sympy.Expr]]) -> dict[str, sympy.Expr]:
+    """(i) Speeds from the Willis rows and the input speed set to 1 (reference at rest)."""
+    a, b = train.coupling(port_in).links
+    col = {link: i for i, link in enumerate(links)}
+    row = [sympy.Integer(0)] * len(links)
+    for end, sign in ((b, 1), (a, -1)):
+        if end in col:
+            row[col[end]] += sign
+    values = _solve_exact([*rows, row], [sympy.Integer(0)] * len(rows) + [sympy.Integer(1)],
+                          "the kinematics do not have one degree of freedom")
+    w = dict(zip(links, values, strict=True))
+    w[train.reference] = sympy.Integer(0)
+    return w
+
+
+def _loss_row(mesh: GearMesh, k: int, n: int, arms: tuple[sympy.Expr, sympy.Expr],
+              rel: Callable[[str, str], sympy.Expr], carrier: str, first_drives: Mapping[str, bool] | None,
+              values: Values) -> list[sympy.Expr]:
+    """(iv-v) Loss formula of mesh ``k``: M_q s_q + eta M_p s_p = 0 (driver p) divided by the
+    carrier-frame speed through Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, which
+    stays regular in a locked set (where the mesh does not turn and loses nothing)."""
+    a_p, a_q = arms
+    turning = rel(mesh.links[0], carrier) != 0 or rel(mesh.links[1], carrier) != 0
+    row = [sympy.Integer(0)] * n
+    row[2 * k], row[2 * k + 1] = a_q, a_p
+    if first_drives is not None and turning:
+        if first_drives[mesh.name]:
+            row[2 * k] = _efficiency(mesh, 0, values) * a_q
+        else:
+            row[2 * k + 1] = _efficiency(mesh, 1, values) * a_p
+    return row
+
+
+def _port_terms(train: Train, link: str, port_in: str, port_out: str) -> tuple[sympy.Expr, sympy.Expr]:
+    """Torque-balance terms of the ports on ``link``: the unit input torque (a constant) and
+    the coefficient of the unknown output torque."""
+    const, out = sympy.Integer(0), sympy.Integer(0)
+    for port, is_output in ((port_in, False), (port_out, True)):
+        pa, pb = train.coupling(port).links
+        for end, sign in ((pb, 1), (pa, -1)):
+            if end == link:
+                if is_output:
+                    out += sign
+                else:
+                    const += sign
+    return const, out
+
+
+def _balance_result(train: Train, meshes: list[GearMesh], carriers: Mapping[str, str], w: Mapping[str, sympy.Expr],
+                    rel: Callable[[str, str], sympy.Expr],
+                    solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
+                    port_in: str, port_out: str) -> BalanceResult:
+    """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency."""
     # (ii-iii) lossless flow: the side delivering virtual power drives.
     lossless, _ = solve(None)
-    first = {}
-    for m in meshes:
-        c = carriers[m.name]
-        delivered = -lossless[m.name][0] * rel(m.links[0], c)
-        first[m.name] = bool(delivered >= 0)
+    first = {m.name: bool(-lossless[m.name][0] * rel(m.links[0], carriers[m.name]) >= 0) for m in meshes}
     # (vii) with losses
     torques, t_out = solve(first)
     pa, pb = train.coupling(port_in).links
-    p_in = 1 * (w[pb] - w[pa])
+    p_in = _exact(w[pb] - w[pa])
     qa, qb = train.coupling(port_out).links
-    p_out = t_out * (w[qb] - w[qa])
-    losses = {}
-    for m in meshes:
-        c = carriers[m.name]
-        m_p, m_q = torques[m.name]
-        losses[m.name] = sympy.Rational(_exact(-(m_p * rel(m.links[0], c) + m_q * rel(m.links[1], c))))
+    p_out = _exact(t_out * (w[qb] - w[qa]))
+    losses = {m.name: sympy.Rational(_exact(-(torques[m.name][0] * rel(m.links[0], carriers[m.name])
+                                             + torques[m.name][1] * rel(m.links[1], carriers[m.name]))))
+              for m in meshes}
     # (viii) efficiency, with the power balance (4.3b) as a check.
     total_loss = sum(losses.values(), sympy.Integer(0))
-    if p_in + p_out != total_loss:
+    if _exact(p_in + p_out - total_loss) != 0:
         # The net power entering the train is what its meshes dissipate.
         raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
-    efficiency = sympy.Rational((p_in - total_loss) / p_in)
-    if efficiency != -p_out / p_in:
+    efficiency = sympy.Rational(_exact((p_in - total_loss) / p_in))
+    if _exact(efficiency + p_out / p_in) != 0:
         raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
     return BalanceResult(efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first,
-                         {k: sympy.Rational(v) for k, v in w.items()})
+                         {k: _exact(v) for k, v in w.items()})
 
 
 def _efficiency(mesh: GearMesh, index: int, values: Values) -> sympy.Expr:
@@ -315,10 +344,7 @@ def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, 
     relative to the carrier whose bearing holds it.  Moments are taken about each
     member's axis.  Square roots of the geometry are evaluated exactly (sympy numbers).
     """
-    at = {r.symbol: sympy.sqrt(r.radicand.subs(values)) for r in layout.radicals}
-
-    def number(expr: sympy.Expr) -> sympy.Expr:
-        return _exact(sympy.sympify(expr).subs(values).subs(at))
+    number = _numbers(layout, values)
 
     def vec(v: object) -> tuple[sympy.Expr, ...]:
         return tuple(number(x) for x in v)  # type: ignore[attr-defined]
@@ -328,13 +354,13 @@ def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, 
     others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Revolute))]
     if others:
         raise DerivationError(f"virtual-power balance: couplings {others} are outside its scope in a bevel train")
-    axis = {link: vec(layout.gear_axes[g.name]) for g in train.gears for link in [g.link]}
+    axis = {g.link: vec(layout.gear_axes[g.name]) for g in train.gears}
     carrier_of: dict[str, str] = {}
     for c in train.couplings:
         if isinstance(c, Revolute):
+            bearing = vec(layout.coupling_axes[c.name])
             for planet, holder in (c.links, c.links[::-1]):
-                bearing = vec(layout.coupling_axes[c.name])
-                if planet in axis and _cross_norm(axis[planet], main) != 0 and _cross_norm(bearing, axis[planet]) == 0:
+                if planet in axis and not _parallel(axis[planet], main) and _parallel(bearing, axis[planet]):
                     carrier_of[planet] = holder
     planets = set(carrier_of)
     links = [link for link in train.link_names if link != train.reference]
@@ -346,7 +372,9 @@ def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, 
         if len(held) != 1:
             raise DerivationError(f"virtual-power balance: mesh {m.name} needs exactly one carrier in a bevel train")
         carriers[m.name] = held.pop()
-        arms[m.name] = tuple(_dot(_cross(axis[link] if link in planets else main, point), tangent) for link in m.links)
+        arms[m.name] = tuple(_exact(sum(x * t for x, t in zip(cross(axis[link] if link in planets else main, point),
+                                                              tangent, strict=True)))
+                             for link in m.links)
 
     def speed_row(link: str, carrier: str, factor: sympy.Expr, row: list[sympy.Expr]) -> None:
         # Carrier-frame speed: a planet's spin, or w - w_c about the main axis.
@@ -360,44 +388,24 @@ def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, 
         if carrier in col:
             row[col[carrier]] -= factor
 
-    rows, rhs = [], []
+    rows = []
     for m in meshes:
         row = [sympy.Integer(0)] * len(links)
         for sign, arm, link in zip((1, -1), arms[m.name], m.links, strict=True):
             speed_row(link, carriers[m.name], sign * arm, row)
         rows.append(row)
-        rhs.append(0)
-    a, b = train.coupling(port_in).links
-    row = [sympy.Integer(0)] * len(links)
-    for end, sign in ((b, 1), (a, -1)):
-        if end in col:
-            row[col[end]] += sign
-    rows.append(row)
-    rhs.append(1)
-    K = sympy.Matrix(rows)
-    if K.rank(simplify=True) != len(links):
-        raise DerivationError("virtual-power balance: the kinematics do not have one degree of freedom")
-    w = {k: _exact(v) for k, v in zip(links, K.LUsolve(sympy.Matrix(rhs)), strict=True)}
-    w[train.reference] = sympy.Integer(0)
+    w = _speeds(train, port_in, links, rows)
 
     def rel(link: str, carrier: str) -> sympy.Expr:
         return w[link] if link in planets else w[link] - w[carrier]
 
-    def solve(first_drives: Mapping[str, bool] | None) -> tuple[dict[str, tuple[sympy.Expr, sympy.Expr]], sympy.Expr]:
+    def solve(first_drives: Mapping[str, bool] | None) -> tuple[Torques, sympy.Expr]:
         n = 2 * len(meshes) + 1
-        eqs: list[list[sympy.Expr]] = []
-        rhs: list[sympy.Expr] = []
-        for k, m in enumerate(meshes):
-            a_p, a_q = arms[m.name]
-            row = [sympy.Integer(0)] * n
-            eta_p = _efficiency(m, 0, values) if first_drives is not None and first_drives[m.name] else 1
-            eta_q = _efficiency(m, 1, values) if first_drives is not None and not first_drives[m.name] else 1
-            row[2 * k], row[2 * k + 1] = eta_p * a_q, eta_q * a_p
-            eqs.append(row)
-            rhs.append(0)
+        eqs = [_loss_row(m, k, n, arms[m.name], rel, carriers[m.name], first_drives, values)
+               for k, m in enumerate(meshes)]
+        rhs: list[sympy.Expr] = [sympy.Integer(0)] * len(meshes)
         for link in links:
             row = [sympy.Integer(0)] * n
-            const = sympy.Integer(0)
             for k, m in enumerate(meshes):
                 for side in (0, 1):
                     if m.links[side] == link:
@@ -408,48 +416,14 @@ def _conical_balance(train: Train, values: Values, port_in: str, port_out: str, 
                     if (m.links[side] in planets and carrier_of[m.links[side]] == link and partner != link
                             and partner not in planets):
                         row[2 * k + 1 - side] -= 1
-            for port, out in ((port_in, False), (port_out, True)):
-                pa, pb = train.coupling(port).links
-                for end, sign in ((pb, 1), (pa, -1)):
-                    if end == link:
-                        if out:
-                            row[n - 1] += sign
-                        else:
-                            const += sign
+            const, row[n - 1] = _port_terms(train, link, port_in, port_out)
             eqs.append(row)
             rhs.append(-const)
-        A = sympy.Matrix(eqs)
-        x = A.LUsolve(sympy.Matrix(rhs))
-        x = [_exact(v) for v in x]
+        x = _solve_exact(eqs, rhs, "the torque balances do not determine the torques")
         return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
 
-    lossless, _ = solve(None)
-    first = {m.name: bool(-lossless[m.name][0] * rel(m.links[0], carriers[m.name]) >= 0) for m in meshes}
-    torques, t_out = solve(first)
-    p_in = w[b] - w[a]
-    qa, qb = train.coupling(port_out).links
-    p_out = t_out * (w[qb] - w[qa])
-    losses = {m.name: _exact(-(torques[m.name][0] * rel(m.links[0], carriers[m.name])
-                               + torques[m.name][1] * rel(m.links[1], carriers[m.name])))
-              for m in meshes}
-    total_loss = sum(losses.values(), sympy.Integer(0))
-    if _exact(p_in + p_out - total_loss) != 0:
-        raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
-    efficiency = _exact((p_in - total_loss) / p_in)
-    if _exact(efficiency + p_out / p_in) != 0:
-        raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
-    return BalanceResult(sympy.Rational(efficiency), sympy.Rational(_exact(p_in)),
-                         sympy.Rational(_exact(p_out)), losses, first,
-                         {k: _exact(v) for k, v in w.items()})
+    return _balance_result(train, meshes, carriers, w, rel, solve, port_in, port_out)
 
 
-def _cross(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> tuple[sympy.Expr, ...]:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _cross_norm(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> sympy.Expr:
-    return _exact(sum(x**2 for x in _cross(a, b)))
-
-
-def _dot(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> sympy.Expr:
-    return _exact(sum(x * y for x, y in zip(a, b, strict=True)))
+def _parallel(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> bool:
+    return all(_is_zero(x) for x in cross(a, b))  # type: ignore[arg-type]

@@ -19,7 +19,7 @@ import sympy
 import davies_sym
 from davies_sym.errors import GeometryError
 from davies_sym.geometry import train_layout
-from davies_sym.radicals import RadicalTable
+from davies_sym.radicals import RadicalTable, restore
 from davies_sym.screws import vector
 from davies_sym.signs import SignOracle
 from davies_sym.variants import derive_variants
@@ -51,7 +51,7 @@ def printed_layout():
 
 
 def _real(layout, expr):
-    return sympy.sympify(expr).xreplace({r.symbol: r.expression for r in layout.radicals})
+    return restore(sympy.sympify(expr), layout.radicals)
 
 
 def test_cone_geometry_is_consistent():

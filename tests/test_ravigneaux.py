@@ -14,6 +14,7 @@ import sympy
 
 import davies_sym
 from davies_sym.geometry import train_layout
+from davies_sym.radicals import restore
 from davies_sym.states import train_in_state
 from davies_sym.variants import derive_variants
 
@@ -50,8 +51,7 @@ def test_long_and_short_planets_are_off_the_centre_line():
     (constraint,) = layout.constraints  # ring = large sun + two long-planet radii
     assert equal(constraint.expression, rs2 + 2 * SYM["rpl"] - rr) or equal(constraint.expression,
                                                                             rr - rs2 - 2 * SYM["rpl"])
-    root = {r.symbol: sympy.sqrt(r.radicand) for r in layout.radicals}
-    centre = {g: sympy.Matrix([sympy.sympify(x).xreplace(root).subs(ZF) for x in layout.gear_centres[g][:2]])
+    centre = {g: sympy.Matrix([restore(sympy.sympify(x), layout.radicals).subs(ZF) for x in layout.gear_centres[g][:2]])
               for g in ("S1", "PS", "PL")}
     assert sympy.radsimp((centre["PS"] - centre["S1"]).norm()) == 41
     assert sympy.radsimp((centre["PL"] - centre["PS"]).norm()) == 32

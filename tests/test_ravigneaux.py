@@ -1,8 +1,9 @@
 """The Ravigneaux set of the ZF 3HP12 drawn in 2-D (planet-planet mesh off the centre line).
 
-Published: suns 25 and 32, ring 64 and the ratios reverse -2.000, 1st 2.560, 2nd 1.520,
-3rd 1.000.  The engine's kinematics must equal the textbook ratio formulas of every
-state, and the efficiency must not depend on the placement direction of the planets.
+Published for the ZF 3HP12 (the `source` of catalog/ravigneaux.yaml): suns 25 and 32,
+ring 64 and the ratios reverse -2.000, 1st 2.560, 2nd 1.520, 3rd 1.000.  The engine's
+kinematics must equal the textbook ratio formulas of every state, and the efficiency
+must not depend on the placement direction of the planets.
 """
 
 from __future__ import annotations

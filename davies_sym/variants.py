@@ -87,6 +87,9 @@ class VariantSet:
     variants: tuple[Variant, ...]
     #: The efficiency with the signed friction law, declared input (eq. (71)).
     friction_form: RationalFunction = field(repr=False)
+    #: The derivation with input and output swapped, when friction laws other than the
+    #: meshes' make it differ from the declared one (None otherwise).
+    swapped: Analysis | None = field(default=None, repr=False)
 
     @property
     def symbols(self) -> list[sympy.Symbol]:
@@ -128,7 +131,7 @@ class VariantSet:
         return value
 
 
-def _zeta_forms(flows: Mapping[str, MeshPowerFlow],
+def zeta_forms(flows: Mapping[str, MeshPowerFlow],
                 roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
     """zeta of every mesh for both directions, in the ring of ``flows``."""
     out = {}
@@ -140,7 +143,7 @@ def _zeta_forms(flows: Mapping[str, MeshPowerFlow],
     return out
 
 
-def _substituted(form: RationalFunction, roles: Sequence[MeshRole],
+def substituted(form: RationalFunction, roles: Sequence[MeshRole],
                  zetas: Mapping[tuple[str, bool], RationalFunction], first: Mapping[str, bool]) -> RationalFunction:
     for role in roles:
         form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])
@@ -157,17 +160,18 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
     declared = analysis.efficiency_rf
-    zetas = _zeta_forms({r.coupling: r.flow for r in roles}, roles)
+    zetas = zeta_forms({r.coupling: r.flow for r in roles}, roles)
     role_names = {r.coupling for r in roles}
     # Other friction laws (bearings, viscous) change with the input side: derive again.
     resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
+    swapped_analysis = None
     if resolve_again:
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
                                     progress=progress, extra_symbols=etas, layout=layout)
         swapped_form = swapped_analysis.efficiency_rf
         swapped_flows = {r.coupling: mesh_power_flow(swapped_analysis, swapped_analysis.train.coupling(r.coupling))
                          for r in roles}  # type: ignore[arg-type]
-        swapped_zetas = _zeta_forms(swapped_flows, roles)
+        swapped_zetas = zeta_forms(swapped_flows, roles)
     domain = ParameterDomain.of(train, analysis.network.layout)
     extra = _other_symbols(declared, etas, roles)
     points = list(domain.samples(samples, seed=seed, extra=extra))
@@ -185,15 +189,15 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
             say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
             first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
             if declared_input:
-                rf = _substituted(declared, roles, zetas, first)
+                rf = substituted(declared, roles, zetas, first)
             elif resolve_again:
-                rf = _substituted(swapped_form, roles, swapped_zetas, first)
+                rf = substituted(swapped_form, roles, swapped_zetas, first)
             else:
-                rf = _substituted(declared, roles, zetas, first).inverse()
+                rf = substituted(declared, roles, zetas, first).inverse()
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
             variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
             variants.append(_checked(variant, region, etas, analysis, conditions, rng))
-    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared)
+    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared, swapped_analysis)
 
 
 def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],

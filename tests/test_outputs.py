@@ -17,10 +17,9 @@ import sympy
 from sympy.parsing.latex import parse_latex
 
 import davies_sym
-from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.variants import derive_variants
 
-from conftest import CATALOG, ROOT, S, catalog_path, catalog_trains, read_text
+from conftest import CATALOG, ROOT, S, catalog_path, read_text
 
 TUPLIN_VALUES = ["r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99", "eta_D=0.99"]
 
@@ -184,29 +183,6 @@ def test_derivations_are_current(tmp_path):
     for name in fresh:
         with open(os.path.join(DERIVATIONS, name), "rb") as handle:
             assert handle.read() == (tmp_path / name).read_bytes(), f"derivations/{name} is stale"
-
-
-def _module_name(train_id: str) -> str:
-    """derivations/<file>.py, or <file>_<state>.py for a state."""
-    return train_id.replace("[", "_").replace("]", "")
-
-
-@pytest.mark.parametrize(("name", "train"), catalog_trains(), ids=[n for n, _ in catalog_trains()])
-def test_generated_catalog_modules_match_the_symbolic_result(name, train):
-    """Each derivations/<train>.py against the exact variant at sampled admissible points,
-    for both input ports."""
-    stem = _module_name(name)
-    spec = importlib.util.spec_from_file_location(f"gen_{stem}", os.path.join(DERIVATIONS, f"{stem}.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    vs = derive_variants(train)
-    domain = ParameterDomain.of(train, vs.analysis.network.layout)
-    for point in domain.samples(5, seed=3):
-        values = {**point, **{e: sympy.Rational(97, 100) for e in efficiency_symbols(train)}}
-        kwargs = {str(s): float(values[s]) for s in vs.symbols}
-        for port in (train.ports.input, train.ports.output):
-            assert float(module.efficiency(input=port, **kwargs)) == pytest.approx(
-                float(vs.evaluate(values, port)), rel=1e-12)
 
 
 def test_code_and_generated_code_pass_the_lint():

@@ -1,0 +1,87 @@
+"""Time the generated formula modules on a million design points each.
+
+    python3 benchmarks/formula_modules.py [POINTS]
+
+For every module in derivations/: admissible designs sampled exactly from the train's
+parameter domain are tiled to POINTS rows (default 1,000,000), each mesh efficiency drawn
+uniformly in [0.9, 1), and ``efficiency`` (the variant chosen element by element,
+screened for self-locking) is timed, best of three; also ``losses``.
+"""
+
+from __future__ import annotations
+
+import glob
+import importlib.util
+import os
+import sys
+import time
+import warnings
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from davies_sym.loader import load  # noqa: E402
+from davies_sym.parameter_domain import ParameterDomain  # noqa: E402
+from davies_sym.parameters import formula_symbols  # noqa: E402
+from davies_sym.states import train_in_state  # noqa: E402
+from davies_sym.variants import derive_variants  # noqa: E402
+
+
+def _trains():
+    for path in sorted(glob.glob(os.path.join(ROOT, "catalog", "*.yaml"))):
+        train = load(path)
+        stem = os.path.splitext(os.path.basename(path))[0]
+        if (train.degrees_of_freedom or 1) > 1:
+            continue
+        if train.states:
+            for st in train.states:
+                yield f"{stem}_{st.name}", train_in_state(train, st)
+        else:
+            yield stem, train
+
+
+def _module(stem: str):
+    spec = importlib.util.spec_from_file_location(stem, os.path.join(ROOT, "derivations", f"{stem}.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _best(function, repeat: int = 3) -> float:
+    best = float("inf")
+    for _ in range(repeat):
+        start = time.perf_counter()
+        function()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def main(points: int) -> None:
+    rng = np.random.default_rng(0)
+    print(f"| module | variants | efficiency, {points:,} points | losses |")
+    print("| --- | --- | --- | --- |")
+    for stem, train in _trains():
+        vs = derive_variants(train)
+        module = _module(stem)
+        names = {str(s) for s in vs.symbols}
+        domain = ParameterDomain.of(train, vs.analysis.network.layout)
+        samples = list(domain.samples(500, seed=1))
+        kwargs = {}
+        for s in formula_symbols(vs):
+            if str(s) not in names:
+                continue
+            if str(s).startswith("eta"):
+                kwargs[str(s)] = rng.uniform(0.9, 1.0, points)
+            else:
+                kwargs[str(s)] = np.resize(np.array([float(p[s]) for p in samples]), points)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            t_eff = _best(lambda: module.efficiency(errors="ignore", **kwargs))  # noqa: B023
+            t_loss = _best(lambda: module.losses(errors="ignore", **kwargs))  # noqa: B023
+        print(f"| {stem} | {len(vs.variants)} | {t_eff:.3f} s | {t_loss:.3f} s |", flush=True)
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 1_000_000)

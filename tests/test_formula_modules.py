@@ -1,0 +1,214 @@
+"""The generated formula modules (derivations/*.py) against the exact symbolic results.
+
+Each module is imported and evaluated at sampled admissible designs and along lines that
+cross a turning condition; the exact value comes from the variant set (sympy rationals).
+Also: losses add up to 1 - efficiency and equal the exact fractions, the speed ratio,
+NaN with a warning (or an error) where the design self-locks or is not admissible, and
+ruff and mypy --strict on the generated code.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib.util
+import os
+import random
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+import sympy
+
+from davies_sym.parameter_domain import ParameterDomain, Point, efficiency_symbols
+from davies_sym.parameters import admissible_relations, formula_symbols, parameter_table
+from davies_sym.power_losses import loss_fractions, lossy_couplings
+from davies_sym.variants import VariantSet, derive_variants
+
+from conftest import ROOT, catalog_trains
+
+DERIVATIONS = os.path.join(ROOT, "derivations")
+TRAINS = dict(catalog_trains())
+
+
+@functools.lru_cache(maxsize=None)
+def variant_set(name: str) -> VariantSet:
+    return derive_variants(TRAINS[name])
+
+
+def module_of(name: str):
+    stem = name.replace("[", "_").replace("]", "")
+    spec = importlib.util.spec_from_file_location(f"gen_{stem}", os.path.join(DERIVATIONS, f"{stem}.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def admissible(vs: VariantSet, values: Point) -> bool:
+    """Every parameter in its range and every relation positive, exactly."""
+    for p in parameter_table(vs):
+        v = values[vs.train.symbols[p.name]] if p.name in vs.train.symbols else None
+        if v is not None and not (p.low < v <= p.high):
+            return False
+    return all(sympy.sympify(r.subs(values)) > 0 for r in admissible_relations(vs))
+
+
+def expected(vs: VariantSet, values: Point, port: str) -> float:
+    """The exact efficiency, NaN where the design is not admissible or self-locks."""
+    if not admissible(vs, values):
+        return float("nan")
+    value = vs.evaluate(values, port)
+    return float(value) if 0 < value <= 1 else float("nan")
+
+
+def design_points(vs: VariantSet, count: int, seed: int) -> list[Point]:
+    domain = ParameterDomain.of(vs.train, vs.analysis.network.layout)
+    rng = random.Random(seed)
+    out = []
+    for point in domain.samples(count, seed=seed):
+        values = {**point, **{e: sympy.Rational(rng.randint(80, 100), 100) for e in efficiency_symbols(vs.train)}}
+        out.append({s: values[s] for s in formula_symbols(vs)})
+    return out
+
+
+def kwargs_of(points: list[Point], symbols) -> dict[str, np.ndarray]:
+    return {str(s): np.array([float(p[s]) for p in points]) for s in symbols}
+
+
+def agree(got: np.ndarray, want: list[float]) -> bool:
+    want_array = np.array(want)
+    got = np.broadcast_to(got, want_array.shape)  # a train without parameters gives one value
+    same_nan = np.array_equal(np.isnan(got), np.isnan(want_array))
+    finite = ~np.isnan(want_array)
+    return same_nan and np.allclose(got[finite], want_array[finite], rtol=1e-12, atol=0)
+
+
+NAMES = sorted(TRAINS)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_module_efficiency_equals_the_exact_variant(name):
+    """efficiency() on an array of sampled designs, both input ports, to 1e-12 relative;
+    every variant function on the points of its own region."""
+    vs, module = variant_set(name), module_of(name)
+    points = design_points(vs, 12, seed=5)
+    kwargs = kwargs_of(points, vs.symbols)
+    for port in (vs.train.ports.input, vs.train.ports.output):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", module.DesignWarning)
+            got = module.efficiency(input=port, **kwargs)
+        assert agree(got, [expected(vs, p, port) for p in points])
+    for v in vs.variants:
+        mine = [p for p in points if vs.variant_for(p, v.input) is v]
+        if mine:
+            function = getattr(module, v.name)
+            args = {str(s): float(mine[0][s]) for s in v.efficiency.free_symbols}
+            assert float(function(**args)) == pytest.approx(float(v.efficiency.subs(mine[0])), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_arrays_straddling_a_turning_condition(name):
+    """A line of designs from one condition region to another: each element gets its own
+    variant (exact values on dyadic points, so the floats are exact inputs)."""
+    vs, module = variant_set(name), module_of(name)
+    if not vs.conditions:
+        pytest.skip("no turning condition")
+    points = design_points(vs, 40, seed=11)
+    signs = [tuple(sympy.sign(c.expression.subs(p)) for c in vs.conditions) for p in points]
+    pairs = [(p, q) for i, p in enumerate(points) for j, q in enumerate(points) if signs[i] != signs[j]]
+    regions = {tuple(v.signs.values()) for v in vs.variants if v.feasible and v.input == vs.train.ports.input}
+    if len(regions) < 2:
+        pytest.skip("one feasible condition region only (an annulus larger than its sun)")
+    assert pairs, "sampled designs in two regions"
+    p, q = pairs[0]
+    line = [{s: p[s] + sympy.Rational(k, 16) * (q[s] - p[s]) for s in p} for k in range(17)]
+    crossed = {tuple(sympy.sign(c.expression.subs(x)) for c in vs.conditions) for x in line}
+    assert len(crossed) >= 2
+    kwargs = kwargs_of(line, vs.symbols)
+    for port in (vs.train.ports.input, vs.train.ports.output):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", module.DesignWarning)
+            got = module.efficiency(input=port, **kwargs)
+        assert agree(got, [expected(vs, x, port) for x in line])
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_losses_add_up_and_equal_the_exact_fractions(name):
+    """losses(): one entry per friction element, each equal to the exact -P_k/P_in of
+    the variant, together 1 - efficiency; speed_ratio equals the exact ratio."""
+    vs, module = variant_set(name), module_of(name)
+    points = design_points(vs, 6, seed=7)
+    kwargs = kwargs_of(points, vs.symbols)
+    assert lossy_couplings(vs) == module.LOSSY
+    for port in (vs.train.ports.input, vs.train.ports.output):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", module.DesignWarning)
+            eta = np.broadcast_to(module.efficiency(input=port, **kwargs), (len(points),))
+            parts = {k: np.broadcast_to(v, eta.shape) for k, v in module.losses(input=port, **kwargs).items()}
+        ok = ~np.isnan(eta)
+        total = eta + sum(parts.values())
+        assert np.allclose(total[ok], 1.0, rtol=0, atol=1e-12)
+        for i, point in enumerate(points):
+            if ok[i]:
+                exact = loss_fractions(vs, vs.variant_for(point, port))
+                for coupling, value in parts.items():
+                    assert value[i] == pytest.approx(float(exact[coupling].evaluate(point)), rel=1e-12, abs=1e-15)
+    ratio = vs.analysis.speed_ratio().to_expr()
+    geometry = kwargs_of(points, sorted(ratio.free_symbols, key=str))
+    got = module.speed_ratio(**geometry)
+    want = [float(ratio.subs(p)) for p in points]
+    assert np.allclose(np.broadcast_to(got, (len(points),)), want, rtol=1e-12)
+    back = module.speed_ratio(input=vs.train.ports.output, **geometry)
+    assert np.allclose(np.broadcast_to(back, (len(points),)), 1 / np.array(want), rtol=1e-12)
+
+
+def test_self_locking_and_inadmissible_designs_give_nan_with_a_warning_or_an_error():
+    """Tuplin with B as input self-locks where eta_C eta_D r1 (r1 - r2 - r3) + r2 r3 <= 0
+    (Laus section 3.4.1.6 for A as input turned round); an efficiency above 1 and a
+    pinion larger than its annulus are outside the admissible parameters."""
+    vs, module = variant_set("tuplin"), module_of("tuplin")
+    r1, r2, r3 = (vs.train.symbols[n] for n in ("r1", "r2", "r3"))
+    eta_c, eta_d = (vs.train.symbols[n] for n in ("eta_C", "eta_D"))
+    design = {r1: 40, r2: 60, r3: 15}
+    # Variant B_to_A_c1_pos; it locks where eta^2 r1 (r1 - r2 - r3) + r2 r3 <= 0: eta^2 <= 900/1400.
+    locked = {**design, eta_c: sympy.Rational(7, 10), eta_d: sympy.Rational(7, 10)}
+    assert vs.evaluate(locked, "B") <= 0
+    kwargs = {"r1": [40.0, 40.0, 40.0], "r2": 60.0, "r3": [15.0, 15.0, 45.0], "eta_C": [0.99, 0.7, 0.99],
+              "eta_D": [0.99, 0.7, 0.99]}
+    with pytest.warns(module.DesignWarning, match="1 design point.* outside .* 1 where the train self-locks"):
+        got = module.efficiency(input="B", **kwargs)
+    assert got[0] == pytest.approx(float(vs.evaluate({**design, eta_c: sympy.Rational(99, 100),
+                                                      eta_d: sympy.Rational(99, 100)}, "B")), rel=1e-12)
+    assert np.isnan(got[1]) and np.isnan(got[2])
+    with pytest.raises(module.DesignError, match="self-locks"):
+        module.efficiency(input="B", errors="raise", **kwargs)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        quiet = module.efficiency(input="B", errors="ignore", **kwargs)
+    assert np.isnan(quiet[1])
+    with pytest.warns(module.DesignWarning):
+        assert np.isnan(module.efficiency(r1=40, r2=60, r3=15, eta_C=1.2, eta_D=0.99))
+    with pytest.raises(ValueError, match="errors must be"):
+        module.efficiency(errors="loud", r1=40, r2=60, r3=15, eta_C=0.9, eta_D=0.9)
+
+
+def test_parameters_and_variants_tables():
+    """PARAMETERS name every argument with meaning, unit and range; VARIANTS carry the
+    conditions and the formula as text and LaTeX, equal to the variant set's."""
+    vs, module = variant_set("tuplin"), module_of("tuplin")
+    assert [p["name"] for p in module.PARAMETERS] == [str(s) for s in formula_symbols(vs)]
+    r1 = next(p for p in module.PARAMETERS if p["name"] == "r1")
+    assert r1["meaning"] == "pitch radius of internal gear 1 (link 1)" and r1["low"] == 0.0
+    assert module.RELATIONS == ("-r1 + r2 + r3 > 0", "r1 - r3 > 0")
+    for row, v in zip(module.VARIANTS, vs.variants, strict=True):
+        assert row["name"] == v.name and sympy.sympify(row["formula"], locals=dict(vs.train.symbols)) == v.efficiency
+        assert row["latex"] == sympy.latex(v.efficiency)
+    assert "Laus 2011, Fig. 7" in module.__doc__ and "r4 = -r1 + r2 + r3" in module.__doc__
+
+
+def test_generated_modules_pass_mypy_strict():
+    """mypy --strict on every generated module (type hints are part of the output)."""
+    result = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental", "derivations"],
+                            cwd=ROOT, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr

@@ -16,6 +16,8 @@ from .errors import DaviesError, InputError, Problem
 from .latex_report import latex_document, latex_states_document
 from .loader import load
 from .model import Train
+from .parameters import formula_symbols
+from .plots import Sweep, efficiency_figure, png_bytes, region_figure
 from .python_module import python_module
 from .report import kinematics_document, kinematics_text, text_summary, train_document
 from .states import train_in_state
@@ -42,7 +44,14 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
     p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
-                   "--eval and --python need one)")
+                   "--eval, --python and --plot need one)")
+    p.add_argument("--plot", metavar="NAME=START:STOP",
+                   help="figure of the efficiency and the losses against one parameter (PNG, -o FILE)")
+    p.add_argument("--vs", metavar="NAME=START:STOP",
+                   help="with --plot: a second parameter; the figure shows the variant regions, the turning-condition "
+                   "curves and efficiency contours over both")
+    p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[],
+                   help="with --plot: values of the other parameters (default: the first published check of the file)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 
@@ -73,6 +82,48 @@ def _values(train: Train, pairs: Sequence[str]) -> dict[sympy.Symbol, sympy.Expr
     if problems:
         raise InputError(problems, train.path)
     return out
+
+
+def _sweep(train: Train, option: str, text: str) -> Sweep:
+    """``NAME=START:STOP`` as a sweep of a symbol of the train."""
+    name, sep, interval = text.partition("=")
+    start, colon, stop = interval.partition(":")
+    values = (exact_number(start.strip()), exact_number(stop.strip()))
+    if not sep or not colon or None in values:
+        raise InputError([Problem(option, f"expected NAME=START:STOP, got {text!r}")], train.path)
+    if name.strip() not in train.symbols:
+        raise InputError([Problem(option, f"unknown symbol {name.strip()!r} (the train has: "
+                                  f"{', '.join(sorted(train.symbols))})")], train.path)
+    low, high = (float(v) for v in values)  # type: ignore[arg-type]
+    if not low < high:
+        raise InputError([Problem(option, f"the interval {text!r} is empty (START < STOP)")], train.path)
+    return Sweep(name.strip(), low, high)
+
+
+def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
+    """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
+    train = variants.train
+    if not args.out:
+        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    port = _eval_port(train, args)
+    x = _sweep(train, "--plot", args.plot)
+    y = _sweep(train, "--vs", args.vs) if args.vs else None
+    values: dict[str, float] = {}
+    for check in train.expected:
+        if check.state in (None, args.state):
+            values = {k: float(v) for k, v in _values(train, [f"{k}={v}" for k, v in check.values.items()]).items()}
+            break
+    values.update({str(k): float(v) for k, v in _values(train, args.at).items()})
+    values = {str(k): v for k, v in values.items()}
+    swept = {x.name} | ({y.name} if y else set())
+    needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]
+    missing = [n for n in needed if n not in values]
+    if missing:
+        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
+    fixed = {n: values[n] for n in needed}
+    if y is None:
+        return png_bytes(efficiency_figure(variants, x, fixed, port))
+    return png_bytes(region_figure(variants, x, y, fixed, port))
 
 
 def _eval_port(train: Train, args: argparse.Namespace) -> str:
@@ -201,9 +252,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
             print("derive: several files need --out DIR (a directory)", file=sys.stderr)
             return 2
-        if args.json or args.latex or args.python or args.eval:
-            print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python and --eval "
-                  "take one file", file=sys.stderr)
+        if args.json or args.latex or args.python or args.eval or args.plot:
+            print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
+                  "--plot take one file", file=sys.stderr)
             return 2
         return _derive_into(args.out, args.files, progress)
     args.file = args.files[0]
@@ -226,9 +277,14 @@ def main(argv: Sequence[str] | None = None) -> int:
                 sys.stdout.write(text)
             return 0
         sets = _derive_sets(train, args.state, progress)
-        if (args.python or args.eval) and len(sets) > 1:
+        if (args.python or args.eval or args.plot) and len(sets) > 1:
             raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
                                       f"{', '.join(st.name for st in train.states)})")], train.path)
+        if args.plot:
+            write_atomic(args.out, _plot(sets[0][1], args))
+            return 0
+        if args.vs or args.at:
+            raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
         if args.latex:
             text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
         else:

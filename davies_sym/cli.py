@@ -52,7 +52,7 @@ def _parser() -> argparse.ArgumentParser:
                    "curves and efficiency contours over both")
     p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[],
                    help="with --plot: values of the other parameters (default: the first published check of the file)")
-    p.add_argument("--quiet", action="store_true", help="no progress messages")
+    p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
     return p
 
 
@@ -242,7 +242,7 @@ def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str],
 
 def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    show = not args.quiet and sys.stderr.isatty()
+    show = not args.quiet
 
     def progress(message: str) -> None:
         if show:

@@ -191,7 +191,7 @@ def turning_surface_figure(condition: sympy.Expr, x: Sweep, y: Sweep, z: Sweep, 
     roots = sympy.solve(condition, zs)
     if not roots:
         raise ValueError(f"the condition {condition} does not depend on {z.name}")
-    gx, gy = np.meshgrid(x.values(80), y.values(80))
+    gx, gy = np.meshgrid(x.values(150), y.values(150))
     figure = _figure(6.5, 5.5)
     axis = figure.add_subplot(projection="3d")
     for root in roots:

@@ -10,7 +10,6 @@ agree on each geometry; the geometries differ in the carrier speed only.
 
 from __future__ import annotations
 
-import dataclasses
 import random
 
 import pytest
@@ -19,8 +18,8 @@ import sympy
 import davies_sym
 from davies_sym.errors import GeometryError
 from davies_sym.geometry import train_layout
+from davies_sym.published_layouts import laus_humpage_layout
 from davies_sym.radicals import RadicalTable, restore
-from davies_sym.screws import vector
 from davies_sym.signs import SignOracle
 from davies_sym.variants import derive_variants
 from davies_sym.virtual_power_balance import virtual_power_balance
@@ -43,11 +42,7 @@ TABLE_6 = (
 
 def printed_layout():
     """Laus's geometry: pitch points of App. C, planet axis p_G of eq. (80)."""
-    layout = train_layout(TRAIN)
-    s = layout.radicals[0].symbol
-    printed = vector([0, -(r5 - r1) / (2 * r2), s / (2 * r2)])
-    return dataclasses.replace(layout, coupling_axes={**layout.coupling_axes, "G": printed},
-                               gear_axes={**layout.gear_axes, "2": printed, "3": printed})
+    return laus_humpage_layout(TRAIN)
 
 
 def _real(layout, expr):

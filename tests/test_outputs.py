@@ -191,3 +191,29 @@ def test_code_and_generated_code_pass_the_lint():
     result = subprocess.run([sys.executable, "-m", "ruff", "check", "davies_sym", "tests", "benchmarks",
                              "derivations"], cwd=ROOT, capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_progress_on_stderr_and_quiet_silences_it(tmp_path):
+    """Which step and which variant, on standard error; nothing with --quiet."""
+    loud = run(catalog_path("tuplin"), "--python", str(tmp_path / "a.py"))
+    assert loud.returncode == 0
+    assert "derive: variant 1 of 4: input A" in loud.stderr and "derive: solving the lossless actions" in loud.stderr
+    quiet = run(catalog_path("tuplin"), "--python", str(tmp_path / "b.py"), "--quiet")
+    assert quiet.returncode == 0 and quiet.stderr == ""
+
+
+def test_plot_writes_a_png_and_names_bad_arguments(tmp_path):
+    """--plot with the file's published design as the fixed values; --vs for the region map."""
+    one, two = tmp_path / "one.png", tmp_path / "two.png"
+    assert run(catalog_path("litvin_face_drive"), "--plot", "N4=60:99", "-o", str(one), "--quiet").returncode == 0
+    assert run(catalog_path("tuplin"), "--plot", "r1=20:100", "--vs", "r2=20:100", "--at", "r3=15", "-o", str(two),
+               "--quiet").returncode == 0
+    for path in (one, two):
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for args, message in ((["--plot", "N9=1:2"], "unknown symbol 'N9'"), (["--plot", "N4=9:2"], "is empty"),
+                          (["--plot", "N4=60"], "expected NAME=START:STOP"),
+                          (["--plot", "N4=60:99", "--at", "N1=x"], "not a number")):
+        result = run(catalog_path("litvin_face_drive"), *args, "-o", str(tmp_path / "x.png"), "--quiet")
+        assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr
+    missing = run(catalog_path("litvin_face_drive"), "--plot", "N4=60:99", "--quiet")
+    assert missing.returncode == 2 and "-o FILE.png" in missing.stderr

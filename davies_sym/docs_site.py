@@ -33,7 +33,7 @@ from .published_layouts import laus_humpage_layout
 from .states import train_in_state
 from .symbols import exact_number
 from .turning_conditions import mesh_roles
-from .variants import VariantSet, derive_variants
+from .variants import NOMINAL_EFFICIENCY, VariantSet, derive_variants
 
 Progress = Callable[[str], None]
 
@@ -101,13 +101,14 @@ def _automatic_figures(variants: VariantSet, stem: str, state: str | None, img: 
     """Efficiency against the first geometric parameter (or the first mesh efficiency)
     around the published design, and the variant map over the symbols of the first
     turning condition."""
-    nominal = _nominal(variants.train, state)
+    etas = {str(e) for e in efficiency_symbols(variants.train)}
+    # Without a published design, the mesh efficiencies take Glover's 0.98.
+    nominal = {**{e: float(NOMINAL_EFFICIENCY) for e in etas}, **_nominal(variants.train, state)}
     symbols = [str(s) for s in formula_symbols(variants)]
-    if not nominal or any(s not in nominal for s in symbols):
+    if any(s not in nominal for s in symbols):
         return []
     port = variants.train.ports.input
     suffix = f"_{state}" if state else ""
-    etas = {str(e) for e in efficiency_symbols(variants.train)}
     geometry = [s for s in symbols if s not in etas]
     out = []
     if geometry:
@@ -121,7 +122,8 @@ def _automatic_figures(variants: VariantSet, stem: str, state: str | None, img: 
     values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
     file = f"{stem}{suffix}_{sweep.name}.png"
     write_atomic(os.path.join(img, file), png_bytes(efficiency_figure(variants, sweep, values, port)))
-    out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design, input {port}."))
+    out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
+                            f"efficiencies 0.98 where none is published), input {port}."))
     if variants.conditions:
         free = sorted(str(s) for s in variants.conditions[0].simplified.free_symbols)
         if len(free) >= 2:

@@ -49,7 +49,7 @@ def test_every_malformed_file_has_a_case():
 def test_malformed_input_gives_one_clear_error(name):
     entry, words, line = MALFORMED_CASES[name]
     path = os.path.join(MALFORMED, name)
-    result = run(path, "--json")
+    result = run(path, "--json", "--quiet")
     assert result.returncode == 2
     assert result.stdout == ""
     assert "Traceback" not in result.stderr

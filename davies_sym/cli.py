@@ -108,13 +108,8 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     port = _eval_port(train, args)
     x = _sweep(train, "--plot", args.plot)
     y = _sweep(train, "--vs", args.vs) if args.vs else None
-    values: dict[str, float] = {}
-    for check in train.expected:
-        if check.state in (None, args.state):
-            values = {k: float(v) for k, v in _values(train, [f"{k}={v}" for k, v in check.values.items()]).items()}
-            break
-    values.update({str(k): float(v) for k, v in _values(train, args.at).items()})
-    values = {str(k): v for k, v in values.items()}
+    published = [f"{k}={v}" for k, v in train.published_design(args.state).items()]
+    values = {str(k): float(v) for k, v in _values(train, [*published, *args.at]).items()}
     swept = {x.name} | ({y.name} if y else set())
     needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]
     missing = [n for n in needed if n not in values]
@@ -276,6 +271,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             else:
                 sys.stdout.write(text)
             return 0
+        if (args.vs or args.at) and not args.plot:
+            raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
         sets = _derive_sets(train, args.state, progress)
         if (args.python or args.eval or args.plot) and len(sets) > 1:
             raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
@@ -283,8 +280,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.plot:
             write_atomic(args.out, _plot(sets[0][1], args))
             return 0
-        if args.vs or args.at:
-            raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
         if args.latex:
             text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
         else:

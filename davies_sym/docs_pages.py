@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import sympy
 
+from .errors import DaviesError
 from .model import Expected, Train
 from .parameters import parameter_table
 from .symbols import exact_number
@@ -59,7 +60,7 @@ def published_checks(variants: VariantSet, state: str | None) -> list[Check]:
         try:
             variant = variants.variant_for(values, port)
             derived = float(variants.evaluate(values, port))
-        except Exception:  # a value missing: shown as not evaluated
+        except DaviesError:  # a value missing: shown as not evaluated
             out.append(Check(check, None, None))
             continue
         out.append(Check(check, derived, variant.number))

@@ -18,6 +18,7 @@ import subprocess
 import sys
 import tempfile
 from collections.abc import Callable, Sequence
+from types import ModuleType
 
 from .analysis import Analysis
 from .atomic import write_atomic
@@ -28,7 +29,7 @@ from .loader import load
 from .model import Train
 from .parameter_domain import efficiency_symbols
 from .parameters import formula_symbols
-from .plots import Sweep, efficiency_figure, png_bytes, region_figure, turning_surface_figure
+from .plots import Sweep, efficiency_figure, formula_module, png_bytes, region_figure, turning_surface_figure
 from .published_layouts import laus_humpage_layout
 from .states import train_in_state
 from .symbols import exact_number
@@ -85,19 +86,17 @@ LITERATURE_FIGURES: dict[str, list[tuple[str, dict[str, object], str]]] = {
 
 
 def _nominal(train: Train, state: str | None) -> dict[str, float]:
-    """Values of the first published check of the train (or state)."""
-    for check in train.expected:
-        if check.state == state:
-            out = {}
-            for k, v in check.values.items():
-                value = exact_number(v)
-                if value is not None:
-                    out[k] = float(value)
-            return out
-    return {}
+    """The train's (or state's) published design as floats."""
+    out = {}
+    for k, v in train.published_design(state).items():
+        value = exact_number(v)
+        if value is not None:
+            out[k] = float(value)
+    return out
 
 
-def _automatic_figures(variants: VariantSet, stem: str, state: str | None, img: str) -> list[Figure]:
+def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, state: str | None,
+                       img: str) -> list[Figure]:
     """Efficiency against the first geometric parameter (or the first mesh efficiency)
     around the published design, and the variant map over the symbols of the first
     turning condition."""
@@ -121,7 +120,7 @@ def _automatic_figures(variants: VariantSet, stem: str, state: str | None, img: 
         return []
     values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
     file = f"{stem}{suffix}_{sweep.name}.png"
-    write_atomic(os.path.join(img, file), png_bytes(efficiency_figure(variants, sweep, values, port)))
+    write_atomic(os.path.join(img, file), png_bytes(efficiency_figure(variants, sweep, values, port, module)))
     out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
                             f"efficiencies 0.98 where none is published), input {port}."))
     if variants.conditions:
@@ -130,12 +129,13 @@ def _automatic_figures(variants: VariantSet, stem: str, state: str | None, img: 
             x, y = (Sweep(n, 0.5 * nominal[n], 1.5 * nominal[n]) for n in free[:2])
             values = {k: v for k, v in nominal.items() if k in symbols and k not in (x.name, y.name)}
             file = f"{stem}{suffix}_regions.png"
-            write_atomic(os.path.join(img, file), png_bytes(region_figure(variants, x, y, values, port)))
+            write_atomic(os.path.join(img, file), png_bytes(region_figure(variants, x, y, values, port, module)))
             out.append(Figure(file, f"Variant regions, turning conditions and efficiency over {x.name} and {y.name}."))
     return out
 
 
-def _literature_figures(train: Train, variants: VariantSet, stem: str, img: str) -> list[Figure]:
+def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, stem: str,
+                        img: str) -> list[Figure]:
     out = []
     for kind, arguments, caption in LITERATURE_FIGURES.get(stem, []):
         if kind == "sweep":
@@ -143,7 +143,7 @@ def _literature_figures(train: Train, variants: VariantSet, stem: str, img: str)
             assert isinstance(sweep, Sweep)
             nominal = _nominal(train, None)
             values = {k: v for k, v in nominal.items() if k != sweep.name}
-            figure = efficiency_figure(variants, sweep, values, train.ports.input)
+            figure = efficiency_figure(variants, sweep, values, train.ports.input, module)
             file = f"{stem}_literature_{sweep.name}.png"
         else:
             analysis = Analysis(train, coulomb_signs="mesh-linear", extra_symbols=efficiency_symbols(train),
@@ -183,9 +183,10 @@ def catalog_pages(root: str, target: str, progress: Progress) -> list[str]:
             progress(f"catalog {stem}" + (f", state {state}" if state else "") + ": variants and figures")
             one = train_in_state(train, train.state(state)) if state else train
             variants = derive_variants(one)
-            figures = _automatic_figures(variants, stem, state, img)
+            module = formula_module(variants)  # compiled once for every figure of the state
+            figures = _automatic_figures(variants, module, stem, state, img)
             if state is None:
-                figures = _literature_figures(train, variants, stem, img) + figures
+                figures = _literature_figures(train, variants, module, stem, img) + figures
             sections[state] = (variants, figures)
         write_atomic(os.path.join(target, "catalog", f"{stem}.md"), catalog_page(train, stem, sections))
         stems.append(stem)

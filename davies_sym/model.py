@@ -126,6 +126,14 @@ class Train:
                 return st
         raise KeyError(name)
 
+    def published_design(self, state: str | None = None) -> Mapping[str, str]:
+        """Parameter values of the first published check of ``state`` (or of a check
+        given for the whole train); empty when there is none."""
+        for check in self.expected:
+            if check.state in (None, state):
+                return check.values
+        return {}
+
     def with_ports(self, ports: Ports) -> Train:
         """The same train with other input/output ports."""
         return replace(self, ports=ports)

@@ -79,14 +79,10 @@ def _fixed_text(values: Mapping[str, float], skip: Sequence[str]) -> str:
 
 
 def _variant_numbers(module: ModuleType, kwargs: Mapping[str, Any], input: str, shape: tuple[int, ...]) -> np.ndarray:
-    """Number of the variant that holds at each point (0 where none)."""
-    code = np.zeros(shape, dtype=np.int64)
+    """Number of the variant that holds at each point (0 where none), from the region
+    code the module's own selection uses."""
     with np.errstate(all="ignore"):
-        for bit, name in enumerate(module.CONDITIONS):
-            function = getattr(module, f"condition_{name}")
-            arguments = function.__code__.co_varnames[:function.__code__.co_kwonlyargcount]
-            negative = np.asarray(function(**{a: kwargs[a] for a in arguments}) < 0)
-            code |= np.broadcast_to(negative, shape).astype(np.int64) << bit
+        code = module._region({k: np.asarray(v, dtype=float) for k, v in kwargs.items()}, shape)
     out = np.zeros(shape, dtype=np.int64)
     for v in module.VARIANTS:
         if v["input"] == input:
@@ -99,9 +95,11 @@ def _describe(module: ModuleType, number: int) -> str:
     return f"({number}) " + (", ".join(v["conditions"]) or "every design")
 
 
-def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str) -> Any:
-    """Efficiency and stacked losses against one parameter, variant regions marked."""
-    module = formula_module(variants)
+def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str,
+                      module: ModuleType | None = None) -> Any:
+    """Efficiency and stacked losses against one parameter, variant regions marked
+    (``module``: the train's compiled :func:`formula_module`, if already at hand)."""
+    module = module or formula_module(variants)
     xs = sweep.values(POINTS_1D)
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
     names = [p["name"] for p in module.PARAMETERS]
@@ -140,12 +138,13 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     return figure
 
 
-def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str) -> Any:
+def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str,
+                  module: ModuleType | None = None) -> Any:
     """Variant regions, turning-condition curves and efficiency contours over two parameters."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    module = formula_module(variants)
+    module = module or formula_module(variants)
     gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in variants.symbols}}
@@ -165,9 +164,7 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
         contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
         axis.clabel(contours, fmt="%.1f %%", fontsize=7)
     with np.errstate(all="ignore"):
-        for name in module.CONDITIONS:
-            function = getattr(module, f"condition_{name}")
-            args = function.__code__.co_varnames[:function.__code__.co_kwonlyargcount]
+        for name, (function, args) in module._CONDITIONS.items():
             level = np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
             if np.nanmin(level) < 0 < np.nanmax(level):
                 curve = axis.contour(gx, gy, level, levels=[0], colors="crimson", linewidths=2)

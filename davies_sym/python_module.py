@@ -30,7 +30,7 @@ from sympy.printing.numpy import NumPyPrinter
 
 from .errors import DerivationError
 from .parameters import Parameter, admissible_relations, eliminated_symbols, parameter_table
-from .power_losses import loss_fractions, lossy_couplings
+from .power_losses import all_loss_fractions, lossy_couplings
 from .radicals import restore
 from .variant_report import condition_text, mesh_text
 from .variants import Variant, VariantSet
@@ -136,7 +136,7 @@ def _region(variants: VariantSet, variant: Variant) -> int:
     return sum(1 << k for k, c in enumerate(variants.conditions) if variant.signs[c.name] < 0)
 
 
-def _header(variants: VariantSet, parameters: Sequence[Parameter]) -> list[str]:
+def _header(variants: VariantSet) -> list[str]:
     train = variants.train
     origin = os.path.basename(train.path) if train.path else "a topology file"
     lines = textwrap.wrap(f'"""Efficiency of {train.name}: every turning-condition variant.', WIDTH)
@@ -288,8 +288,8 @@ def _constants(variants: VariantSet, parameters: Sequence[Parameter],
         lines += _strings(f"{c.name!r}: ", (sympy.sstr(c.simplified), sympy.latex(c.simplified)), "    ")
     lines += ["}", "VARIANTS: Final[tuple[Variant, ...]] = ("]
     for v in variants.variants:
-        signs = [c for c in variants.conditions]
-        latex = tuple(f"{sympy.latex(c.simplified)} {'>' if v.signs[c.name] > 0 else '<'} 0" for c in signs)
+        latex = tuple(f"{sympy.latex(c.simplified)} {'>' if v.signs[c.name] > 0 else '<'} 0"
+                      for c in variants.conditions)
         lines += ["    {", f"        'name': {v.name!r},", f"        'number': {v.number},",
                   f"        'input': {v.input!r},", f"        'output': {v.output!r},",
                   f"        'region': {_region(variants, v)},",
@@ -336,7 +336,7 @@ def python_module(variants: VariantSet) -> str:
     relations = admissible_relations(variants)
     lossy = lossy_couplings(variants)
     radicals = variants.analysis.network.layout.radicals
-    lines = [*_header(variants, parameters), _TYPES, ""]
+    lines = [*_header(variants), _TYPES, ""]
     lines += ["_Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]", "", ""]
     lines += _constants(variants, parameters, relations, lossy)
     conditions = []
@@ -352,12 +352,13 @@ def python_module(variants: VariantSet) -> str:
         lines += code
         relation_table.append((f"{sympy.sstr(r)} > 0", f"_relation_{k}", args))
     efficiency, losses = [], []
+    fractions_of = all_loss_fractions(variants)
     for v in variants.variants:
         doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
         code, args = _function(v.name, doc, [restore(v.efficiency, radicals)])
         lines += code
         efficiency.append((v.name, v.name, args))
-        fractions = loss_fractions(variants, v)
+        fractions = fractions_of[v.name]
         code, args = _function(f"_losses_{v.name}", f"Losses over the input power in variant ({v.number}).",
                                [restore(fractions[n].to_expr(), radicals) for n in lossy],
                                "tuple[Array, ...]" if len(lossy) > 1 else "Array")

@@ -164,9 +164,10 @@ def test_losses_add_up_and_equal_the_exact_fractions(name):
 
 
 def test_self_locking_and_inadmissible_designs_give_nan_with_a_warning_or_an_error():
-    """Tuplin with B as input self-locks where eta_C eta_D r1 (r1 - r2 - r3) + r2 r3 <= 0
-    (Laus section 3.4.1.6 for A as input turned round); an efficiency above 1 and a
-    pinion larger than its annulus are outside the admissible parameters."""
+    """Tuplin with B as input self-locks where the numerator of variant (3),
+    eta_C eta_D r1 (r1 - r2 - r3) + r2 r3, is <= 0 (checked exactly below, not a
+    published number); a mesh efficiency above 1 and a pinion larger than its annulus
+    are outside the admissible parameters."""
     vs, module = variant_set("tuplin"), module_of("tuplin")
     r1, r2, r3 = (vs.train.symbols[n] for n in ("r1", "r2", "r3"))
     eta_c, eta_d = (vs.train.symbols[n] for n in ("eta_C", "eta_D"))

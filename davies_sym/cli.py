@@ -13,6 +13,7 @@ import sympy
 from .analysis import Analysis
 from .atomic import write_atomic
 from .errors import DaviesError, InputError, Problem
+from .expressions import ExpressionError, parse_expression
 from .latex_report import latex_document, latex_states_document
 from .loader import load
 from .model import Train
@@ -69,14 +70,10 @@ def _values(train: Train, pairs: Sequence[str]) -> dict[sympy.Symbol, sympy.Expr
             problems.append(Problem("--eval", f"unknown symbol {name!r} (the train has: "
                                     f"{', '.join(sorted(train.symbols))})"))
             continue
-        value = exact_number(text.strip())
-        if value is None:
-            try:
-                value = sympy.nsimplify(sympy.sympify(text, rational=True), rational=True)
-            except (sympy.SympifyError, TypeError, SyntaxError):
-                value = None
-        if value is None or not value.is_number or not value.is_real:
-            problems.append(Problem("--eval", f"{name}: {text!r} is not a number"))
+        try:
+            value = parse_expression(text)
+        except ExpressionError as exc:
+            problems.append(Problem("--eval", f"{name}: {exc}"))
             continue
         out[train.symbols[name]] = value
     if problems:

@@ -2,15 +2,25 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Mapping
 from typing import Any
 
 import sympy
 
 from .errors import Problem
+from .expressions import shortened
 from .schema import Field
 from .symbols import QuantityError, parse_quantity
 from .yaml_source import SourceDocument
+
+#: Names that definitions may take, by kind, and how the rule reads in a message.
+NAME_PATTERNS: dict[str, tuple[re.Pattern[str], str]] = {
+    "link": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
+    "gear": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
+    "coupling": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
+    "state": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
+}
 
 
 class EntryReader:
@@ -47,6 +57,21 @@ class EntryReader:
             self.problem(path, f"expected a name, got {_describe(value)}")
             return None
         return str(value)
+
+    def defined_name(self, value: Any, path: str, kind: str) -> str | None:
+        """The name a link, gear, coupling or state is defined under, checked against ``NAME_PATTERNS``.
+
+        Coupling and state names become parts of symbols, function and file names of the
+        outputs, so they are identifiers; links and gears may also hold ``/ . + -`` (``3/4``).
+        """
+        name = self.name(value, path)
+        if name is None:
+            return None
+        pattern, allowed = NAME_PATTERNS[kind]
+        if not pattern.fullmatch(name):
+            self.problem(path, f"{shortened(name)} is not a valid {kind} name: use {allowed} (at most 40)")
+            return None
+        return name
 
     def quantity(self, value: Any, path: str, role: str) -> sympy.Expr | None:
         try:

@@ -117,7 +117,7 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
     links: list[Link] = []
     if isinstance(value, list):
         for i, item in enumerate(value):
-            name = reader.name(item, f"links[{i}]")
+            name = reader.defined_name(item, f"links[{i}]", "link")
             if name is None:
                 continue
             if any(link.name == name for link in links):
@@ -127,6 +127,8 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
     elif isinstance(value, Mapping):
         for name, entry in value.items():
             entry = entry or {}
+            if reader.defined_name(name, f"links.{name}", "link") is None:
+                continue
             if reader.mapping(entry, f"links.{name}") is None:
                 continue
             reader.check_keys(entry, f"links.{name}", LINK)
@@ -143,6 +145,8 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
     table = reader.mapping(value, "gears")
     for name, entry in (table or {}).items():
         path = f"gears.{name}"
+        if reader.defined_name(name, path, "gear") is None:
+            continue
         entry = reader.mapping(entry, path)
         if entry is None:
             continue
@@ -189,6 +193,8 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str],
     table = reader.mapping(value, "couplings")
     for name, entry in (table or {}).items():
         path = f"couplings.{name}"
+        if reader.defined_name(name, path, "coupling") is None:
+            continue
         entry = reader.mapping(entry, path)
         if entry is None:
             continue
@@ -278,6 +284,8 @@ def _read_states(value: Any, reader: EntryReader, links: set[str],
     out = []
     for name, entry in states.items():
         path = f"states.{name}"
+        if reader.defined_name(name, path, "state") is None:
+            continue
         entry = reader.mapping(entry, path)
         if entry is None:
             continue

@@ -7,12 +7,15 @@ written in a topology file are taken exactly: ``0.99`` becomes ``99/100``.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Mapping
 from fractions import Fraction
 from types import MappingProxyType
 
 import sympy
+
+from .expressions import ExpressionError, parse_expression, shortened
 
 #: Assumptions per symbol role.
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
@@ -25,9 +28,9 @@ ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
     "angle": {"real": True},
 })
 
-_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
-_ALLOWED_FUNCTIONS = {"sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos,
-                      "tan": sympy.tan, "pi": sympy.pi}
+
+#: A plain decimal or fraction with a modest exponent (Fraction would expand 1e999999999).
+_PLAIN_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d{1,3})?(/\d{1,300})?")
 
 
 def make_symbol(name: str, role: str) -> sympy.Symbol:
@@ -42,12 +45,17 @@ def exact_number(value: object) -> sympy.Rational | None:
     if isinstance(value, int):
         return sympy.Integer(value)
     if isinstance(value, float):
+        if not math.isfinite(value):
+            return None
         # repr gives the shortest decimal that round-trips: 0.99 -> 99/100 exactly.
         return sympy.Rational(repr(value))
     if isinstance(value, str):
+        text = value.strip()
+        if not _PLAIN_NUMBER.fullmatch(text):
+            return None
         try:
-            frac = Fraction(value.strip())
-        except (ValueError, ZeroDivisionError):
+            frac = Fraction(text)
+        except (ValueError, ZeroDivisionError, OverflowError):
             return None
         return sympy.Rational(frac.numerator, frac.denominator)
     return None
@@ -61,25 +69,23 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol]) -
     """Read a number or an expression of symbols; new names get the assumptions of ``role``.
 
     ``symbols`` collects the symbols of the train (name -> symbol); it is extended with
-    any new name met in ``value``.
+    any new name met in ``value``.  Text is read by the grammar of
+    :mod:`davies_sym.expressions`, never evaluated as Python.
     """
+    if isinstance(value, float) and not math.isfinite(value):
+        raise QuantityError(f"expected a finite number, got {value!r}")
     number = exact_number(value)
     if number is not None:
         return number
     if not isinstance(value, str) or not value.strip():
-        raise QuantityError(f"expected a number or a symbol expression, got {value!r}")
-    local: dict[str, object] = dict(_ALLOWED_FUNCTIONS)
-    for name in _IDENTIFIER.findall(value):
-        if name in _ALLOWED_FUNCTIONS:
-            continue
+        raise QuantityError(f"expected a number or a symbol expression, got {shortened(repr(value))}")
+
+    def symbol(name: str) -> sympy.Symbol:
         if name not in symbols:
             symbols[name] = make_symbol(name, role)
-        local[name] = symbols[name]
+        return symbols[name]
+
     try:
-        expr = sympy.parse_expr(value, local_dict=local, evaluate=True)
-    except (SyntaxError, TypeError, ValueError, sympy.SympifyError) as exc:
-        raise QuantityError(f"cannot read {value!r} as an expression ({exc})") from None
-    expr = sympy.nsimplify(expr, rational=True) if expr.has(sympy.Float) else expr
-    if not isinstance(expr, sympy.Expr):
-        raise QuantityError(f"{value!r} is not an arithmetic expression")
-    return expr
+        return parse_expression(value, symbol)
+    except ExpressionError as exc:
+        raise QuantityError(str(exc)) from None

@@ -69,7 +69,9 @@ class Variant:
         """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
         parts = [f"{self.input}_to_{self.output}"]
         parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
-        return "_".join(_identifier(p) for p in parts)
+        name = "_".join(_identifier(p) for p in parts)
+        # A port named by a number would start the function name with a digit.
+        return name if name[0].isalpha() else f"from_{name}"
 
 
 def _identifier(text: str) -> str:

@@ -16,7 +16,7 @@ import time
 from derive_chain import chain_yaml
 
 import davies_sym
-from davies_sym.variants import derive_variants
+from davies_sym.efficiency.variants import derive_variants
 
 
 def main(sizes: list[int]) -> None:

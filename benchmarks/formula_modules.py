@@ -22,11 +22,11 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, ROOT)
 
-from davies_sym.loader import load  # noqa: E402
-from davies_sym.parameter_domain import ParameterDomain  # noqa: E402
-from davies_sym.parameters import formula_symbols  # noqa: E402
-from davies_sym.states import train_in_state  # noqa: E402
-from davies_sym.variants import derive_variants  # noqa: E402
+from davies_sym.efficiency.parameter_domain import ParameterDomain  # noqa: E402
+from davies_sym.efficiency.parameters import formula_symbols  # noqa: E402
+from davies_sym.efficiency.variants import derive_variants  # noqa: E402
+from davies_sym.topology.loader import load  # noqa: E402
+from davies_sym.topology.states import train_in_state  # noqa: E402
 
 
 def _trains():

@@ -1,13 +1,27 @@
 """davies_sym: closed-form mechanical efficiency of gear trains by Davies' method.
 
+The package is a pipeline; each stage is a subpackage that hands the next a frozen result:
+
+- :mod:`davies_sym.topology`: the YAML language, loading, validation -> :class:`Train`
+- :mod:`davies_sym.geometry`: axes, pitch points, geometric constraints -> ``Layout``
+- :mod:`davies_sym.network`: coupling graph, screws, M_N, A_N, D_A, null spaces -> :class:`Analysis`
+- :mod:`davies_sym.efficiency`: virtual power, turning conditions, variants, losses -> :class:`VariantSet`
+- :mod:`davies_sym.emit`: text, JSON, LaTeX, formula modules, figures
+- :mod:`davies_sym.cli`: the ``derive`` command
+
+:mod:`davies_sym.algebra` holds the exact algebra the stages share (flint polynomials,
+fraction-free elimination, square roots, signs, Plücker coordinates).
+
 >>> import davies_sym
 >>> train = davies_sym.load("catalog/simple_pair.yaml")   # doctest: +SKIP
 >>> davies_sym.analyse(train).efficiency                   # doctest: +SKIP
 r1*(r2 - zeta_C)/(r2*(r1 + zeta_C))
+>>> davies_sym.derive(train).evaluate(values, "A")         # doctest: +SKIP
 """
 
-from .analysis import Analysis, SignCondition, analyse
-from .errors import (
+from davies_sym.efficiency.turning_conditions import TurningCondition
+from davies_sym.efficiency.variants import Variant, VariantSet, derive_variants
+from davies_sym.errors import (
     DaviesError,
     DerivationError,
     GeometryError,
@@ -16,8 +30,15 @@ from .errors import (
     TopologyError,
     TopologySyntaxError,
 )
-from .loader import load, loads
-from .model import Gear, Link, Ports, Train
+from davies_sym.network.analysis import Analysis, SignCondition, analyse
+from davies_sym.topology.loader import load, loads
+from davies_sym.topology.model import Gear, Link, Ports, State, Train
+from davies_sym.topology.states import train_in_state
+
+#: Every variant of a train's efficiency (Laus Tables 5 and 6); ``derive(train).evaluate(values, input)``.
+derive = derive_variants
+
+__version__ = "0.1.0"
 
 __all__ = [
     "Analysis",
@@ -30,12 +51,17 @@ __all__ = [
     "MobilityError",
     "Ports",
     "SignCondition",
+    "State",
     "TopologyError",
     "TopologySyntaxError",
     "Train",
+    "TurningCondition",
+    "Variant",
+    "VariantSet",
     "analyse",
+    "derive",
+    "derive_variants",
     "load",
     "loads",
+    "train_in_state",
 ]
-
-__version__ = "0.1.0"

@@ -10,21 +10,21 @@ from collections.abc import Callable, Sequence
 
 import sympy
 
-from .analysis import Analysis
-from .atomic import write_atomic
-from .errors import DaviesError, InputError, Problem
-from .expressions import ExpressionError, parse_expression
-from .latex_report import latex_document, latex_states_document
-from .loader import load
-from .model import Train
-from .parameters import formula_symbols
-from .plots import Sweep, efficiency_figure, png_bytes, region_figure
-from .python_module import python_module
-from .report import kinematics_document, kinematics_text, text_summary, train_document
-from .states import train_in_state
-from .symbols import exact_number
-from .variant_report import variants_document, variants_text
-from .variants import VariantSet, derive_variants
+from davies_sym.efficiency.parameters import formula_symbols
+from davies_sym.efficiency.variants import VariantSet, derive_variants
+from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.latex import latex_document, latex_states_document
+from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_figure
+from davies_sym.emit.python_module import python_module
+from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
+from davies_sym.emit.variant_report import variants_document, variants_text
+from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.expressions import ExpressionError, parse_expression
+from davies_sym.topology.loader import load
+from davies_sym.topology.model import Train
+from davies_sym.topology.states import train_in_state
+from davies_sym.topology.symbols import exact_number
 
 
 def _parser() -> argparse.ArgumentParser:

@@ -5,15 +5,19 @@ from __future__ import annotations
 import glob
 import os
 import random
+import sys
 
 import pytest
 import sympy
 
 import davies_sym
+from davies_sym.topology.symbols import make_symbol
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CATALOG = os.path.join(ROOT, "catalog")
 MALFORMED = os.path.join(ROOT, "tests", "malformed")
+# The documentation tools and the literature's printed layouts live beside the package.
+sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 
 def catalog_path(name: str) -> str:
@@ -36,7 +40,7 @@ def variant(name: str, replacements: dict[str, str]) -> davies_sym.Train:
 
 
 def S(name: str, role: str = "length") -> sympy.Symbol:
-    return davies_sym.symbols.make_symbol(name, role)
+    return make_symbol(name, role)
 
 
 def equal(a: sympy.Expr, b: sympy.Expr, subs: dict | None = None) -> bool:
@@ -56,7 +60,7 @@ def catalog_trains(parallel_axes_only: bool = False) -> list[tuple[str, davies_s
     """Every 1-DOF train of the catalog: each file, or each operating state of a file
     that lists states, with an id such as ``simpson[first]``; optionally only the trains
     with parallel axes (those Chen's virtual-power balance route covers)."""
-    from davies_sym.states import train_in_state
+    from davies_sym.topology.states import train_in_state
 
     out = []
     for path in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))):

@@ -6,9 +6,9 @@ from __future__ import annotations
 import sympy
 
 import davies_sym
-from davies_sym.states import train_in_state
-from davies_sym.variants import derive_variants
-from davies_sym.virtual_power_balance import virtual_power_balance
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
+from davies_sym.topology.states import train_in_state
 
 from conftest import S, catalog_path, equal
 

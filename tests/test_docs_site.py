@@ -10,11 +10,11 @@ import sys
 
 import pytest
 import sympy
+from docs_site import BUILD_ENVIRONMENT, stage
 
 import davies_sym
-from davies_sym.docs_site import BUILD_ENVIRONMENT, stage
-from davies_sym.states import train_in_state
-from davies_sym.variants import derive_variants
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.topology.states import train_in_state
 
 from conftest import CATALOG, ROOT, read_text
 
@@ -67,7 +67,7 @@ def test_reference_pages(staged):
     cli = read_text(os.path.join(staging, "docs", "cli.md"))
     assert "--plot NAME=START:STOP" in cli and "--python OUT.py" in cli
     api = read_text(os.path.join(staging, "docs", "api.md"))
-    assert "## `davies_sym.variants`" in api and "### `derive_variants`" in api
+    assert "## `davies_sym.efficiency.variants`" in api and "### `derive_variants`" in api
     assert read_text(os.path.join(staging, "docs", "topology.md")) == read_text(os.path.join(ROOT, "docs",
                                                                                           "topology.md"))
 

@@ -14,7 +14,7 @@ import sympy
 
 import davies_sym
 from davies_sym.cli import main
-from davies_sym.expressions import MAX_EXPONENT, ExpressionError, check_name, parse_expression
+from davies_sym.topology.expressions import MAX_EXPONENT, ExpressionError, check_name, parse_expression
 
 ROOT = Path(__file__).resolve().parent.parent
 

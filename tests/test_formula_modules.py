@@ -21,10 +21,10 @@ import numpy as np
 import pytest
 import sympy
 
-from davies_sym.parameter_domain import ParameterDomain, Point, efficiency_symbols
-from davies_sym.parameters import admissible_relations, formula_symbols, parameter_table
-from davies_sym.power_losses import loss_fractions, lossy_couplings
-from davies_sym.variants import VariantSet, derive_variants
+from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
+from davies_sym.efficiency.parameters import admissible_relations, formula_symbols, parameter_table
+from davies_sym.efficiency.power_losses import loss_fractions, lossy_couplings
+from davies_sym.efficiency.variants import VariantSet, derive_variants
 
 from conftest import ROOT, catalog_trains
 

@@ -14,15 +14,15 @@ import random
 
 import pytest
 import sympy
+from published_layouts import laus_humpage_layout
 
 import davies_sym
+from davies_sym.algebra.radicals import RadicalTable, restore
+from davies_sym.algebra.signs import SignOracle
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
 from davies_sym.errors import GeometryError
 from davies_sym.geometry import train_layout
-from davies_sym.published_layouts import laus_humpage_layout
-from davies_sym.radicals import RadicalTable, restore
-from davies_sym.signs import SignOracle
-from davies_sym.variants import derive_variants
-from davies_sym.virtual_power_balance import virtual_power_balance
 
 from conftest import catalog_path, equal, read_text
 

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import os
 
+from topology_doc import render
+
 import davies_sym
-from davies_sym.topology_doc import render
 
 from conftest import ROOT, equal, read_text, variant
 
@@ -33,6 +34,6 @@ def test_non_reciprocal_explicit_action_is_rejected():
 
 def test_topology_reference_is_generated_and_current():
     """docs/topology.md is generated from the schema; regenerate with
-    ``python3 -m davies_sym.topology_doc``."""
+    ``python3 tools/topology_doc.py``."""
     with open(os.path.join(ROOT, "docs", "topology.md"), encoding="utf-8") as handle:
         assert handle.read() == render()

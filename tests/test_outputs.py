@@ -17,7 +17,7 @@ import sympy
 from sympy.parsing.latex import parse_latex
 
 import davies_sym
-from davies_sym.variants import derive_variants
+from davies_sym.efficiency.variants import derive_variants
 
 from conftest import CATALOG, ROOT, S, catalog_path, read_text
 

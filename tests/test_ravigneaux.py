@@ -14,10 +14,10 @@ import pytest
 import sympy
 
 import davies_sym
+from davies_sym.algebra.radicals import restore
+from davies_sym.efficiency.variants import derive_variants
 from davies_sym.geometry import train_layout
-from davies_sym.radicals import restore
-from davies_sym.states import train_in_state
-from davies_sym.variants import derive_variants
+from davies_sym.topology.states import train_in_state
 
 from conftest import catalog_path, equal, read_text
 
@@ -82,7 +82,7 @@ def test_efficiency_does_not_depend_on_the_placement(placement):
 def test_second_gear_efficiency_both_routes():
     """A prediction (planet teeth chosen): every mesh at 0.98 gives 96.70 % in second
     gear; the virtual-power balance on the same 2-D layout gives the same number."""
-    from davies_sym.virtual_power_balance import virtual_power_balance
+    from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
 
     train = train_in_state(TRAIN, TRAIN.state("second"))
     values = {**ZF, **{s: sympy.Rational(98, 100) for n, s in SYM.items() if n.startswith("eta")}}

@@ -11,9 +11,9 @@ import pytest
 import sympy
 
 import davies_sym
-from davies_sym.parameter_domain import ParameterDomain, efficiency_symbols
-from davies_sym.variants import derive_variants
-from davies_sym.virtual_power_balance import virtual_power_balance
+from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
 
 from conftest import ROOT, S, catalog_path, catalog_trains, equal, read_text
 

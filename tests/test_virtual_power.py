@@ -6,14 +6,14 @@ from __future__ import annotations
 import sympy
 
 import davies_sym
-from davies_sym.absolute_motion import (
+from davies_sym.efficiency.absolute_motion import (
     absolute_motions,
     reduced_incidence_pseudoinverse,
     relative_motions,
     twists_equal,
 )
-from davies_sym.couplings import GearMesh
-from davies_sym.virtual_power import mesh_power_flow
+from davies_sym.efficiency.virtual_power import mesh_power_flow
+from davies_sym.topology.couplings import GearMesh
 
 from conftest import S, catalog_path, catalog_trains, equal
 

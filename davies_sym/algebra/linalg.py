@@ -1,0 +1,121 @@
+"""Sparse fraction-free Gauss-Jordan elimination over integer polynomials.
+
+Rows are dicts ``column -> fmpz_mpoly`` holding only non-zero entries.  Pivots are
+chosen Markowitz-style, constant entries first (most cutset entries are +-1), and every
+row is divided by the gcd of its entries after each step, so entries stay small
+without ever forming fractions.  Columns listed in ``prefer_free`` (the primary
+variables of Laus, e.g. the input torque T_A) are pivoted last, so they stay free
+whenever the system allows it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+
+from flint import fmpz_mpoly
+
+from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+
+Row = dict[int, fmpz_mpoly]
+Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
+
+
+def _remove_content(row: Row) -> Row:
+    g = None
+    for value in row.values():
+        g = value if g is None else g.gcd(value)
+        if g.is_one():
+            return row
+    if g is None or g.is_one():
+        return row
+    if g.leading_coefficient() < 0:
+        g = -g
+    return {c: v / g for c, v in row.items()}
+
+
+def _eliminate(target: Row, pivot_row: Row, col: int, reduce: Reduce | None = None) -> Row:
+    """``target`` with column ``col`` eliminated by a fraction-free combination;
+    ``reduce`` brings entries to canonical form (radical relations) before zero tests."""
+    p, a = pivot_row[col], target[col]
+    g = p.gcd(a)
+    if not g.is_one():
+        p, a = p / g, a / g
+    out: Row = {}
+    for c in target.keys() | pivot_row.keys():
+        if c == col:
+            continue
+        value = p * target[c] if c in target else None
+        if c in pivot_row:
+            term = a * pivot_row[c]
+            value = -term if value is None else value - term
+        if value is not None and reduce is not None:
+            value = reduce(value)
+        if value is not None and not value.is_zero():
+            out[c] = value
+    return _remove_content(out)
+
+
+@dataclass(frozen=True)
+class Elimination:
+    """Reduced row echelon form: ``pivots[col]`` is the row that solves for ``col``."""
+
+    ncols: int
+    pivots: Mapping[int, Row]
+
+    @property
+    def free(self) -> tuple[int, ...]:
+        return tuple(c for c in range(self.ncols) if c not in self.pivots)
+
+    @property
+    def rank(self) -> int:
+        return len(self.pivots)
+
+    def solution(self, ring: PolynomialRing) -> dict[int, dict[int, RationalFunction]]:
+        """Every column as a linear combination of the free columns.
+
+        ``x_c = sum_j coeff[c][j] x_j`` with j free; a free column maps to itself.
+        """
+        one = RationalFunction.polynomial(ring, ring.one)
+        out: dict[int, dict[int, RationalFunction]] = {j: {j: one} for j in self.free}
+        for col, row in self.pivots.items():
+            pivot = row[col]
+            out[col] = {j: RationalFunction.make(ring, -v, pivot) for j, v in row.items() if j != col}
+        return out
+
+
+def gauss_jordan(rows: Iterable[Row], ncols: int, prefer_free: Iterable[int] = (),
+                 progress: Callable[[int, int], None] | None = None, reduce: Reduce | None = None) -> Elimination:
+    """Fraction-free Gauss-Jordan elimination of sparse polynomial ``rows``; ``reduce``
+    (the ring's radical relations) keeps entries canonical, so zero tests are exact."""
+    if reduce is not None:
+        rows = [{c: v for c, v in ((c, reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
+    work = [_remove_content(dict(r)) for r in rows if r]
+    late = set(prefer_free)
+    pivot_row_of: dict[int, int] = {}
+    pending = list(range(len(work)))
+    total = len(pending)
+    while pending:
+        col_count: dict[int, int] = {}
+        for i in pending:
+            for c in work[i]:
+                col_count[c] = col_count.get(c, 0) + 1
+        best = None
+        for i in pending:
+            row = work[i]
+            for c, v in row.items():
+                score = (c in late, not v.is_constant(), (len(row) - 1) * (col_count[c] - 1), len(v), c)
+                if best is None or score < best[0]:
+                    best = (score, i, c)
+        if best is None:
+            break
+        _, i, col = best
+        pending.remove(i)
+        for j, row in enumerate(work):
+            if j != i and col in row:
+                work[j] = _eliminate(row, work[i], col, reduce)
+        pivot_row_of[col] = i
+        pending = [j for j in pending if work[j]]
+        if progress is not None:
+            progress(total - len(pending), total)
+    return Elimination(ncols, {col: work[i] for col, i in pivot_row_of.items()})

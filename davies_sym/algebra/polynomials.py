@@ -1,0 +1,303 @@
+"""Exact polynomials and rational functions on python-flint (``fmpz_mpoly``).
+
+One polynomial ring per derivation holds every symbol of the train.  Sympy
+expressions enter through :meth:`PolynomialRing.rational` and leave through
+:meth:`RationalFunction.to_expr`, which builds the product of flint's irreducible
+factors directly, so no sympy simplification runs in the pipeline.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from math import lcm
+
+import sympy
+from flint import fmpq, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
+
+from davies_sym.algebra.radicals import Radical
+from davies_sym.errors import DerivationError
+
+
+class PolynomialRing:
+    """Z[x1, ..., xn] over the given sympy symbols (ordered by name)."""
+
+    def __init__(self, symbols: Iterable[sympy.Symbol], radicals: Iterable[Radical] = ()):
+        radicals = tuple(radicals)
+        unique = {s.name: s for s in symbols}
+        unique.update({r.symbol.name: r.symbol for r in radicals})
+        for r in radicals:
+            unique.update({s.name: s for s in r.radicand.free_symbols})  # type: ignore[attr-defined]
+        self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
+        names = tuple(s.name for s in self.symbols) or ("_one",)
+        self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
+        self._gens = dict(zip(self.symbols, self.ctx.gens(), strict=False))
+        self.radicals = radicals
+        # Radical symbols stay symbols (positive) in expressions: sign reasoning needs
+        # polynomials; documents write them as square roots (RadicalTable.restore).
+        self._exprs = tuple(self.symbols)
+        #: (generator index, radicand) of every radical symbol: s^2 = m.
+        self._relations = tuple((self.symbols.index(r.symbol), self.polynomial(r.radicand)) for r in radicals)
+
+    def reduce(self, p: fmpz_mpoly) -> fmpz_mpoly:
+        """``p`` modulo ``s^2 - m`` for every radical: degree at most one in each ``s``
+        (a canonical form, so ``is_zero`` is exact)."""
+        for index, radicand in self._relations:
+            if p.degrees()[index] < 2:
+                continue
+            parts: dict[int, dict[tuple[int, ...], int]] = {}
+            for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
+                k = monom[index]
+                stripped = (*monom[:index], k % 2, *monom[index + 1:])
+                parts.setdefault(k // 2, {})[stripped] = int(coeff)
+            total = self.zero
+            for half, data in parts.items():
+                total += self.ctx.from_dict(data) * radicand**half
+            p = total
+        return p
+
+    def rationalised(self, num: fmpz_mpoly, den: fmpz_mpoly) -> tuple[fmpz_mpoly, fmpz_mpoly]:
+        """``num / den`` reduced, with every radical moved out of the denominator by
+        multiplying with its conjugate ``den(-s)``."""
+        num, den = self.reduce(num), self.reduce(den)
+        for index, _ in self._relations:
+            if den.degrees()[index] == 0:
+                continue
+            conjugate = self.ctx.from_dict({m: (-c if m[index] % 2 else c) for m, c in den.to_dict().items()})
+            num, den = self.reduce(num * conjugate), self.reduce(den * conjugate)
+        return num, den
+
+    @property
+    def zero(self) -> fmpz_mpoly:
+        return self.ctx.from_dict({})
+
+    @property
+    def one(self) -> fmpz_mpoly:
+        return self.ctx.constant(1)
+
+    def gen(self, symbol: sympy.Symbol) -> fmpz_mpoly:
+        return self._gens[symbol]
+
+    def _poly(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
+        """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d."""
+        if expr == 0:
+            return self.zero, 1
+        extra = expr.free_symbols - set(self.symbols)
+        if extra:
+            raise DerivationError(f"symbols {sorted(map(str, extra))} are not in the polynomial ring")
+        try:
+            poly = sympy.Poly(expr, *self.symbols, domain="QQ") if self.symbols else None
+        except sympy.PolynomialError as exc:
+            raise DerivationError(f"{expr} is not a polynomial in the train's symbols ({exc})") from None
+        if poly is None:
+            value = sympy.Rational(expr)
+            return self.ctx.constant(int(value.p)), int(value.q)
+        terms = poly.terms()
+        denominator = lcm(*(int(sympy.Rational(c).q) for _, c in terms))
+        data = {m: int(sympy.Rational(c) * denominator) for m, c in terms}
+        return self.ctx.from_dict(data), denominator
+
+    def rational(self, expr: sympy.Expr) -> RationalFunction:
+        """A sympy rational expression as a :class:`RationalFunction`."""
+        expr = sympy.sympify(expr)
+        num, den = sympy.fraction(sympy.together(expr))
+        pn, dn = self._poly(sympy.expand(num))
+        pd, dd = self._poly(sympy.expand(den))
+        return RationalFunction.make(self, pn * dd, pd * dn)
+
+    def polynomial(self, expr: sympy.Expr) -> fmpz_mpoly:
+        """A polynomial with integer coefficients (after clearing denominators)."""
+        return self._poly(sympy.expand(sympy.sympify(expr)))[0]
+
+    def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
+        """Expanded sympy expression of ``p``."""
+        terms = []
+        for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
+            term: sympy.Expr = sympy.Integer(int(coeff))
+            for sym, exp in zip(self._exprs, monom, strict=False):
+                if exp:
+                    term *= sym ** int(exp)
+            terms.append(term)
+        return sympy.Add(*terms)
+
+    def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:
+        """``p`` as a product of its irreducible factors (no expansion)."""
+        if p.is_zero():
+            return sympy.Integer(0)
+        content, factors = p.factor()
+        parts = [self.to_expr(f) ** int(e) for f, e in factors]
+        return sympy.Mul(sympy.Integer(int(content)), *parts)
+
+    def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq, ...]:
+        """The generators' values at ``point`` (absent symbols: None), for :meth:`evaluate`."""
+        out = []
+        for symbol in self.symbols:
+            value = point.get(symbol)
+            if value is None:
+                out.append(None)
+            else:
+                r = sympy.Rational(value)  # type: ignore[arg-type]
+                out.append(fmpq(int(r.p), int(r.q)))
+        for radical in self.radicals:
+            # A radical has a rational value only where its radicand is a square.
+            index = self.symbols.index(radical.symbol)
+            if out[index] is None:
+                try:
+                    root = sympy.sqrt(radical.radicand.xreplace(dict(point)))  # type: ignore[arg-type]
+                except TypeError:
+                    continue
+                if root.is_Rational:
+                    out[index] = fmpq(int(root.p), int(root.q))
+        return tuple(out)  # type: ignore[return-value]
+
+    def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq, ...], rational: object = None) -> fmpq:
+        """Exact value of ``p`` at ``args`` (from :meth:`point_args`); KeyError names a
+        symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
+        if not self.symbols:
+            return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
+        if None in args:
+            for symbol, value, degree in zip(self.symbols, args, p.degrees(), strict=True):
+                if value is None and degree > 0:
+                    raise KeyError(symbol)
+            args = tuple(fmpq(0) if a is None else a for a in args)
+        return (rational if rational is not None else self.to_rational(p))(*args)  # type: ignore[operator]
+
+    def to_rational(self, p: fmpz_mpoly) -> object:
+        """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
+        return fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex").from_dict(p.to_dict())
+
+    def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
+        """Integer content and irreducible factors (as sympy expressions) of ``p``."""
+        content, factors = p.factor()
+        return int(content), [(self.to_expr(f), int(e)) for f, e in factors]
+
+
+@dataclass(frozen=True, eq=False)
+class RationalFunction:
+    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient."""
+
+    ring: PolynomialRing
+    num: fmpz_mpoly
+    den: fmpz_mpoly
+
+    @classmethod
+    def make(cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly) -> RationalFunction:
+        if den.is_zero():
+            raise ZeroDivisionError("rational function with zero denominator")
+        if ring.radicals:
+            num, den = ring.rationalised(num, den)
+        if num.is_zero():
+            return cls(ring, num, ring.one)
+        g = num.gcd(den)
+        if not g.is_one():
+            num, den = num / g, den / g
+        if den.leading_coefficient() < 0:
+            num, den = -num, -den
+        return cls(ring, num, den)
+
+    @classmethod
+    def polynomial(cls, ring: PolynomialRing, p: fmpz_mpoly) -> RationalFunction:
+        return cls.make(ring, p, ring.one)
+
+    def is_zero(self) -> bool:
+        return bool(self.num.is_zero())
+
+    def __add__(self, other: RationalFunction) -> RationalFunction:
+        if self.den == other.den:
+            return RationalFunction.make(self.ring, self.num + other.num, self.den)
+        g = self.den.gcd(other.den)
+        a, b = self.den / g, other.den / g
+        return RationalFunction.make(self.ring, self.num * b + other.num * a, self.den * b)
+
+    def __neg__(self) -> RationalFunction:
+        return RationalFunction(self.ring, -self.num, self.den)
+
+    def __sub__(self, other: RationalFunction) -> RationalFunction:
+        return self + (-other)
+
+    def __mul__(self, other: RationalFunction) -> RationalFunction:
+        # Cross-cancel first so the products stay small.
+        g1, g2 = self.num.gcd(other.den), other.num.gcd(self.den)
+        num = (self.num / g1) * (other.num / g2)
+        den = (self.den / g2) * (other.den / g1)
+        return RationalFunction.make(self.ring, num, den)
+
+    def factor_list(self) -> tuple[int, list[tuple[sympy.Expr, int]]]:
+        """Sign of the content and the factors of numerator and denominator together
+        (denominator factors are listed too: only their parity matters for signs)."""
+        cn, fn = self.ring.factor_list(self.num)
+        cd, fd = self.ring.factor_list(self.den)
+        return (1 if cn * cd > 0 else -1), fn + fd
+
+    def inverse(self) -> RationalFunction:
+        return RationalFunction.make(self.ring, self.den, self.num)
+
+    def __truediv__(self, other: RationalFunction) -> RationalFunction:
+        return self * other.inverse()
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, RationalFunction):
+            return NotImplemented
+        return bool(self.num * other.den == other.num * self.den)
+
+    def __hash__(self) -> int:  # pragma: no cover - not used as a key
+        return hash((str(self.num), str(self.den)))
+
+    def substitute(self, symbol: sympy.Symbol, value: RationalFunction) -> RationalFunction:
+        """``self`` with ``symbol`` replaced by ``value = n / d``, without expanding the
+        whole fraction: N(n/d) d^K / (D(n/d) d^K), K the larger degree in ``symbol``."""
+        name = symbol.name
+        index = self.ring.symbols.index(symbol)
+        degree = max(self.num.degrees()[index], self.den.degrees()[index])
+        if degree == 0:
+            return self
+        n, d = value.num, value.den
+
+        def homogenise(p: fmpz_mpoly) -> fmpz_mpoly:
+            # p = sum_k c_k x^k, c_k = (d^k p / dx^k)(0) / k!; multilinear p needs two terms.
+            total, derivative, factorial = self.ring.zero, p, 1
+            for k in range(degree + 1):
+                if k:
+                    derivative = derivative.derivative(name)
+                    factorial *= k
+                    if derivative.is_zero():
+                        break
+                coefficient = derivative.subs({name: 0})
+                if not coefficient.is_zero():
+                    total += (coefficient / factorial) * n ** k * d ** (degree - k)
+            return total
+
+        return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))
+
+    def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq, ...]) -> fmpq:
+        """Exact value at a rational point (a mapping, or the ring's ``point_args``);
+        ZeroDivisionError on a pole."""
+        args = point if isinstance(point, tuple) else self.ring.point_args(point)
+        num_q, den_q = self._rational_parts
+        return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
+
+    @cached_property
+    def _rational_parts(self) -> tuple[object, object]:
+        return self.ring.to_rational(self.num), self.ring.to_rational(self.den)
+
+    def derivative_at(self, symbol: sympy.Symbol, point: Mapping[sympy.Symbol, object]) -> fmpq:
+        """Value of the partial derivative at ``point``, without forming it
+        ((N' D - N D') / D^2 evaluated number by number)."""
+        if symbol not in self.ring.symbols:
+            return fmpq(0)
+        args = self.ring.point_args(point)
+        name = symbol.name
+        num_q, den_q = self._rational_parts
+        n, d = self.ring.evaluate(self.num, args, num_q), self.ring.evaluate(self.den, args, den_q)
+        dn = self.ring.evaluate(self.num.derivative(name), args)
+        dd = self.ring.evaluate(self.den.derivative(name), args)
+        return (dn * d - n * dd) / (d * d)
+
+    def to_expr(self, factored: bool = True) -> sympy.Expr:
+        """Sympy expression: product of factors over product of factors (default)."""
+        convert = self.ring.factored_expr if factored else self.ring.to_expr
+        num = convert(self.num)
+        if self.den.is_one():
+            return num
+        return num / convert(self.den)

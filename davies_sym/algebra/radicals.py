@@ -1,0 +1,113 @@
+"""Square roots of the geometry, kept exact as symbols with a defining relation.
+
+A tilted bevel-planet axis makes the pitch points irrational in the radii: in the
+Humpage train, sin of the shaft angle is sqrt(4 r2^2 - (r5 - r1)^2) / (2 r2) (Laus
+eqs. (80)-(84)).  Each distinct square root becomes a symbol ``s`` with ``s^2 = m``,
+``m`` a square-free integer polynomial that is positive on every admissible design.
+The polynomial ring reduces every polynomial modulo ``s^2 - m`` and rationalises
+denominators, so zero tests stay exact and results that are rational in the radii
+(powers, efficiencies, turning conditions) come out free of ``s``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import sympy
+
+from davies_sym.algebra.signs import SignOracle
+
+
+@dataclass(frozen=True)
+class Radical:
+    """``symbol = sqrt(radicand)``; the radicand is positive where the design exists."""
+
+    symbol: sympy.Symbol
+    radicand: sympy.Expr
+
+    @property
+    def expression(self) -> sympy.Expr:
+        return sympy.sqrt(self.radicand)
+
+
+@dataclass
+class RadicalTable:
+    """Collects the square roots a layout needs, one symbol per square-free radicand."""
+
+    radicals: list[Radical] = field(default_factory=list)
+
+    def sqrt(self, value: sympy.Expr) -> sympy.Expr:
+        """``sqrt(value)`` of a rational expression positive on the design, as
+        ``q * s`` with ``q`` rational and ``s`` a radical symbol (or just ``q``)."""
+        num, den = sympy.fraction(self.reduce(value))
+        if (num * den).free_symbols & {r.symbol for r in self.radicals}:
+            raise ValueError(f"nested square roots: sqrt({self.restore(value)})")
+        # sqrt(n / d) = sqrt(n d) / |d|: only the product's square-free part stays inside.
+        content, factors = sympy.factor_list(sympy.expand(num * den))
+        oracle = SignOracle()
+        outside, inside = sympy.sqrt(sympy.Abs(content)).as_coeff_Mul()
+        inside = inside**2 * (1 if content > 0 else -1)
+        for base, exponent in factors:
+            if exponent >= 2:
+                sign = oracle.factor_sign(base)
+                if sign not in (1, -1):
+                    raise ValueError(f"cannot tell the sign of {base} under a square root")
+                outside *= (sign * base) ** (exponent // 2)
+            inside *= base ** (exponent % 2)
+        inside = sympy.expand(inside)
+        den_sign = oracle.sign(den)
+        if den_sign not in (1, -1):
+            raise ValueError(f"cannot tell the sign of {den} under a square root")
+        outside = outside / (den_sign * den)
+        if inside == 1:
+            return sympy.expand(outside) if outside.is_polynomial() else outside
+        return outside * self.symbol_for(inside)
+
+    def absorb(self, expr: sympy.Expr) -> sympy.Expr:
+        """``expr`` with every square root written in it (``sqrt(4*r2**2 - ...)``, also
+        ``1/sqrt(...)``) replaced by its radical symbol, denominators rationalised."""
+        roots = [p for p in sympy.preorder_traversal(expr) if _is_half_power(p)]
+        if not roots:
+            return expr
+        return self.reduce(expr.xreplace({r: self.sqrt(r.base) ** r.exp.p for r in roots}))
+
+    def symbol_for(self, radicand: sympy.Expr) -> sympy.Symbol:
+        for radical in self.radicals:
+            if sympy.expand(radical.radicand - radicand) == 0:
+                return radical.symbol
+        symbol = sympy.Symbol(f"sqrt{len(self.radicals) + 1}_", positive=True)
+        self.radicals.append(Radical(symbol, radicand))
+        return symbol
+
+    def reduce(self, expr: sympy.Expr) -> sympy.Expr:
+        """``expr`` with every power ``s^k`` (k >= 2) replaced by ``m^(k // 2) s^(k % 2)``
+        and denominators rationalised: zero exactly when ``expr`` vanishes."""
+        expr = sympy.together(sympy.expand(expr))
+        num, den = sympy.fraction(expr)
+        for radical in self.radicals:
+            s, m = radical.symbol, radical.radicand
+            if den.has(s):
+                conjugate = den.subs(s, -s)
+                num, den = sympy.expand(num * conjugate), sympy.expand(den * conjugate)
+            num = sympy.expand(sympy.rem(sympy.expand(num), s**2 - m, s)) if num.has(s) else num
+            den = sympy.expand(sympy.rem(sympy.expand(den), s**2 - m, s)) if den.has(s) else den
+        return sympy.cancel(num / den)
+
+    def restore(self, expr: sympy.Expr) -> sympy.Expr:
+        """Radical symbols replaced by their square roots (for output)."""
+        return restore(expr, self.radicals)
+
+
+def restore(expr: sympy.Expr, radicals: Iterable[Radical]) -> sympy.Expr:
+    """``expr`` with the symbols of ``radicals`` written as the square roots they are."""
+    return expr.xreplace({r.symbol: r.expression for r in radicals})
+
+
+def _is_half_power(expr: object) -> bool:
+    return isinstance(expr, sympy.Pow) and expr.exp.is_Rational and expr.exp.q == 2
+
+
+def has_square_root(expr: object) -> bool:
+    """Whether a sympy expression contains a square root (any power k/2)."""
+    return isinstance(expr, sympy.Basic) and any(_is_half_power(p) for p in sympy.preorder_traversal(expr))

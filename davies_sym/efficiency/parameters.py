@@ -1,0 +1,138 @@
+"""What each parameter of a train's formulas is: meaning, unit and admissible range.
+
+The generated formula modules and the documentation list them (``PARAMETERS``), and the
+admissible design is stated as relations that must be positive (``RELATIONS``): every
+pitch radius and every known fact of the layout (an annulus larger than its pinion, a
+radicand of a bevel geometry), written in the symbols left after the geometric
+constraints eliminated some radii.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import sympy
+
+from davies_sym.algebra.radicals import restore
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.topology.couplings import GearMesh
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter: ``low < value <= high`` (``low`` included when ``closed_low``)."""
+
+    name: str
+    meaning: str
+    unit: str
+    low: float
+    high: float
+    closed_low: bool = False
+
+    @property
+    def range_text(self) -> str:
+        low = "[" if self.closed_low else "("
+        high = "inf)" if math.isinf(self.high) else f"{self.high:g}]"
+        return f"{low}{self.low:g}, {high}"
+
+
+def _gear_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
+    out: dict[sympy.Symbol, str] = {}
+    for g in variants.train.gears:
+        kind = "internal gear" if g.internal else "gear"
+        for s in sorted(g.radius.free_symbols, key=str):
+            what = "pitch radius" if g.radius == s else "length in the pitch radius"
+            out.setdefault(s, f"{what} of {kind} {g.name} (link {g.link})")  # type: ignore[arg-type]
+    return out
+
+
+def _efficiency_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
+    out: dict[sympy.Symbol, str] = {}
+    for role in variants.roles:
+        first, second = role.flow.gears
+        both = role.efficiencies[0] == role.efficiencies[1]
+        for k, eta in enumerate(role.efficiencies):
+            driver, driven = (first, second) if k == 0 else (second, first)
+            text = (f"ordinary efficiency of mesh {role.coupling} (gears {first}, {second}), either gear driving"
+                    if both else f"ordinary efficiency of mesh {role.coupling}, gear {driver} driving gear {driven}")
+            for s in eta.free_symbols:
+                out.setdefault(s, text)  # type: ignore[arg-type]
+    return out
+
+
+def _law_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
+    out: dict[sympy.Symbol, tuple[str, str]] = {}
+    units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed"}
+    for law in variants.analysis.network.laws:
+        for s in law.coefficient.free_symbols:
+            coupling = variants.train.coupling(law.coupling)
+            what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
+            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}",  # type: ignore[index]
+                               units.get(law.law, "")))
+    return out
+
+
+def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
+    """The symbols of the formulas, the conditions and the speed ratio, sorted by name."""
+    layout = variants.analysis.network.layout
+    ratio = restore(variants.analysis.speed_ratio().to_expr(), layout.radicals)
+    return sorted(set(variants.symbols) | ratio.free_symbols, key=str)  # type: ignore[arg-type]
+
+
+def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
+    """Every symbol of :func:`formula_symbols`, in its order."""
+    geometry, etas, laws = _gear_meanings(variants), _efficiency_meanings(variants), _law_meanings(variants)
+    analysis = variants.analysis
+    ports = {analysis.input_motion.symbol: "input speed", analysis.input_action.symbol: "input torque"}
+    out = []
+    for s in formula_symbols(variants):
+        if s in etas:
+            out.append(Parameter(str(s), etas[s], "1", 0.0, 1.0))
+        elif s in geometry:
+            out.append(Parameter(str(s), geometry[s], "length (one unit for all)", 0.0, math.inf))
+        elif s in laws:
+            meaning, unit = laws[s]
+            out.append(Parameter(str(s), meaning, unit, 0.0, math.inf, closed_low=True))
+        elif s in ports:
+            out.append(Parameter(str(s), f"{ports[s]} ({variants.train.ports.input} as input)",
+                                 "rad/s" if "speed" in ports[s] else "torque", -math.inf, math.inf))
+        else:
+            out.append(Parameter(str(s), "symbol of the topology file", "", -math.inf, math.inf))
+    return tuple(out)
+
+
+def eliminated_symbols(variants: VariantSet) -> dict[sympy.Symbol, sympy.Expr]:
+    """Radii the geometric constraints determine and the formulas do not use, in the
+    formulas' symbols (Tuplin: r4 = r2 + r3 - r1)."""
+    constraints = [c.expression for c in variants.analysis.network.layout.constraints]
+    unknown = sorted(set().union(*(e.free_symbols for e in constraints)) - set(formula_symbols(variants)), key=str)
+    if not unknown:
+        return {}
+    solved = sympy.solve(constraints, unknown, dict=True)
+    return {k: sympy.expand(v) for k, v in solved[0].items()} if solved else {}
+
+
+def _obviously_positive(expr: sympy.Expr) -> bool:
+    """A sum of positive terms in positive symbols."""
+    return all(c > 0 for c in sympy.Poly(expr, *sorted(expr.free_symbols, key=str)).coeffs()) and all(
+        s.is_positive for s in expr.free_symbols)
+
+
+def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
+    """Expressions positive on every admissible design, in the formulas' symbols (radii
+    eliminated by the geometric constraints replaced; bare symbols and sums of positive
+    terms are left to the ranges)."""
+    layout = variants.analysis.network.layout
+    eliminate = eliminated_symbols(variants)
+    known = set(variants.symbols)
+    out: list[sympy.Expr] = []
+    for expr in [g.radius for g in variants.train.gears] + list(layout.positive_facts):
+        relation = sympy.expand(restore(sympy.sympify(expr).subs(eliminate), layout.radicals))
+        if relation.is_Symbol or relation.is_number or not relation.free_symbols <= known:
+            continue
+        if not relation.is_polynomial() or _obviously_positive(relation):
+            continue
+        if relation not in out:
+            out.append(relation)
+    return tuple(out)

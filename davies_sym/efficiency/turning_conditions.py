@@ -1,0 +1,129 @@
+"""Turning conditions: which gear drives in every mesh (Laus Tables 5 and 6).
+
+The sign of a mesh's lossless virtual power (per unit input power) is factored; the
+factors that are provably positive under the symbols' assumptions and the train's
+geometric facts are removed, and what remains is the mesh's turning condition
+(eq. (86): "the expression ... might be used in place of the fraction").  Meshes whose
+conditions agree up to sign share one condition: Tuplin's two meshes both turn with
+r1 r4 - r2 r3 (r1 < r2 on the constraint r1 - r3 = r2 - r4).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import sympy
+
+from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
+from davies_sym.topology.couplings import GearMesh
+
+if TYPE_CHECKING:
+    from davies_sym.network.analysis import Analysis
+
+
+@dataclass(frozen=True)
+class TurningCondition:
+    """A sign that the geometry decides: ``expression`` is the factor product as
+    derived, ``simplified`` the same sign on the geometric constraints."""
+
+    name: str
+    expression: sympy.Expr
+    simplified: sympy.Expr
+
+
+@dataclass(frozen=True, eq=False)
+class MeshRole:
+    """One mesh: its carrier, its flow and what decides its direction.
+
+    With the declared input, the first gear drives when ``fixed`` is +1, or when
+    ``orientation * sign(condition) > 0``; swapping input and output reverses it.
+    """
+
+    coupling: str
+    flow: MeshPowerFlow
+    fixed: int | None
+    condition: str | None
+    orientation: int
+    efficiencies: tuple[sympy.Expr, sympy.Expr]
+
+    def first_drives(self, signs: dict[str, int], declared_input: bool) -> bool:
+        """Whether the first gear drives for the given condition signs and input side."""
+        base = self.fixed if self.condition is None else self.orientation * signs[self.condition]
+        assert base is not None
+        return (base > 0) == declared_input
+
+
+def _shorter(analysis: Analysis, expr: sympy.Expr) -> sympy.Expr:
+    """The condition on each geometric constraint, if it is simpler there."""
+    best = expr
+    for substitution in analysis.oracle.substitutions:
+        replaced = sympy.expand(expr.subs(substitution))
+        if replaced == 0:
+            continue
+        sign, factors = sympy.factor_list(replaced)
+        s, undecided = analysis.oracle.classify(1 if sign > 0 else -1, factors)
+        candidate = undecided if s is None else sympy.Integer(s)
+        if sympy.count_ops(candidate) < sympy.count_ops(best):
+            best = candidate
+    return best
+
+
+def _normalised(expr: sympy.Expr) -> tuple[int, sympy.Expr]:
+    """(sign, expr') with expr = sign * expr' and expr' free of a leading minus."""
+    sign, rest = sympy.Integer(1), expr
+    coeff, body = expr.as_coeff_Mul()
+    if coeff < 0:
+        sign, rest = sympy.Integer(-1), -coeff * body if coeff != -1 else body
+    return int(sign), rest
+
+
+def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningCondition]]:
+    """Roles of every mesh with a load-dependent friction law, and the distinct
+    turning conditions (named c1, c2, ... in mesh order)."""
+    roles: list[MeshRole] = []
+    conditions: list[TurningCondition] = []
+    for c in analysis.train.couplings:
+        if not isinstance(c, GearMesh) or c.efficiencies is None:
+            continue
+        if c.friction.coulomb is None and c.friction.linear is None:
+            continue
+        flow = mesh_power_flow(analysis, c)
+        if flow.flow_ratio.is_zero():
+            # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
+            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies))
+            continue
+        content, factors = flow.flow_ratio.factor_list()
+        sign, undecided = analysis.oracle.classify(content, factors)
+        if sign in (1, -1):
+            roles.append(MeshRole(c.name, flow, sign, None, 1, c.efficiencies))
+            continue
+        orientation, general = _normalised(sympy.expand(undecided))
+        shorter = _shorter(analysis, general)
+        if shorter.is_number:
+            # Decided on the geometric constraints only.
+            roles.append(MeshRole(c.name, flow, orientation * (1 if shorter > 0 else -1), None, 1, c.efficiencies))
+            continue
+        simple_sign, simplified = _normalised(shorter)
+        orientation *= simple_sign
+        for existing in conditions:
+            same = sympy.expand(existing.simplified - simplified) == 0
+            opposite = sympy.expand(existing.simplified + simplified) == 0
+            if same or opposite:
+                roles.append(MeshRole(c.name, flow, None, existing.name, orientation * (1 if same else -1),
+                                      c.efficiencies))
+                break
+        else:
+            name = f"c{len(conditions) + 1}"
+            conditions.append(TurningCondition(name, simple_sign * general, simplified))
+            roles.append(MeshRole(c.name, flow, None, name, orientation, c.efficiencies))
+    return roles, conditions
+
+
+def condition_signs(conditions: Sequence[TurningCondition]) -> list[dict[str, int]]:
+    """Every combination of condition signs, + before -, in condition order."""
+    combos: list[dict[str, int]] = [{}]
+    for cond in conditions:
+        combos = [{**combo, cond.name: s} for combo in combos for s in (1, -1)]
+    return combos

@@ -1,0 +1,256 @@
+"""The overall efficiency in ordinary mesh efficiencies, in every variant (Laus
+sections 3.4.1.5 and 3.5.1.1, Tables 5 and 6).
+
+One derivation gives the efficiency F(zeta) = -P_out / P_in with every mesh on the
+signed law T = zeta U (eqs. (63)-(64), (71)).  For each mesh and each power direction
+zeta is the solution of the ordinary-efficiency equation (eqs. (74)-(75), (92)-(94));
+substituting it gives the variant's formula, put over factored numerator and
+denominator (eq. (76)).  A variant is a choice of input port and a sign of every
+turning condition; swapping input and output reverses every mesh and inverts the
+efficiency (eqs. (78)-(79)).  Each variant is checked by the partial-derivative rule
+(section 3.6.2) at a sampled point of its region; regions no sampled geometry reaches
+are reported as infeasible, and sampled points where the efficiency is not positive
+as self-locking.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+
+import sympy
+
+from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
+from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
+from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
+from davies_sym.errors import DerivationError, InputError, Problem
+from davies_sym.geometry.layout import Layout
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.model import Train
+
+Progress = Callable[[str], None]
+
+#: Ordinary efficiency used for the partial-derivative check (Glover's external value).
+NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
+
+
+@dataclass(frozen=True, eq=False)
+class Variant:
+    """One formula of the overall efficiency and where it holds."""
+
+    number: int
+    input: str
+    output: str
+    #: Required sign of each turning condition (condition name -> +1 or -1).
+    signs: Mapping[str, int]
+    #: Mesh -> True when its first gear drives.
+    first_drives: Mapping[str, bool]
+    efficiency_rf: RationalFunction = field(repr=False)
+    #: Whether a sampled admissible geometry lies in the region.
+    feasible: bool = True
+    #: "positive", "failed: <symbols>" or "not checked" (no sample in the region).
+    derivative_check: str = "not checked"
+    #: A sampled point of the region where the efficiency is outside (0, 1] (the train
+    #: self-locks there), if any was found.
+    self_locking_point: Point | None = None
+    #: Product whose sign is that of the efficiency (positive factors removed); the
+    #: variant self-locks where it is <= 0.  None when provably positive.
+    locking_expression: sympy.Expr | None = None
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        """The formula, numerator and denominator factored."""
+        return self.efficiency_rf.to_expr()
+
+    @property
+    def name(self) -> str:
+        """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
+        parts = [f"{self.input}_to_{self.output}"]
+        parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
+        name = "_".join(_identifier(p) for p in parts)
+        # A port named by a number would start the function name with a digit.
+        return name if name[0].isalpha() else f"from_{name}"
+
+
+def _identifier(text: str) -> str:
+    return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in text)
+
+
+@dataclass(frozen=True, eq=False)
+class VariantSet:
+    """Every variant of one train, its turning conditions and mesh roles."""
+
+    train: Train
+    analysis: Analysis = field(repr=False)
+    roles: tuple[MeshRole, ...]
+    conditions: tuple[TurningCondition, ...]
+    variants: tuple[Variant, ...]
+    #: The efficiency with the signed friction law, declared input (eq. (71)).
+    friction_form: RationalFunction = field(repr=False)
+    #: The derivation with input and output swapped, when friction laws other than the
+    #: meshes' make it differ from the declared one (None otherwise).
+    swapped: Analysis | None = field(default=None, repr=False)
+
+    @property
+    def symbols(self) -> list[sympy.Symbol]:
+        """Every symbol a formula or a condition may need, sorted by name."""
+        out: set[sympy.Symbol] = set()
+        for v in self.variants:
+            out |= v.efficiency.free_symbols  # type: ignore[arg-type]
+        for c in self.conditions:
+            out |= c.expression.free_symbols  # type: ignore[arg-type]
+        return sorted(out, key=str)
+
+    def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
+        """The variant whose conditions hold at ``values`` with ``input`` as input port."""
+        port = input or self.train.ports.input
+        if port not in (self.train.ports.input, self.train.ports.output):
+            raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
+                                      f"{self.train.ports.input}, {self.train.ports.output})")], self.train.path)
+        signs = {}
+        for c in self.conditions:
+            value = sympy.sympify(c.expression.subs(values))
+            if not value.is_number:
+                missing = sorted(map(str, value.free_symbols))
+                raise InputError([Problem("--eval", f"condition {c.name} needs values for {', '.join(missing)}")],
+                                 self.train.path)
+            signs[c.name] = 1 if value >= 0 else -1
+        for v in self.variants:
+            if v.input == port and dict(v.signs) == signs:
+                return v
+        raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+
+    def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
+        """The efficiency at ``values`` (exact when the values are), right variant chosen."""
+        variant = self.variant_for(values, input)
+        value = variant.efficiency.subs(values)
+        if not sympy.sympify(value).is_number:
+            missing = sorted(map(str, value.free_symbols))
+            raise InputError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
+                             self.train.path)
+        return value
+
+
+def zeta_forms(flows: Mapping[str, MeshPowerFlow],
+                roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
+    """zeta of every mesh for both directions, in the ring of ``flows``."""
+    out = {}
+    for role in roles:
+        flow = flows[role.coupling]
+        for first in (True, False):
+            eta = role.efficiencies[0] if first else role.efficiencies[1]
+            out[(role.coupling, first)] = flow.friction_for(eta, first)
+    return out
+
+
+def substituted(form: RationalFunction, roles: Sequence[MeshRole],
+                 zetas: Mapping[tuple[str, bool], RationalFunction], first: Mapping[str, bool]) -> RationalFunction:
+    for role in roles:
+        form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])
+    return form
+
+
+def derive_variants(train: Train, progress: Progress | None = None, samples: int = 200,
+                    seed: int = 0, layout: Layout | None = None) -> VariantSet:
+    """Derive every variant of ``train``'s efficiency in ordinary efficiencies
+    (``layout``: a geometry other than the one derived from the train)."""
+    say = progress or (lambda message: None)
+    etas = efficiency_symbols(train)
+    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas, layout=layout)
+    say("virtual power flow through the meshes")
+    roles, conditions = mesh_roles(analysis)
+    declared = analysis.efficiency_rf
+    zetas = zeta_forms({r.coupling: r.flow for r in roles}, roles)
+    role_names = {r.coupling for r in roles}
+    # Other friction laws (bearings, viscous) change with the input side: derive again.
+    resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
+    swapped_analysis = None
+    if resolve_again:
+        swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
+                                    progress=progress, extra_symbols=etas, layout=layout)
+        swapped_form = swapped_analysis.efficiency_rf
+        swapped_flows = {r.coupling: mesh_power_flow(swapped_analysis, swapped_analysis.train.coupling(r.coupling))
+                         for r in roles}  # type: ignore[arg-type]
+        swapped_zetas = zeta_forms(swapped_flows, roles)
+    domain = ParameterDomain.of(train, analysis.network.layout)
+    extra = _other_symbols(declared, etas, roles)
+    points = list(domain.samples(samples, seed=seed, extra=extra))
+    regions: dict[tuple[int, ...], list[Point]] = {}
+    for point in points:
+        key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
+        regions.setdefault(key, []).append(point)
+    variants: list[Variant] = []
+    combos = condition_signs(conditions)
+    rng = random.Random(seed)
+    for declared_input in (True, False):
+        port_in = train.ports.input if declared_input else train.ports.output
+        port_out = train.ports.output if declared_input else train.ports.input
+        for signs in combos:
+            say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
+            first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
+            if declared_input:
+                rf = substituted(declared, roles, zetas, first)
+            elif resolve_again:
+                rf = substituted(swapped_form, roles, swapped_zetas, first)
+            else:
+                rf = substituted(declared, roles, zetas, first).inverse()
+            region = regions.get(tuple(signs[c.name] for c in conditions), [])
+            variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
+            variants.append(_checked(variant, region, etas, analysis, conditions, rng))
+    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared, swapped_analysis)
+
+
+def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
+                   roles: Sequence[MeshRole]) -> list[sympy.Symbol]:
+    """Symbols left in the formulas besides geometry and efficiencies (bearing
+    friction, viscous coefficients, input torque and speed)."""
+    out = set(form.to_expr().free_symbols) - set(etas)
+    out -= {r.flow.friction_symbol for r in roles}
+    return sorted(out, key=str)  # type: ignore[arg-type]
+
+
+def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
+                    analysis: Analysis) -> sympy.Expr | None:
+    """A product with the sign of the efficiency inside the variant's region: factors
+    the symbols' assumptions decide, and factors that are a turning condition (whose
+    sign the region fixes), are replaced by their signs.  None when always positive."""
+    known = {c.simplified: variant.signs[c.name] for c in conditions}
+    sign, expression = analysis.oracle.classify(*variant.efficiency_rf.factor_list(), known=known)
+    return None if sign == 1 else expression
+
+
+def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:
+    index = rf.ring.symbols.index(symbol)
+    return rf.num.degrees()[index] > 0 or rf.den.degrees()[index] > 0
+
+
+def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Symbol], analysis: Analysis,
+             conditions: Sequence[TurningCondition], rng: random.Random) -> Variant:
+    """Partial-derivative rule at a region sample; self-locking by sampling."""
+    rf = variant.efficiency_rf
+    locking_expression = _sign_in_region(variant, conditions, analysis)
+    derivative_check = "not checked"
+    locked: Point | None = None
+    # Laus 3.6.2 applies where the formula describes a working train: check it at a
+    # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
+    working = [p for p in region[:40] if 0 < rf.evaluate({**p, **{e: NOMINAL_EFFICIENCY for e in etas}}) <= 1]
+    if region and not working:
+        derivative_check = "not checked: the train self-locks at every sampled point"
+    if working:
+        nominal = {**working[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
+        failed = [str(e) for e in etas
+                  if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0]
+        derivative_check = "positive" if not failed else f"failed: {', '.join(failed)}"
+    if region:
+        for point in region[:40]:
+            values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
+            # Outside (0, 1] the power directions the variant assumes do not hold: the
+            # train (or one of its stages, when two locked stages multiply) self-locks.
+            if not 0 < rf.evaluate(values) <= 1:
+                used = variant.efficiency.free_symbols
+                locked = {k: v for k, v in values.items() if k in used}
+                break
+    return Variant(variant.number, variant.input, variant.output, variant.signs, variant.first_drives,
+                   variant.efficiency_rf, variant.feasible, derivative_check, locked, locking_expression)

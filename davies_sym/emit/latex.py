@@ -1,0 +1,84 @@
+"""Standalone LaTeX document of a train's efficiency variants (``derive FILE --latex``).
+
+Like Laus Tables 5 and 6: the turning conditions with the meshes they decide, a table
+of variants (input, output, sign of every condition) and every formula as a numbered
+equation.  Only ``amsmath``, ``booktabs`` and ``geometry`` are used, so any TeX
+installation compiles it with pdflatex.
+"""
+
+from __future__ import annotations
+
+import sympy
+
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.variant_report import notes
+
+_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+            "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
+
+
+def escape(text: str) -> str:
+    """Plain text safe for LaTeX."""
+    return "".join(_SPECIAL.get(ch, ch) for ch in text)
+
+
+def _sign(sign: int) -> str:
+    return "$> 0$" if sign > 0 else "$< 0$"
+
+
+_PREAMBLE = [r"\documentclass[11pt]{article}", r"\usepackage{amsmath}", r"\usepackage{booktabs}",
+             r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}"]
+
+
+def latex_document(variants: VariantSet) -> str:
+    """The whole document of one train (or one state) as a string."""
+    return "\n".join([*_PREAMBLE, *_section(variants), r"\end{document}", ""])
+
+
+def latex_states_document(sets: list[VariantSet]) -> str:
+    """One document with a section per operating state."""
+    body = [line for vs in sets for line in [*_section(vs), r"\clearpage"]]
+    return "\n".join([*_PREAMBLE, *body[:-1], r"\end{document}", ""])
+
+
+def _section(variants: VariantSet) -> list[str]:
+    """Title, conditions, variants table and formulas of one train."""
+    train = variants.train
+    out = [rf"\section*{{{escape(train.name)}}}"]
+    if train.source:
+        out.append(rf"\noindent Source: {escape(train.source)}.\\")
+    out.append(rf"Ports: input {escape(train.ports.input)}, output {escape(train.ports.output)}; "
+               rf"reference link {escape(train.reference)}. Ordinary efficiencies are those of each mesh "
+               r"with its carrier held; swapping input and output reverses every mesh.")
+    if variants.conditions:
+        out += [r"\subsection*{Turning conditions}", r"\begin{center}", r"\begin{tabular}{lll}", r"\toprule",
+                r"Condition & Expression & Meshes (first gear drives, declared input) \\", r"\midrule"]
+        for c in variants.conditions:
+            decided = [f"{escape(r.coupling)} when {'$>0$' if r.orientation > 0 else '$<0$'}"
+                       for r in variants.roles if r.condition == c.name]
+            out.append(rf"${c.name}$ & ${sympy.latex(c.simplified)}$ & {', '.join(decided)} \\")
+        out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
+    fixed = [r for r in variants.roles if r.condition is None]
+    if fixed:
+        text = "; ".join(f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} "
+                         "drives" for r in fixed)
+        out.append(rf"\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
+    out += [r"\subsection*{Variants}", r"\begin{center}",
+            r"\begin{tabular}{l" + "c" * (2 + len(variants.conditions)) + "l}", r"\toprule"]
+    header = ["Variant", "Input", "Output"] + [f"${c.name}$" for c in variants.conditions] + ["Status"]
+    out.append(" & ".join(header) + r" \\")
+    out.append(r"\midrule")
+    for v in variants.variants:
+        status = "infeasible" if not v.feasible else ("self-locks" if v.self_locking_point is not None else "")
+        cells = [f"({v.number})", escape(v.input), escape(v.output)]
+        cells += [_sign(v.signs[c.name]) for c in variants.conditions] + [status]
+        out.append(" & ".join(cells) + r" \\")
+    out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
+    for v in variants.variants:
+        out.append(rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
+                   + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions)) + ".")
+        out += [r"\begin{equation}", rf"\eta = {sympy.latex(v.efficiency)}", rf"\tag{{{v.number}}}",
+                r"\end{equation}"]
+        for n in notes(v):
+            out.append(rf"\noindent {escape(n)}.\\")
+    return out

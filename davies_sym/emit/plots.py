@@ -1,0 +1,207 @@
+"""Figures of a train's efficiency (``derive FILE --plot NAME=START:STOP [--vs NAME2=...]``).
+
+- Against one parameter (like Chen Fig. 4.9 and 4.13): the efficiency, the regions of
+  the variants with the turning conditions where the variant changes, and the power
+  lost in each friction element stacked below, all in percent of the input power.
+- Over two parameters: the variant regions, the turning-condition curves (condition =
+  0), efficiency contours, and the self-locking or inadmissible area left blank.
+- A turning-condition surface over three parameters (like Laus Fig. 11), solved for
+  one of them.
+
+The numbers come from the generated formula module of the train (compiled in memory),
+so a figure shows what design code gets.  Figures are built on ``matplotlib.figure.Figure``
+(no pyplot state) and written as PNG without a timestamp, so the bytes are reproducible.
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+import textwrap
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+import sympy
+
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.python_module import python_module
+
+POINTS_1D = 400
+POINTS_2D = 240
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A parameter and the interval it runs over."""
+
+    name: str
+    start: float
+    stop: float
+
+    def values(self, count: int) -> np.ndarray:
+        return np.linspace(self.start, self.stop, count)
+
+
+def formula_module(variants: VariantSet) -> ModuleType:
+    """The generated module of ``variants``, compiled in memory."""
+    module = ModuleType("davies_sym_formulas")
+    exec(compile(python_module(variants), f"<formulas of {variants.train.name}>", "exec"), module.__dict__)
+    return module
+
+
+def _figure(width: float = 7.0, height: float = 5.0) -> Any:
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), layout="constrained")
+
+
+def png_bytes(figure: Any) -> bytes:
+    """The figure as PNG, without the software/time metadata (reproducible bytes)."""
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=110, metadata={"Software": None})
+    return buffer.getvalue()
+
+
+def _label(module: ModuleType, name: str) -> str:
+    for p in module.PARAMETERS:
+        if p["name"] == name:
+            unit = "" if p["unit"] in ("", "1") else f" [{p['unit']}]"
+            return f"{name}: {p['meaning']}{unit}"
+    return name
+
+
+def _fixed_text(values: Mapping[str, float], skip: Sequence[str]) -> str:
+    text = ", ".join(f"{k} = {v:g}" for k, v in sorted(values.items()) if k not in skip)
+    return "\n".join(textwrap.wrap(text, 90))
+
+
+def _variant_numbers(module: ModuleType, kwargs: Mapping[str, Any], input: str, shape: tuple[int, ...]) -> np.ndarray:
+    """Number of the variant that holds at each point (0 where none), from the region
+    code the module's own selection uses."""
+    with np.errstate(all="ignore"):
+        code = module._region({k: np.asarray(v, dtype=float) for k, v in kwargs.items()}, shape)
+    out = np.zeros(shape, dtype=np.int64)
+    for v in module.VARIANTS:
+        if v["input"] == input:
+            out[code == v["region"]] = v["number"]
+    return out
+
+
+def _describe(module: ModuleType, number: int) -> str:
+    v = next(v for v in module.VARIANTS if v["number"] == number)
+    return f"({number}) " + (", ".join(v["conditions"]) or "every design")
+
+
+def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str,
+                      module: ModuleType | None = None) -> Any:
+    """Efficiency and stacked losses against one parameter, variant regions marked
+    (``module``: the train's compiled :func:`formula_module`, if already at hand)."""
+    module = module or formula_module(variants)
+    xs = sweep.values(POINTS_1D)
+    kwargs: dict[str, Any] = {**values, sweep.name: xs}
+    names = [p["name"] for p in module.PARAMETERS]
+    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in variants.symbols}}
+    eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), xs.shape)
+    losses = {k: np.broadcast_to(v, xs.shape) for k, v in
+              module.losses(input=input, errors="ignore", **arguments).items()}
+    numbers = _variant_numbers(module, {k: kwargs[k] for k in names if k in kwargs}, input, xs.shape)
+    figure = _figure(7.0, 6.0)
+    top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
+    top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
+    colours = ["#dbe9f6", "#fde9d9", "#e2f0d9", "#ede1f5", "#fff2cc", "#d9f2f2"]
+    edges = [0, *list(np.nonzero(np.diff(numbers))[0] + 1), len(xs)]
+    seen: set[int] = set()
+    for a, b in itertools.pairwise(edges):
+        n = int(numbers[a])
+        if n == 0:
+            continue
+        top.axvspan(xs[a], xs[b - 1], color=colours[(n - 1) % len(colours)], zorder=0,
+                    label=None if n in seen else _describe(module, n))
+        seen.add(n)
+        if a > 0:
+            for axis in (top, bottom):
+                axis.axvline(xs[a], color="grey", linestyle="--", linewidth=1)
+    top.set_ylabel("efficiency [%]")
+    top.set_title(f"{variants.train.name}\ninput {input}; {_fixed_text(values, [sweep.name])}", fontsize=9)
+    top.legend(fontsize=8, loc="best")
+    top.grid(True, alpha=0.3)
+    if losses:
+        bottom.stackplot(xs, *[100 * v for v in losses.values()], labels=[f"loss in {k}" for k in losses],
+                         alpha=0.8)
+        bottom.legend(fontsize=8, loc="upper left")
+    bottom.set_ylabel("loss [% of input power]")
+    bottom.set_xlabel(_label(module, sweep.name), fontsize=9)
+    bottom.grid(True, alpha=0.3)
+    return figure
+
+
+def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str,
+                  module: ModuleType | None = None) -> Any:
+    """Variant regions, turning-condition curves and efficiency contours over two parameters."""
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    module = module or formula_module(variants)
+    gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
+    kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
+    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in variants.symbols}}
+    eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), gx.shape)
+    numbers = _variant_numbers(module, kwargs, input, gx.shape).astype(float)
+    numbers[np.isnan(eta)] = np.nan
+    figure = _figure(7.0, 5.5)
+    axis = figure.subplots()
+    palette = ["#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#9edae5", "#c7e9c0", "#dadaeb"]
+    count = len(module.VARIANTS)
+    axis.pcolormesh(gx, gy, np.ma.masked_invalid(numbers), cmap=ListedColormap(palette[:max(count, 1)]),
+                    vmin=0.5, vmax=count + 0.5, shading="auto")
+    finite = eta[np.isfinite(eta)]
+    if finite.size and finite.max() > finite.min():
+        levels = [v for v in (10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99)
+                  if 100 * finite.min() < v < 100 * finite.max()]
+        contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
+        axis.clabel(contours, fmt="%.1f %%", fontsize=7)
+    with np.errstate(all="ignore"):
+        for name, (function, args) in module._CONDITIONS.items():
+            level = np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
+            if np.nanmin(level) < 0 < np.nanmax(level):
+                curve = axis.contour(gx, gy, level, levels=[0], colors="crimson", linewidths=2)
+                axis.clabel(curve, fmt={0.0: f"{name} = 0"}, fontsize=8)
+    present = sorted({int(n) for n in numbers[np.isfinite(numbers)]})
+    handles = [Patch(color=palette[(n - 1) % len(palette)], label=_describe(module, n)) for n in present]
+    handles.append(Patch(facecolor="white", edgecolor="grey", label="self-locking or not admissible"))
+    axis.legend(handles=handles, fontsize=8, loc="best")
+    axis.set_xlabel(_label(module, x.name), fontsize=9)
+    axis.set_ylabel(_label(module, y.name), fontsize=9)
+    axis.set_title(f"{variants.train.name}: variants, turning conditions (red), efficiency [%]\n"
+                   f"input {input}; {_fixed_text(values, [x.name, y.name])}", fontsize=9)
+    return figure
+
+
+def turning_surface_figure(condition: sympy.Expr, x: Sweep, y: Sweep, z: Sweep, title: str) -> Any:
+    """The surface condition = 0 over (x, y), solved for z (every real root in z's
+    interval), like Laus Fig. 11."""
+    symbols = {str(s): s for s in condition.free_symbols}
+    zs = symbols[z.name]
+    roots = sympy.solve(condition, zs)
+    if not roots:
+        raise ValueError(f"the condition {condition} does not depend on {z.name}")
+    gx, gy = np.meshgrid(x.values(150), y.values(150))
+    figure = _figure(6.5, 5.5)
+    axis = figure.add_subplot(projection="3d")
+    for root in roots:
+        function = sympy.lambdify([symbols[x.name], symbols[y.name]], root, "numpy")
+        with np.errstate(all="ignore"):
+            value = np.asarray(function(gx.astype(complex), gy.astype(complex)) * np.ones_like(gx), dtype=complex)
+        real = np.where(np.abs(value.imag) < 1e-9, value.real, np.nan)
+        real[(real < z.start) | (real > z.stop)] = np.nan
+        if np.isfinite(real).any():
+            axis.plot_surface(gx, gy, real, cmap="viridis", alpha=0.85, linewidth=0)
+    axis.set_xlabel(x.name)
+    axis.set_ylabel(y.name)
+    axis.set_zlabel(z.name)
+    axis.set_zlim(z.start, z.stop)
+    axis.set_title(title, fontsize=9)
+    return figure

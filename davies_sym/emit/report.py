@@ -1,0 +1,117 @@
+"""The JSON document of ``derive FILE --json``: the train, its network and the
+efficiency in friction coefficients."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from davies_sym.algebra.radicals import restore
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.symbols import make_symbol
+
+FRICTION_CONVENTION = (
+    "Coulomb friction (default for gear meshes): friction torque T = -zeta |U| sign(t) about the "
+    "relative-motion axis, zeta > 0 (Laus Table 2, eq. (10)); the signs are fixed with positive input "
+    "power from the lossless solution, and a symbol sigma_X = +1 or -1 remains where the ports alone do "
+    "not decide the sign (see sign_conditions). Linear law: T = zeta U with real zeta (Laus eqs. (63)-(64)). "
+    "Viscous law: T = -b t (Laus Table 2, eq. (11))."
+)
+
+
+def _friction(coupling: Any) -> dict[str, str]:
+    f = coupling.friction
+    return {law: sympy.sstr(getattr(f, law)) for law in ("coulomb", "linear", "viscous")
+            if getattr(f, law) is not None}
+
+
+def train_document(analysis: Analysis) -> dict[str, Any]:
+    """Everything ``derive --json`` prints, as plain JSON-ready data."""
+    train, net = analysis.train, analysis.network
+    couplings = []
+    for c in train.couplings:
+        entry: dict[str, Any] = {"name": c.name, "type": c.kind, "links": list(c.links)}
+        if isinstance(c, GearMesh):
+            entry["gears"] = list(c.gears)
+            entry["mesh"] = "internal" if c.internal else "external"
+        if isinstance(c, (Revolute, GearMesh)):
+            point = net.layout.coupling_points[c.name]
+            entry["position"] = [sympy.sstr(v) for v in point]
+        entry["friction"] = _friction(c)
+        entry["motions"] = {v.name: [sympy.sstr(x) for x in v.twist] for v in net.coupling_motions(c.name)}
+        entry["actions"] = {v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]}
+                            for v in net.coupling_actions(c.name)}
+        couplings.append(entry)
+    efficiency = restore(analysis.efficiency, analysis.network.layout.radicals)
+    conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
+                   "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
+    return {
+        "name": train.name,
+        "source": train.source,
+        "file": train.path,
+        "links": list(train.link_names),
+        "reference": train.reference,
+        "gears": [{"name": g.name, "link": g.link, "radius": sympy.sstr(g.radius), "internal": g.internal}
+                  for g in train.gears],
+        "couplings": couplings,
+        "ports": {"input": train.ports.input, "output": train.ports.output},
+        "degrees_of_freedom": analysis.degrees_of_freedom,
+        "screw_system_order": net.order,
+        "screw_system": {"motion_coordinates": list(net.system.twist_names),
+                         "action_coordinates": list(net.system.wrench_names)},
+        "spanning_tree": list(net.tree),
+        "geometric_constraints": [str(c) for c in net.layout.constraints],
+        "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
+        "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
+        "efficiency_friction_form": {
+            "input": train.ports.input,
+            "output": train.ports.output,
+            "expression": sympy.sstr(efficiency),
+            "latex": sympy.latex(efficiency),
+            "sign_conditions": conditions,
+            "friction_convention": FRICTION_CONVENTION,
+        },
+    }
+
+
+def text_summary(document: dict[str, Any]) -> str:
+    """A short human-readable summary of the document."""
+    eff = document["efficiency_friction_form"]
+    lines = [
+        f"{document['name']}",
+        f"  links: {', '.join(document['links'])}; reference: {document['reference']}",
+        f"  degrees of freedom: {document['degrees_of_freedom']}; screw system order: "
+        f"{document['screw_system_order']} {{{', '.join(document['screw_system']['motion_coordinates'])}}}",
+    ]
+    for c in document["geometric_constraints"]:
+        lines.append(f"  geometric constraint: {c}")
+    lines.append(f"  efficiency ({eff['input']} -> {eff['output']}) = {eff['expression']}")
+    for s in eff["sign_conditions"]:
+        lines.append(f"    where {s['symbol']} = {s['equals']} (not decided by the ports alone)")
+    return "\n".join(lines)
+
+
+def kinematics_document(analysis: Analysis) -> dict[str, Any]:
+    """Motions of a train with several degrees of freedom in its primary speeds (eq. (1));
+    the efficiency with several inputs is not derived."""
+    basis = analysis.motion_basis
+    primaries = sorted({f for combo in basis.values() for f in combo}, key=list(basis).index)
+    relations = {}
+    for name, combo in basis.items():
+        if name in primaries:
+            continue
+        expr = sympy.Add(*(c.to_expr() * make_symbol(f, "magnitude") for f, c in combo.items()))
+        relations[name] = sympy.sstr(expr)
+    return {"name": analysis.train.name, "source": analysis.train.source, "file": analysis.train.path,
+            "degrees_of_freedom": analysis.degrees_of_freedom, "primary_speeds": primaries,
+            "kinematics": relations}
+
+
+def kinematics_text(document: dict[str, Any]) -> str:
+    lines = [document["name"], f"  degrees of freedom: {document['degrees_of_freedom']}; primary speeds: "
+             f"{', '.join(document['primary_speeds'])}"]
+    lines += [f"  {name} = {expr}" for name, expr in document["kinematics"].items()]
+    lines.append("  (the efficiency with several inputs is not derived yet)")
+    return "\n".join(lines)

@@ -1,0 +1,97 @@
+"""Variants as JSON-ready data and as plain text (``derive FILE [--json]``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from davies_sym.efficiency.variants import Variant, VariantSet
+
+
+def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
+    """``"r2 - r1 > 0"`` for every turning condition of ``variant``."""
+    out = []
+    for c in variants.conditions:
+        out.append(f"{sympy.sstr(c.simplified)} {'>' if variant.signs[c.name] > 0 else '<'} 0")
+    return out
+
+
+def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
+    """``"C: gear 1 drives gear 3 (eta_C)"`` for every mesh."""
+    out = []
+    for role in variants.roles:
+        first = variant.first_drives[role.coupling]
+        driver, driven = role.flow.gears if first else role.flow.gears[::-1]
+        eta = role.efficiencies[0 if first else 1]
+        out.append(f"{role.coupling}: gear {driver} drives gear {driven} ({sympy.sstr(eta)}), "
+                   f"carrier {role.flow.carrier}")
+    return out
+
+
+def notes(variant: Variant) -> list[str]:
+    """Feasibility, partial-derivative check and self-locking of a variant."""
+    out = []
+    if not variant.feasible:
+        out.append("infeasible: no sampled admissible geometry satisfies its conditions")
+    out.append(f"partial derivatives in the mesh efficiencies: {variant.derivative_check}")
+    if variant.self_locking_point is not None:
+        point = ", ".join(f"{k}={v}" for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
+        out.append(f"self-locking: efficiency outside (0, 1] at sampled point {point}")
+    if variant.locking_expression is not None:
+        out.append(f"the efficiency has the sign of {sympy.sstr(variant.locking_expression)}; "
+                   "it self-locks where that is <= 0")
+    return out
+
+
+def variants_document(variants: VariantSet) -> dict[str, Any]:
+    """The ``turning_conditions``, ``meshes`` and ``variants`` entries of the JSON document."""
+    conditions = [{"name": c.name, "expression": sympy.sstr(c.expression), "simplified": sympy.sstr(c.simplified),
+                   "latex": sympy.latex(c.simplified)} for c in variants.conditions]
+    meshes = []
+    for r in variants.roles:
+        meshes.append({
+            "coupling": r.coupling, "carrier": r.flow.carrier, "gears": list(r.flow.gears),
+            "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
+            "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
+            "decided": r.condition is None,
+            "first_gear_drives_when": (
+                ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
+                if r.condition is None else
+                f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"),
+        })
+    items = []
+    for v in variants.variants:
+        items.append({
+            "number": v.number,
+            "name": v.name,
+            "input": v.input,
+            "output": v.output,
+            "conditions": [{"condition": c.name, "expression": sympy.sstr(c.simplified), "sign": v.signs[c.name]}
+                           for c in variants.conditions],
+            "meshes": mesh_text(variants, v),
+            "efficiency": sympy.sstr(v.efficiency),
+            "latex": sympy.latex(v.efficiency),
+            "feasible": v.feasible,
+            "derivative_check": v.derivative_check,
+            "self_locking_sampled": v.self_locking_point is not None,
+            "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
+        })
+    return {"turning_conditions": conditions, "meshes": meshes, "variants": items}
+
+
+def variants_text(variants: VariantSet) -> str:
+    """Plain-text table of conditions and variants."""
+    lines = []
+    for c in variants.conditions:
+        lines.append(f"  turning condition {c.name}: sign of {sympy.sstr(c.simplified)}"
+                     + (f" (derived: {sympy.sstr(c.expression)})" if c.expression != c.simplified else ""))
+    for v in variants.variants:
+        where = "; ".join(condition_text(variants, v)) or "always"
+        lines.append(f"  ({v.number}) input {v.input}, output {v.output}, where {where}:")
+        lines.append(f"      eta = {sympy.sstr(v.efficiency)}")
+        for m in mesh_text(variants, v):
+            lines.append(f"      {m}")
+        for n in notes(v):
+            lines.append(f"      {n}")
+    return "\n".join(lines)

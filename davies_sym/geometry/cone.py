@@ -1,0 +1,168 @@
+"""Layout of trains whose gear axes meet at one apex: bevel and face-gear trains
+(Laus section 3.4.2 and App. C, Chen Fig. 4.10).
+
+The pitch point of each mesh lies on both pitch cones; the relative rotation is about
+the line from the apex to it, the tooth force along the common normal.  A tilted planet
+(``axis: tilted``) takes its axis from the two coaxial gears it meshes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import sympy
+
+from davies_sym.algebra.radicals import RadicalTable
+from davies_sym.algebra.screws import Vector, cross, vector
+from davies_sym.errors import GeometryError, Problem
+from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout
+from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.model import Gear, Train
+
+
+def _norm_squared(v: Vector) -> sympy.Expr:
+    return sympy.expand(sum(x**2 for x in v))
+
+
+def _unit(v: Vector, radicals: RadicalTable) -> Vector:
+    norm = radicals.sqrt(_norm_squared(v))
+    return vector([radicals.reduce(x / norm) for x in v])
+
+
+def _dot(a: Vector, b: Vector) -> sympy.Expr:
+    return sympy.expand(sum(x * y for x, y in zip(a, b, strict=True)))
+
+
+def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) -> dict[str, Vector]:
+    """Unit axis direction of every geared link: given ones first, then tilted planets."""
+    axes: dict[str, Vector] = {}
+    for g in train.gears:
+        if g.axis is None:
+            continue
+        axis = _unit(vector([radicals.absorb(x) for x in g.axis]), radicals)
+        previous = axes.get(g.link)
+        if previous is not None and any(radicals.reduce(x) != 0 for x in cross(previous, axis)):
+            problems.append(train.problem(f"gears.{g.name}.axis", f"gears of link {g.link!r} must share one axis"))
+        axes.setdefault(g.link, axis)
+    for g in train.gears:
+        if g.tilted and g.link not in axes:
+            axis = _tilted_axis(train, g, axes, radicals, problems)
+            if axis is not None:
+                axes[g.link] = axis
+    tilted_links = {g.link for g in train.gears if g.tilted}
+    for g in train.gears:
+        if g.link not in axes and g.link not in tilted_links:  # a failed tilt is reported already
+            problems.append(train.problem(f"gears.{g.name}.axis", "in a train with intersecting axes every gear "
+                                          "needs its axis direction (a direction, or `tilted`)"))
+    return axes
+
+
+def _tilted_axis(train: Train, gear: Gear, axes: Mapping[str, Vector], radicals: RadicalTable,
+                 problems: list[Problem]) -> Vector | None:
+    """Axis of a bevel planet meshing two coaxial gears A and B that face each other.
+
+    The pitch points on A and B are the ends of a diameter of the planet's pitch circle,
+    at r_A and r_B from the main axis, so the diameter makes the angle beta with the
+    radial direction e, cos beta = (r_B - r_A) / (2 r_p) (Laus App. C); the planet axis is
+    perpendicular to it: p = (sqrt(4 r_p^2 - (r_B - r_A)^2) e - (r_B - r_A) a_B) / (2 r_p).
+    """
+    entry = f"gears.{gear.name}.axis"
+    partners = []
+    for c in train.couplings:
+        if isinstance(c, GearMesh) and gear.name in c.gears:
+            other = train.gear(c.gears[1] if c.gears[0] == gear.name else c.gears[0])
+            if other.link in axes:
+                partners.append(other)
+    if len(partners) != 2:
+        problems.append(train.problem(entry, f"a tilted axis needs two meshes with gears of known axes, "
+                                      f"found {len(partners)}"))
+        return None
+    a, b = (axes[p.link] for p in partners)
+    if any(radicals.reduce(x + y) != 0 for x, y in zip(a, b, strict=True)):
+        problems.append(train.problem(entry, f"a tilted axis needs gears {partners[0].name!r} and "
+                                      f"{partners[1].name!r} on one axis, facing each other "
+                                      "(opposite axis directions)"))
+        return None
+    radial = Y_AXIS if any(x != 0 for x in cross(b, Y_AXIS)) else X_AXIS
+    radial = vector([sympy.expand(x - _dot(radial, b) * y) for x, y in zip(radial, b, strict=True)])
+    step = sympy.expand(partners[1].radius - partners[0].radius)
+    rp = gear.radius
+    try:
+        rise = radicals.sqrt(4 * rp**2 - step**2)
+    except ValueError as exc:
+        problems.append(train.problem(entry, f"the cone geometry cannot be built: {exc}"))
+        return None
+    return vector([radicals.reduce((rise * e - step * z) / (2 * rp)) for e, z in zip(radial, b, strict=True)])
+
+
+def conical_layout(train: Train) -> Layout:
+    """Bevel and face-gear trains whose axes all meet at the origin (Laus section 3.5).
+
+    A mesh of gears with unit axes a, b and pitch radii r_a, r_b has its pitch point in the
+    plane of the axes, at r_a from axis a and r_b from axis b: P = (r_b a + r_a b) / sin S,
+    S the angle between the axes (Laus eqs. (80)-(84), App. C).  The relative motion is a
+    rotation about the line OP (the pitch cones roll), the tooth force acts at P along
+    a x b, and a bearing turns about the axis of the gears of its link.  Square roots
+    (tilted axes) stay exact as radical symbols; a gear meshing twice must have both
+    pitch points on one pitch circle (equal cone distances).
+    """
+    problems: list[Problem] = []
+    radicals = RadicalTable()
+    axes = _link_axes(train, radicals, problems)
+    if problems:
+        raise GeometryError(problems, train.path)
+    gear_axes = {g.name: axes[g.link] for g in train.gears}
+    origin = vector((0, 0, 0))
+    points: dict[str, Vector] = {}
+    coupling_axes: dict[str, Vector] = {}
+    tangents: dict[str, Vector] = {}
+    cone_distance: dict[str, tuple[str, sympy.Expr]] = {}
+    for c in train.couplings:
+        if isinstance(c, GearMesh):
+            g, h = (train.gear(n) for n in c.gears)
+            a, b = gear_axes[g.name], gear_axes[h.name]
+            normal = vector([radicals.reduce(x) for x in cross(a, b)])
+            if all(x == 0 for x in normal):
+                problems.append(train.problem(f"couplings.{c.name}", "the gear axes are parallel: give the train "
+                                              "without axis directions (planar layout)"))
+                continue
+            sin = radicals.sqrt(_norm_squared(normal))
+            pitch = vector([radicals.reduce((h.radius * x + g.radius * y) / sin) for x, y in zip(a, b, strict=True)])
+            points[c.name] = pitch
+            coupling_axes[c.name] = pitch
+            tangents[c.name] = vector([radicals.reduce(x / sin) for x in normal])
+            distance = radicals.reduce(_norm_squared(pitch))
+            for gear in (g, h):
+                if gear.name in cone_distance:
+                    other, previous = cone_distance[gear.name]
+                    if radicals.reduce(distance - previous) != 0:
+                        problems.append(train.problem(
+                            f"couplings.{c.name}",
+                            f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
+                            f"sqrt({radicals.restore(distance)}) and in {other!r} at "
+                            f"sqrt({radicals.restore(previous)}); one gear has one pitch circle"))
+                else:
+                    cone_distance[gear.name] = (c.name, distance)
+        elif isinstance(c, Revolute):
+            on = [c.axis] if c.axis is not None else [link for link in c.links if link in axes]
+            if not on or on[0] not in axes:
+                problems.append(train.problem(f"couplings.{c.name}", "neither link carries a gear: this bearing's "
+                                              "axis direction is unknown"))
+                continue
+            points[c.name] = origin
+            coupling_axes[c.name] = axes[on[0]]
+        else:
+            points[c.name] = origin
+    if problems:
+        raise GeometryError(problems, train.path)
+    return Layout(
+        gear_centres={g.name: origin for g in train.gears},
+        coupling_points=points,
+        mesh_tangents=tangents,
+        mesh_normals={name: p for name, p in coupling_axes.items() if name in tangents},
+        constraints=(),
+        positive_facts=tuple(r.radicand for r in radicals.radicals),
+        gear_axes=gear_axes,
+        coupling_axes=coupling_axes,
+        radicals=tuple(radicals.radicals),
+    )

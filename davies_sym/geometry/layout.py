@@ -1,0 +1,135 @@
+"""What every layout hands on: :class:`Layout`, the geometric constraints, and the
+helpers the line, plane and cone layouts share (axis groups, constraint bookkeeping,
+eliminating one radius per constraint)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import sympy
+
+from davies_sym.algebra.radicals import Radical
+from davies_sym.algebra.screws import Vector, vector
+from davies_sym.algebra.signs import SignOracle
+from davies_sym.errors import GeometryError, Problem
+from davies_sym.topology.couplings import Revolute
+from davies_sym.topology.link_groups import LinkGroups
+from davies_sym.topology.model import Train
+
+Z_AXIS: Vector = vector((0, 0, 1))
+X_AXIS: Vector = vector((1, 0, 0))
+Y_AXIS: Vector = vector((0, 1, 0))
+
+
+@dataclass(frozen=True)
+class GeometricConstraint:
+    """An equation the radii must satisfy, ``lhs = rhs``, and the mesh that closes it."""
+
+    lhs: sympy.Expr
+    rhs: sympy.Expr
+    coupling: str
+
+    @property
+    def expression(self) -> sympy.Expr:
+        """``lhs - rhs``, which must vanish."""
+        return sympy.expand(self.lhs - self.rhs)
+
+    def __str__(self) -> str:
+        return f"{sympy.sstr(self.lhs)} = {sympy.sstr(self.rhs)}"
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Positions and directions the coupling kinds need to write their screws."""
+
+    gear_centres: Mapping[str, Vector]
+    coupling_points: Mapping[str, Vector]
+    mesh_tangents: Mapping[str, Vector]
+    mesh_normals: Mapping[str, Vector]
+    constraints: tuple[GeometricConstraint, ...]
+    #: Expressions known to be positive, e.g. R - r of every internal mesh.
+    positive_facts: tuple[sympy.Expr, ...] = ()
+    axis: Vector = Z_AXIS
+    #: Axis direction of each gear and of each coupling's rotation, where it is not ``axis``
+    #: (intersecting-axis trains).
+    gear_axes: Mapping[str, Vector] = field(default_factory=dict)
+    coupling_axes: Mapping[str, Vector] = field(default_factory=dict)
+    #: Square roots the positions use, as symbols with their radicands (tilted axes).
+    radicals: tuple[Radical, ...] = ()
+
+
+def line_point(y: sympy.Expr) -> Vector:
+    """The point at ``y`` on the layout line (x = z = 0)."""
+    return vector((0, y, 0))
+
+
+def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
+    """The geared links, and the groups of them that share one axis (joined by a revolute
+    that names no axis: coaxial members)."""
+    geared = {g.link for g in train.gears}
+    groups = LinkGroups(list(train.link_names))
+    for c in train.couplings:
+        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
+            groups.union(*c.links)
+    return geared, groups
+
+
+def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, object], problems: list[Problem]) -> None:
+    """Every gear's axis group has a position, or the layout fails with all problems."""
+    for g in train.gears:
+        if groups.find(g.link) not in positions:
+            problems.append(train.problem(
+                f"gears.{g.name}", "its position cannot be derived: no mesh or revolute with `at` connects it "
+                "to the rest of the train"))
+    if problems:
+        raise GeometryError(problems, train.path)
+
+
+def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> list[dict[sympy.Symbol, sympy.Expr]]:
+    """Every way to eliminate one symbol with one linear constraint: r1 - r3 = r2 - r4
+    gives r4 -> r2 + r3 - r1, r1 -> r2 + r3 - r4, ..."""
+    out = []
+    for c in constraints:
+        expr = c.expression
+        for s in sorted(expr.free_symbols, key=str):
+            if sympy.degree(expr, s) == 1:
+                solved = sympy.solve(expr, s)
+                if len(solved) == 1:
+                    out.append({s: sympy.expand(solved[0])})
+    return out
+
+
+def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sympy.Symbol, sympy.Expr]:
+    """One symbol eliminated per constraint, all at once (r4 -> r2 + r3 - r1, rb -> ...),
+    so that a sign needing several constraints together can be decided."""
+    eliminated: dict[sympy.Symbol, sympy.Expr] = {}
+    for constraint in constraints:
+        # Prefer eliminating a symbol that is a positive combination of the others
+        # (the annulus: ra -> sa + 2 pa), so that positivity arguments still apply.
+        options = sorted(constraint_substitutions((constraint,)),
+                         key=lambda sub: not all(c > 0 for c in sympy.Poly(*sub.values()).coeffs()))
+        for substitution in options:
+            (symbol, expr), = substitution.items()
+            expr = sympy.expand(expr.subs(eliminated))
+            if symbol not in eliminated and symbol not in expr.free_symbols:
+                eliminated = {k: sympy.expand(v.subs(symbol, expr)) for k, v in eliminated.items()}
+                eliminated[symbol] = expr
+                break
+    return eliminated
+
+
+def add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
+                    distance: sympy.Expr, coupling: str, oracle: SignOracle, entry: str | None = None,
+                    message: str | None = None) -> None:
+    """``offset = distance`` holds, is impossible (a problem), or is a constraint on the radii."""
+    difference = sympy.expand(offset - distance)
+    if difference == 0:
+        return
+    if difference.is_number or oracle.sign(difference) in (1, -1):
+        problems.append(train.problem(
+            entry or f"couplings.{coupling}",
+            message or f"inconsistent geometry: the centre distance this coupling needs ({distance}) "
+            f"differs from the one the other couplings give ({offset})"))
+        return
+    constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))

@@ -1,0 +1,391 @@
+"""Motions, actions, powers and efficiency of a train (Laus Algorithm 1, steps 1-30).
+
+The solution runs on exact polynomials (python-flint); results are converted to sympy
+expressions only when asked for.  Primary variables are the input port magnitudes:
+the input speed (e.g. ``t_A``) for motions and the input torque (e.g. ``T_A``) for
+actions, as in Laus eqs. (16) and (23).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import sympy
+
+from davies_sym.algebra.linalg import Row, gauss_jordan
+from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.algebra.screws import power
+from davies_sym.algebra.signs import SignOracle
+from davies_sym.errors import DerivationError, MobilityError
+from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
+from davies_sym.network.matrices import ActionVariable, FrictionLaw, Network
+from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.model import Train
+from davies_sym.topology.symbols import make_symbol
+
+Progress = Callable[[str], None]
+
+
+@dataclass(frozen=True)
+class SignCondition:
+    """A Coulomb friction sign the declared ports do not decide.
+
+    ``symbol`` (+1 or -1) stands for ``sign(expression)`` in the friction form.
+    """
+
+    coupling: str
+    symbol: sympy.Symbol
+    expression: sympy.Expr
+
+
+class Analysis:
+    """Davies' method on one train: build with :func:`davies_sym.analyse`.
+
+    ``coulomb_signs='resolve'`` (default) fixes every Coulomb sign from the lossless
+    solution with positive input power and keeps a sign symbol only where the sign
+    depends on the geometry; ``'symbolic'`` keeps a symbol for every Coulomb law
+    (the ``c`` and ``a`` of Laus eqs. (22)-(26)); ``'mesh-linear'`` writes every gear
+    mesh as the signed linear law T = zeta U of eqs. (63)-(64), so that one formula
+    covers both power directions (zeta < 0 when the flow reverses, section 3.3.5), and
+    resolves the other Coulomb laws.  ``extra_symbols`` join the polynomial ring (the
+    ordinary efficiencies substituted later).  ``layout`` replaces the one derived from
+    the train (to study a geometry given otherwise, e.g. a published screw table).
+    """
+
+    def __init__(self, train: Train, tree: Sequence[str] | None = None,
+                 action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
+                 progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = (),
+                 layout: Layout | None = None):
+        if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
+            raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
+        self.train = train
+        self.coulomb_signs = coulomb_signs
+        self._progress = progress or (lambda message: None)
+        self._progress("building the coupling network")
+        self.network = Network(train, tree, action_tree, layout)
+        net = self.network
+        self.input_motion = net.coupling_motions(train.ports.input)[0]
+        self.input_action = net.port_action(train.ports.input)
+        self.output_action = net.port_action(train.ports.output)
+        constraints = net.layout.constraints
+        substitutions = constraint_substitutions(constraints)
+        if len(constraints) > 1:
+            substitutions.append(joint_substitution(constraints))
+        self.oracle = SignOracle(net.layout.positive_facts, substitutions)
+        self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
+                             for law in net.laws if law.law == "coulomb"}
+        symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
+        symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
+        for law in net.laws:
+            symbols |= law.coefficient.free_symbols
+        self.ring = PolynomialRing(symbols, net.layout.radicals)
+        self._reduce = self.ring.reduce if self.ring.radicals else None
+
+    # -- helpers ---------------------------------------------------------------------
+    def _rf(self, expr: sympy.Expr) -> RationalFunction:
+        return self.ring.rational(expr)
+
+    def _rows(self, matrix: sympy.Matrix) -> list[Row]:
+        """Sparse polynomial rows; a row with fractions (pitch points of tilted bevel
+        axes) is multiplied by the lcm of its denominators, which leaves its equation."""
+        rows = []
+        for i in range(matrix.rows):
+            entries = {j: self._rf(matrix[i, j]) for j in range(matrix.cols) if matrix[i, j] != 0}
+            common = self.ring.one
+            for rf in entries.values():
+                if not rf.den.is_one():
+                    common = common * (rf.den / common.gcd(rf.den))
+            rows.append({j: rf.num * (common / rf.den) for j, rf in entries.items()})
+        return rows
+
+    # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
+    @cached_property
+    def motion_coefficients(self) -> dict[str, RationalFunction]:
+        """psi_alpha / t_in for every motion magnitude."""
+        return self._motion_solution[1]
+
+    @cached_property
+    def _motion_solution(self) -> tuple[int, dict[str, RationalFunction]]:
+        """The mobility (nullity of M_N) and psi_alpha / t_in; raises on a mismatch."""
+        self._progress("solving the motions (null space of M_N)")
+        net = self.network
+        M_N = net.network_motion_matrix()
+        index = net.motions.index(self.input_motion)
+        elimination = gauss_jordan(self._rows(M_N), len(net.motions), prefer_free=[index],
+                                   reduce=self._reduce)
+        free = elimination.free
+        dof = len(free)
+        problems = []
+        if index not in free:
+            problems.append(self.train.problem(
+                "ports.input", f"the input coupling {self.train.ports.input!r} cannot move: the train is locked"))
+        if self.train.degrees_of_freedom is not None and dof != self.train.degrees_of_freedom:
+            problems.append(self.train.problem(
+                "degrees_of_freedom",
+                f"the train has {dof} degree(s) of freedom, the file says {self.train.degrees_of_freedom}"))
+        elif dof != 1 and self.train.degrees_of_freedom is None:
+            extra = [net.motions[j].name for j in free if j != index]
+            problems.append(self.train.problem(
+                "ports",
+                f"the train has {dof} degrees of freedom but one input port drives it; also free: "
+                f"{', '.join(extra)}" if dof > 1 else "the train has no degree of freedom"))
+        if problems:
+            raise MobilityError(problems, self.train.path)
+        solution = elimination.solution(self.ring)
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return dof, {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
+
+    @cached_property
+    def motion_basis(self) -> dict[str, dict[str, RationalFunction]]:
+        """Every motion magnitude as a combination of the primary ones (the free
+        variables of Null(M_N), the input speed first): eq. (1) for any mobility."""
+        _ = self._motion_solution  # the mobility check
+        net = self.network
+        # Primary speeds: the input, then the other couplings on the reference (shaft speeds).
+        on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
+                        for v in net.coupling_motions(c.name) if v is not self.input_motion]
+        prefer = [net.motions.index(self.input_motion), *on_reference]
+        elimination = gauss_jordan(self._rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
+                                   reduce=self._reduce)
+        solution = elimination.solution(self.ring)
+        return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
+
+    @property
+    def degrees_of_freedom(self) -> int:
+        """Net degree of freedom F_N, the nullity of M_N (eq. (1))."""
+        return self._motion_solution[0]
+
+    @cached_property
+    def motion_magnitudes(self) -> dict[str, RationalFunction]:
+        """Every motion magnitude in terms of the input speed."""
+        t_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_motion.symbol))
+        return {name: c * t_in for name, c in self.motion_coefficients.items()}
+
+    def speed_ratio(self) -> RationalFunction:
+        """Input speed over output speed, t_in / t_out (the transmission ratio)."""
+        out = self.network.coupling_motions(self.train.ports.output)[0]
+        return self.motion_coefficients[out.name].inverse()
+
+    # -- lossless actions (eqs. (2), (60)-(62)) --------------------------------------
+    @cached_property
+    def lossless_action_coefficients(self) -> dict[str, RationalFunction]:
+        """Psi_alpha / T_in of the lossless network (friction columns removed)."""
+        _ = self._motion_solution  # check the mobility before the actions
+        self._progress("solving the lossless actions (null space of A_N)")
+        net = self.network
+        cols = net.action_columns(lossless=True)
+        index = cols.index(self.input_action)
+        elimination = gauss_jordan(self._rows(net.network_action_matrix(lossless=True)), len(cols),
+                                   prefer_free=[index], reduce=self._reduce)
+        self._check_action_nullity(elimination.free, index, cols)
+        solution = elimination.solution(self.ring)
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return {v.name: solution[k].get(index, zero) for k, v in enumerate(cols)}
+
+    def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
+        if index not in free:
+            raise MobilityError([self.train.problem(
+                "ports.input", f"the input torque on {self.train.ports.input!r} is determined by the other "
+                "actions: the input does no work")], self.train.path)
+        others = [cols[j].name for j in free if j != index]
+        if others:
+            raise MobilityError([self.train.problem(
+                "couplings", f"the actions are not determined by the input: {', '.join(others)} stay free "
+                "(the network is overconstrained in this screw system, or a port is missing)")], self.train.path)
+
+    # -- friction signs (eqs. (21), (24), (41)) --------------------------------------
+    def _input_pairing(self) -> sympy.Expr:
+        return power(self.input_action.wrench, self.input_motion.twist)
+
+    @property
+    def coulomb_sign_values(self) -> dict[str, sympy.Expr]:
+        """sign(transmitted force) * sign(relative motion) of every Coulomb law, with
+        positive input power, or its sign symbol where the ports do not decide it."""
+        return self._coulomb_signs[0]
+
+    @property
+    def sign_conditions(self) -> list[SignCondition]:
+        """The Coulomb signs left as symbols, each with the expression that decides it."""
+        return list(self._coulomb_signs[1])
+
+    @cached_property
+    def _coulomb_signs(self) -> tuple[dict[str, sympy.Expr], tuple[SignCondition, ...]]:
+        out: dict[str, sympy.Expr] = {}
+        conditions: list[SignCondition] = []
+        for law in self.network.laws:
+            if law.law != "coulomb":
+                continue
+            symbol = self.sign_symbols[law.coupling]
+            if self.coulomb_signs == "symbolic":
+                out[law.coupling] = symbol
+                continue
+            if self.coulomb_signs == "mesh-linear" and isinstance(self.train.coupling(law.coupling), GearMesh):
+                out[law.coupling] = sympy.Integer(-1)  # T + (-1) zeta U = 0, i.e. T = zeta U
+                continue
+            assert law.transmitted is not None
+            alpha = self.lossless_action_coefficients[law.transmitted]
+            beta = self.motion_coefficients[law.motion]
+            content, factors = (alpha * beta * self._rf(self._input_pairing())).factor_list()
+            sign, undecided = self.oracle.classify(content, factors)
+            if sign in (1, -1):
+                out[law.coupling] = sympy.Integer(sign)
+            else:
+                out[law.coupling] = symbol
+                conditions.append(SignCondition(law.coupling, symbol, undecided))
+        return out, tuple(conditions)
+
+    # -- augmented action matrix (eqs. (22), (40), (51)-(52)) ------------------------
+    def _law_row(self, law: FrictionLaw) -> dict[str, sympy.Expr]:
+        if law.law == "coulomb":
+            assert law.transmitted is not None
+            return {law.variable: sympy.Integer(1),
+                    law.transmitted: self.coulomb_sign_values[law.coupling] * law.coefficient}
+        if law.law == "linear":
+            assert law.transmitted is not None
+            return {law.variable: sympy.Integer(1), law.transmitted: -law.coefficient}
+        return {law.variable: sympy.Integer(1)}
+
+    @cached_property
+    def augmented_action_matrix(self) -> sympy.Matrix:
+        """D_A: A_N stacked over the constitutive rows, then the source rows."""
+        net = self.network
+        names = [v.name for v in net.actions]
+        rows = []
+        ordered = [law for law in net.laws if law.law != "viscous"] + [law for law in net.laws if law.law == "viscous"]
+        for law in ordered:
+            entries = self._law_row(law)
+            rows.append([entries.get(n, 0) for n in names])
+        extra = sympy.Matrix(rows) if rows else sympy.zeros(0, len(names))
+        return sympy.Matrix.vstack(net.network_action_matrix(), extra)
+
+    @cached_property
+    def dependent_sources(self) -> sympy.Matrix:
+        """nu: right-hand side of the source rows, T = -b t (eqs. (50)-(51), (53))."""
+        values = []
+        for law in self.network.laws:
+            if law.law == "viscous":
+                speed = self.motion_magnitudes[law.motion].to_expr()
+                values.append(-law.coefficient * speed)
+        return sympy.Matrix(values)
+
+    @cached_property
+    def action_solution(self) -> dict[str, tuple[RationalFunction, RationalFunction]]:
+        """Every action magnitude as ``(a, b)`` with Psi = a T_in + b (b from sources)."""
+        _ = self._coulomb_signs  # decide the signs before forming D_A
+        self._progress("solving the actions with friction (null space of D_A)")
+        net = self.network
+        D = self.augmented_action_matrix
+        nu = self.dependent_sources
+        ncols = D.cols
+        const = ncols  # an extra column multiplying the constant 1
+        sources = sympy.zeros(D.rows, 1)
+        for k in range(nu.rows):
+            sources[D.rows - nu.rows + k] = -nu[k]
+        rows = self._rows(D.row_join(sources))
+        index = net.actions.index(self.input_action)
+        elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const], reduce=self._reduce)
+        free = [j for j in elimination.free if j != const]
+        self._check_action_nullity(tuple(free), index, list(net.actions))
+        if const in elimination.pivots:
+            raise DerivationError("the dependent sources are inconsistent with the network")
+        solution = elimination.solution(self.ring)
+        zero = RationalFunction.polynomial(self.ring, self.ring.zero)
+        return {v.name: (solution[k].get(index, zero), solution[k].get(const, zero))
+                for k, v in enumerate(net.actions)}
+
+    @cached_property
+    def action_magnitudes(self) -> dict[str, RationalFunction]:
+        """Every action magnitude in terms of the input torque (and speed, with sources)."""
+        T_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_action.symbol))
+        return {name: a * T_in + b for name, (a, b) in self.action_solution.items()}
+
+    def null_space(self) -> sympy.Matrix:
+        """The vector spanning Null(D_A), scaled so the input torque entry is 1 (eq. (23))."""
+        if self.dependent_sources.rows:
+            raise DerivationError("with dependent sources D_A Psi = [0; nu] has no plain null space")
+        return sympy.Matrix([a.to_expr() for a, _ in self.action_solution.values()])
+
+    def motion_null_space(self) -> sympy.Matrix:
+        """The vector spanning Null(M_N), scaled so the input speed entry is 1 (eq. (58))."""
+        return sympy.Matrix([c.to_expr() for c in self.motion_coefficients.values()])
+
+    # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
+    def coupling_twist(self, coupling: str) -> list[RationalFunction]:
+        """Condensed motion screw of a coupling (a column of M, eq. (59))."""
+        d = self.network.order
+        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
+        for v in self.network.coupling_motions(coupling):
+            for i in range(d):
+                if v.twist[i] != 0:
+                    out[i] = out[i] + self.motion_magnitudes[v.name] * self._rf(v.twist[i])
+        return out
+
+    def action_wrench(self, names: Sequence[str]) -> list[RationalFunction]:
+        """Sum of the wrenches of the given action variables."""
+        d = self.network.order
+        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
+        for name in names:
+            v = self.network.action(name)
+            for i in range(d):
+                if v.wrench[i] != 0:
+                    out[i] = out[i] + self.action_magnitudes[name] * self._rf(v.wrench[i])
+        return out
+
+    def coupling_wrench(self, coupling: str) -> list[RationalFunction]:
+        """Condensed action screw of a coupling (a column of A, eqs. (26), (65))."""
+        return self.action_wrench([v.name for v in self.network.coupling_actions(coupling)])
+
+    def inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
+        total = RationalFunction.polynomial(self.ring, self.ring.zero)
+        for a, b in zip(wrench, twist, strict=True):
+            if not a.is_zero() and not b.is_zero():
+                total = total + a * b
+        return total
+
+    def lossless_input_power(self) -> RationalFunction:
+        """Input power of the lossless network per unit input torque (T_in = 1)."""
+        wrench = [self._rf(v) for v in self.input_action.wrench]
+        return self.inner(wrench, self.coupling_twist(self.train.ports.input))
+
+    def power_rf(self, coupling: str, actions: Sequence[str] | None = None) -> RationalFunction:
+        """Power through ``coupling`` (all its actions, or only ``actions``), eq. (5)."""
+        names = [v.name for v in self.network.coupling_actions(coupling)] if actions is None else list(actions)
+        return self.inner(self.action_wrench(names), self.coupling_twist(coupling))
+
+    def power(self, coupling: str, actions: Sequence[str] | None = None) -> sympy.Expr:
+        """Power through a coupling as a sympy expression (eqs. (27)-(29))."""
+        return self.power_rf(coupling, actions).to_expr()
+
+    def port_power_rf(self, coupling: str) -> RationalFunction:
+        """Power of the port action alone on its coupling (``S_TA . S_A`` of eq. (45))."""
+        return self.power_rf(coupling, [self.network.port_action(coupling).name])
+
+    @cached_property
+    def efficiency_rf(self) -> RationalFunction:
+        """Overall efficiency -P_out / P_in (Definition 5, eqs. (32), (49), (71))."""
+        self._progress("forming the efficiency")
+        p_in = self.port_power_rf(self.train.ports.input)
+        p_out = self.port_power_rf(self.train.ports.output)
+        return -(p_out / p_in)
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        """The efficiency in friction coefficients, numerator and denominator factored."""
+        return self.efficiency_rf.to_expr()
+
+    def motion_matrix(self) -> sympy.Matrix:
+        """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""
+        cols = [[c.to_expr() for c in self.coupling_twist(e)] for e in self.network.graph.edges]
+        return sympy.Matrix(cols).T
+
+    def action_matrix(self) -> sympy.Matrix:
+        """A (d x e), condensed per coupling, in terms of the input torque (eqs. (26), (65))."""
+        cols = [[c.to_expr() for c in self.coupling_wrench(e)] for e in self.network.graph.edges]
+        return sympy.Matrix(cols).T
+
+
+def analyse(train: Train, **options: object) -> Analysis:
+    """Run Davies' method on ``train`` (see :class:`Analysis` for the options)."""
+    return Analysis(train, **options)  # type: ignore[arg-type]

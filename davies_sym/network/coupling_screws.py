@@ -1,0 +1,105 @@
+"""The screws each coupling kind contributes to the network, for a given layout.
+
+One writer per kind of :mod:`davies_sym.topology.couplings` (Laus Tables 3-4, 12-13,
+14-15): a revolute is a rotation about its axis, a mesh a rotation about the pitch line
+with the tooth force along the common tangent (pressure angle zero, Laus section 3.3.1),
+a prismatic pair a translation, and the low-level kind its screws as written.  Adding
+a coupling kind means one writer here, registered in ``WRITERS``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import sympy
+
+from davies_sym.algebra.screws import (
+    AXES,
+    UNIT,
+    NamedScrew,
+    Vector,
+    axis_letter,
+    cross,
+    force_magnitude_name,
+    force_wrench,
+    rotation_magnitude_name,
+    rotation_twist,
+    torque_magnitude_name,
+    torque_wrench,
+    translation_magnitude_name,
+    translation_twist,
+    vector,
+)
+from davies_sym.geometry.layout import Layout
+from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
+
+
+@dataclass(frozen=True)
+class CouplingScrews:
+    """What a coupling contributes to the network, in full 6-D coordinates.
+
+    ``motions`` span its freedoms; ``secondary`` are freedoms kept only when the screw
+    system of the whole network holds them (e.g. the separating motion of a mesh in a
+    planar train drawn on one line); ``constraints`` are candidate unit wrenches in the
+    order of preference, from which the screw-system reduction picks an independent set
+    reciprocal to the kept freedoms.
+    """
+
+    motions: tuple[NamedScrew, ...]
+    secondary: tuple[NamedScrew, ...]
+    constraints: tuple[NamedScrew, ...]
+
+
+def _point_constraints(point: Vector, forces_first: tuple[Vector, ...] = (),
+                       axis: Vector | None = None) -> tuple[NamedScrew, ...]:
+    """Candidate constraint wrenches at ``point``: given forces, then forces along the
+    axes, then torques about the axes, then torques normal to a bearing's ``axis``
+    (a tilted planet bearing carries the torque P_G of Laus eq. (81))."""
+    out = [NamedScrew(force_magnitude_name(d), force_wrench(d, point)) for d in forces_first]
+    out += [NamedScrew(force_magnitude_name(UNIT[a]), force_wrench(UNIT[a], point)) for a in AXES]
+    out += [NamedScrew(torque_magnitude_name(UNIT[a]), torque_wrench(UNIT[a])) for a in AXES]
+    if axis is not None and axis_letter(axis) is None:
+        for a in AXES:
+            normal = cross(axis, UNIT[a])
+            if any(sympy.expand(x) != 0 for x in normal):
+                out.append(NamedScrew(torque_magnitude_name(normal), torque_wrench(normal)))
+    return tuple(out)
+
+
+def _revolute(c: Revolute, layout: Layout) -> CouplingScrews:
+    """A bearing: one rotation about its axis; forces and torques elsewhere."""
+    point, axis = layout.coupling_points[c.name], layout.coupling_axes.get(c.name, layout.axis)
+    motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
+    return CouplingScrews((motion,), (), _point_constraints(point, axis=axis))
+
+
+def _mesh(c: GearMesh, layout: Layout) -> CouplingScrews:
+    """A mesh: rotation about the pitch line, tooth force along the common tangent first;
+    the separating motion along the centre line is a secondary freedom (kept in planar
+    systems of order 3)."""
+    point, axis = layout.coupling_points[c.name], layout.coupling_axes.get(c.name, layout.axis)
+    tangent, normal = layout.mesh_tangents[c.name], layout.mesh_normals[c.name]
+    motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
+    separating = NamedScrew(translation_magnitude_name(normal), translation_twist(normal))
+    return CouplingScrews((motion,), (separating,), _point_constraints(point, (tangent,)))
+
+
+def _prismatic(c: Prismatic, layout: Layout) -> CouplingScrews:
+    """A slider: one translation along its direction."""
+    motion = NamedScrew(translation_magnitude_name(c.direction), translation_twist(c.direction))
+    return CouplingScrews((motion,), (), _point_constraints(vector((0, 0, 0))))
+
+
+def _written(c: ScrewCoupling, layout: Layout) -> CouplingScrews:
+    """The low-level kind: the screws as written (Laus App. B, C)."""
+    return CouplingScrews(c.motion_screws, (), c.action_screws)
+
+
+WRITERS: Mapping[type[Coupling], Callable[..., CouplingScrews]] = {
+    Revolute: _revolute, GearMesh: _mesh, Prismatic: _prismatic, ScrewCoupling: _written}
+
+
+def coupling_screws(coupling: Coupling, layout: Layout) -> CouplingScrews:
+    """The unit twists and candidate unit wrenches of ``coupling`` in ``layout``."""
+    return WRITERS[type(coupling)](coupling, layout)

@@ -1,0 +1,275 @@
+"""The coupling network: unit motion/action matrices and the Davies network matrices.
+
+Implements Laus eqs. (17), (54), (60) (direct-coupling unit matrices M_D, A_D),
+App. E (index matrices X_M, X_A and column replication B_M = B X_M, Q_A = Q X_A),
+eq. (56) (network unit motion matrix M_N) and eq. (19) (network unit action matrix
+A_N).  Action columns of a coupling are ordered port, load-dependent friction,
+speed-dependent friction, constraints, as in eqs. (17), (40) and (52).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import sympy
+
+from davies_sym.algebra.radicals import RadicalTable, has_square_root
+from davies_sym.algebra.screws import NamedScrew, action_along_motion, power, torque_magnitude_name
+from davies_sym.errors import DerivationError, Problem, TopologyError
+from davies_sym.geometry import train_layout
+from davies_sym.geometry.layout import Layout
+from davies_sym.network.coupling_graph import CouplingGraph
+from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws
+from davies_sym.network.screw_system import ReducedCoupling, ScrewSystem, minimal_screw_system, reduce_coupling
+from davies_sym.topology.couplings import Coupling, GearMesh, ScrewCoupling
+from davies_sym.topology.model import Train
+from davies_sym.topology.symbols import make_symbol
+
+
+@dataclass(frozen=True)
+class MotionVariable:
+    """A motion magnitude (e.g. ``t_A``) with its reduced unit twist."""
+
+    name: str
+    coupling: str
+    twist: tuple[sympy.Expr, ...]
+
+    @property
+    def symbol(self) -> sympy.Symbol:
+        return make_symbol(self.name, "magnitude")
+
+
+@dataclass(frozen=True)
+class ActionVariable:
+    """An action magnitude (e.g. ``U_C``) with its reduced unit wrench and its role:
+    ``port``, ``friction`` (load-dependent law), ``viscous`` or ``constraint``."""
+
+    name: str
+    coupling: str
+    wrench: tuple[sympy.Expr, ...]
+    role: str
+
+    @property
+    def symbol(self) -> sympy.Symbol:
+        return make_symbol(self.name, "magnitude")
+
+
+@dataclass(frozen=True)
+class FrictionLaw:
+    """One friction element: its torque variable, law and coefficient (Laus Table 2).
+
+    ``transmitted`` is the action whose magnitude loads a Coulomb or linear law (the
+    tooth force of a mesh, the reaction of a bearing); ``motion`` the relative motion
+    the friction opposes.
+    """
+
+    coupling: str
+    variable: str
+    law: str
+    coefficient: sympy.Expr
+    motion: str
+    transmitted: str | None
+
+
+def _unique(names: list[str]) -> list[str]:
+    seen: dict[str, int] = {}
+    out = []
+    for n in names:
+        seen[n] = seen.get(n, 0) + 1
+        out.append(n if seen[n] == 1 else f"{n}{seen[n]}")
+    return out
+
+
+class Network:
+    """All matrices of Davies' method for one train and one choice of spanning trees."""
+
+    def __init__(self, train: Train, tree: Sequence[str] | None = None,
+                 action_tree: Sequence[str] | None = None, layout: Layout | None = None):
+        self.train = train
+        self.layout = layout if layout is not None else train_layout(train)
+        self.graph = CouplingGraph(train.link_names, [(c.name, *c.links) for c in train.couplings])
+        self.tree = tuple(tree) if tree is not None else self.graph.default_tree(train.reference)
+        self.action_tree = tuple(action_tree) if action_tree is not None else self.tree
+        for label, t in (("tree", self.tree), ("action tree", self.action_tree)):
+            if not self.graph.is_spanning_tree(t):
+                raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
+        full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
+        self.system: ScrewSystem = minimal_screw_system([m.screw for s in full.values() for m in s.motions])
+        self.reduced: dict[str, ReducedCoupling] = {}
+        for c in train.couplings:
+            if isinstance(c, ScrewCoupling):
+                _check_reciprocal(train, c, full[c.name])
+            self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
+        self.motions, self.actions, self.laws = self._variables()
+        self._check_names()
+
+    def _absorb_radicals(self, full: dict[str, CouplingScrews]) -> dict[str, CouplingScrews]:
+        """Square roots written in low-level screws become radical symbols of the layout
+        (positive radicands), so the exact algebra treats them like tilted bevel axes."""
+        if not any(has_square_root(x) for screws in full.values() for group in (screws.motions, screws.constraints)
+                   for named in group for x in named.screw):
+            return full
+        table = RadicalTable(list(self.layout.radicals))
+
+        def absorb(group: tuple[NamedScrew, ...]) -> tuple[NamedScrew, ...]:
+            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw))  # type: ignore[arg-type]
+                         for n in group)
+
+        out = {name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
+               for name, s in full.items()}
+        added = tuple(r for r in table.radicals if r not in self.layout.radicals)
+        self.layout = replace(self.layout, radicals=tuple(table.radicals),
+                              positive_facts=self.layout.positive_facts + tuple(r.radicand for r in added))
+        return out
+
+    # -- variables -------------------------------------------------------------------
+    def _variables(self) -> tuple[tuple[MotionVariable, ...], tuple[ActionVariable, ...], tuple[FrictionLaw, ...]]:
+        motions: list[MotionVariable] = []
+        actions: list[ActionVariable] = []
+        laws: list[FrictionLaw] = []
+        ports = {self.train.ports.input, self.train.ports.output}
+        for c in self.train.couplings:
+            red = self.reduced[c.name]
+            names = _unique([m.name for m in red.motions])
+            cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw)
+                  for n, m in zip(names, red.motions, strict=True)]
+            motions += cm
+            needs_axis = c.name in ports or not c.friction.lossless
+            if needs_axis and (len(cm) > 1 and not isinstance(c, GearMesh)):
+                raise DerivationError(f"coupling {c.name}: ports and friction need a coupling with one "
+                                      f"freedom, it has {len(cm)} in this screw system")
+            if not needs_axis:
+                actions += self._constraint_actions(c, red)
+                continue
+            full_twist = _lift(self.system, cm[0].twist)
+            along = action_along_motion(full_twist)
+            wrench = self.system.reduce_wrench(along)
+            base = torque_magnitude_name(along[:3]) if any(v != 0 for v in along[:3]) else "F"
+            has_port = c.name in ports
+            if has_port:
+                actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
+            constraints = self._constraint_actions(c, red)
+            load_law = ("coulomb" if c.friction.coulomb is not None
+                        else "linear" if c.friction.linear is not None else None)
+            transmitted = self._transmitted(c, constraints) if load_law is not None else None
+            if load_law is not None:
+                name = f"{base}star_{c.name}" if has_port else f"{base}_{c.name}"
+                actions.append(ActionVariable(name, c.name, wrench, "friction"))
+                coefficient = c.friction.coulomb if load_law == "coulomb" else c.friction.linear
+                laws.append(FrictionLaw(c.name, name, load_law, coefficient, cm[0].name, transmitted))
+            if c.friction.viscous is not None:
+                name = f"{base}ddag_{c.name}" if (has_port or load_law) else f"{base}_{c.name}"
+                actions.append(ActionVariable(name, c.name, wrench, "viscous"))
+                laws.append(FrictionLaw(c.name, name, "viscous", c.friction.viscous, cm[0].name, None))
+            actions += constraints
+        return tuple(motions), tuple(actions), tuple(laws)
+
+    def _constraint_actions(self, c: Coupling, red: ReducedCoupling) -> list[ActionVariable]:
+        names = _unique([w.name for w in red.constraints])
+        return [ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint")
+                for n, w in zip(names, red.constraints, strict=True)]
+
+    def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
+        # A mesh loads its friction with the tooth force, its first constraint action.
+        if isinstance(c, GearMesh) or len(constraints) == 1:
+            return constraints[0].name
+        raise DerivationError(
+            f"coupling {c.name}: a load-dependent friction law needs one reaction force, but this coupling "
+            f"transmits {', '.join(a.name for a in constraints)} in the screw system of order "
+            f"{self.system.order}; use a viscous law or describe the reaction with one force")
+
+    def _check_names(self) -> None:
+        clash = {v.name for v in self.motions} | {v.name for v in self.actions}
+        clash &= set(self.train.symbols)
+        if clash:
+            raise TopologyError([Problem("", f"symbol {n!r} is also the name of a motion or action "
+                                         "magnitude; rename it") for n in sorted(clash)], self.train.path)
+
+    # -- lookups ---------------------------------------------------------------------
+    def motion(self, name: str) -> MotionVariable:
+        return next(v for v in self.motions if v.name == name)
+
+    def action(self, name: str) -> ActionVariable:
+        return next(v for v in self.actions if v.name == name)
+
+    def port_action(self, coupling: str) -> ActionVariable:
+        return next(v for v in self.actions if v.coupling == coupling and v.role == "port")
+
+    def coupling_motions(self, coupling: str) -> list[MotionVariable]:
+        return [v for v in self.motions if v.coupling == coupling]
+
+    def coupling_actions(self, coupling: str, lossless: bool = False) -> list[ActionVariable]:
+        return [v for v in self.actions if v.coupling == coupling
+                and not (lossless and v.role in ("friction", "viscous"))]
+
+    # -- matrices (Laus eqs. (17), (19), (54)-(56), App. E) --------------------------
+    @property
+    def order(self) -> int:
+        return self.system.order
+
+    def unit_motion_matrix(self) -> sympy.Matrix:
+        """M_D (d x F), one unit twist per column (eq. (54))."""
+        return sympy.Matrix([list(v.twist) for v in self.motions]).T
+
+    def unit_action_matrix(self, lossless: bool = False) -> sympy.Matrix:
+        """A_D (d x C), one unit wrench per column (eqs. (17), (60))."""
+        cols = self.action_columns(lossless)
+        return sympy.Matrix([list(v.wrench) for v in cols]).T
+
+    def action_columns(self, lossless: bool = False) -> list[ActionVariable]:
+        return [v for v in self.actions if not (lossless and v.role in ("friction", "viscous"))]
+
+    def motion_index_matrix(self) -> sympy.Matrix:
+        """X_M (e x F): 1 where motion alpha belongs to edge j (App. E)."""
+        edges = self.graph.edges
+        return sympy.Matrix(len(edges), len(self.motions),
+                            lambda j, a: 1 if self.motions[a].coupling == edges[j] else 0)
+
+    def action_index_matrix(self, lossless: bool = False) -> sympy.Matrix:
+        """X_A (e x C): 1 where action alpha belongs to edge j (App. E)."""
+        edges, cols = self.graph.edges, self.action_columns(lossless)
+        return sympy.Matrix(len(edges), len(cols), lambda j, a: 1 if cols[a].coupling == edges[j] else 0)
+
+    def circuit_matrix(self) -> sympy.Matrix:
+        return self.graph.circuit_matrix(self.tree)
+
+    def cutset_matrix(self) -> sympy.Matrix:
+        return self.graph.cutset_matrix(self.action_tree)
+
+    def motion_circuit_matrix(self) -> sympy.Matrix:
+        """B_M = B X_M, the circuit matrix of the motion graph (column replication)."""
+        return self.circuit_matrix() * self.motion_index_matrix()
+
+    def action_cutset_matrix(self, lossless: bool = False) -> sympy.Matrix:
+        """Q_A = Q X_A, the cutset matrix of the action graph (column replication)."""
+        return self.cutset_matrix() * self.action_index_matrix(lossless)
+
+    def network_motion_matrix(self) -> sympy.Matrix:
+        """M_N (dl x F), eq. (56): blocks M_D diag(B_M row i)."""
+        MD, BM = self.unit_motion_matrix(), self.motion_circuit_matrix()
+        blocks = [MD * sympy.diag(*BM.row(i)) for i in range(BM.rows)]
+        return sympy.Matrix.vstack(*blocks) if blocks else sympy.zeros(0, MD.cols)
+
+    def network_action_matrix(self, lossless: bool = False) -> sympy.Matrix:
+        """A_N (dk x C), eq. (19): blocks A_D diag(Q_A row i)."""
+        AD, QA = self.unit_action_matrix(lossless), self.action_cutset_matrix(lossless)
+        blocks = [AD * sympy.diag(*QA.row(i)) for i in range(QA.rows)]
+        return sympy.Matrix.vstack(*blocks)
+
+
+def _lift(system: ScrewSystem, reduced: tuple[sympy.Expr, ...]):  # type: ignore[no-untyped-def]
+    full = system.lift * sympy.Matrix(reduced)
+    return tuple(sympy.expand(v) for v in full)
+
+
+def _check_reciprocal(train: Train, c: ScrewCoupling, screws) -> None:  # type: ignore[no-untyped-def]
+    problems = []
+    for a in screws.constraints:
+        for m in screws.motions:
+            if sympy.expand(power(a.screw, m.screw)) != 0:
+                problems.append(Problem(f"couplings.{c.name}.actions", f"action {a.name!r} does work on "
+                                        f"motion {m.name!r} (power {sympy.expand(power(a.screw, m.screw))}); "
+                                        "transmitted actions must be reciprocal to the motions"))
+    if problems:
+        raise TopologyError(problems, train.path)

@@ -1,0 +1,121 @@
+"""The screw system of order d that the motions span (Laus sections 2.2 and 3.3.1).
+
+The essential unit twists of all couplings span a subspace of the 6-D twist space.
+When that subspace is a coordinate subspace (the usual case: ``{t; u}`` for planar
+trains drawn on a line, ``{t; u, v}`` for planar linkages), twists keep those
+coordinates and wrenches keep the dual ones (``{T; U}``), exactly as in the thesis.
+Otherwise a lift ``L`` (6 x d) with ``twist = L @ reduced_twist`` is used and wrenches
+reduce to ``L^T @ wrench``, which keeps every power unchanged.
+
+Wrench components reciprocal to the whole system do no work and are the
+overconstraint actions the thesis drops; each coupling keeps an independent set of
+d - f constraint wrenches reciprocal to its own twists.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import sympy
+
+from davies_sym.algebra.screws import TWIST_COORDINATES, WRENCH_COORDINATES, NamedScrew, Screw, power
+from davies_sym.errors import DerivationError
+from davies_sym.network.coupling_screws import CouplingScrews
+
+
+@dataclass(frozen=True)
+class ScrewSystem:
+    """A screw system of order ``d``: which coordinates are kept and how they lift."""
+
+    coordinates: tuple[int, ...]
+    lift: sympy.Matrix  # 6 x d, twist = lift * reduced twist
+
+    @property
+    def order(self) -> int:
+        return len(self.coordinates)
+
+    @property
+    def twist_names(self) -> tuple[str, ...]:
+        return tuple(TWIST_COORDINATES[i] for i in self.coordinates)
+
+    @property
+    def wrench_names(self) -> tuple[str, ...]:
+        return tuple(WRENCH_COORDINATES[i] for i in self.coordinates)
+
+    def reduce_twist(self, twist: Screw) -> tuple[sympy.Expr, ...]:
+        return tuple(twist[i] for i in self.coordinates)
+
+    def reduce_wrench(self, wrench: Screw) -> tuple[sympy.Expr, ...]:
+        reduced = self.lift.T * sympy.Matrix(wrench)
+        return tuple(sympy.expand(v) for v in reduced)
+
+    def contains(self, twist: Screw) -> bool:
+        """Whether ``twist`` lies in the system (its lift reproduces it)."""
+        back = self.lift * sympy.Matrix(self.reduce_twist(twist))
+        return all(sympy.expand(a - b) == 0 for a, b in zip(back, twist, strict=True))
+
+
+def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
+    """The screw system spanned by ``essential`` twists."""
+    W = sympy.Matrix([list(t) for t in essential]).T  # 6 x m
+    used = [i for i in range(6) if any(W[i, j] != 0 for j in range(W.cols))]
+    rank = W.rank(simplify=True)
+    if rank == 0:
+        raise DerivationError("no coupling allows any motion")
+    if len(used) == rank:
+        lift = sympy.zeros(6, rank)
+        for k, i in enumerate(used):
+            lift[i, k] = 1
+        return ScrewSystem(tuple(used), lift)
+    # General case: keep independent coordinate rows, express the others through them.
+    chosen: list[int] = []
+    for i in used:
+        if sympy.Matrix([W.row(k) for k in [*chosen, i]]).rank(simplify=True) > len(chosen):
+            chosen.append(i)
+        if len(chosen) == rank:
+            break
+    WI = sympy.Matrix([W.row(k) for k in chosen])
+    lift = sympy.zeros(6, rank)
+    for k, i in enumerate(chosen):
+        lift[i, k] = 1
+    gram_inv = (WI * WI.T).inv()
+    for i in range(6):
+        if i not in chosen and i in used:
+            coeffs = (W.row(i) * WI.T * gram_inv).applyfunc(sympy.cancel)
+            for k in range(rank):
+                lift[i, k] = coeffs[0, k]
+    return ScrewSystem(tuple(chosen), lift)
+
+
+@dataclass(frozen=True)
+class ReducedCoupling:
+    """A coupling's kept unit twists and its independent constraint wrenches."""
+
+    motions: tuple[NamedScrew, ...]
+    constraints: tuple[NamedScrew, ...]
+
+
+def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> ReducedCoupling:
+    """Keep the coupling's freedoms that lie in the system and pick d - f constraints."""
+    motions = list(screws.motions) + [s for s in screws.secondary if system.contains(s.screw)]
+    reduced_motions = sympy.Matrix([list(system.reduce_twist(m.screw)) for m in motions])
+    freedom = reduced_motions.rank(simplify=True)
+    if freedom != len(motions):
+        raise DerivationError(f"coupling {name}: its unit motion screws are not independent")
+    chosen: list[NamedScrew] = []
+    rows: list[list[sympy.Expr]] = []
+    for candidate in screws.constraints:
+        if any(sympy.expand(power(candidate.screw, m.screw)) != 0 for m in motions):
+            continue
+        row = list(system.reduce_wrench(candidate.screw))
+        if sympy.Matrix([*rows, row]).rank(simplify=True) > len(rows):
+            rows.append(row)
+            chosen.append(NamedScrew(candidate.name, tuple(row)))  # type: ignore[arg-type]
+        if len(chosen) == system.order - freedom:
+            break
+    if len(chosen) != system.order - freedom:
+        raise DerivationError(f"coupling {name}: found {len(chosen)} independent constraint actions "
+                              f"reciprocal to its motions, need {system.order - freedom}")
+    kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)  # type: ignore[arg-type]
+    return ReducedCoupling(kept, tuple(chosen))

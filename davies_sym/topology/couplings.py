@@ -1,0 +1,314 @@
+"""Coupling kinds as written in a topology file: what each joins, its parameters, its friction.
+
+A coupling kind is a frozen dataclass with a ``from_entry`` constructor that reads its
+entry of the topology file and its ``FIELDS`` for the schema.  Adding a kind means a
+class here, registered in ``KINDS``, and its screws in
+:mod:`davies_sym.network.coupling_screws` (Laus Tables 3-4, 12-13).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import sympy
+
+from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
+from davies_sym.topology.schema import COUPLING_COMMON, FRICTION, Field
+
+if TYPE_CHECKING:
+    from davies_sym.topology.entries import EntryReader
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Friction laws of one coupling (Laus Table 2); ``None`` means the law is absent."""
+
+    coulomb: sympy.Expr | None = None
+    linear: sympy.Expr | None = None
+    viscous: sympy.Expr | None = None
+
+    @property
+    def lossless(self) -> bool:
+        return self.coulomb is None and self.linear is None and self.viscous is None
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """Base of the coupling kinds: a named edge from ``links[0]`` to ``links[1]``."""
+
+    name: str
+    links: tuple[str, str]
+    friction: Friction
+
+    kind: ClassVar[str] = ""
+    FIELDS: ClassVar[tuple[Field, ...]] = ()
+    DOC: ClassVar[str] = ""
+
+
+    @property
+    def gears(self) -> tuple[str, str] | None:
+        return None
+
+
+def _read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tuple[str, str] | None:
+    links = entry.get("links")
+    if not isinstance(links, list) or len(links) != 2:
+        reader.problem(f"{path}.links", "expected a list of two link names")
+        return None
+    a = reader.name(links[0], f"{path}.links[0]")
+    b = reader.name(links[1], f"{path}.links[1]")
+    if a is None or b is None:
+        return None
+    if a == b:
+        reader.problem(f"{path}.links", f"a coupling must join two different links, got {a!r} twice")
+        return None
+    return (a, b)
+
+
+def read_friction(value: Any, path: str, reader: EntryReader, default: Friction) -> Friction:
+    """Read a ``friction`` entry: ``none``, or a mapping of laws to coefficients."""
+    if value is None:
+        return default
+    if isinstance(value, str) and value.strip().lower() == "none":
+        return Friction()
+    entry = reader.mapping(value, path)
+    if entry is None:
+        return default
+    reader.check_keys(entry, path, FRICTION)
+    laws: dict[str, sympy.Expr | None] = {}
+    for f in FRICTION:
+        if f.key in entry:
+            role = "viscous" if f.key == "viscous" else "friction"
+            laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
+    if "coulomb" in laws and "linear" in laws:
+        reader.problem(path, "choose one load-dependent law: `coulomb` or `linear`, not both")
+    return Friction(**laws)
+
+
+@dataclass(frozen=True)
+class Revolute(Coupling):
+    """A revolute pair (bearing): one rotation about the axis through its point."""
+
+    at: sympy.Expr | None = None
+    axis: str | None = None
+
+    kind: ClassVar[str] = "revolute"
+    DOC: ClassVar[str] = ("Revolute pair between two links. Its axis is parallel to the gear "
+                          "axes; its position is that of the gears of either link, or `at`.")
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("links", "[link, link]", True, "The two links; the edge goes from the first to the second."),
+        Field("at", "number or expression", False,
+              "Position of the axis on the layout line (y), needed only when neither link carries a gear."),
+        Field("axis", "link", False,
+              "The link whose gear axis this bearing is on, when both links carry gears but are not "
+              "coaxial (a planet pin in a carrier that also has teeth). Default: the two links are coaxial."),
+    )
+
+    @classmethod
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Revolute | None:
+        links = _read_links(entry, path, reader)
+        at = reader.quantity(entry["at"], f"{path}.at", "length") if "at" in entry else None
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
+        if links is not None and axis is not None and axis not in links:
+            reader.problem(f"{path}.axis", f"{axis!r} is not one of the coupling's links {list(links)}")
+            axis = None
+        return None if links is None else cls(name, links, friction, at, axis)
+
+
+@dataclass(frozen=True)
+class GearMesh(Coupling):
+    """A gear mesh between two gears on different links, external or internal.
+
+    The relative motion is a rotation about the pitch line (Laus Table 3, coupling C);
+    the transmitted action is the tooth force along the common tangent at the pitch
+    point (pressure angle taken as zero, Laus section 3.3.1), and the friction is a
+    torque about the pitch line (Theorem 1).  The separating motion along the centre
+    line is a secondary freedom: it is kept in planar systems of order 3.
+    """
+
+    mesh_gears: tuple[str, str] = ("", "")
+    internal: bool = False
+    #: Ordinary efficiencies: (first gear drives, second gear drives), Laus eqs. (32), (34).
+    efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
+
+    kind: ClassVar[str] = "mesh"
+    DOC: ClassVar[str] = ("Gear mesh between two gears. The edge goes from the link of the first gear "
+                          "to the link of the second. External or internal is derived from the gears "
+                          "(`internal: true` marks an annulus); `mesh` may state it as a check.")
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("gears", "[gear, gear]", True, "The two meshing gears."),
+        Field("mesh", "`external` or `internal`", False, "Checked against the gears."),
+        Field("efficiency", "symbol or number, or a list of two", False,
+              "Ordinary efficiency of the mesh (carrier held). One value serves both power "
+              "directions; a list gives [first gear drives, second gear drives]. "
+              "Default: `eta_<coupling>`."),
+    )
+
+    @property
+    def gears(self) -> tuple[str, str]:
+        return self.mesh_gears
+
+    @classmethod
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
+                   gears: Mapping[str, Any]) -> GearMesh | None:
+        pair = entry.get("gears")
+        if not isinstance(pair, list) or len(pair) != 2:
+            reader.problem(f"{path}.gears", "expected a list of two gear names")
+            return None
+        names = [reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair)]
+        if names[0] is None or names[1] is None:
+            return None
+        missing = [g for g in names if g not in gears]
+        for g in missing:
+            reader.problem(f"{path}.gears", f"unknown gear {g!r}")
+        if missing:
+            return None
+        g1, g2 = gears[names[0]], gears[names[1]]
+        if g1.link == g2.link:
+            reader.problem(f"{path}.gears", f"gears {g1.name!r} and {g2.name!r} are both on link "
+                           f"{g1.link!r}: a mesh must join gears on different links")
+            return None
+        if g1.internal and g2.internal:
+            reader.problem(f"{path}.gears", "two internal gears cannot mesh")
+            return None
+        internal = g1.internal or g2.internal
+        stated = entry.get("mesh")
+        if stated is not None and stated not in ("external", "internal"):
+            reader.problem(f"{path}.mesh", f"expected `external` or `internal`, got {stated!r}")
+        elif stated is not None and (stated == "internal") != internal:
+            reader.problem(f"{path}.mesh", f"stated {stated!r} but the gears make an "
+                           f"{'internal' if internal else 'external'} mesh")
+        default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default)
+        efficiencies = _read_efficiencies(entry.get("efficiency", f"eta_{name}"), f"{path}.efficiency", reader)
+        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
+
+
+def _read_efficiencies(value: Any, path: str, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
+    values = value if isinstance(value, list) else [value]
+    if len(values) not in (1, 2):
+        reader.problem(path, f"expected one efficiency or a list of two, got {len(values)}")
+        return None
+    read = [reader.quantity(v, f"{path}[{i}]" if len(values) > 1 else path, "efficiency")
+            for i, v in enumerate(values)]
+    if any(r is None for r in read):
+        return None
+    for i, r in enumerate(read):
+        if r is not None and r.is_number and not 0 < r <= 1:
+            reader.problem(path, f"an ordinary efficiency must lie in (0, 1], got {values[i]!r}")
+            return None
+    first = read[0]
+    second = read[-1]
+    assert first is not None and second is not None
+    return first, second
+
+
+@dataclass(frozen=True)
+class Prismatic(Coupling):
+    """A prismatic pair: one translation along ``direction``."""
+
+    direction: Vector = (sympy.Integer(1), sympy.Integer(0), sympy.Integer(0))
+
+    kind: ClassVar[str] = "prismatic"
+    DOC: ClassVar[str] = "Prismatic pair between two links: one translation."
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("links", "[link, link]", True, "The two links."),
+        Field("direction", "`x`, `y`, `z` or [x, y, z]", True, "Direction of the translation."),
+    )
+
+    @classmethod
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Prismatic | None:
+        links = _read_links(entry, path, reader)
+        direction = read_direction(entry.get("direction"), f"{path}.direction", reader)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        if links is None or direction is None:
+            return None
+        return cls(name, links, friction, direction)
+
+
+def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
+    """A direction: ``x``, ``y``, ``z`` (``-x`` ...), or a list of three quantities."""
+    if isinstance(value, str) and value in UNIT:
+        return UNIT[value]
+    if isinstance(value, str) and value.startswith("-") and value[1:] in UNIT:
+        return vector([-v for v in UNIT[value[1:]]])
+    if isinstance(value, list) and len(value) == 3:
+        parts = [reader.quantity(v, f"{path}[{i}]", "length") for i, v in enumerate(value)]
+        if any(p is None for p in parts):
+            return None
+        if all(p == 0 for p in parts):
+            reader.problem(path, "the direction must not be zero")
+            return None
+        return vector(parts)
+    reader.problem(path, f"expected x, y, z or a list of three numbers, got {value!r}")
+    return None
+
+
+@dataclass(frozen=True)
+class ScrewCoupling(Coupling):
+    """The low-level form: unit motion and action screws written out (Laus App. B, C)."""
+
+    motion_screws: tuple[NamedScrew, ...] = ()
+    action_screws: tuple[NamedScrew, ...] = ()
+
+    kind: ClassVar[str] = "screws"
+    DOC: ClassVar[str] = ("Low-level coupling with explicit unit screws, as in the tables of Laus "
+                          "appendices B and C. Coordinates not written are zero.")
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("links", "[link, link]", True, "The two links."),
+        Field("motions", "mapping", True,
+              "Unit twists: magnitude name -> {r, s, t, u, v, w} (axis formation)."),
+        Field("actions", "mapping", True,
+              "Unit wrenches transmitted: magnitude name -> {R, S, T, U, V, W} (ray formation)."),
+    )
+
+    @classmethod
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> ScrewCoupling | None:
+        links = _read_links(entry, path, reader)
+        motions = _read_screws(entry.get("motions"), f"{path}.motions", reader, TWIST_COORDINATES)
+        actions = _read_screws(entry.get("actions", {}), f"{path}.actions", reader, WRENCH_COORDINATES)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        if links is None or motions is None or actions is None:
+            return None
+        if not motions:
+            reader.problem(f"{path}.motions", "a coupling needs at least one motion screw")
+            return None
+        return cls(name, links, friction, motions, actions)
+
+
+def _read_screws(value: Any, path: str, reader: EntryReader,
+                 coordinates: tuple[str, ...]) -> tuple[NamedScrew, ...] | None:
+    entry = reader.mapping(value, path)
+    if entry is None:
+        return None
+    out = []
+    for label, coords in entry.items():
+        cpath = f"{path}.{label}"
+        cmap = reader.mapping(coords, cpath)
+        if cmap is None:
+            continue
+        screw = []
+        for key in cmap:
+            if key not in coordinates:
+                reader.problem(f"{cpath}.{key}", f"unknown coordinate {key!r} (use {', '.join(coordinates)})")
+        for c in coordinates:
+            q = reader.quantity(cmap[c], f"{cpath}.{c}", "length") if c in cmap else sympy.Integer(0)
+            screw.append(q if q is not None else sympy.Integer(0))
+        if all(c == 0 for c in screw):
+            reader.problem(cpath, "a unit screw must not be zero")
+        base = label.split("_")[0] if "_" in label else label
+        out.append(NamedScrew(base, tuple(screw)))  # type: ignore[arg-type]
+    return tuple(out)
+
+
+KINDS: Mapping[str, type[Coupling]] = {
+    k.kind: k for k in (Revolute, GearMesh, Prismatic, ScrewCoupling)
+}
+
+
+def coupling_fields(kind: type[Coupling]) -> tuple[Field, ...]:
+    """Every key a coupling entry of ``kind`` may hold."""
+    return COUPLING_COMMON + kind.FIELDS

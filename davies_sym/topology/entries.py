@@ -1,0 +1,87 @@
+"""Reading entries of a topology file: every problem is collected with its location."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import sympy
+
+from davies_sym.errors import Problem
+from davies_sym.topology.expressions import shortened
+from davies_sym.topology.schema import Field
+from davies_sym.topology.symbols import QuantityError, parse_quantity
+from davies_sym.topology.yaml_source import SourceDocument
+
+#: Names that definitions may take, by kind, and how the rule reads in a message.
+NAME_PATTERNS: dict[str, tuple[re.Pattern[str], str]] = {
+    "link": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
+    "gear": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
+    "coupling": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
+    "state": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
+}
+
+
+class EntryReader:
+    """Collects problems (with line numbers) and the symbols of one topology file."""
+
+    def __init__(self, document: SourceDocument):
+        self.document = document
+        self.problems: list[Problem] = []
+        self.symbols: dict[str, sympy.Symbol] = {}
+
+    def problem(self, path: str, message: str) -> None:
+        self.problems.append(Problem(path, message, self.document.line(path)))
+
+    def mapping(self, value: Any, path: str) -> Mapping[str, Any] | None:
+        if isinstance(value, Mapping):
+            return value
+        self.problem(path, f"expected a mapping, got {_describe(value)}")
+        return None
+
+    def check_keys(self, entry: Mapping[str, Any], path: str, fields: Iterable[Field]) -> None:
+        """Report unknown and missing keys of ``entry`` against ``fields``."""
+        fields = tuple(fields)
+        known = {f.key for f in fields}
+        for key in entry:
+            if key not in known:
+                self.problem(f"{path}.{key}", f"unknown key {key!r} (known: {', '.join(sorted(known))})")
+        for f in fields:
+            if f.required and f.key not in entry:
+                self.problem(path, f"missing required key {f.key!r}")
+
+    def name(self, value: Any, path: str) -> str | None:
+        """A name (of a link, gear or coupling): strings and integers are accepted."""
+        if isinstance(value, bool) or value is None or isinstance(value, (list, dict, float)):
+            self.problem(path, f"expected a name, got {_describe(value)}")
+            return None
+        return str(value)
+
+    def defined_name(self, value: Any, path: str, kind: str) -> str | None:
+        """The name a link, gear, coupling or state is defined under, checked against ``NAME_PATTERNS``.
+
+        Coupling and state names become parts of symbols, function and file names of the
+        outputs, so they are identifiers; links and gears may also hold ``/ . + -`` (``3/4``).
+        """
+        name = self.name(value, path)
+        if name is None:
+            return None
+        pattern, allowed = NAME_PATTERNS[kind]
+        if not pattern.fullmatch(name):
+            self.problem(path, f"{shortened(name)} is not a valid {kind} name: use {allowed} (at most 40)")
+            return None
+        return name
+
+    def quantity(self, value: Any, path: str, role: str) -> sympy.Expr | None:
+        try:
+            return parse_quantity(value, role, self.symbols)
+        except QuantityError as exc:
+            self.problem(path, str(exc))
+            return None
+
+
+def _describe(value: Any) -> str:
+    if value is None:
+        return "nothing"
+    return f"{type(value).__name__} {value!r}"

@@ -1,0 +1,351 @@
+"""Load a topology file (YAML, language version 1) into a validated :class:`Train`.
+
+Validation collects every problem with its line and entry path and raises once
+(:class:`TopologyError`).  Geometry and mobility are checked later, when the network
+is built, because they need the screws.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Any
+
+import networkx as nx
+import sympy
+
+from davies_sym.errors import Problem, TopologyError
+from davies_sym.topology.couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
+from davies_sym.topology.entries import EntryReader
+from davies_sym.topology.model import Expected, Gear, Link, Ports, State, Train
+from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
+from davies_sym.topology.symbols import exact_number
+from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
+
+
+def load(path: str | os.PathLike[str]) -> Train:
+    """Read, parse and validate the train file at ``path``."""
+    name = os.fspath(path)
+    try:
+        with open(name, encoding="utf-8") as handle:
+            text = handle.read()
+    except OSError as exc:
+        raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], name) from None
+    return loads(text, name)
+
+
+def loads(text: str, name: str | None = None) -> Train:
+    """Parse and validate a train given as YAML text (``name`` is used in messages)."""
+    return build_train(parse_yaml(text, name))
+
+
+def build_train(document: SourceDocument) -> Train:
+    reader = EntryReader(document)
+    data = reader.mapping(document.data, "")
+    if data is None:
+        raise TopologyError(reader.problems, document.name)
+    reader.check_keys(data, "", TOP_LEVEL)
+    version = data.get("format", FORMAT_VERSION)
+    if version != FORMAT_VERSION:
+        reader.problem("format", f"unsupported topology language version {version!r} (this is {FORMAT_VERSION})")
+    links = _read_links(data.get("links"), reader)
+    gears = _read_gears(data.get("gears", {}), reader, {link.name for link in links})
+    couplings = _read_couplings(data.get("couplings"), reader, {link.name for link in links}, gears)
+    ports = _read_ports(data.get("ports"), reader, couplings)
+    if reader.problems:
+        raise TopologyError(reader.problems, document.name)
+    _check_connected(links, couplings, reader)
+    reference = _read_reference(data.get("reference"), reader, links, couplings, ports)
+    dof = data.get("degrees_of_freedom")
+    if dof is not None and (not isinstance(dof, int) or isinstance(dof, bool) or dof < 1):
+        reader.problem("degrees_of_freedom", f"expected a positive integer, got {dof!r}")
+        dof = None
+    expected = _read_expected(data.get("expected", []), reader)
+    states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings)
+    for i, check in enumerate(expected):
+        if check.state is not None and check.state not in {st.name for st in states}:
+            reader.problem(f"expected[{i}].state", f"unknown state {check.state!r}")
+    placement = _read_placement(data["placement"], reader) if "placement" in data else None
+    for key in ("name", "source", "notes"):
+        if key in data and not isinstance(data[key], str):
+            reader.problem(key, f"expected text, got {data[key]!r}")
+    if reader.problems or ports is None or reference is None:
+        raise TopologyError(reader.problems, document.name)
+    return Train(
+        name=str(data["name"]),
+        links=tuple(links),
+        gears=tuple(gears.values()),
+        couplings=tuple(couplings.values()),
+        ports=ports,
+        reference=reference,
+        symbols=MappingProxyType(dict(sorted(reader.symbols.items()))),
+        source=str(data.get("source", "")),
+        degrees_of_freedom=dof,
+        expected=expected,
+        path=document.name,
+        locations=MappingProxyType(dict(document.lines)),
+        states=states,
+        placement=placement,
+    )
+
+
+def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """``[x, y]`` (exact) or an angle in degrees whose sine and cosine are square roots."""
+    if isinstance(value, list) and len(value) == 2:
+        parts = [reader.quantity(v, f"placement[{i}]", "length") for i, v in enumerate(value)]
+        if any(p is None for p in parts):
+            return None
+        if all(p == 0 for p in parts):
+            reader.problem("placement", "the direction must not be zero")
+            return None
+        return (parts[0], parts[1])  # type: ignore[return-value]
+    angle = exact_number(value)
+    if angle is None:
+        reader.problem("placement", f"expected [x, y] or an angle in degrees, got {value!r}")
+        return None
+    radians = angle * sympy.pi / 180
+    cos, sin = sympy.cos(radians), sympy.sin(radians)
+    if any(p.has(sympy.cos, sympy.sin) for p in (cos, sin)):
+        reader.problem("placement", f"the sine and cosine of {angle} degrees are not square roots; give the "
+                       "direction as [x, y] instead")
+        return None
+    return (cos, sin)
+
+
+def _read_links(value: Any, reader: EntryReader) -> list[Link]:
+    links: list[Link] = []
+    if isinstance(value, list):
+        for i, item in enumerate(value):
+            name = reader.defined_name(item, f"links[{i}]", "link")
+            if name is None:
+                continue
+            if any(link.name == name for link in links):
+                reader.problem(f"links[{i}]", f"duplicate link {name!r}")
+                continue
+            links.append(Link(name))
+    elif isinstance(value, Mapping):
+        for name, entry in value.items():
+            entry = entry or {}
+            if reader.defined_name(name, f"links.{name}", "link") is None:
+                continue
+            if reader.mapping(entry, f"links.{name}") is None:
+                continue
+            reader.check_keys(entry, f"links.{name}", LINK)
+            links.append(Link(name, str(entry.get("description", ""))))
+    else:
+        reader.problem("links", "expected a list of link names or a mapping of links")
+    if isinstance(value, (list, Mapping)) and len(links) < 2:
+        reader.problem("links", "a machine needs at least two links")
+    return links
+
+
+def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, Gear]:
+    gears: dict[str, Gear] = {}
+    table = reader.mapping(value, "gears")
+    for name, entry in (table or {}).items():
+        path = f"gears.{name}"
+        if reader.defined_name(name, path, "gear") is None:
+            continue
+        entry = reader.mapping(entry, path)
+        if entry is None:
+            continue
+        reader.check_keys(entry, path, GEAR)
+        link = reader.name(entry.get("link"), f"{path}.link")
+        if link is not None and link not in links:
+            reader.problem(f"{path}.link", f"unknown link {link!r}")
+        internal = entry.get("internal", False)
+        if not isinstance(internal, bool):
+            reader.problem(f"{path}.internal", f"expected true or false, got {internal!r}")
+            internal = False
+        radius, teeth, module = _read_size(entry, path, reader)
+        tilted = entry.get("axis") == "tilted"
+        axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry and not tilted else None
+        if link is not None and radius is not None:
+            gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
+    return gears
+
+
+def _read_size(entry: Mapping[str, Any], path: str, reader: EntryReader):  # type: ignore[no-untyped-def]
+    """Pitch radius from ``radius`` or from ``teeth`` and ``module``."""
+    has_radius, has_teeth = "radius" in entry, "teeth" in entry
+    if has_radius == has_teeth:
+        reader.problem(path, "give either `radius` or `teeth` with `module`")
+        return None, None, None
+    if has_radius:
+        return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, None
+    teeth = entry["teeth"]
+    if not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
+        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {teeth!r}")
+        return None, None, None
+    if "module" not in entry:
+        reader.problem(path, "`teeth` needs `module` to give the pitch radius")
+        return None, None, None
+    module = reader.quantity(entry["module"], f"{path}.module", "length")
+    if module is None:
+        return None, None, None
+    return module * teeth / 2, teeth, module
+
+
+def _read_couplings(value: Any, reader: EntryReader, links: set[str],
+                    gears: Mapping[str, Gear]) -> dict[str, Coupling]:
+    couplings: dict[str, Coupling] = {}
+    table = reader.mapping(value, "couplings")
+    for name, entry in (table or {}).items():
+        path = f"couplings.{name}"
+        if reader.defined_name(name, path, "coupling") is None:
+            continue
+        entry = reader.mapping(entry, path)
+        if entry is None:
+            continue
+        kind_name = entry.get("type")
+        kind = KINDS.get(kind_name) if isinstance(kind_name, str) else None
+        if kind is None:
+            reader.problem(f"{path}.type", f"unknown coupling type {kind_name!r} (known: {', '.join(KINDS)})")
+            continue
+        reader.check_keys(entry, path, coupling_fields(kind))
+        if kind is GearMesh:
+            coupling = GearMesh.from_entry(name, entry, path, reader, gears)
+        else:
+            coupling = kind.from_entry(name, entry, path, reader)  # type: ignore[attr-defined]
+        if coupling is None:
+            continue
+        for i, link in enumerate(coupling.links):
+            if link not in links:
+                reader.problem(f"{path}.links[{i}]" if kind is not GearMesh else f"{path}.gears",
+                               f"unknown link {link!r}")
+        couplings[name] = coupling
+    if table is not None and not couplings and not reader.problems:
+        reader.problem("couplings", "no couplings given")
+    return couplings
+
+
+def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Coupling]) -> Ports | None:
+    entry = reader.mapping(value, "ports")
+    if entry is None:
+        return None
+    reader.check_keys(entry, "ports", PORTS)
+    names: dict[str, str] = {}
+    for role in ("input", "output"):
+        if role not in entry:
+            continue
+        name = reader.name(entry[role], f"ports.{role}")
+        if name is None:
+            continue
+        if name not in couplings:
+            reader.problem(f"ports.{role}", f"port on a missing coupling {name!r}")
+            continue
+        if isinstance(couplings[name], GearMesh):
+            reader.problem(f"ports.{role}", f"coupling {name!r} is a gear mesh; a port sits on a "
+                           "revolute or prismatic coupling (a shaft)")
+            continue
+        names[role] = name
+    if len(names) == 2 and names["input"] == names["output"]:
+        reader.problem("ports", "input and output must be different couplings")
+        return None
+    return Ports(names["input"], names["output"]) if len(names) == 2 else None
+
+
+def _check_connected(links: list[Link], couplings: Mapping[str, Coupling], reader: EntryReader) -> None:
+    graph = nx.MultiGraph()
+    graph.add_nodes_from(link.name for link in links)
+    graph.add_edges_from(c.links for c in couplings.values())
+    if not nx.is_connected(graph):
+        parts = sorted((sorted(map(str, part)) for part in nx.connected_components(graph)), key=len)
+        reader.problem("couplings", "the coupling graph is not connected: "
+                       + " | ".join(", ".join(p) for p in parts) + " are separate")
+
+
+def _read_reference(value: Any, reader: EntryReader, links: list[Link],
+                    couplings: Mapping[str, Coupling], ports: Ports | None) -> str | None:
+    names = [link.name for link in links]
+    if value is not None:
+        name = reader.name(value, "reference")
+        if name is not None and name not in names:
+            reader.problem("reference", f"unknown link {name!r}")
+            return None
+        return name
+    if ports is None:
+        return None
+    common = set(couplings[ports.input].links) & set(couplings[ports.output].links)
+    if len(common) != 1:
+        reader.problem("reference", "give the reference link: the input and output couplings "
+                       f"share {'no link' if not common else 'two links'}")
+        return None
+    return common.pop()
+
+
+def _read_states(value: Any, reader: EntryReader, links: set[str],
+                 couplings: Mapping[str, Coupling]) -> tuple[State, ...]:
+    """The ``states`` mapping: ports, brakes, clutches and free members per state."""
+    states = reader.mapping(value, "states")
+    if states is None:
+        return ()
+    out = []
+    for name, entry in states.items():
+        path = f"states.{name}"
+        if reader.defined_name(name, path, "state") is None:
+            continue
+        entry = reader.mapping(entry, path)
+        if entry is None:
+            continue
+        reader.check_keys(entry, path, STATE)
+        ports = []
+        for key in ("input", "output"):
+            port = reader.name(entry.get(key), f"{path}.{key}") if key in entry else None
+            if port is not None and port not in couplings:
+                reader.problem(f"{path}.{key}", f"port on a missing coupling {port!r}")
+                port = None
+            ports.append(port)
+
+        def members(key: str, items: Any, path: str = path) -> list[str]:
+            if not isinstance(items, list):
+                reader.problem(f"{path}.{key}", "expected a list")
+                return []
+            found = []
+            for i, item in enumerate(items):
+                link = reader.name(item, f"{path}.{key}[{i}]")
+                if link is not None and link not in links:
+                    reader.problem(f"{path}.{key}[{i}]", f"unknown link {link!r}")
+                elif link is not None:
+                    found.append(link)
+            return found
+
+        brake = members("brake", entry.get("brake", []))
+        free = members("free", entry.get("free", []))
+        clutch: list[tuple[str, str]] = []
+        for i, pair in enumerate(entry.get("clutch", []) if isinstance(entry.get("clutch", []), list) else []):
+            found = members(f"clutch[{i}]", pair)
+            if len(found) != 2 or found[0] == found[1]:
+                reader.problem(f"{path}.clutch[{i}]", "a clutch joins two different links: [link, link]")
+            else:
+                clutch.append((found[0], found[1]))
+        if ports[0] is not None and ports[1] is not None:
+            out.append(State(str(name), ports[0], ports[1], tuple(brake), tuple(clutch), tuple(free),
+                             str(entry.get("description", ""))))
+    return tuple(out)
+
+
+def _read_expected(value: Any, reader: EntryReader) -> tuple[Expected, ...]:
+    if not isinstance(value, list):
+        reader.problem("expected", "expected a list of checks")
+        return ()
+    out = []
+    for i, item in enumerate(value):
+        path = f"expected[{i}]"
+        entry = reader.mapping(item, path)
+        if entry is None:
+            continue
+        try:
+            out.append(Expected(
+                quantity=str(entry.get("quantity", "efficiency")),
+                values={str(k): str(v) for k, v in dict(entry.get("values", {})).items()},
+                value=float(entry["value"]),
+                tolerance=float(entry.get("tolerance", 5e-5)),
+                source=str(entry.get("source", "")),
+                input=None if entry.get("input") is None else str(entry["input"]),
+                state=None if entry.get("state") is None else str(entry["state"]),
+            ))
+        except (KeyError, TypeError, ValueError) as exc:
+            reader.problem(path, f"malformed check ({exc})")
+    return tuple(out)

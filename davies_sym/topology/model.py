@@ -1,0 +1,139 @@
+"""The validated, immutable model of a train (what :func:`davies_sym.load` returns)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+from types import MappingProxyType
+
+import sympy
+
+from davies_sym.errors import Problem
+from davies_sym.topology.couplings import Coupling
+
+
+@dataclass(frozen=True)
+class Link:
+    """A member of the machine (a node of the coupling graph)."""
+
+    name: str
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Gear:
+    """A gear fixed to a link, with its pitch radius (number or expression)."""
+
+    name: str
+    link: str
+    radius: sympy.Expr
+    internal: bool = False
+    teeth: int | None = None
+    module: sympy.Expr | None = None
+    #: Direction of the gear axis through the common apex (intersecting-axis trains);
+    #: None for parallel-axis trains (axes along z).
+    axis: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
+    #: The axis is tilted by the cone geometry: derived from the two coaxial gears this
+    #: gear meshes (the Humpage planet, Laus eq. (80)).
+    tilted: bool = False
+
+
+@dataclass(frozen=True)
+class Ports:
+    """The couplings that carry the input and the output action (Laus section 2.3)."""
+
+    input: str
+    output: str
+
+    def swapped(self) -> Ports:
+        return Ports(self.output, self.input)
+
+
+@dataclass(frozen=True)
+class State:
+    """An operating state of a multi-speed set: its ports, the members braked to the
+    housing, the members clutched together and the members running free (unloaded)."""
+
+    name: str
+    input: str
+    output: str
+    brake: tuple[str, ...] = ()
+    clutch: tuple[tuple[str, str], ...] = ()
+    free: tuple[str, ...] = ()
+    description: str = ""
+
+
+@dataclass(frozen=True)
+class Expected:
+    """A published number to reproduce: parameter values, expected value, tolerance."""
+
+    quantity: str
+    values: Mapping[str, str]
+    value: float
+    tolerance: float
+    source: str
+    input: str | None = None
+    state: str | None = None
+
+
+@dataclass(frozen=True)
+class Train:
+    """A gear train (or machine) as written in a topology file, validated."""
+
+    name: str
+    links: tuple[Link, ...]
+    gears: tuple[Gear, ...]
+    couplings: tuple[Coupling, ...]
+    ports: Ports
+    reference: str
+    symbols: Mapping[str, sympy.Symbol] = field(default_factory=lambda: MappingProxyType({}))
+    source: str = ""
+    degrees_of_freedom: int | None = None
+    expected: tuple[Expected, ...] = ()
+    path: str | None = None
+    #: Line of each entry path of the source file (``couplings.C.gears`` -> 12).
+    locations: Mapping[str, int] = field(default_factory=lambda: MappingProxyType({}))
+    states: tuple[State, ...] = ()
+    #: Placement direction (x, y) of a planar train drawn in 2-D; None: drawn on a line.
+    placement: tuple[sympy.Expr, sympy.Expr] | None = None
+
+    def problem(self, entry: str, message: str) -> Problem:
+        """A :class:`Problem` at ``entry`` with the line it has in the source file."""
+        path = entry
+        while path and path not in self.locations:
+            path = path.rpartition(".")[0]
+        return Problem(entry, message, self.locations.get(path))
+
+    def coupling(self, name: str) -> Coupling:
+        for c in self.couplings:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+    def gear(self, name: str) -> Gear:
+        for g in self.gears:
+            if g.name == name:
+                return g
+        raise KeyError(name)
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(link.name for link in self.links)
+
+    def state(self, name: str) -> State:
+        for st in self.states:
+            if st.name == name:
+                return st
+        raise KeyError(name)
+
+    def published_design(self, state: str | None = None) -> Mapping[str, str]:
+        """Parameter values of the first published check of ``state`` (or of a check
+        given for the whole train); empty when there is none."""
+        for check in self.expected:
+            if check.state in (None, state):
+                return check.values
+        return {}
+
+    def with_ports(self, ports: Ports) -> Train:
+        """The same train with other input/output ports."""
+        return replace(self, ports=ports)

@@ -1,0 +1,110 @@
+"""The topology language, version 1, as data.
+
+One table describes every entry a train file may hold: the loader checks files against
+it and ``docs/topology.md`` is generated from it (``python3 tools/topology_doc.py``).
+Coupling kinds add their own entries (see :mod:`davies_sym.topology.couplings`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+FORMAT_VERSION = 1
+
+
+@dataclass(frozen=True)
+class Field:
+    """One key of a mapping in a train file."""
+
+    key: str
+    kind: str
+    required: bool
+    doc: str
+
+
+TOP_LEVEL = (
+    Field("format", "integer", False, f"Topology language version; {FORMAT_VERSION} if omitted."),
+    Field("name", "string", True, "Name of the train, used in reports."),
+    Field("source", "string", False,
+          "Where the train comes from (document, figure, equation or table)."),
+    Field("links", "list or mapping", True,
+          "The members (links). A list of names, or a mapping name -> {description}."),
+    Field("reference", "link", False,
+          "The link common to input and output (usually the housing); motions are "
+          "measured against it. Default: the link that both port couplings touch."),
+    Field("gears", "mapping", False, "Gears: name -> gear entry (see below)."),
+    Field("couplings", "mapping", True,
+          "Couplings (edges of the coupling graph): name -> coupling entry. The "
+          "direction of an edge is from the first to the second link (or gear)."),
+    Field("ports", "mapping", True, "Ports: `input` and `output`, each a coupling name."),
+    Field("degrees_of_freedom", "integer", False,
+          "Expected mobility; a mismatch with the derived one is an error."),
+    Field("states", "mapping", False,
+          "Operating states of a multi-speed set: name -> state entry (see *States*)."),
+    Field("placement", "[x, y] or an angle in degrees", False,
+          "Draw a planar train in 2-D (planet-planet meshes off the centre line): the direction "
+          "from the main axis along which the first planet is placed. Planets meshing two placed "
+          "gears close their triangle. Omit to draw the train on one line."),
+    Field("expected", "list", False, "Published numbers to check (used by the catalog tests)."),
+    Field("notes", "string", False, "Free text."),
+)
+
+LINK = (Field("description", "string", False, "What the member is."),)
+
+GEAR = (
+    Field("link", "link", True, "The link the gear is fixed to."),
+    Field("radius", "number or expression", False,
+          "Pitch radius (a number, a symbol such as `r1`, or an expression)."),
+    Field("teeth", "integer", False, "Tooth count; with `module` gives radius = module*teeth/2."),
+    Field("module", "number or expression", False, "Module (used with `teeth`)."),
+    Field("internal", "boolean", False, "True for an annulus (internal teeth). Default false."),
+    Field("axis", "`x`, `y`, `z`, `-z`, ... or [x, y, z], or `tilted`", False,
+          "Direction of the gear axis through the common apex, for bevel and face-gear trains "
+          "(all axes meet at the origin; entries may use `sqrt`). The pitch point of a mesh lies "
+          "on the side the two axis directions point to. `tilted`: a bevel planet meshing two "
+          "coaxial gears that face each other; its axis follows from the cone geometry, in the "
+          "plane of the main axis and +y (Laus eq. (80)). Another gear on the same link may omit "
+          "the axis. Omit for parallel-axis trains."),
+)
+
+PORTS = (
+    Field("input", "coupling", True, "Coupling that carries the input torque (or force)."),
+    Field("output", "coupling", True, "Coupling that carries the output torque (or force)."),
+)
+
+STATE = (
+    Field("input", "coupling", True, "Input port in this state."),
+    Field("output", "coupling", True, "Output port in this state."),
+    Field("brake", "list of links", False,
+          "Members braked to the housing (the reference link): each is joined rigidly to it."),
+    Field("clutch", "list of [link, link]", False, "Pairs of members clutched together (joined rigidly)."),
+    Field("free", "list of links", False,
+          "Members running free (unloaded): removed with their couplings, they carry no power and no loss."),
+    Field("description", "string", False, "What the state is (e.g. first gear)."),
+)
+
+COUPLING_COMMON = (
+    Field("type", "string", True, "Coupling kind: `revolute`, `mesh`, `prismatic` or `screws`."),
+    Field("friction", "mapping or `none`", False,
+          "Friction laws and coefficients; see *Friction*."),
+)
+
+FRICTION = (
+    Field("coulomb", "symbol or number", False,
+          "Coulomb law, Laus Table 2 eq. (10): T = -zeta |U| sign(t). The coefficient has "
+          "the unit of length and is positive. Default for gear meshes: `zeta_<coupling>`."),
+    Field("linear", "symbol or number", False,
+          "Signed linear law of Laus eqs. (63)-(64): T = zeta U with a real coefficient "
+          "whose sign the user controls (no sign functions)."),
+    Field("viscous", "symbol or number", False,
+          "Linear viscous law, Laus Table 2 eq. (11): T = -b t, a dependent source "
+          "(eqs. (50)-(53)); makes the efficiency depend on the input torque and speed."),
+)
+
+
+def fields_table(fields: tuple[Field, ...]) -> str:
+    """A Markdown table of ``fields``."""
+    rows = ["| key | kind | required | meaning |", "| --- | --- | --- | --- |"]
+    for f in fields:
+        rows.append(f"| `{f.key}` | {f.kind} | {'yes' if f.required else 'no'} | {f.doc} |")
+    return "\n".join(rows)

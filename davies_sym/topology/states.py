@@ -1,0 +1,76 @@
+"""A multi-speed set in one operating state: brakes, clutches and free members applied.
+
+A braked member is joined rigidly to the housing (the reference link) and a clutch joins
+two members: the joined links become one link, and the couplings between them vanish
+(a bearing that no longer turns, a mesh inside one rigid block carries no relative
+motion and so no loss).  A free (unloaded) member is removed with its couplings: it
+carries no power and no loss.  The result is an ordinary train, analysed as any other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from davies_sym.errors import Problem, TopologyError
+from davies_sym.topology.couplings import Coupling, Revolute
+from davies_sym.topology.link_groups import LinkGroups
+from davies_sym.topology.model import Link, Ports, State, Train
+
+
+def train_in_state(train: Train, state: State) -> Train:
+    """``train`` with ``state``'s ports, brakes, clutches and free members applied."""
+    problems: list[Problem] = []
+    joined = LinkGroups(train.link_names)
+    for link in state.brake:
+        joined.union(link, train.reference)
+    for a, b in state.clutch:
+        joined.union(b, a)
+    groups: dict[str, list[str]] = {}
+    for link in train.link_names:
+        groups.setdefault(joined.find(link), []).append(link)
+    names = {root: root if root == train.reference else "+".join(members) for root, members in groups.items()}
+
+    def rename(link: str) -> str:
+        return names[joined.find(link)]
+
+    free = set(state.free)
+    for link in free:
+        if joined.find(link) != link or len(groups[link]) > 1:
+            problems.append(train.problem(f"states.{state.name}.free", f"{link!r} cannot be free and braked or "
+                                          "clutched"))
+    couplings: list[Coupling] = []
+    ports = {state.input, state.output}
+    # Ports first, so that of two bearings a clutch makes parallel the port is kept.
+    for c in sorted(train.couplings, key=lambda c: c.name not in ports):
+        if set(c.links) & free:
+            continue
+        ends = (rename(c.links[0]), rename(c.links[1]))
+        if ends[0] == ends[1]:
+            continue
+        twin = next((d for d in couplings if isinstance(d, Revolute) and isinstance(c, Revolute)
+                     and set(d.links) == set(ends)), None)
+        if twin is not None:
+            # Two bearings between the same two members (a clutch joined two shafts that
+            # both run in the housing): one carries the load; a lossy twin would split it.
+            if not c.friction.lossless:
+                problems.append(train.problem(f"couplings.{c.name}", f"in state {state.name!r} this bearing "
+                                              f"runs beside {twin.name!r} between the same members; their "
+                                              "friction would need a load split"))
+            continue
+        couplings.append(replace(c, links=ends))
+    order = {c.name: i for i, c in enumerate(train.couplings)}
+    couplings.sort(key=lambda c: order[c.name])
+    kept = {c.name for c in couplings}
+    for key, port in (("input", state.input), ("output", state.output)):
+        if port not in kept:
+            problems.append(train.problem(f"states.{state.name}.{key}",
+                                          f"port {port!r} does not exist in this state (its members are joined "
+                                          "or free)"))
+    if problems:
+        raise TopologyError(problems, train.path)
+    links = tuple(Link(name, "") for name in dict.fromkeys(rename(link) for link in train.link_names
+                                                          if link not in free))
+    gears = tuple(replace(g, link=rename(g.link)) for g in train.gears if g.link not in free)
+    return replace(train, name=f"{train.name}, {state.description or state.name}", links=links, gears=gears,
+                   couplings=tuple(couplings), ports=Ports(state.input, state.output),
+                   reference=rename(train.reference), degrees_of_freedom=None, states=())

@@ -1,0 +1,91 @@
+"""Symbols and exact numbers of one train.
+
+One symbol per name, with the assumptions its role implies (radii, friction and
+viscous coefficients are positive; action and motion magnitudes are real).  Numbers
+written in a topology file are taken exactly: ``0.99`` becomes ``99/100``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from fractions import Fraction
+from types import MappingProxyType
+
+import sympy
+
+from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
+
+#: Assumptions per symbol role.
+ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
+    "length": {"positive": True},
+    "friction": {"positive": True},
+    "viscous": {"positive": True},
+    "efficiency": {"positive": True},
+    "magnitude": {"real": True},
+    "sign": {"nonzero": True, "integer": True},
+    "angle": {"real": True},
+})
+
+
+#: A plain decimal or fraction with a modest exponent (Fraction would expand 1e999999999).
+_PLAIN_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d{1,3})?(/\d{1,300})?")
+
+
+def make_symbol(name: str, role: str) -> sympy.Symbol:
+    """The symbol ``name`` with the assumptions of ``role`` (see ``ROLE_ASSUMPTIONS``)."""
+    return sympy.Symbol(name, **ROLE_ASSUMPTIONS[role])
+
+
+def exact_number(value: object) -> sympy.Rational | None:
+    """``value`` as an exact rational if it is a plain number (int, float, "1/3"), else None."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int):
+        return sympy.Integer(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return None
+        # repr gives the shortest decimal that round-trips: 0.99 -> 99/100 exactly.
+        return sympy.Rational(repr(value))
+    if isinstance(value, str):
+        text = value.strip()
+        if not _PLAIN_NUMBER.fullmatch(text):
+            return None
+        try:
+            frac = Fraction(text)
+        except (ValueError, ZeroDivisionError, OverflowError):
+            return None
+        return sympy.Rational(frac.numerator, frac.denominator)
+    return None
+
+
+class QuantityError(ValueError):
+    """A quantity could not be read as a number or an expression."""
+
+
+def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Expr:
+    """Read a number or an expression of symbols; new names get the assumptions of ``role``.
+
+    ``symbols`` collects the symbols of the train (name -> symbol); it is extended with
+    any new name met in ``value``.  Text is read by the grammar of
+    :mod:`davies_sym.topology.expressions`, never evaluated as Python.
+    """
+    if isinstance(value, float) and not math.isfinite(value):
+        raise QuantityError(f"expected a finite number, got {value!r}")
+    number = exact_number(value)
+    if number is not None:
+        return number
+    if not isinstance(value, str) or not value.strip():
+        raise QuantityError(f"expected a number or a symbol expression, got {shortened(repr(value))}")
+
+    def symbol(name: str) -> sympy.Symbol:
+        if name not in symbols:
+            symbols[name] = make_symbol(name, role)
+        return symbols[name]
+
+    try:
+        return parse_expression(value, symbol)
+    except ExpressionError as exc:
+        raise QuantityError(str(exc)) from None

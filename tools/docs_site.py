@@ -1,0 +1,265 @@
+"""Build the documentation site (``python3 tools/docs_site.py [--out site]``).
+
+The hand-written pages of ``docs/`` (getting started, method, topology language) are
+staged together with pages generated from the library: the command line and Python API
+references and one page per catalog train with its coupling graph, conditions, variants,
+published checks and figures (among them Chen Fig. 4.13 for Litvin's drive and Laus
+Fig. 11 for the Humpage train).  MkDocs (material theme) then builds the site in strict
+mode: any warning (a broken link, a missing image) fails the build.
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable, Sequence
+from types import ModuleType
+
+from docs_pages import Figure, api_page, catalog_page, cli_page
+from published_layouts import laus_humpage_layout
+
+from davies_sym.cli import _parser
+from davies_sym.efficiency.parameter_domain import efficiency_symbols
+from davies_sym.efficiency.parameters import formula_symbols
+from davies_sym.efficiency.turning_conditions import mesh_roles
+from davies_sym.efficiency.variants import NOMINAL_EFFICIENCY, VariantSet, derive_variants
+from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.graph_drawing import coupling_graph_figure
+from davies_sym.emit.plots import (
+    Sweep,
+    efficiency_figure,
+    formula_module,
+    png_bytes,
+    region_figure,
+    turning_surface_figure,
+)
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.loader import load
+from davies_sym.topology.model import Train
+from davies_sym.topology.states import train_in_state
+from davies_sym.topology.symbols import exact_number
+
+Progress = Callable[[str], None]
+
+#: The theme's end-of-life banner is not a build warning: keep it out of the output.
+BUILD_ENVIRONMENT = {**os.environ, "NO_MKDOCS_2_WARNING": "1"}
+
+MATHJAX = """window.MathJax = {
+  tex: {inlineMath: [["\\\\(", "\\\\)"]], displayMath: [["\\\\[", "\\\\]"]], processEscapes: true},
+  options: {ignoreHtmlClass: ".*|", processHtmlClass: "arithmatex"}
+};
+"""
+
+CONFIG = """site_name: davies_sym
+site_description: Closed-form mechanical efficiency of gear trains by Davies' method
+docs_dir: docs
+theme:
+  name: material
+markdown_extensions:
+  - tables
+  - admonition
+  - attr_list
+  - pymdownx.arithmatex:
+      generic: true
+extra_javascript:
+  - javascripts/mathjax.js
+  - https://cdn.jsdelivr.net/npm/mathjax@3/es5/tex-mml-chtml.js
+nav:
+  - Getting started: index.md
+  - Method: method.md
+  - Topology language: topology.md
+  - Command line: cli.md
+  - Python API: api.md
+  - Catalog:
+    - catalog/index.md
+{catalog}
+"""
+
+#: Figures reproducing the literature, by catalog file: (kind, arguments, caption).
+LITERATURE_FIGURES: dict[str, list[tuple[str, dict[str, object], str]]] = {
+    "litvin_face_drive": [("sweep", {"x": Sweep("N4", 60, 99)},
+                           "Efficiency against N4 with N1 = 100, N2 = N3 = 17, 98 % per mesh, as in Chen 2006 "
+                           "Fig. 4.13 (77.5 % at N4 = 88); below, the loss in each mesh.")],
+    "humpage": [("laus_surface", {},
+                 "Turning-condition surface of mesh C in the radii space (r1, r5, r2), Laus 2011 Fig. 11: Table 6's "
+                 "((r5 - 3 r1) r2^2 + r1 (r5 - r1)^2)(r5 - r1) = 0, derived by the engine on Laus's printed planet "
+                 "axis (eq. (80)). With the consistent cone geometry of the catalog file gear 1 always drives in "
+                 "mesh C, and the one turning condition is r2 r4 - r3 r5.")],
+}
+
+
+def _nominal(train: Train, state: str | None) -> dict[str, float]:
+    """The train's (or state's) published design as floats."""
+    out = {}
+    for k, v in train.published_design(state).items():
+        value = exact_number(v)
+        if value is not None:
+            out[k] = float(value)
+    return out
+
+
+def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, state: str | None,
+                       img: str) -> list[Figure]:
+    """Efficiency against the first geometric parameter (or the first mesh efficiency)
+    around the published design, and the variant map over the symbols of the first
+    turning condition."""
+    etas = {str(e) for e in efficiency_symbols(variants.train)}
+    # Without a published design, the mesh efficiencies take Glover's 0.98.
+    nominal = {**{e: float(NOMINAL_EFFICIENCY) for e in etas}, **_nominal(variants.train, state)}
+    symbols = [str(s) for s in formula_symbols(variants)]
+    if any(s not in nominal for s in symbols):
+        return []
+    port = variants.train.ports.input
+    suffix = f"_{state}" if state else ""
+    geometry = [s for s in symbols if s not in etas]
+    out = []
+    if geometry:
+        name = geometry[0]
+        sweep = Sweep(name, 0.5 * nominal[name], 1.5 * nominal[name])
+    elif symbols:
+        name = symbols[0]
+        sweep = Sweep(name, 0.9, 1.0)
+    else:
+        return []
+    values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
+    file = f"{stem}{suffix}_{sweep.name}.png"
+    write_atomic(os.path.join(img, file), png_bytes(efficiency_figure(variants, sweep, values, port, module)))
+    out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
+                            f"efficiencies 0.98 where none is published), input {port}."))
+    if variants.conditions:
+        free = sorted(str(s) for s in variants.conditions[0].simplified.free_symbols)
+        if len(free) >= 2:
+            x, y = (Sweep(n, 0.5 * nominal[n], 1.5 * nominal[n]) for n in free[:2])
+            values = {k: v for k, v in nominal.items() if k in symbols and k not in (x.name, y.name)}
+            file = f"{stem}{suffix}_regions.png"
+            write_atomic(os.path.join(img, file), png_bytes(region_figure(variants, x, y, values, port, module)))
+            out.append(Figure(file, f"Variant regions, turning conditions and efficiency over {x.name} and {y.name}."))
+    return out
+
+
+def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, stem: str,
+                        img: str) -> list[Figure]:
+    out = []
+    for kind, arguments, caption in LITERATURE_FIGURES.get(stem, []):
+        if kind == "sweep":
+            sweep = arguments["x"]
+            assert isinstance(sweep, Sweep)
+            nominal = _nominal(train, None)
+            values = {k: v for k, v in nominal.items() if k != sweep.name}
+            figure = efficiency_figure(variants, sweep, values, train.ports.input, module)
+            file = f"{stem}_literature_{sweep.name}.png"
+        else:
+            analysis = Analysis(train, coulomb_signs="mesh-linear", extra_symbols=efficiency_symbols(train),
+                                layout=laus_humpage_layout(train))
+            roles, conditions = mesh_roles(analysis)
+            name = next(r.condition for r in roles if r.coupling == "C")
+            condition = next(c.simplified for c in conditions if c.name == name)
+            figure = turning_surface_figure(condition, Sweep("r1", 1, 100), Sweep("r5", 1, 100), Sweep("r2", 0, 100),
+                                            "Humpage, mesh C: turning-condition surface (Laus Fig. 11)")
+            file = f"{stem}_laus_fig11.png"
+        write_atomic(os.path.join(img, file), png_bytes(figure))
+        out.append(Figure(file, caption))
+    return out
+
+
+def catalog_pages(root: str, target: str, progress: Progress) -> list[str]:
+    """Write ``target/catalog/<stem>.md`` (and images) for every catalog file; their stems."""
+    img = os.path.join(target, "catalog", "img")
+    os.makedirs(img, exist_ok=True)
+    stems = []
+    for path in sorted(glob.glob(os.path.join(root, "catalog", "*.yaml"))):
+        stem = os.path.splitext(os.path.basename(path))[0]
+        train = load(path)
+        write_atomic(os.path.join(img, f"{stem}_graph.png"), png_bytes(coupling_graph_figure(train)))
+        if (train.degrees_of_freedom or 1) > 1:
+            progress(f"catalog {stem}: kinematics only")
+            page = [f"# {train.name}", "", f"Source: {train.source}.", "",
+                    f"![coupling graph of {stem}](img/{stem}_graph.png)", "",
+                    f"{train.degrees_of_freedom} degrees of freedom: `derive catalog/{stem}.yaml` gives every motion "
+                    "in the primary speeds; the efficiency with several inputs is not derived yet.", ""]
+            write_atomic(os.path.join(target, "catalog", f"{stem}.md"), "\n".join(page))
+            stems.append(stem)
+            continue
+        sections: dict[str | None, tuple[VariantSet, list[Figure]]] = {}
+        states = [st.name for st in train.states] or [None]
+        for state in states:
+            progress(f"catalog {stem}" + (f", state {state}" if state else "") + ": variants and figures")
+            one = train_in_state(train, train.state(state)) if state else train
+            variants = derive_variants(one)
+            module = formula_module(variants)  # compiled once for every figure of the state
+            figures = _automatic_figures(variants, module, stem, state, img)
+            if state is None:
+                figures = _literature_figures(train, variants, module, stem, img) + figures
+            sections[state] = (variants, figures)
+        write_atomic(os.path.join(target, "catalog", f"{stem}.md"), catalog_page(train, stem, sections))
+        stems.append(stem)
+    index = ["# Catalog", "", "Literature trains, each regression-checked against its published numbers.", "",
+             "| train | file |", "| --- | --- |"]
+    for stem in stems:
+        index.append(f"| [{load(os.path.join(root, 'catalog', f'{stem}.yaml')).name}]({stem}.md) | "
+                     f"`catalog/{stem}.yaml` |")
+    write_atomic(os.path.join(target, "catalog", "index.md"), "\n".join(index) + "\n")
+    return stems
+
+
+def stage(root: str, staging: str, progress: Progress) -> str:
+    """Hand-written and generated pages and the MkDocs configuration under ``staging``;
+    the configuration's path."""
+    docs = os.path.join(staging, "docs")
+    if os.path.exists(docs):
+        shutil.rmtree(docs)
+    shutil.copytree(os.path.join(root, "docs"), docs)
+    os.makedirs(os.path.join(docs, "javascripts"), exist_ok=True)
+    write_atomic(os.path.join(docs, "javascripts", "mathjax.js"), MATHJAX)
+    progress("command line and API references")
+    write_atomic(os.path.join(docs, "cli.md"), cli_page(_parser()))
+    write_atomic(os.path.join(docs, "api.md"), api_page())
+    stems = catalog_pages(root, docs, progress)
+    config = os.path.join(staging, "mkdocs.yml")
+    write_atomic(config, CONFIG.format(catalog="\n".join(f"    - catalog/{s}.md" for s in stems)))
+    return config
+
+
+def build(root: str, out: str, progress: Progress, keep: str | None = None) -> int:
+    """Stage the pages and run ``mkdocs build --strict`` into ``out``; the exit status."""
+    staging = keep or tempfile.mkdtemp(prefix="davies_sym_docs_")
+    try:
+        config = stage(root, staging, progress)
+        progress("mkdocs build --strict")
+        result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--quiet", "-f", config,
+                                 "-d", os.path.abspath(out)], capture_output=True, text=True, check=False,
+                                env=BUILD_ENVIRONMENT)
+        if result.returncode != 0:
+            sys.stderr.write(result.stdout + result.stderr)
+        return result.returncode
+    finally:
+        if keep is None:
+            shutil.rmtree(staging, ignore_errors=True)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python3 tools/docs_site.py",
+                                     description="Build the documentation site (MkDocs, strict mode).")
+    parser.add_argument("--out", default="site", help="directory of the built site (default: site)")
+    parser.add_argument("--keep", metavar="DIR", help="stage the Markdown pages in DIR and keep them")
+    parser.add_argument("--quiet", action="store_true", help="no progress messages")
+    args = parser.parse_args(argv)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+    def progress(message: str) -> None:
+        if not args.quiet:
+            print(f"docs: {message}", file=sys.stderr, flush=True)
+
+    status = build(root, args.out, progress, args.keep)
+    if status == 0:
+        progress(f"site written to {args.out}/")
+    return status
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -26,8 +26,11 @@ from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 from davies_sym.topology.symbols import exact_number
 
+Progress = Callable[[str], None]
 
-def _parser() -> argparse.ArgumentParser:
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
     p = argparse.ArgumentParser(
         prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
         "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
@@ -156,7 +159,7 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
             str(sympy.Float(value, 15))]
 
 
-def _derive_sets(train: Train, state: str | None, progress: Callable[[str], None]) -> list[tuple[str, VariantSet]]:
+def _derive_sets(train: Train, state: str | None, progress: Progress) -> list[tuple[str, VariantSet]]:
     """The variants of the train, or of each of its states (only ``state`` if given)."""
     if not train.states:
         if state is not None:
@@ -179,8 +182,7 @@ def _state_entry(vs: VariantSet) -> dict[str, object]:
             "speed_ratio": sympy.sstr(ratio), **variants_document(vs)}
 
 
-def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool,
-              progress: Callable[[str], None]) -> str:
+def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
     if not train.states:
         ((_, vs),) = sets
         document = train_document(Analysis(train, progress=progress))
@@ -199,26 +201,23 @@ def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool,
     return "\n".join(parts) + "\n"
 
 
-def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str], None]) -> int:
+def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> int:
     """LaTeX and Python module of every train, named after its file (``derivations/``);
-    a train with states gets one LaTeX file and a module per state."""
+    a train with states gets one LaTeX file and a module per state.  A file that fails
+    is reported and the others are still written."""
     os.makedirs(directory, exist_ok=True)
     status = 0
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0]
         try:
             train = load(path)
-            if train.degrees_of_freedom is not None and train.degrees_of_freedom > 1:
+            if _kinematics_only(train):
                 print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom, kinematics only: "
                       "nothing written", file=sys.stderr)
                 continue
             sets = _derive_sets(train, None, progress)
-        except InputError as exc:
-            print(exc.report(), file=sys.stderr)
-            status = 2
-            continue
         except DaviesError as exc:
-            print(f"derive: {path}: {exc}", file=sys.stderr)
+            print(_message(exc, path), file=sys.stderr)
             status = 2
             continue
         if train.states:
@@ -232,71 +231,97 @@ def _derive_into(directory: str, files: Sequence[str], progress: Callable[[str],
     return status
 
 
+def _kinematics_only(train: Train) -> bool:
+    """A train of several degrees of freedom: only its kinematics are derived."""
+    return train.degrees_of_freedom is not None and train.degrees_of_freedom > 1
+
+
+def _kinematics(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str]]:
+    """The outputs of a train with several degrees of freedom: motions in the primary speeds."""
+    if args.latex or args.python or args.eval or args.state:
+        raise InputError([Problem("degrees_of_freedom", f"the train has {train.degrees_of_freedom} degrees "
+                                  "of freedom: only its kinematics are derived (no efficiency with several "
+                                  "inputs yet)")], train.path)
+    document = kinematics_document(Analysis(train, progress=progress))
+    text = json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n"
+    return [(args.out, text)]
+
+
+def _efficiency(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str | bytes]]:
+    """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation."""
+    if (args.vs or args.at) and not args.plot:
+        raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    sets = _derive_sets(train, args.state, progress)
+    if (args.python or args.eval or args.plot) and len(sets) > 1:
+        raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
+                                  f"{', '.join(st.name for st in train.states)})")], train.path)
+    if args.plot:
+        return [(args.out, _plot(sets[0][1], args))]
+    if args.latex:
+        text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
+    else:
+        text = _document(train, sets, args.json, progress)
+    # Everything is computed (and every value checked) before anything is written.
+    evaluation = _evaluate(sets[0][1], args) if args.eval else None
+    outputs: list[tuple[str | None, str | bytes]] = []
+    if args.python:
+        outputs.append((args.python, python_module(sets[0][1])))
+    if args.out:
+        outputs.append((args.out, text))
+    elif evaluation is None or args.json or args.latex:
+        outputs.append((None, text))
+    if evaluation is not None:
+        outputs.append((None, "\n".join(evaluation) + "\n"))
+    return outputs
+
+
+def _one_file(args: argparse.Namespace, progress: Progress) -> int:
+    path = args.files[0]
+    for target in (args.out, args.python):
+        if target and os.path.exists(target) and os.path.samefile(target, path):
+            raise InputError([Problem("-o" if target == args.out else "--python",
+                                      f"refusing to overwrite the input file {path}")], path)
+    train = load(path)
+    outputs = _kinematics(train, args, progress) if _kinematics_only(train) else _efficiency(train, args, progress)
+    for target, content in outputs:
+        if target is None:
+            sys.stdout.write(content if isinstance(content, str) else content.decode())
+        else:
+            write_atomic(target, content)
+    return 0
+
+
+def _many_files(args: argparse.Namespace, progress: Progress) -> int:
+    if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
+        print("derive: several files need --out DIR (a directory)", file=sys.stderr)
+        return 2
+    if args.json or args.latex or args.python or args.eval or args.plot:
+        print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
+              "--plot take one file", file=sys.stderr)
+        return 2
+    return _derive_into(args.out, args.files, progress)
+
+
+def _message(exc: DaviesError, path: str) -> str:
+    """One message per problem: the located report of an input error, else the file and the reason."""
+    return exc.report() if isinstance(exc, InputError) else f"derive: {path}: {exc}"
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    show = not args.quiet
+    """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    args = parser().parse_args(argv)
 
     def progress(message: str) -> None:
-        if show:
+        if not args.quiet:
             print(f"derive: {message}", file=sys.stderr, flush=True)
 
     if len(args.files) > 1 or (args.out and os.path.isdir(args.out)):
-        if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
-            print("derive: several files need --out DIR (a directory)", file=sys.stderr)
-            return 2
-        if args.json or args.latex or args.python or args.eval or args.plot:
-            print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
-                  "--plot take one file", file=sys.stderr)
-            return 2
-        return _derive_into(args.out, args.files, progress)
-    args.file = args.files[0]
+        return _many_files(args, progress)
     try:
-        for target in (args.out, args.python):
-            if target and os.path.exists(target) and os.path.samefile(target, args.file):
-                print(f"derive: refusing to overwrite the input file {args.file}", file=sys.stderr)
-                return 2
-        train = load(args.file)
-        if train.degrees_of_freedom is not None and train.degrees_of_freedom > 1:
-            if args.latex or args.python or args.eval or args.state:
-                raise InputError([Problem("degrees_of_freedom", f"the train has {train.degrees_of_freedom} degrees "
-                                          "of freedom: only its kinematics are derived (no efficiency with several "
-                                          "inputs yet)")], train.path)
-            document = kinematics_document(Analysis(train, progress=progress))
-            text = json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n"
-            if args.out:
-                write_atomic(args.out, text)
-            else:
-                sys.stdout.write(text)
-            return 0
-        if (args.vs or args.at) and not args.plot:
-            raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
-        sets = _derive_sets(train, args.state, progress)
-        if (args.python or args.eval or args.plot) and len(sets) > 1:
-            raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
-                                      f"{', '.join(st.name for st in train.states)})")], train.path)
-        if args.plot:
-            write_atomic(args.out, _plot(sets[0][1], args))
-            return 0
-        if args.latex:
-            text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
-        else:
-            text = _document(train, sets, args.json, progress)
-        if args.python:
-            write_atomic(args.python, python_module(sets[0][1]))
-        evaluation = _evaluate(sets[0][1], args) if args.eval else None
-    except InputError as exc:
-        print(exc.report(), file=sys.stderr)
-        return 2
+        return _one_file(args, progress)
     except DaviesError as exc:
-        print(f"derive: {args.file}: {exc}", file=sys.stderr)
+        print(_message(exc, args.files[0]), file=sys.stderr)
         return 2
-    if args.out:
-        write_atomic(args.out, text)
-    elif evaluation is None or args.json or args.latex:
-        sys.stdout.write(text)
-    if evaluation is not None:
-        sys.stdout.write("\n".join(evaluation) + "\n")
-    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -23,7 +23,7 @@ from types import ModuleType
 from docs_pages import Figure, api_page, catalog_page, cli_page
 from published_layouts import laus_humpage_layout
 
-from davies_sym.cli import _parser
+from davies_sym.cli import parser
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.turning_conditions import mesh_roles
@@ -217,7 +217,7 @@ def stage(root: str, staging: str, progress: Progress) -> str:
     os.makedirs(os.path.join(docs, "javascripts"), exist_ok=True)
     write_atomic(os.path.join(docs, "javascripts", "mathjax.js"), MATHJAX)
     progress("command line and API references")
-    write_atomic(os.path.join(docs, "cli.md"), cli_page(_parser()))
+    write_atomic(os.path.join(docs, "cli.md"), cli_page(parser()))
     write_atomic(os.path.join(docs, "api.md"), api_page())
     stems = catalog_pages(root, docs, progress)
     config = os.path.join(staging, "mkdocs.yml")

@@ -72,6 +72,7 @@ extra_javascript:
 nav:
   - Getting started: index.md
   - Method: method.md
+  - Architecture: architecture.md
   - Topology language: topology.md
   - Command line: cli.md
   - Python API: api.md

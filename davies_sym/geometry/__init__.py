@@ -9,6 +9,12 @@ axes meet at one apex (:mod:`.cone`, Laus Fig. 9, Chen Fig. 4.10).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import replace
+
+import sympy
+
+from davies_sym.algebra.screws import Vector
 from davies_sym.geometry.cone import conical_layout
 from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
@@ -19,9 +25,40 @@ __all__ = ["GeometricConstraint", "Layout", "train_layout"]
 
 
 def train_layout(train: Train) -> Layout:
-    """The layout of ``train``: conical when its gears give axis directions, else planar."""
+    """The layout of ``train``: conical when its gears give axis directions, else planar.
+
+    A train in an operating state keeps the geometry of the whole train (its brakes and
+    clutches join members without moving an axis), restricted to what the state keeps."""
+    if train.whole is not None:
+        return _restricted(train_layout(train.whole), train)
     if any(g.axis is not None or g.tilted for g in train.gears):
         return conical_layout(train)
     if train.placement is not None:
         return plane_layout(train, train.placement)
     return planar_line_layout(train)
+
+
+def _restricted(layout: Layout, train: Train) -> Layout:
+    """``layout`` of a whole train, keeping the gears and couplings of ``train`` (one of its
+    states) and the constraints among the radii that ``train`` still has."""
+    gears = {g.name for g in train.gears}
+    couplings = {c.name for c in train.couplings}
+    radii: set[sympy.Basic] = set()
+    for g in train.gears:
+        radii |= g.radius.free_symbols
+    radii |= {r.symbol for r in layout.radicals}
+
+    def keep(table: Mapping[str, Vector], names: set[str]) -> dict[str, Vector]:
+        return {k: v for k, v in table.items() if k in names}
+
+    return replace(
+        layout,
+        gear_centres=keep(layout.gear_centres, gears),
+        coupling_points=keep(layout.coupling_points, couplings),
+        mesh_tangents=keep(layout.mesh_tangents, couplings),
+        mesh_normals=keep(layout.mesh_normals, couplings),
+        gear_axes=keep(layout.gear_axes, gears),
+        coupling_axes=keep(layout.coupling_axes, couplings),
+        constraints=tuple(c for c in layout.constraints if c.expression.free_symbols <= radii),
+        positive_facts=tuple(f for f in layout.positive_facts if f.free_symbols <= radii),
+    )

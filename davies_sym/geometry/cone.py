@@ -15,6 +15,7 @@ import sympy
 from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import Vector, cross, vector
 from davies_sym.errors import GeometryError, Problem
+from davies_sym.geometry.axes import axis_structure
 from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Gear, Train
@@ -112,6 +113,7 @@ def conical_layout(train: Train) -> Layout:
     if problems:
         raise GeometryError(problems, train.path)
     gear_axes = {g.name: axes[g.link] for g in train.gears}
+    structure = axis_structure(train)
     origin = vector((0, 0, 0))
     points: dict[str, Vector] = {}
     coupling_axes: dict[str, Vector] = {}
@@ -144,13 +146,15 @@ def conical_layout(train: Train) -> Layout:
                 else:
                     cone_distance[gear.name] = (c.name, distance)
         elif isinstance(c, Revolute):
-            on = [c.axis] if c.axis is not None else [link for link in c.links if link in axes]
-            if not on or on[0] not in axes:
-                problems.append(train.problem(f"couplings.{c.name}", "neither link carries a gear: this bearing's "
-                                              "axis direction is unknown"))
+            # The bearing turns about the axis of the link it holds (its axis class).
+            holder = next((link for link in sorted(axes) if structure.axis[link] == structure.bearing_axis[c.name]),
+                          None)
+            if holder is None:
+                problems.append(train.problem(f"couplings.{c.name}", "no gear turns about this bearing's axis: its "
+                                              "direction is unknown"))
                 continue
             points[c.name] = origin
-            coupling_axes[c.name] = axes[on[0]]
+            coupling_axes[c.name] = axes[holder]
         else:
             points[c.name] = origin
     if problems:

@@ -14,7 +14,7 @@ depend on the placement direction.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import sympy
 
@@ -22,20 +22,13 @@ from davies_sym.algebra.radicals import RadicalTable, has_square_root
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constraint, axis_groups, check_placed
+from davies_sym.geometry.axes import AxisStructure, axis_structure
+from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constraint
+from davies_sym.geometry.line import centre_distance, side_of_second
 from davies_sym.topology.couplings import GearMesh, Revolute
-from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Gear, Train
 
 Point = tuple[sympy.Expr, sympy.Expr]
-
-
-def _centre_distance(mesh: GearMesh, gears: Mapping[str, Gear]) -> sympy.Expr:
-    g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
-    if mesh.internal:
-        ann, pin = (g, h) if g.internal else (h, g)
-        return sympy.expand(ann.radius - pin.radius)
-    return sympy.expand(g.radius + h.radius)
 
 
 def plane_layout(train: Train, direction: Point) -> Layout:
@@ -46,22 +39,15 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
-    geared, groups = axis_groups(train)
+    structure = axis_structure(train)
     gears = {g.name: g for g in train.gears}
-    meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
-    positions: dict[str, Point] = {}
-    root = train.reference if train.reference in geared else (train.gears[0].link if train.gears else None)
-    if root is not None:
-        positions[groups.find(root)] = (sympy.Integer(0), sympy.Integer(0))
-    for c in train.couplings:
-        if isinstance(c, Revolute) and c.at is not None and c.axis is None:
-            for link in c.links:
-                if link in geared and groups.find(link) not in positions:
-                    positions[groups.find(link)] = (c.at * unit[0], c.at * unit[1])
-    used = _place(meshes, gears, groups, positions, unit, radicals, train, problems)
-    check_placed(train, groups, positions, problems)
+    meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
+    used: set[str] = set()
+    positions = _place_classes(train, structure, meshes, gears, unit, radicals, problems, used)
+    if problems:
+        raise GeometryError(problems, train.path)
     oracle = SignOracle()
-    centres = {g.name: positions[groups.find(g.link)] for g in train.gears}
+    centres = {g.name: positions[structure.axis[g.link]] for g in train.gears}
     points: dict[str, Vector] = {}
     tangents: dict[str, Vector] = {}
     normals: dict[str, Vector] = {}
@@ -69,7 +55,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     facts: list[sympy.Expr] = []
     for mesh in meshes:
         g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
-        distance = _centre_distance(mesh, gears)
+        distance = centre_distance(mesh, gears)
         if mesh.internal:
             ann, pin = (g, h) if g.internal else (h, g)
             facts.append(ann.radius - pin.radius)
@@ -95,16 +81,12 @@ def plane_layout(train: Train, direction: Point) -> Layout:
         normals[mesh.name] = vector((u[0], u[1], 0))
     for c in train.couplings:
         if isinstance(c, Revolute):
-            on = [c.axis] if c.axis is not None else list(c.links)
-            placed = [positions[groups.find(link)] for link in on if link in geared]
-            if placed:
-                points[c.name] = vector((*placed[0], 0))
-            elif c.at is not None:
-                points[c.name] = vector((c.at * unit[0], c.at * unit[1], 0))
-            else:
-                problems.append(train.problem(f"couplings.{c.name}", f"neither link {c.links[0]!r} nor "
-                                              f"{c.links[1]!r} carries a gear: give the position of this revolute "
-                                              "with `at`"))
+            point = positions[structure.bearing_axis[c.name]]
+            if c.at is not None:
+                along = radicals.reduce(point[0] * unit[0] + point[1] * unit[1])
+                add_constraint(train, constraints, problems, along, c.at, c.name, oracle, f"couplings.{c.name}.at",
+                               f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {along}")
+            points[c.name] = vector((*point, 0))
         elif not isinstance(c, GearMesh):
             points[c.name] = vector((0, 0, 0))
     if problems:
@@ -120,40 +102,75 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     )
 
 
-def _place(meshes: list[GearMesh], gears: Mapping[str, Gear], groups: LinkGroups, positions: dict[str, Point],
-           unit: Point, radicals: RadicalTable, train: Train, problems: list[Problem]) -> set[str]:
-    """Place axis groups outward from the placed ones; returns the meshes used."""
-    used: set[str] = set()
-    progress = True
-    while progress:
-        progress = False
-        reach: dict[str, list[tuple[Point, sympy.Expr, str]]] = {}
-        for mesh in meshes:
-            ends = [groups.find(gears[name].link) for name in mesh.gears]
-            for here, there in (ends, ends[::-1]):
-                if here not in positions and there in positions:
-                    reach.setdefault(here, []).append((positions[there], _centre_distance(mesh, gears), mesh.name))
-        # Triangles first: a group that meshes two placed gears on distinct axes.
-        for group, options in sorted(reach.items(), key=lambda item: -len({o[0] for o in item[1]})):
-            distinct = []
-            for option in options:
-                if all(any(radicals.reduce(a - b) != 0 for a, b in zip(option[0], o[0], strict=True))
-                       for o in distinct):
-                    distinct.append(option)
-            if len(distinct) >= 2:
-                point = _triangle(distinct[0], distinct[1], radicals, train, problems)
-                if point is None:
-                    continue
-                positions[group] = point
-                used |= {distinct[0][2], distinct[1][2]}
-            else:
-                (centre, distance, name) = options[0]
-                positions[group] = (radicals.reduce(centre[0] + distance * unit[0]),
-                                    radicals.reduce(centre[1] + distance * unit[1]))
-                used.add(name)
-            progress = True
-            break
-    return used
+def _place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
+                   unit: Point, radicals: RadicalTable, problems: list[Problem], used: set[str]) -> dict[str, Point]:
+    """The centre of every axis class: the main axis at the origin, then outward one class
+    at a time (meshes in name order): a class meshing two placed classes with distinct
+    centres closes a triangle, any other goes along the placement direction (a planet
+    outward of the gear on its carrier's axis, the pinion of an internal pair outward of
+    its annulus); a class no mesh reaches takes its bearing's `at` along the placement
+    direction, or the main axis when no gear turns about it.  ``used`` collects the meshes
+    that placed a class (the others close loops)."""
+    zero = (sympy.Integer(0), sympy.Integer(0))
+    positions: dict[str, Point] = {structure.root: zero}
+    bearings = sorted((c for c in train.couplings if isinstance(c, Revolute) and c.at is not None),
+                      key=lambda c: c.name)
+    geared = {structure.axis[g.link] for g in train.gears}
+    while True:
+        if _place_one(train, structure, meshes, gears, positions, unit, radicals, problems, used):
+            continue
+        at = next((c for c in bearings if structure.bearing_axis[c.name] not in positions), None)
+        if at is not None and at.at is not None:
+            positions[structure.bearing_axis[at.name]] = (at.at * unit[0], at.at * unit[1])
+            continue
+        rest = [cls for cls in structure.classes() if cls not in positions]
+        if not rest:
+            return positions
+        if rest[0] in geared:
+            gear = next(g for g in train.gears if structure.axis[g.link] == rest[0])
+            problems.append(train.problem(f"gears.{gear.name}", "its position cannot be derived: no mesh connects "
+                                          "it to the main axis; give a bearing of its link an `at`"))
+        positions[rest[0]] = zero
+
+
+def _place_one(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
+               positions: dict[str, Point], unit: Point, radicals: RadicalTable, problems: list[Problem],
+               used: set[str]) -> bool:
+    """Place one class; False when no mesh reaches an unplaced class."""
+    reach: dict[str, list[tuple[Point, sympy.Expr, str]]] = {}
+    first: tuple[str, Point, str] | None = None
+    for mesh in meshes:
+        ends = [structure.axis[link] for link in mesh.links]
+        for k in (0, 1):
+            here, there = ends[1 - k], ends[k]
+            if here in positions or there not in positions:
+                continue
+            reach.setdefault(here, []).append((positions[there], centre_distance(mesh, gears), mesh.name))
+            if first is None:
+                # ``here`` lies on the side the drawing rules give the mesh's second gear.
+                side = side_of_second(mesh, structure, gears) or 1
+                step = (side if k == 0 else -side) * centre_distance(mesh, gears)
+                x, y = positions[there]
+                first = (here, (radicals.reduce(x + step * unit[0]), radicals.reduce(y + step * unit[1])), mesh.name)
+    if first is None:
+        return False
+    # Triangles first: a class that meshes two placed classes on distinct axes.
+    for group, options in sorted(reach.items(), key=lambda item: (-len({o[0] for o in item[1]}), item[0])):
+        distinct = []
+        for option in options:
+            if all(any(radicals.reduce(a - b) != 0 for a, b in zip(option[0], o[0], strict=True)) for o in distinct):
+                distinct.append(option)
+        if len(distinct) >= 2:
+            point = _triangle(distinct[0], distinct[1], radicals, train, problems)
+            if point is None:
+                return False
+            positions[group] = point
+            used |= {distinct[0][2], distinct[1][2]}
+            return True
+        break
+    positions[first[0]] = first[1]
+    used.add(first[2])
+    return True
 
 
 def _triangle(first: tuple[Point, sympy.Expr, str], second: tuple[Point, sympy.Expr, str], radicals: RadicalTable,

@@ -96,6 +96,9 @@ class Train:
     states: tuple[State, ...] = ()
     #: Placement direction (x, y) of a planar train drawn in 2-D; None: drawn on a line.
     placement: tuple[sympy.Expr, sympy.Expr] | None = None
+    #: For a train in one operating state: the train with every member, whose geometry
+    #: the state keeps (a brake or a clutch joins members, it does not move their axes).
+    whole: Train | None = field(default=None, repr=False, compare=False)
 
     def problem(self, entry: str, message: str) -> Problem:
         """A :class:`Problem` at ``entry`` with the line it has in the source file."""

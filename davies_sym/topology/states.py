@@ -73,4 +73,4 @@ def train_in_state(train: Train, state: State) -> Train:
     gears = tuple(replace(g, link=rename(g.link)) for g in train.gears if g.link not in free)
     return replace(train, name=f"{train.name}, {state.description or state.name}", links=links, gears=gears,
                    couplings=tuple(couplings), ports=Ports(state.input, state.output),
-                   reference=rename(train.reference), degrees_of_freedom=None, states=())
+                   reference=rename(train.reference), degrees_of_freedom=None, states=(), whole=train.whole or train)

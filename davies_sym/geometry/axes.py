@@ -1,0 +1,191 @@
+"""Which links turn about one axis, read from the topology alone (no radii, no word order).
+
+Every link is held by a bearing: walking the revolutes from the reference gives a
+tree, and each link turns about its own axis relative to the link that holds it (a
+planet about its pin on the carrier, a shaft about its bearing in the housing); a
+revolute is on the axis of the link it holds.  The meshes then decide which axes
+coincide (Willis, Laus section 3.4.1): the two gears of a mesh keep their centre
+distance only if one link (the mesh's carrier) holds both gear axes, so either both
+links are held by the same link (a fixed-axis pair in its frame), or one of them (the
+planet) is held by the carrier and the other turns about the carrier's own axis.  The
+two gears of a mesh are never coaxial.  Among the choices that satisfy every mesh, the
+planet is the link farther from the reference (ties by name), so the result depends on
+the topology and the names only, never on the order in which entries are written.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from itertools import product
+
+from davies_sym.errors import GeometryError
+from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.link_groups import LinkGroups
+from davies_sym.topology.model import Train
+
+
+@dataclass(frozen=True)
+class MeshFrame:
+    """The link holding both gear axes of a mesh, and which gear's link is its planet.
+
+    ``planet`` is the index (0 or 1, in the mesh's gear order) of the gear whose link the
+    carrier holds off the carrier's own axis; None when the carrier holds both links on
+    axes of their own (a fixed-axis pair in the carrier's frame)."""
+
+    carrier: str
+    planet: int | None
+
+
+@dataclass(frozen=True)
+class AxisStructure:
+    """The axes of a train as the topology fixes them.
+
+    ``axis`` names the axis class of every link (links turning about one axis share it);
+    ``bearing_axis`` the class of every revolute; ``root`` the class drawn at the origin
+    (the main axis)."""
+
+    parent: Mapping[str, str]
+    depth: Mapping[str, int]
+    axis: Mapping[str, str]
+    bearing_axis: Mapping[str, str]
+    meshes: Mapping[str, MeshFrame]
+    root: str
+
+    def classes(self) -> list[str]:
+        """Every axis class, sorted."""
+        return sorted(set(self.axis.values()))
+
+
+def axis_structure(train: Train) -> AxisStructure:
+    """The bearing tree, the mesh carriers and the axis classes of ``train``."""
+    revolutes = sorted((c for c in train.couplings if isinstance(c, Revolute)), key=lambda c: c.name)
+    meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
+    parent, depth, tree = _bearing_tree(train, revolutes)
+    coaxial = LinkGroups(sorted(train.link_names))
+    bearing_on: dict[str, str] = {}
+    for c in revolutes:
+        a, b = c.links
+        if c.name in tree:
+            child = tree[c.name]
+            holder = a if child == b else b
+            if c.axis == holder:  # the bearing is on the holder's axis: the two turn about one axis
+                coaxial.union(child, holder)
+            bearing_on[c.name] = child
+        elif c.axis is not None:
+            bearing_on[c.name] = c.axis
+        else:  # a second bearing between two held links: they turn about one axis
+            coaxial.union(a, b)
+            bearing_on[c.name] = a
+    frames = _mesh_frames(train, meshes, parent, depth, coaxial)
+    axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
+    return AxisStructure(parent=parent, depth=depth, axis=axis,
+                         bearing_axis={name: axis[link] for name, link in bearing_on.items()},
+                         meshes=frames, root=_root(train, axis))
+
+
+def _bearing_tree(train: Train, revolutes: Sequence[Revolute]) -> tuple[dict[str, str], dict[str, int], dict[str, str]]:
+    """Breadth-first tree of the revolutes from the reference (neighbours by name):
+    parent and depth of every link, and tree revolute -> the link it holds.  Links no
+    bearing chain reaches start trees of their own."""
+    parent: dict[str, str] = {}
+    depth: dict[str, int] = {}
+    tree: dict[str, str] = {}
+    neighbours: dict[str, list[tuple[str, str]]] = {link: [] for link in train.link_names}
+    for c in revolutes:
+        a, b = c.links
+        neighbours[a].append((b, c.name))
+        neighbours[b].append((a, c.name))
+    for start in [train.reference, *sorted(train.link_names)]:
+        if start in depth:
+            continue
+        depth[start] = 0
+        queue = deque([start])
+        while queue:
+            link = queue.popleft()
+            for other, name in sorted(neighbours[link]):
+                if other not in depth:
+                    depth[other] = depth[link] + 1
+                    parent[other] = link
+                    tree[name] = other
+                    queue.append(other)
+    return parent, depth, tree
+
+
+Choice = tuple[MeshFrame, tuple[str, str] | None]
+
+
+def _options(mesh: GearMesh, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
+    """The ways ``mesh`` can keep its centre distance: (frame, the two links it makes coaxial)."""
+    a, b = mesh.links
+    pa, pb = parent.get(a), parent.get(b)
+    if pa is not None and pa == pb:
+        return [(MeshFrame(pa, None), None)]
+    if pa == b:  # a planet meshing a gear of its own carrier
+        return [(MeshFrame(b, 0), None)]
+    if pb == a:
+        return [(MeshFrame(a, 1), None)]
+    options: list[tuple[int, str, MeshFrame, tuple[str, str]]] = []
+    if pa is not None:
+        options.append((-depth[a], a, MeshFrame(pa, 0), (b, pa)))
+    if pb is not None:
+        options.append((-depth[b], b, MeshFrame(pb, 1), (a, pb)))
+    # The planet is the link farther from the reference; ties by name.
+    return [(frame, equal) for _, _, frame, equal in sorted(options, key=lambda o: (o[0], o[1]))]
+
+
+def _mesh_frames(train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, str], depth: Mapping[str, int],
+                 coaxial: LinkGroups) -> dict[str, MeshFrame]:
+    """The first choice of a carrier per mesh (in order of preference) under which no mesh
+    joins two coaxial links."""
+    for mesh in meshes:
+        if coaxial.find(mesh.links[0]) == coaxial.find(mesh.links[1]):
+            raise GeometryError([train.problem(
+                f"couplings.{mesh.name}", f"links {mesh.links[0]!r} and {mesh.links[1]!r} turn about one axis "
+                "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
+                "`axis:` on its revolute")], train.path)
+    choices = [_options(m, parent, depth) for m in meshes]
+    for assignment in _assignments(choices):
+        groups = LinkGroups(sorted(train.link_names))
+        for link in train.link_names:
+            groups.union(link, coaxial.find(link))
+        for _, equal in assignment:
+            if equal is not None:
+                groups.union(*equal)
+        if all(groups.find(m.links[0]) != groups.find(m.links[1]) for m in meshes):
+            for _, equal in assignment:
+                if equal is not None:
+                    coaxial.union(*equal)
+            return {m.name: frame for m, (frame, _) in zip(meshes, assignment, strict=True)}
+    problems = [train.problem(f"couplings.{m.name}", "no link holds both gear axes of this mesh together with "
+                              "the other meshes: the planet's carrier must turn about the axis of the gear it "
+                              "meshes") for m, c in zip(meshes, choices, strict=True) if len(c) != 1]
+    raise GeometryError(problems or [train.problem("couplings", "the meshes cannot all keep their centre "
+                                                   "distances")], train.path)
+
+
+def _assignments(choices: Sequence[list[Choice]]) -> Iterator[tuple[Choice, ...]]:
+    """Every combination of the choices, the preferred ones first."""
+    if any(not c for c in choices):
+        return iter(())
+    return product(*choices)
+
+
+def _representative(groups: LinkGroups, link: str, names: Sequence[str]) -> str:
+    """The first link (in name order) of the axis class of ``link``."""
+    root = groups.find(link)
+    return min(n for n in names if groups.find(n) == root)
+
+
+def _root(train: Train, axis: Mapping[str, str]) -> str:
+    """The class drawn at the origin: the reference's axis when gears turn about it, else
+    the axis of the input port's member, else the first geared class."""
+    geared = {axis[g.link] for g in train.gears}
+    if axis[train.reference] in geared:
+        return axis[train.reference]
+    port = train.coupling(train.ports.input)
+    for link in sorted(port.links, key=lambda link: link == train.reference):
+        if axis[link] in geared:
+            return axis[link]
+    return min(geared) if geared else axis[train.reference]

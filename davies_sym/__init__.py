@@ -24,6 +24,7 @@ from davies_sym.efficiency.variants import Variant, VariantSet, derive_variants
 from davies_sym.errors import (
     DaviesError,
     DerivationError,
+    DesignError,
     GeometryError,
     InputError,
     MobilityError,
@@ -44,6 +45,7 @@ __all__ = [
     "Analysis",
     "DaviesError",
     "DerivationError",
+    "DesignError",
     "Gear",
     "GeometryError",
     "InputError",

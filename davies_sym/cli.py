@@ -18,7 +18,7 @@ from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_fi
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
 from davies_sym.emit.variant_report import variants_document, variants_text
-from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.errors import DaviesError, DesignError, InputError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.loader import load
@@ -146,10 +146,11 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
     for c in variants.analysis.network.layout.constraints:
-        # Only a constraint whose every symbol has a value can be broken (r4 may be left out).
-        residual = sympy.sympify(c.expression.subs(values))
+        # A constraint no parameter could be solved for (a nonlinear one) is checked here.
+        residual = sympy.expand(c.expression.subs(values))
         if residual.is_number and residual != 0:
-            print(f"derive: warning: the values break the geometric constraint {c}", file=sys.stderr)
+            raise DesignError([Problem("--eval", f"the values break the geometric constraint {c} (difference "
+                                       f"{residual})")], train.path)
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)
     if value <= 0:

@@ -69,5 +69,12 @@ class MobilityError(InputError):
     kind = "mobility error"
 
 
+class DesignError(InputError):
+    """Values that contradict the train's own relations (a dependent radius that breaks
+    its geometric constraint): refused, never evaluated as another train."""
+
+    kind = "design error"
+
+
 class DerivationError(DaviesError):
     """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""

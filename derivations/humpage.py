@@ -152,6 +152,8 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ('-r1**2 + 2*r1*r5 + 4*r2**2 - r5**2 > 0',)
+DEPENDENT: Final[dict[str, str]] = {
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
     'c1': ('-r2*r4 + r3*r5', '- r_{2} r_{4} + r_{3} r_{5}'),
 }
@@ -518,6 +520,8 @@ _CONDITIONS: Final[_Table] = {
 _RELATIONS: Final[_Table] = {
     '-r1**2 + 2*r1*r5 + 4*r2**2 - r5**2 > 0': (_relation_1, ('r1', 'r2', 'r5')),
 }
+_DEPENDENT: Final[_Table] = {
+}
 _EFFICIENCY: Final[_Table] = {
     'A_to_B_c1_pos': (A_to_B_c1_pos, ('eta_12', 'eta_34', 'eta_52', 'r1', 'r2', 'r3', 'r4', 'r5')),
     'A_to_B_c1_neg': (A_to_B_c1_neg, ('eta_12', 'eta_25', 'eta_43', 'r1', 'r2', 'r3', 'r4', 'r5')),
@@ -569,6 +573,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:

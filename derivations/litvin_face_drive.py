@@ -112,6 +112,8 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
     'c1': ('N1*N3 - N2*N4', 'N_{1} N_{3} - N_{2} N_{4}'),
 }
@@ -389,6 +391,8 @@ _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
 }
+_DEPENDENT: Final[_Table] = {
+}
 _EFFICIENCY: Final[_Table] = {
     'A_to_B_c1_pos': (A_to_B_c1_pos, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
     'A_to_B_c1_neg': (A_to_B_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
@@ -440,6 +444,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:

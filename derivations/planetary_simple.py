@@ -88,6 +88,8 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
 }
 VARIANTS: Final[tuple[Variant, ...]] = (
@@ -163,6 +165,8 @@ _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
 }
+_DEPENDENT: Final[_Table] = {
+}
 _EFFICIENCY: Final[_Table] = {
     'I_to_O': (I_to_O, ('eta_G', 'rA', 'rB')),
     'O_to_I': (O_to_I, ('eta_G', 'rA', 'rB')),
@@ -210,6 +214,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:

@@ -84,7 +84,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
     {
         'name': 'rr',
-        'meaning': 'pitch radius of internal gear R (link r)',
+        'meaning': 'length in the pitch radius of gear PL (link pl)',
         'unit': 'length (one unit for all)',
         'low': 0.0,
         'high': float('inf'),
@@ -100,6 +100,9 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {
+    'rpl': 'rpl = rr/2 - rs2/2',
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
 }
 VARIANTS: Final[tuple[Variant, ...]] = (
@@ -170,6 +173,13 @@ def _losses_D_to_B(*, eta_3: ArrayLike, eta_4: ArrayLike) -> tuple[Array, ...]:
     return (_array(-eta_4*(eta_3 - 1)), _array(1 - eta_4))
 
 
+def _dependent_rpl(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
+    """rpl = rr/2 - rs2/2 (the geometric constraint rpl + rs2 = -rpl + rr)."""
+    rr = _array(rr)
+    rs2 = _array(rs2)
+    return _array((1/2)*rr - 1/2*rs2)
+
+
 def _speed_ratio(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
     """Speed ratio with B as input."""
     rr = _array(rr)
@@ -180,6 +190,9 @@ def _speed_ratio(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
 _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
+}
+_DEPENDENT: Final[_Table] = {
+    'rpl': (_dependent_rpl, ('rr', 'rs2')),
 }
 _EFFICIENCY: Final[_Table] = {
     'B_to_D': (B_to_D, ('eta_3', 'eta_4')),
@@ -228,6 +241,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -285,9 +314,10 @@ def losses(*, input: str = 'B', errors: str = 'warn', eta_3: ArrayLike, eta_4: A
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
-def speed_ratio(*, input: str = 'B', rr: ArrayLike, rs2: ArrayLike) -> Array:
+def speed_ratio(*, input: str = 'B', rr: ArrayLike, rs2: ArrayLike, rpl: ArrayLike | None = None) -> Array:
     """Input speed over output speed with `input` as the input port (-rr/rs2 with B as input)."""
     values: dict[str, Array] = {'rr': _array(rr), 'rs2': _array(rs2)}
+    _consistent({'rpl': rpl}, values)
     if input not in PORTS:
         raise ValueError(f'input must be one of {PORTS}, got {input!r}')
     ratio = _speed_ratio(**values)

@@ -100,7 +100,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
     {
         'name': 'rr',
-        'meaning': 'pitch radius of internal gear R (link r)',
+        'meaning': 'length in the pitch radius of gear PL (link pl)',
         'unit': 'length (one unit for all)',
         'low': 0.0,
         'high': float('inf'),
@@ -124,6 +124,9 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ('rr/2 - rs2/2 > 0',)
+DEPENDENT: Final[dict[str, str]] = {
+    'rpl': 'rpl = rr/2 - rs2/2',
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
     'c1': ('-rr + rs1', '- rr + rs_{1}'),
 }
@@ -447,6 +450,13 @@ def _losses_D_to_A_c1_neg(
     )
 
 
+def _dependent_rpl(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
+    """rpl = rr/2 - rs2/2 (the geometric constraint rpl + rs2 = -rpl + rr)."""
+    rr = _array(rr)
+    rs2 = _array(rs2)
+    return _array((1/2)*rr - 1/2*rs2)
+
+
 def _speed_ratio(*, rr: ArrayLike, rs1: ArrayLike, rs2: ArrayLike) -> Array:
     """Speed ratio with A as input."""
     rr = _array(rr)
@@ -460,6 +470,9 @@ _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
     'rr/2 - rs2/2 > 0': (_relation_1, ('rr', 'rs2')),
+}
+_DEPENDENT: Final[_Table] = {
+    'rpl': (_dependent_rpl, ('rr', 'rs2')),
 }
 _EFFICIENCY: Final[_Table] = {
     'A_to_D_c1_pos': (A_to_D_c1_pos, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
@@ -514,6 +527,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
     return result
 
 
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range and every relation positive."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
@@ -560,6 +589,7 @@ def efficiency(
     rr: ArrayLike,
     rs1: ArrayLike,
     rs2: ArrayLike,
+    rpl: ArrayLike | None = None,
 ) -> Array:
     """Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen element by
     element; NaN where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
@@ -568,6 +598,7 @@ def efficiency(
         {'eta_1': _array(eta_1), 'eta_2': _array(eta_2), 'eta_3': _array(eta_3), 'eta_4': _array(eta_4), 'rr':
         _array(rr), 'rs1': _array(rs1), 'rs2': _array(rs2)}
     )
+    _consistent({'rpl': rpl}, values)
     (result,) = _select(input, values, _EFFICIENCY, 1)
     return _screened(result, values, errors)
 
@@ -583,6 +614,7 @@ def losses(
     rr: ArrayLike,
     rs1: ArrayLike,
     rs2: ArrayLike,
+    rpl: ArrayLike | None = None,
 ) -> dict[str, Array]:
     """Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), the
     variant chosen element by element; NaN where efficiency is.
@@ -591,17 +623,26 @@ def losses(
         {'eta_1': _array(eta_1), 'eta_2': _array(eta_2), 'eta_3': _array(eta_3), 'eta_4': _array(eta_4), 'rr':
         _array(rr), 'rs1': _array(rs1), 'rs2': _array(rs2)}
     )
+    _consistent({'rpl': rpl}, values)
     (result,) = _select(input, values, _EFFICIENCY, 1)
     bad = np.isnan(_screened(result, values, errors))
     parts = _select(input, values, _LOSSES, len(LOSSY))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
-def speed_ratio(*, input: str = 'A', rr: ArrayLike, rs1: ArrayLike, rs2: ArrayLike) -> Array:
+def speed_ratio(
+    *,
+    input: str = 'A',
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+    rpl: ArrayLike | None = None,
+) -> Array:
     """Input speed over output speed with `input` as the input port (rr*(rs1 + rs2)/(rs1*(rr + rs2)) with A
     as input).
     """
     values: dict[str, Array] = {'rr': _array(rr), 'rs1': _array(rs1), 'rs2': _array(rs2)}
+    _consistent({'rpl': rpl}, values)
     if input not in PORTS:
         raise ValueError(f'input must be one of {PORTS}, got {input!r}')
     ratio = _speed_ratio(**values)

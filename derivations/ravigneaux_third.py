@@ -67,6 +67,9 @@ LOSSY: Final[tuple[str, ...]] = ('G1', 'G2', 'G3', 'G4')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
 )
 RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {
+    'rpl': 'rpl = rr/2 - rs2/2',
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
 }
 VARIANTS: Final[tuple[Variant, ...]] = (
@@ -135,6 +138,13 @@ def _losses_D_to_A() -> tuple[Array, ...]:
     return (_array(0), _array(0), _array(0), _array(0))
 
 
+def _dependent_rpl(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
+    """rpl = rr/2 - rs2/2 (the geometric constraint rpl + rs2 = -rpl + rr)."""
+    rr = _array(rr)
+    rs2 = _array(rs2)
+    return _array((1/2)*rr - 1/2*rs2)
+
+
 def _speed_ratio() -> Array:
     """Speed ratio with A as input."""
     return _array(1)
@@ -143,6 +153,9 @@ def _speed_ratio() -> Array:
 _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
+}
+_DEPENDENT: Final[_Table] = {
+    'rpl': (_dependent_rpl, ('rr', 'rs2')),
 }
 _EFFICIENCY: Final[_Table] = {
     'A_to_D': (A_to_D, ()),
@@ -191,6 +204,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:

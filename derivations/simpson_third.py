@@ -66,6 +66,10 @@ LOSSY: Final[tuple[str, ...]] = ('C', 'D', 'E', 'F')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
 )
 RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {
+    'rp1': 'rp1 = rr1/2 - rs/2',
+    'rp2': 'rp2 = rr2/2 - rs/2',
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
 }
 VARIANTS: Final[tuple[Variant, ...]] = (
@@ -134,6 +138,20 @@ def _losses_B_to_A() -> tuple[Array, ...]:
     return (_array(0), _array(0), _array(0), _array(0))
 
 
+def _dependent_rp1(*, rr1: ArrayLike, rs: ArrayLike) -> Array:
+    """rp1 = rr1/2 - rs/2 (the geometric constraint rp1 + rs = -rp1 + rr1)."""
+    rr1 = _array(rr1)
+    rs = _array(rs)
+    return _array((1/2)*rr1 - 1/2*rs)
+
+
+def _dependent_rp2(*, rr2: ArrayLike, rs: ArrayLike) -> Array:
+    """rp2 = rr2/2 - rs/2 (the geometric constraint rp2 + rs = -rp2 + rr2)."""
+    rr2 = _array(rr2)
+    rs = _array(rs)
+    return _array((1/2)*rr2 - 1/2*rs)
+
+
 def _speed_ratio() -> Array:
     """Speed ratio with A as input."""
     return _array(1)
@@ -142,6 +160,10 @@ def _speed_ratio() -> Array:
 _CONDITIONS: Final[_Table] = {
 }
 _RELATIONS: Final[_Table] = {
+}
+_DEPENDENT: Final[_Table] = {
+    'rp1': (_dependent_rp1, ('rr1', 'rs')),
+    'rp2': (_dependent_rp2, ('rr2', 'rs')),
 }
 _EFFICIENCY: Final[_Table] = {
     'A_to_B': (A_to_B, ()),
@@ -190,6 +212,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
     return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:

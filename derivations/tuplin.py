@@ -106,6 +106,9 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 RELATIONS: Final[tuple[str, ...]] = ('-r1 + r2 + r3 > 0', 'r1 - r3 > 0')
+DEPENDENT: Final[dict[str, str]] = {
+    'r4': 'r4 = -r1 + r2 + r3',
+}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {
     'c1': ('-r1 + r2', '- r_{1} + r_{2}'),
 }
@@ -368,6 +371,14 @@ def _losses_B_to_A_c1_neg(
     return (_array(_t0*(eta_C - 1)/eta_C), _array(_t0*(eta_D - 1)))
 
 
+def _dependent_r4(*, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
+    """r4 = -r1 + r2 + r3 (the geometric constraint r1 - r3 = r2 - r4)."""
+    r1 = _array(r1)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    return _array(-r1 + r2 + r3)
+
+
 def _speed_ratio(*, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
     """Speed ratio with A as input."""
     r1 = _array(r1)
@@ -382,6 +393,9 @@ _CONDITIONS: Final[_Table] = {
 _RELATIONS: Final[_Table] = {
     '-r1 + r2 + r3 > 0': (_relation_1, ('r1', 'r2', 'r3')),
     'r1 - r3 > 0': (_relation_2, ('r1', 'r3')),
+}
+_DEPENDENT: Final[_Table] = {
+    'r4': (_dependent_r4, ('r1', 'r2', 'r3')),
 }
 _EFFICIENCY: Final[_Table] = {
     'A_to_B_c1_pos': (A_to_B_c1_pos, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
@@ -436,6 +450,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
     return result
 
 
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range and every relation positive."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
@@ -480,6 +510,7 @@ def efficiency(
     r1: ArrayLike,
     r2: ArrayLike,
     r3: ArrayLike,
+    r4: ArrayLike | None = None,
 ) -> Array:
     """Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen element by
     element; NaN where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
@@ -487,6 +518,7 @@ def efficiency(
     values: dict[str, Array] = (
         {'eta_C': _array(eta_C), 'eta_D': _array(eta_D), 'r1': _array(r1), 'r2': _array(r2), 'r3': _array(r3)}
     )
+    _consistent({'r4': r4}, values)
     (result,) = _select(input, values, _EFFICIENCY, 1)
     return _screened(result, values, errors)
 
@@ -500,6 +532,7 @@ def losses(
     r1: ArrayLike,
     r2: ArrayLike,
     r3: ArrayLike,
+    r4: ArrayLike | None = None,
 ) -> dict[str, Array]:
     """Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), the
     variant chosen element by element; NaN where efficiency is.
@@ -507,17 +540,26 @@ def losses(
     values: dict[str, Array] = (
         {'eta_C': _array(eta_C), 'eta_D': _array(eta_D), 'r1': _array(r1), 'r2': _array(r2), 'r3': _array(r3)}
     )
+    _consistent({'r4': r4}, values)
     (result,) = _select(input, values, _EFFICIENCY, 1)
     bad = np.isnan(_screened(result, values, errors))
     parts = _select(input, values, _LOSSES, len(LOSSY))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
-def speed_ratio(*, input: str = 'A', r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
+def speed_ratio(
+    *,
+    input: str = 'A',
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike | None = None,
+) -> Array:
     """Input speed over output speed with `input` as the input port (r2*r3/((r1 - r2)*(r1 - r3)) with A as
     input).
     """
     values: dict[str, Array] = {'r1': _array(r1), 'r2': _array(r2), 'r3': _array(r3)}
+    _consistent({'r4': r4}, values)
     if input not in PORTS:
         raise ValueError(f'input must be one of {PORTS}, got {input!r}')
     ratio = _speed_ratio(**values)

@@ -28,7 +28,7 @@ MALFORMED_CASES = {
     "two_dof_one_input.yaml": ("ports", "2 degrees of freedom but one input port", 15),
     "inconsistent_geometry.yaml": ("couplings.D", "inconsistent geometry", 13),
     "unknown_key.yaml": ("gears.2.radus", "unknown key 'radus'", 5),
-    "revolute_without_position.yaml": ("couplings.K", "give the position of this revolute with `at`", 10),
+    "gear_pair_without_position.yaml": ("gears.3", "no mesh connects it to the main axis", 6),
     "bad_efficiency.yaml": ("couplings.C.efficiency", "an ordinary efficiency must lie in (0, 1], got 1.5", 9),
     "tilted_one_mesh.yaml": ("gears.2.axis", "a tilted axis needs two meshes with gears of known axes, found 1", 6),
     "bad_placement.yaml": ("placement", "expected [x, y] or an angle in degrees, got 'sideways'", 3),

@@ -38,12 +38,28 @@ def _known_sign(base: sympy.Expr, known: Mapping[sympy.Expr, int]) -> int | None
     return None
 
 
+def without_positive_factors(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` without its provably positive factors, sign kept: m (z1 - z3)/2 > 0 says
+    z1 - z3 > 0, and m (z1 - z3 - z2 + z4) = 0 says z1 - z3 - z2 + z4 = 0."""
+    if sympy.expand(expr) == 0:
+        return sympy.Integer(0)
+    content, parts = sympy.factor_list(sympy.expand(expr))
+    sign, kept = (1 if content > 0 else -1), []
+    for base, power in parts:
+        s = _poly_sign(base)
+        if s in (1, -1):
+            sign *= s**power
+        else:
+            kept.append(base**power)
+    return sympy.expand(sign * sympy.Mul(*kept))
+
+
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
     def __init__(self, facts: Iterable[sympy.Expr] = (),
                  substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()):
-        self.facts = tuple(sympy.expand(f) for f in facts)
+        self.facts = tuple(without_positive_factors(f) for f in facts)
         #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
         self.substitutions = tuple(dict(s) for s in substitutions)
         self._decided: dict[sympy.Expr, int | None] = {}  # memo: the same factors recur

@@ -103,14 +103,9 @@ def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
 
 
 def eliminated_symbols(variants: VariantSet) -> dict[sympy.Symbol, sympy.Expr]:
-    """Radii the geometric constraints determine and the formulas do not use, in the
-    formulas' symbols (Tuplin: r4 = r2 + r3 - r1)."""
-    constraints = [c.expression for c in variants.analysis.network.layout.constraints]
-    unknown = sorted(set().union(*(e.free_symbols for e in constraints)) - set(formula_symbols(variants)), key=str)
-    if not unknown:
-        return {}
-    solved = sympy.solve(constraints, unknown, dict=True)
-    return {k: sympy.expand(v) for k, v in solved[0].items()} if solved else {}
+    """Parameters the geometric constraints determine, in the independent ones (Tuplin:
+    r4 = r2 + r3 - r1); the formulas do not use them."""
+    return {r.symbol: r.expression for r in variants.train.dependent or ()}
 
 
 def _obviously_positive(expr: sympy.Expr) -> bool:

@@ -26,6 +26,7 @@ from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, effic
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, InputError, Problem
+from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.model import Train
@@ -105,6 +106,7 @@ class VariantSet:
 
     def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
         """The variant whose conditions hold at ``values`` with ``input`` as input port."""
+        values = check_values(self.train, values)
         port = input or self.train.ports.input
         if port not in (self.train.ports.input, self.train.ports.output):
             raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
@@ -125,7 +127,7 @@ class VariantSet:
     def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (exact when the values are), right variant chosen."""
         variant = self.variant_for(values, input)
-        value = variant.efficiency.subs(values)
+        value = variant.efficiency.subs(check_values(self.train, values))
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
             raise InputError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
@@ -157,6 +159,8 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
     (``layout``: a geometry other than the one derived from the train)."""
     say = progress or (lambda message: None)
+    if layout is None:
+        train = resolved_train(train)
     etas = efficiency_symbols(train)
     analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas, layout=layout)
     say("virtual power flow through the meshes")

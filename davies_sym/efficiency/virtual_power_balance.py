@@ -38,6 +38,7 @@ import sympy
 from davies_sym.efficiency.balance_frames import ConicalFrames, Frames, PlanarFrames, Row, Values, exact, is_zero
 from davies_sym.errors import DerivationError
 from davies_sym.geometry import train_layout
+from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
@@ -63,6 +64,9 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
                           layout: Layout | None = None) -> BalanceResult:
     """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one);
     ``layout`` replaces the derived geometry (to study a published one)."""
+    if layout is None:
+        train = resolved_train(train)
+        values = check_values(train, values)
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
     layout = layout or train_layout(train)

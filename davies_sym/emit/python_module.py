@@ -238,6 +238,22 @@ def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> 
     return result
 
 
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range and every relation positive."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
@@ -289,6 +305,10 @@ def _constants(variants: VariantSet, parameters: Sequence[Parameter],
     lines += [")"]
     lines += _strings("RELATIONS: Final[tuple[str, ...]] = ", [f"{sympy.sstr(r)} > 0" for r in relations], "")
     lines[-1] = lines[-1].rstrip(",")
+    lines.append("DEPENDENT: Final[dict[str, str]] = {")
+    for r in train.dependent or ():
+        lines += _wrapped(f"{str(r.symbol)!r}: ", f"{str(r)!r},", "    ")
+    lines.append("}")
     lines.append("CONDITIONS: Final[dict[str, tuple[str, str]]] = {")
     for c in variants.conditions:
         lines += _strings(f"{c.name!r}: ", (sympy.sstr(c.simplified), sympy.latex(c.simplified)), "    ")
@@ -324,12 +344,19 @@ def _table(name: str, entries: Sequence[tuple[str, str, Sequence[str]]]) -> list
 
 
 def _entry_point(name: str, doc: str, symbols: Sequence[str], returns: str, body: Sequence[str],
-                 default_input: str, screened: bool = True) -> list[str]:
+                 default_input: str, screened: bool = True,
+                 dependent: Sequence[tuple[str, Sequence[str]]] = ()) -> list[str]:
+    """An entry point taking ``symbols``, and the ``dependent`` parameters (name, the
+    symbols their relation needs) optionally, checked against their relations."""
     params = [f"input: str = {default_input!r}"] + (["errors: str = 'warn'"] if screened else [])
     params += [f"{s}: ArrayLike" for s in symbols]
+    checked = [d for d, needs in dependent if set(needs) <= set(symbols)]
+    params += [f"{d}: ArrayLike | None = None" for d in checked]
     lines = _signature(name, params, returns) + _docstring(doc, "    ")
     arrays = ", ".join(f"{s!r}: _array({s})" for s in symbols)
     lines += _wrapped("values: dict[str, Array] = ", "{" + arrays + "}", "    ")
+    if checked:
+        lines += _wrapped("_consistent(", "{" + ", ".join(f"{d!r}: {d}" for d in checked) + "}, values)", "    ")
     return [*lines, *body, "", ""]
 
 
@@ -370,16 +397,23 @@ def python_module(variants: VariantSet) -> str:
                                "tuple[Array, ...]" if len(lossy) > 1 else "Array")
         lines += code
         losses.append((v.name, f"_losses_{v.name}", args))
+    dependent = []
+    for r in train.dependent or ():
+        code, args = _function(f"_dependent_{r.symbol}", f"{r} (the geometric constraint {r.constraint}).",
+                               [restore(r.expression, radicals)])
+        lines += code
+        dependent.append((str(r.symbol), f"_dependent_{r.symbol}", args))
     ratio = restore(variants.analysis.speed_ratio().to_expr(), radicals)
     code, ratio_args = _function("_speed_ratio", f"Speed ratio with {train.ports.input} as input.", [ratio])
     lines += code
-    lines += _table("_CONDITIONS", conditions) + _table("_RELATIONS", relation_table)
+    lines += _table("_CONDITIONS", conditions) + _table("_RELATIONS", relation_table) + _table("_DEPENDENT", dependent)
     lines += _table("_EFFICIENCY", efficiency) + _table("_LOSSES", losses) + ["", "", _SELECTION.rstrip("\n"), "", ""]
     lines += _entry_point(
         "efficiency", "Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen element "
         "by element; NaN where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').",
         symbols, "Array", ["    (result,) = _select(input, values, _EFFICIENCY, 1)",
-                           "    return _screened(result, values, errors)"], train.ports.input)
+                           "    return _screened(result, values, errors)"], train.ports.input,
+        dependent=[(d, args) for d, _, args in dependent])
     lines += _entry_point(
         "losses", "Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), "
         "the variant chosen element by element; NaN where efficiency is.", symbols, "dict[str, Array]",
@@ -387,7 +421,7 @@ def python_module(variants: VariantSet) -> str:
          "    bad = np.isnan(_screened(result, values, errors))",
          "    parts = _select(input, values, _LOSSES, len(LOSSY))",
          "    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}"],
-        train.ports.input)
+        train.ports.input, dependent=[(d, args) for d, _, args in dependent])
     lines += _entry_point(
         "speed_ratio", f"Input speed over output speed with `input` as the input port ({sympy.sstr(ratio)} with "
         f"{train.ports.input} as input).", ratio_args, "Array",
@@ -395,7 +429,7 @@ def python_module(variants: VariantSet) -> str:
          "        raise ValueError(f'input must be one of {PORTS}, got {input!r}')",
          "    ratio = _speed_ratio(**values)",
          f"    return ratio if input == {train.ports.input!r} else _array(1 / ratio)"],
-        train.ports.input, screened=False)
+        train.ports.input, screened=False, dependent=[(d, args) for d, _, args in dependent])
     while lines[-1] == "":
         lines.pop()
     return "\n".join(lines) + "\n"

@@ -62,7 +62,9 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         "screw_system": {"motion_coordinates": list(net.system.twist_names),
                          "action_coordinates": list(net.system.wrench_names)},
         "spanning_tree": list(net.tree),
-        "geometric_constraints": [str(c) for c in net.layout.constraints],
+        "geometric_constraints": [r.constraint for r in train.dependent or ()]
+        + [str(c) for c in net.layout.constraints],
+        "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in train.dependent or ()},
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
         "efficiency_friction_form": {
@@ -85,8 +87,11 @@ def text_summary(document: dict[str, Any]) -> str:
         f"  degrees of freedom: {document['degrees_of_freedom']}; screw system order: "
         f"{document['screw_system_order']} {{{', '.join(document['screw_system']['motion_coordinates'])}}}",
     ]
+    dependent = document.get("dependent_parameters", {})
+    solved = iter(dependent.items())
     for c in document["geometric_constraints"]:
-        lines.append(f"  geometric constraint: {c}")
+        given = next(solved, None)
+        lines.append(f"  geometric constraint: {c}" + (f", so {given[0]} = {given[1]}" if given else ""))
     lines.append(f"  efficiency ({eff['input']} -> {eff['output']}) = {eff['expression']}")
     for s in eff["sign_conditions"]:
         lines.append(f"    where {s['symbol']} = {s['equals']} (not decided by the ports alone)")

@@ -31,6 +31,13 @@ def train_layout(train: Train) -> Layout:
     clutches join members without moving an axis), restricted to what the state keeps."""
     if train.whole is not None:
         return _restricted(train_layout(train.whole), train)
+    layout = _layout(train)
+    # A radius solved from a constraint is a length: its expression is positive.
+    facts = tuple(r.expression for r in train.dependent or ())
+    return replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
+
+
+def _layout(train: Train) -> Layout:
     if any(g.axis is not None or g.tilted for g in train.gears):
         return conical_layout(train)
     if train.placement is not None:

@@ -19,6 +19,7 @@ from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import DerivationError, MobilityError
+from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.matrices import ActionVariable, FrictionLaw, Network
 from davies_sym.topology.couplings import GearMesh
@@ -60,6 +61,8 @@ class Analysis:
                  layout: Layout | None = None):
         if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
             raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
+        if layout is None:
+            train = resolved_train(train)  # the formulas hold on the geometric constraints
         self.train = train
         self.coulomb_signs = coulomb_signs
         self._progress = progress or (lambda message: None)

@@ -67,6 +67,7 @@ def build_train(document: SourceDocument) -> Train:
         if check.state is not None and check.state not in {st.name for st in states}:
             reader.problem(f"expected[{i}].state", f"unknown state {check.state!r}")
     placement = _read_placement(data["placement"], reader) if "placement" in data else None
+    independent = _read_independent(data["independent"], reader) if "independent" in data else None
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
             reader.problem(key, f"expected text, got {data[key]!r}")
@@ -87,6 +88,7 @@ def build_train(document: SourceDocument) -> Train:
         locations=MappingProxyType(dict(document.lines)),
         states=states,
         placement=placement,
+        independent=independent,
     )
 
 
@@ -111,6 +113,21 @@ def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.
                        "direction as [x, y] instead")
         return None
     return (cos, sin)
+
+
+def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None:
+    """``independent: [r1, r2, r3]``: symbols of the file that stay free."""
+    if not isinstance(value, list) or not value:
+        reader.problem("independent", f"expected a list of symbols, got {value!r}")
+        return None
+    names = []
+    for i, item in enumerate(value):
+        if not isinstance(item, str) or item not in reader.symbols:
+            known = ", ".join(sorted(reader.symbols))
+            reader.problem(f"independent[{i}]", f"{item!r} is not a symbol of the train (symbols: {known})")
+        else:
+            names.append(item)
+    return tuple(names)
 
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:
@@ -175,8 +192,16 @@ def _read_size(entry: Mapping[str, Any], path: str, reader: EntryReader):  # typ
     if has_radius:
         return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, None
     teeth = entry["teeth"]
-    if not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
-        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {teeth!r}")
+    if isinstance(teeth, str):
+        count = reader.quantity(teeth, f"{path}.teeth", "teeth")  # a tooth number as a symbol, e.g. z1
+        if count is None:
+            return None, None, None
+        if count.is_number and not (count.is_integer and count > 0):
+            reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {teeth!r}")
+            return None, None, None
+        teeth = count
+    elif not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
+        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got {teeth!r}")
         return None, None, None
     if "module" not in entry:
         reader.problem(path, "`teeth` needs `module` to give the pitch radius")

@@ -28,7 +28,7 @@ class Gear:
     link: str
     radius: sympy.Expr
     internal: bool = False
-    teeth: int | None = None
+    teeth: int | sympy.Expr | None = None
     module: sympy.Expr | None = None
     #: Direction of the gear axis through the common apex (intersecting-axis trains);
     #: None for parallel-axis trains (axes along z).
@@ -61,6 +61,20 @@ class State:
     clutch: tuple[tuple[str, str], ...] = ()
     free: tuple[str, ...] = ()
     description: str = ""
+
+
+@dataclass(frozen=True)
+class Relation:
+    """A parameter the geometry determines from the others: ``symbol = expression``,
+    from the geometric constraint ``constraint`` (e.g. r4 = r2 + r3 - r1 from
+    r1 - r3 = r2 - r4, Laus section 3.4.1.6)."""
+
+    symbol: sympy.Symbol
+    expression: sympy.Expr
+    constraint: str
+
+    def __str__(self) -> str:
+        return f"{self.symbol} = {sympy.sstr(self.expression)}"
 
 
 @dataclass(frozen=True)
@@ -99,6 +113,11 @@ class Train:
     #: For a train in one operating state: the train with every member, whose geometry
     #: the state keeps (a brake or a clutch joins members, it does not move their axes).
     whole: Train | None = field(default=None, repr=False, compare=False)
+    #: Symbols the user declares independent (``independent:``); None: the default choice.
+    independent: tuple[str, ...] | None = None
+    #: Parameters solved from the geometric constraints and substituted into the gears;
+    #: None until the geometry has been solved (:func:`davies_sym.geometry.dependent.resolved_train`).
+    dependent: tuple[Relation, ...] | None = None
 
     def problem(self, entry: str, message: str) -> Problem:
         """A :class:`Problem` at ``entry`` with the line it has in the source file."""

@@ -45,6 +45,11 @@ TOP_LEVEL = (
           "Draw a planar train in 2-D (planet-planet meshes off the centre line): the direction "
           "from the main axis along which the first planet is placed. Planets meshing two placed "
           "gears close their triangle. Omit to draw the train on one line."),
+    Field("independent", "list of symbols", False,
+          "Which parameters stay free where the loops of meshes over-determine the radii "
+          "(r1 - r3 = r2 - r4): each geometric constraint is solved for one of the others. "
+          "Default: the annulus radius when it is a sum of the others (r_R = r_S + 2 r_P), "
+          "else a radius of the mesh that closes the loop, its planet's gear first."),
     Field("expected", "list", False, "Published numbers to check (used by the catalog tests)."),
     Field("notes", "string", False, "Free text."),
 )
@@ -55,7 +60,8 @@ GEAR = (
     Field("link", "link", True, "The link the gear is fixed to."),
     Field("radius", "number or expression", False,
           "Pitch radius (a number, a symbol such as `r1`, or an expression)."),
-    Field("teeth", "integer", False, "Tooth count; with `module` gives radius = module*teeth/2."),
+    Field("teeth", "integer or symbol", False,
+          "Tooth count (a whole number or a symbol such as `z1`); with `module` gives radius = module*teeth/2."),
     Field("module", "number or expression", False, "Module (used with `teeth`)."),
     Field("internal", "boolean", False, "True for an annulus (internal teeth). Default false."),
     Field("axis", "`x`, `y`, `z`, `-z`, ... or [x, y, z], or `tilted`", False,

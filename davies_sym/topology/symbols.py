@@ -20,6 +20,7 @@ from davies_sym.topology.expressions import ExpressionError, parse_expression, s
 #: Assumptions per symbol role.
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
     "length": {"positive": True},
+    "teeth": {"positive": True},
     "friction": {"positive": True},
     "viscous": {"positive": True},
     "efficiency": {"positive": True},

@@ -1,0 +1,126 @@
+"""Geometric constraints applied: each solved for one parameter, substituted into the gears.
+
+Where the loops of meshes over-determine the radii (r1 - r3 = r2 - r4 for Tuplin's
+train, Laus section 3.4.1.6; r_R = r_S + 2 r_P for a simple planetary set), every
+formula must hold on the constraint, not for radii that break it.  Each constraint is
+solved exactly (it is linear in the parameter chosen) for one parameter, which the
+train then gives by the others: speed ratios, efficiencies and generated modules are
+written in the independent parameters, and a value given for a dependent one is checked
+against the relation (:func:`check_values`), never used as another train.
+
+The choice: the symbols of ``independent:`` in the file stay free; otherwise the
+annulus radius when the constraint makes it a sum of the others, then a radius of the
+mesh that closes the loop (its planet's gear first), then the first by name.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import replace
+
+import sympy
+
+from davies_sym.algebra.signs import without_positive_factors
+from davies_sym.errors import DesignError, GeometryError, Problem
+from davies_sym.geometry import train_layout
+from davies_sym.geometry.axes import axis_structure
+from davies_sym.geometry.layout import GeometricConstraint
+from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.model import Relation, Train
+
+
+def resolved_train(train: Train) -> Train:
+    """``train`` with every geometric constraint solved for one parameter and substituted
+    into the gear radii (a state: the constraints of its whole train)."""
+    if train.dependent is not None:
+        return train
+    if train.whole is not None:
+        whole = resolved_train(train.whole)
+        return _substituted(replace(train, whole=whole), whole.dependent or ())
+    return _substituted(train, _solve(train, train_layout(train).constraints))
+
+
+def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
+    values = {r.symbol: r.expression for r in relations}
+    gears = tuple(replace(g, radius=sympy.expand(g.radius.subs(values))) if values else g for g in train.gears)
+    return replace(train, gears=gears, dependent=relations)
+
+
+def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[Relation, ...]:
+    """One parameter per constraint, solved in order, each substituted into the next."""
+    independent = set(train.independent or ())
+    preferred = _preferred(train)
+    relations: list[Relation] = []
+    problems: list[Problem] = []
+    for c in constraints:
+        values = {r.symbol: r.expression for r in relations}
+        expr = without_positive_factors(sympy.expand(c.expression.subs(values)))
+        if expr == 0:
+            continue  # implied by the constraints solved already
+        candidates = [s for s in sorted(expr.free_symbols, key=str)
+                      if sympy.degree(expr, s) == 1 and str(s) not in independent]  # type: ignore[arg-type]
+        if not candidates:
+            problems.append(train.problem(
+                "independent" if independent else f"couplings.{c.coupling}",
+                f"the geometric constraint {c} leaves no parameter to solve for"
+                + (f": `independent` lists all of {', '.join(sorted(map(str, expr.free_symbols)))}; "
+                   "leave one out" if independent else "")))
+            continue
+        symbol = min(candidates, key=lambda s: _rank(s, expr, c.coupling, preferred))
+        solution = sympy.expand(sympy.solve(expr, symbol)[0])  # linear in symbol: one root
+        relations = [Relation(r.symbol, sympy.expand(r.expression.subs(symbol, solution)), r.constraint)
+                     for r in relations]
+        relations.append(Relation(symbol, solution, str(c)))
+    if problems:
+        raise GeometryError(problems, train.path)
+    return tuple(relations)
+
+
+def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
+    """Mesh -> the radius symbols of its gears, the planet's gear first."""
+    try:
+        frames = axis_structure(train).meshes
+    except GeometryError:  # pragma: no cover - the layout reported it already
+        frames = {}
+    out: dict[str, list[sympy.Symbol]] = {}
+    for c in train.couplings:
+        if isinstance(c, GearMesh):
+            order = list(c.gears)
+            frame = frames.get(c.name)
+            if frame is not None and frame.planet == 1:
+                order = order[::-1]  # the planet's gear first
+            out[c.name] = [s for g in order for s in sorted(train.gear(g).radius.free_symbols, key=str)]
+    return out
+
+
+def _rank(symbol: sympy.Symbol, expr: sympy.Expr, coupling: str,
+          preferred: Mapping[str, list[sympy.Symbol]]) -> tuple[int, int, str]:
+    solution = sympy.expand(sympy.solve(expr, symbol)[0])
+    positive_sum = solution.is_Add and all(t.as_coeff_Mul()[0] > 0 for t in solution.args)
+    closing = preferred.get(coupling, [])
+    return (0 if positive_sum else 1, closing.index(symbol) if symbol in closing else len(closing), str(symbol))
+
+
+def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[sympy.Symbol, sympy.Expr]:
+    """``values`` without the dependent parameters, each checked against its relation:
+    a value that breaks it is refused (:class:`DesignError`) with the relation, both values
+    and their difference."""
+    relations = {r.symbol: r for r in resolved_train(train).dependent or ()}
+    problems = []
+    out = {}
+    for symbol, value in values.items():
+        relation = relations.get(symbol)  # type: ignore[call-overload]
+        if relation is None:
+            out[symbol] = value
+            continue
+        implied = sympy.expand(relation.expression.subs(values))
+        if implied.free_symbols:
+            continue  # the relation cannot be checked without the other values
+        difference = sympy.expand(value - implied)
+        if difference != 0:
+            problems.append(Problem(str(symbol), f"{symbol} = {value} breaks the relation {relation} (from the "
+                                    f"geometric constraint {relation.constraint}), which gives {implied}; the "
+                                    f"difference is {difference}"))
+    if problems:
+        raise DesignError(problems, train.path)
+    return out

@@ -160,8 +160,11 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
             str(sympy.Float(value, 15))]
 
 
-def _derive_sets(train: Train, state: str | None, progress: Progress) -> list[tuple[str, VariantSet]]:
-    """The variants of the train, or of each of its states (only ``state`` if given)."""
+def _derive_sets(train: Train, state: str | None, progress: Progress,
+                 failures: list[str]) -> list[tuple[str, VariantSet]]:
+    """The variants of the train, or of each of its states (only ``state`` if given).  A
+    state that cannot be derived is reported in ``failures`` (its message names the state)
+    and the others are still derived; when none can be, the first error is raised."""
     if not train.states:
         if state is not None:
             raise InputError([Problem("--state", "the train has no states")], train.path)
@@ -170,10 +173,17 @@ def _derive_sets(train: Train, state: str | None, progress: Progress) -> list[tu
     if state is not None and state not in names:
         raise InputError([Problem("--state", f"unknown state {state!r} (states: {', '.join(names)})")], train.path)
     chosen = [st for st in train.states if state is None or st.name == state]
-    out = []
+    out, first = [], None
     for st in chosen:
         progress(f"state {st.name}")
-        out.append((st.name, derive_variants(train_in_state(train, st), progress=progress)))
+        try:
+            out.append((st.name, derive_variants(train_in_state(train, st), progress=progress)))
+        except DaviesError as exc:
+            first = first or exc
+            failures += [f"{line} (state {st.name})" for line in _message(exc, train.path or "").splitlines()]
+    if not out and first is not None:
+        failures.clear()
+        raise first
     return out
 
 
@@ -216,11 +226,15 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
                 print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom, kinematics only: "
                       "nothing written", file=sys.stderr)
                 continue
-            sets = _derive_sets(train, None, progress)
+            failures: list[str] = []
+            sets = _derive_sets(train, None, progress, failures)
         except DaviesError as exc:
             print(_message(exc, path), file=sys.stderr)
             status = 2
             continue
+        for line in failures:
+            print(line, file=sys.stderr)
+            status = 2
         if train.states:
             write_atomic(os.path.join(directory, f"{stem}.tex"), latex_states_document([vs for _, vs in sets]))
             for name, vs in sets:
@@ -248,11 +262,13 @@ def _kinematics(train: Train, args: argparse.Namespace, progress: Progress) -> l
     return [(args.out, text)]
 
 
-def _efficiency(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str | bytes]]:
-    """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation."""
+def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
+                failures: list[str]) -> list[tuple[str | None, str | bytes]]:
+    """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation
+    (of the states that derive; the others are reported in ``failures``)."""
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
-    sets = _derive_sets(train, args.state, progress)
+    sets = _derive_sets(train, args.state, progress, failures)
     if (args.python or args.eval or args.plot) and len(sets) > 1:
         raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
                                   f"{', '.join(st.name for st in train.states)})")], train.path)
@@ -283,13 +299,17 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
             raise InputError([Problem("-o" if target == args.out else "--python",
                                       f"refusing to overwrite the input file {path}")], path)
     train = load(path)
-    outputs = _kinematics(train, args, progress) if _kinematics_only(train) else _efficiency(train, args, progress)
+    failures: list[str] = []
+    outputs = (_kinematics(train, args, progress) if _kinematics_only(train)
+               else _efficiency(train, args, progress, failures))
     for target, content in outputs:
         if target is None:
             sys.stdout.write(content if isinstance(content, str) else content.decode())
         else:
             write_atomic(target, content)
-    return 0
+    for line in failures:
+        print(line, file=sys.stderr)
+    return 2 if failures else 0
 
 
 def _many_files(args: argparse.Namespace, progress: Progress) -> int:

@@ -36,6 +36,9 @@ class RadicalTable:
     """Collects the square roots a layout needs, one symbol per square-free radicand."""
 
     radicals: list[Radical] = field(default_factory=list)
+    #: Expressions known to be positive (an annulus larger than its pinion), for the signs
+    #: of the factors a root takes out.
+    facts: list[sympy.Expr] = field(default_factory=list)
 
     def sqrt(self, value: sympy.Expr) -> sympy.Expr:
         """``sqrt(value)`` of a rational expression positive on the design, as
@@ -45,7 +48,7 @@ class RadicalTable:
             raise ValueError(f"nested square roots: sqrt({self.restore(value)})")
         # sqrt(n / d) = sqrt(n d) / |d|: only the product's square-free part stays inside.
         content, factors = sympy.factor_list(sympy.expand(num * den))
-        oracle = SignOracle()
+        oracle = SignOracle(self.facts)
         outside, inside = sympy.sqrt(sympy.Abs(content)).as_coeff_Mul()
         inside = inside**2 * (1 if content > 0 else -1)
         for base, exponent in factors:

@@ -4,7 +4,7 @@ eliminating one radius per constraint)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -121,15 +121,37 @@ def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sym
 
 def add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
                     distance: sympy.Expr, coupling: str, oracle: SignOracle, entry: str | None = None,
-                    message: str | None = None) -> None:
-    """``offset = distance`` holds, is impossible (a problem), or is a constraint on the radii."""
+                    message: str | None = None, loop: Sequence[str] = ()) -> None:
+    """``offset = distance`` holds, is impossible (a problem naming the ``loop`` of couplings
+    that closes here), or is a constraint on the radii."""
     difference = sympy.expand(offset - distance)
     if difference == 0:
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
+        through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""
         problems.append(train.problem(
             entry or f"couplings.{coupling}",
-            message or f"inconsistent geometry: the centre distance this coupling needs ({distance}) "
-            f"differs from the one the other couplings give ({offset})"))
+            message or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "
+            f"{distance} where the other couplings give {offset} (difference {difference}); change the sizes so "
+            "that they agree, or write one radius as a symbol and let the constraint give it"))
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
+
+
+def loop_through(via: Mapping[str, tuple[str, str]], a: str, b: str, closing: str) -> list[str]:
+    """The couplings of the loop a mesh ``closing`` between axis classes ``a`` and ``b``
+    closes: the placing meshes (``via``: class -> (mesh, class it was placed from)) from
+    each end back to their common class, and the closing one."""
+    def chain(cls: str) -> tuple[list[str], list[str]]:
+        classes, meshes = [cls], []
+        while cls in via:
+            mesh, cls = via[cls]
+            meshes.append(mesh)
+            classes.append(cls)
+        return classes, meshes
+
+    (classes_a, meshes_a), (classes_b, meshes_b) = chain(a), chain(b)
+    common = next((cls for cls in classes_b if cls in classes_a), None)
+    if common is None:
+        return [closing]
+    return sorted({*meshes_a[:classes_a.index(common)], *meshes_b[:classes_b.index(common)], closing})

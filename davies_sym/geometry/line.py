@@ -20,7 +20,15 @@ import sympy
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure, axis_structure
-from davies_sym.geometry.layout import X_AXIS, Y_AXIS, GeometricConstraint, Layout, add_constraint, line_point
+from davies_sym.geometry.layout import (
+    X_AXIS,
+    Y_AXIS,
+    GeometricConstraint,
+    Layout,
+    add_constraint,
+    line_point,
+    loop_through,
+)
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Gear, Train
 
@@ -46,16 +54,19 @@ def side_of_second(mesh: GearMesh, structure: AxisStructure, gears: Mapping[str,
 
 
 def place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-                  problems: list[Problem]) -> dict[str, sympy.Expr]:
-    """The y of every axis class: the main axis at 0, then mesh by mesh (in name order)
-    outward; a class no mesh reaches takes its bearing's `at`, or the main axis when no
-    gear turns about it."""
+                  problems: list[Problem], via: dict[str, tuple[str, str]]) -> dict[str, sympy.Expr]:
+    """The y of every axis class: the main axis at 0 and the classes whose bearing gives
+    `at` there, then mesh by mesh (in name order) outward; a class nothing reaches is on
+    the main axis when no gear turns about it.  ``via`` records which mesh placed each class from which."""
     positions: dict[str, sympy.Expr] = {structure.root: sympy.Integer(0)}
     bearings = sorted((c for c in train.couplings if isinstance(c, Revolute) and c.at is not None),
                       key=lambda c: c.name)
     geared = {structure.axis[g.link] for g in train.gears}
+    for c in bearings:  # positions the user gives come first
+        if structure.bearing_axis[c.name] not in positions and c.at is not None:
+            positions[structure.bearing_axis[c.name]] = c.at
     while True:
-        if _place_one(structure, meshes, gears, positions):
+        if _place_one(structure, meshes, gears, positions, via):
             continue
         at = next((c for c in bearings if structure.bearing_axis[c.name] not in positions), None)
         if at is not None and at.at is not None:
@@ -72,7 +83,7 @@ def place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearM
 
 
 def _place_one(structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-               positions: dict[str, sympy.Expr]) -> bool:
+               positions: dict[str, sympy.Expr], via: dict[str, tuple[str, str]]) -> bool:
     """Place the class of the first mesh (by name) with exactly one end placed."""
     for mesh in meshes:
         ends = [structure.axis[link] for link in mesh.links]
@@ -83,6 +94,7 @@ def _place_one(structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapp
         side = side_of_second(mesh, structure, gears) or 1
         step = side * centre_distance(mesh, gears)
         positions[ends[1 - known]] = sympy.expand(positions[ends[known]] + (step if known == 0 else -step))
+        via[ends[1 - known]] = (mesh.name, ends[known])
         return True
     return False
 
@@ -93,7 +105,8 @@ def planar_line_layout(train: Train) -> Layout:
     structure = axis_structure(train)
     meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
-    positions = place_classes(train, structure, meshes, gears, problems)
+    via: dict[str, tuple[str, str]] = {}
+    positions = place_classes(train, structure, meshes, gears, problems, via)
     if problems:
         raise GeometryError(problems, train.path)
     oracle = SignOracle()
@@ -120,7 +133,9 @@ def planar_line_layout(train: Train) -> Layout:
             points[mesh.name] = line_point(centres[ann.name] + towards * ann.radius)
         else:
             points[mesh.name] = line_point(centres[g.name] + side * g.radius)
-        add_constraint(train, constraints, problems, side * offset, centre_distance(mesh, gears), mesh.name, oracle)
+        ends = [structure.axis[link] for link in mesh.links]
+        add_constraint(train, constraints, problems, side * offset, centre_distance(mesh, gears), mesh.name, oracle,
+                       loop=loop_through(via, ends[0], ends[1], mesh.name))
     for c in train.couplings:
         if isinstance(c, Revolute):
             y = positions[structure.bearing_axis[c.name]]

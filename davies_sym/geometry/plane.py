@@ -35,7 +35,8 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     """Axis positions, pitch points and constraints of a planar train drawn in 2-D;
     ``direction`` (x, y) is the placement direction of the planets."""
     problems: list[Problem] = []
-    radicals = RadicalTable()
+    radicals = RadicalTable(facts=[centre_distance(m, {g.name: g for g in train.gears}) for m in train.couplings
+                                   if isinstance(m, GearMesh) and m.internal])
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
@@ -104,18 +105,21 @@ def plane_layout(train: Train, direction: Point) -> Layout:
 
 def _place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
                    unit: Point, radicals: RadicalTable, problems: list[Problem], used: set[str]) -> dict[str, Point]:
-    """The centre of every axis class: the main axis at the origin, then outward one class
-    at a time (meshes in name order): a class meshing two placed classes with distinct
-    centres closes a triangle, any other goes along the placement direction (a planet
-    outward of the gear on its carrier's axis, the pinion of an internal pair outward of
-    its annulus); a class no mesh reaches takes its bearing's `at` along the placement
-    direction, or the main axis when no gear turns about it.  ``used`` collects the meshes
-    that placed a class (the others close loops)."""
+    """The centre of every axis class: the main axis at the origin and the classes whose
+    bearing gives `at` along the placement direction, then outward one class at a time
+    (meshes in name order): a class meshing two placed classes with distinct centres
+    closes a triangle, any other goes along the placement direction (a planet outward of
+    the gear on its carrier's axis, the pinion of an internal pair outward of its
+    annulus); a class nothing reaches is on the main axis when no gear turns about it.
+    ``used`` collects the meshes that placed a class (the others close loops)."""
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
     bearings = sorted((c for c in train.couplings if isinstance(c, Revolute) and c.at is not None),
                       key=lambda c: c.name)
     geared = {structure.axis[g.link] for g in train.gears}
+    for c in bearings:  # positions the user gives come first
+        if structure.bearing_axis[c.name] not in positions and c.at is not None:
+            positions[structure.bearing_axis[c.name]] = (c.at * unit[0], c.at * unit[1])
     while True:
         if _place_one(train, structure, meshes, gears, positions, unit, radicals, problems, used):
             continue
@@ -178,7 +182,13 @@ def _triangle(first: tuple[Point, sympy.Expr, str], second: tuple[Point, sympy.E
     """The point at distance d_A from A and d_B from B, counter-clockwise of A -> B."""
     (a, da, mesh_a), (b, db, mesh_b) = first, second
     ab = (radicals.reduce(b[0] - a[0]), radicals.reduce(b[1] - a[1]))
-    length = radicals.sqrt(radicals.reduce(ab[0] ** 2 + ab[1] ** 2))
+    try:
+        length = radicals.sqrt(radicals.reduce(ab[0] ** 2 + ab[1] ** 2))
+    except ValueError as exc:
+        problems.append(train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} would close a "
+                                      f"triangle whose side is not known to be real ({exc}); give the radii as "
+                                      "numbers, or draw the train with another placement"))
+        return None
     along = radicals.reduce((da**2 - db**2 + length**2) / (2 * length))
     roots = {r.symbol for r in radicals.radicals}
     if (sympy.sympify(along).free_symbols | sympy.sympify(length).free_symbols) & roots:

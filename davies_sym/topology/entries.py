@@ -16,8 +16,10 @@ from davies_sym.topology.yaml_source import SourceDocument
 
 #: Names that definitions may take, by kind, and how the rule reads in a message.
 NAME_PATTERNS: dict[str, tuple[re.Pattern[str], str]] = {
-    "link": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
-    "gear": (re.compile(r"[A-Za-z0-9_][A-Za-z0-9_/.+-]{0,39}"), "ASCII letters, digits, _ / . + -"),
+    "link": (re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
+             "ASCII letters, digits, spaces and _ / . + -"),
+    "gear": (re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
+             "ASCII letters, digits, spaces and _ / . + -"),
     "coupling": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
     "state": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
 }
@@ -62,7 +64,8 @@ class EntryReader:
         """The name a link, gear, coupling or state is defined under, checked against ``NAME_PATTERNS``.
 
         Coupling and state names become parts of symbols, function and file names of the
-        outputs, so they are identifiers; links and gears may also hold ``/ . + -`` (``3/4``).
+        outputs, so they are identifiers; links and gears may also hold spaces and ``/ . + -``
+        (``3/4``, ``Planet A``).
         """
         name = self.name(value, path)
         if name is None:

@@ -14,11 +14,12 @@ from pathlib import Path
 import pytest
 import sympy
 import yaml
-from conftest import catalog_path
 
 import davies_sym
 from davies_sym.cli import main
 from davies_sym.efficiency.parameter_domain import ParameterDomain
+
+from conftest import catalog_path
 
 R = sympy.Rational
 
@@ -207,7 +208,7 @@ def test_dependent_radius_is_checked_not_used(tmp_path: Path, capsys: pytest.Cap
     efficiency = namespace["efficiency"]
     assert efficiency(r1=40, r2=60, r3=15, r4=35, eta_C=0.99, eta_D=0.99) == efficiency(  # type: ignore[operator]
         r1=40, r2=60, r3=15, eta_C=0.99, eta_D=0.99)
-    with pytest.raises(Exception, match="r4 = 36.0 breaks the relation r4 = -r1 \\+ r2 \\+ r3"):
+    with pytest.raises(Exception, match=r"r4 = 36.0 breaks the relation r4 = -r1 \+ r2 \+ r3"):
         efficiency(r1=40, r2=60, r3=15, r4=36, eta_C=0.99, eta_D=0.99)  # type: ignore[operator]
 
 

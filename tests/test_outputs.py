@@ -102,10 +102,14 @@ def test_eval_errors_are_clear(args, message):
     assert "Traceback" not in result.stderr
 
 
-def test_eval_warns_when_the_values_break_the_geometry():
+def test_eval_refuses_values_that_break_the_geometry():
+    """r4 = 30 with r1, r2, r3 = 40, 60, 15 breaks r1 - r3 = r2 - r4 (r4 = 35): refused, exit 2,
+    with the relation, both values and the difference; no number is printed."""
     values = [v if not v.startswith("r4") else "r4=30" for v in TUPLIN_VALUES]
     result = run(catalog_path("tuplin"), "--eval", *values)
-    assert result.returncode == 0 and "geometric constraint r1 - r3 = r2 - r4" in result.stderr
+    assert result.returncode == 2 and result.stdout == ""
+    assert "geometric constraint r1 - r3 = r2 - r4" in result.stderr and "gives 35" in result.stderr
+    assert "difference is -5" in result.stderr
     # r4 follows from the constraint: leaving it out breaks nothing.
     without_r4 = run(catalog_path("tuplin"), "--eval", *(v for v in TUPLIN_VALUES if not v.startswith("r4")))
     assert without_r4.returncode == 0 and "geometric constraint" not in without_r4.stderr

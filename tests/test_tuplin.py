@@ -24,12 +24,15 @@ def linear_law():
 
 
 def test_geometry_derived_from_meshes():
-    """Table 12: pitch points at r1 and r2, planet bearing E at r1 - r3; constraint r1 - r3 = r2 - r4."""
-    net = davies_sym.analyse(train()).network
+    """Table 12: pitch points at r1 and r2, planet bearing E at r1 - r3; the constraint
+    r1 - r3 = r2 - r4 (Laus section 3.4.1.6) gives r4, which the gears then use."""
+    analysis = davies_sym.analyse(train())
+    net = analysis.network
     ys = {k: net.layout.coupling_points[k][1] for k in "ABCDE"}
     assert ys == {"A": 0, "B": 0, "C": r1, "D": r2, "E": r1 - r3}
-    (constraint,) = net.layout.constraints
-    assert str(constraint) == "r1 - r3 = r2 - r4"
+    (relation,) = analysis.train.dependent or ()
+    assert relation.constraint == "r1 - r3 = r2 - r4" and str(relation) == "r4 = -r1 + r2 + r3"
+    assert net.layout.constraints == ()
     assert net.order == 2 and net.system.twist_names == ("t", "u")
 
 

@@ -130,7 +130,7 @@ def _both_routes(train: davies_sym.Train, points: int = 6, seed: int = 7) -> int
     """Compare the Davies variant and the virtual-power balance at sampled points."""
     vs = derive_variants(train)
     rng = random.Random(seed)
-    domain = ParameterDomain.of(train, vs.analysis.network.layout)
+    domain = ParameterDomain.of(vs.train, vs.analysis.network.layout)
     etas = efficiency_symbols(train)
     checked = 0
     for point in domain.samples(points, seed=seed):

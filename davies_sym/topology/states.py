@@ -73,4 +73,16 @@ def train_in_state(train: Train, state: State) -> Train:
     gears = tuple(replace(g, link=rename(g.link)) for g in train.gears if g.link not in free)
     return replace(train, name=f"{train.name}, {state.description or state.name}", links=links, gears=gears,
                    couplings=tuple(couplings), ports=Ports(state.input, state.output),
-                   reference=rename(train.reference), degrees_of_freedom=None, states=(), whole=train.whole or train)
+                   reference=rename(train.reference), degrees_of_freedom=None, states=(),
+                   whole=_without(train.whole or train, free, Ports(state.input, state.output)))
+
+
+def _without(train: Train, free: set[str], ports: Ports) -> Train:
+    """``train`` without the ``free`` members and their gears and couplings: the geometry a
+    state keeps (brakes and clutches join members without moving axes; free members take
+    no part, so no axis of the state depends on theirs)."""
+    if not free:
+        return replace(train, ports=ports, states=())
+    return replace(train, ports=ports, links=tuple(link for link in train.links if link.name not in free),
+                   gears=tuple(g for g in train.gears if g.link not in free),
+                   couplings=tuple(c for c in train.couplings if not set(c.links) & free), states=())

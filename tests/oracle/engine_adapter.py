@@ -15,10 +15,10 @@ from typing import Any
 import sympy
 
 import davies_sym
-from davies_sym.network.analysis import analyse
-from davies_sym.errors import DaviesError
-from davies_sym.topology.states import train_in_state
 from davies_sym.efficiency.variants import derive_variants
+from davies_sym.errors import DaviesError
+from davies_sym.network.analysis import analyse
+from davies_sym.topology.states import train_in_state
 
 #: Exceptions by which the engine refuses a train (as opposed to a crash).
 REFUSALS: tuple[type[BaseException], ...] = (DaviesError,)

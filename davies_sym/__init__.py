@@ -28,6 +28,7 @@ from davies_sym.errors import (
     GeometryError,
     InputError,
     MobilityError,
+    NotCoveredError,
     TopologyError,
     TopologySyntaxError,
 )
@@ -51,6 +52,7 @@ __all__ = [
     "InputError",
     "Link",
     "MobilityError",
+    "NotCoveredError",
     "Ports",
     "SignCondition",
     "State",

@@ -18,9 +18,10 @@ from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_fi
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
 from davies_sym.emit.variant_report import variants_document, variants_text
-from davies_sym.errors import DaviesError, DesignError, InputError, Problem
+from davies_sym.errors import DaviesError, DesignError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
-from davies_sym.topology.expressions import ExpressionError, parse_expression
+from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
@@ -60,23 +61,33 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _values(train: Train, pairs: Sequence[str]) -> dict[sympy.Symbol, sympy.Expr]:
-    """``NAME=VALUE`` pairs as exact values of the train's symbols."""
+def _values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[sympy.Symbol, sympy.Expr]:
+    """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
+    efficiencies in (0, 1])."""
     problems, out = [], {}
+    efficiencies = {e for c in train.couplings if isinstance(c, GearMesh) and c.efficiencies
+                    for e in c.efficiencies if isinstance(e, sympy.Symbol)}
     for pair in pairs:
         name, sep, text = pair.partition("=")
         name = name.strip()
         if not sep or not name:
-            problems.append(Problem("--eval", f"expected NAME=VALUE, got {pair!r}"))
+            problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
             continue
         if name not in train.symbols:
-            problems.append(Problem("--eval", f"unknown symbol {name!r} (the train has: "
+            problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: "
                                     f"{', '.join(sorted(train.symbols))})"))
             continue
         try:
             value = parse_expression(text)
         except ExpressionError as exc:
-            problems.append(Problem("--eval", f"{name}: {exc}"))
+            problems.append(Problem(option, f"{name}: {exc}"))
+            continue
+        symbol = train.symbols[name]
+        if symbol in efficiencies and not 0 < value <= 1:
+            problems.append(Problem(option, f"{name} = {text} is not an efficiency: it lies in (0, 1]"))
+            continue
+        if symbol.is_positive and not value > 0:
+            problems.append(Problem(option, f"{name} = {text} must be positive"))
             continue
         out[train.symbols[name]] = value
     if problems:
@@ -109,7 +120,7 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     x = _sweep(train, "--plot", args.plot)
     y = _sweep(train, "--vs", args.vs) if args.vs else None
     published = [f"{k}={v}" for k, v in train.published_design(args.state).items()]
-    values = {str(k): float(v) for k, v in _values(train, [*published, *args.at]).items()}
+    values = {str(k): float(v) for k, v in _values(train, [*published, *args.at], "--at").items()}
     swept = {x.name} | ({y.name} if y else set())
     needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]
     missing = [n for n in needed if n not in values]
@@ -153,9 +164,9 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
                                        f"{residual})")], train.path)
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)
-    if value <= 0:
-        print(f"derive: warning: efficiency {sympy.N(value, 6)} <= 0: the train self-locks at these values",
-              file=sys.stderr)
+    if not 0 < value <= 1:
+        raise NotCoveredError(f"the train self-locks at these values with {port} as input: variant "
+                              f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]")
     return [f"variant ({variant.number}): input {variant.input}, output {variant.output}",
             str(sympy.Float(value, 15))]
 
@@ -220,6 +231,15 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
     status = 0
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0]
+        outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py")]
+        clash = [o for o in outputs if any(os.path.exists(o) and os.path.samefile(o, f) for f in files
+                                           if os.path.exists(f))]
+        clash += [o for o in os.listdir(directory) if o.startswith(f"{stem}_") and
+                  any(os.path.samefile(os.path.join(directory, o), f) for f in files if os.path.exists(f))]
+        if clash:
+            print(f"input error: {path}: --out: refusing to overwrite the input file {clash[0]}", file=sys.stderr)
+            status = 2
+            continue
         try:
             train = load(path)
             if _kinematics_only(train):
@@ -292,12 +312,24 @@ def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
     return outputs
 
 
+def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
+    """Before anything is derived: an output goes into an existing folder and never
+    replaces an input file."""
+    folder = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(folder):
+        raise InputError([Problem(option, f"the folder {shortened(folder)} does not exist")], inputs[0])
+    if os.path.isdir(target):
+        raise InputError([Problem(option, f"{shortened(target)} is a folder; give a file name")], inputs[0])
+    for path in inputs:
+        if os.path.exists(target) and os.path.exists(path) and os.path.samefile(target, path):
+            raise InputError([Problem(option, f"refusing to overwrite the input file {shortened(path)}")], path)
+
+
 def _one_file(args: argparse.Namespace, progress: Progress) -> int:
     path = args.files[0]
-    for target in (args.out, args.python):
-        if target and os.path.exists(target) and os.path.samefile(target, path):
-            raise InputError([Problem("-o" if target == args.out else "--python",
-                                      f"refusing to overwrite the input file {path}")], path)
+    for target, option in ((args.out, "-o"), (args.python, "--python")):
+        if target:
+            _check_target(target, option, [path])
     train = load(path)
     failures: list[str] = []
     outputs = (_kinematics(train, args, progress) if _kinematics_only(train)
@@ -340,8 +372,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _many_files(args, progress)
     try:
         return _one_file(args, progress)
+    except NotCoveredError as exc:
+        # A design outside the formulas: the last line says why, never a number.
+        print(f"derive: {args.files[0]}: {exc}")
+        return 3
     except DaviesError as exc:
         print(_message(exc, args.files[0]), file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",
+              file=sys.stderr)
         return 2
 
 

@@ -76,5 +76,10 @@ class DesignError(InputError):
     kind = "design error"
 
 
+class NotCoveredError(DaviesError):
+    """A valid design the formulas do not cover (it self-locks, or lies outside every
+    variant's region): the command line gives the reason and exit status 3."""
+
+
 class DerivationError(DaviesError):
     """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""

@@ -75,3 +75,16 @@ def catalog_trains(parallel_axes_only: bool = False) -> list[tuple[str, davies_s
         else:
             out.append((stem, train))
     return out
+
+
+#: Hostile-input cases the package does not handle yet (one test id a line); each is
+#: marked xfail(strict=True), so a fix shows as XPASS and its line is then removed.
+KNOWN_HOSTILE_FAILURES = os.path.join(ROOT, "tests", "hostile", "known_failures.txt")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    with open(KNOWN_HOSTILE_FAILURES, encoding="utf-8") as handle:
+        known = {line.strip() for line in handle if line.strip() and not line.startswith("#")}
+    for item in items:
+        if item.nodeid in known:
+            item.add_marker(pytest.mark.xfail(strict=True, reason="hostile input not yet refused cleanly"))

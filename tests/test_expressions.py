@@ -147,7 +147,8 @@ def test_attack_in_eval_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[st
     ("couplings", 'C"""', "not a valid coupling name"),
     ("couplings", "C-1", "not a valid coupling name"),
     ("couplings", "Ĉ", "not a valid coupling name"),
-    ("links", "a b", "not a valid link name"),
+    ("links", "a;b", "not a valid link name"),
+    ("links", " a", "not a valid link name"),
 ])
 def test_names_that_would_break_outputs_are_refused(key: str, name: str, why: str) -> None:
     text = (ROOT / "catalog" / "simple_pair.yaml").read_text()

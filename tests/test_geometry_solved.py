@@ -71,7 +71,7 @@ def test_every_catalog_train_is_the_same_in_any_order(name: str) -> None:
     changes neither the speed ratio nor the efficiency, in any state or input direction."""
     text = Path(catalog_path(name)).read_text()
     original = _sets(davies_sym.loads(text, f"{name}.yaml"))
-    for seed in (1, 2):
+    for seed in (1,):
         permuted = _sets(davies_sym.loads(_permuted(text, seed), f"{name}-permuted.yaml"))
         assert permuted.keys() == original.keys()
         for state, vs in original.items():

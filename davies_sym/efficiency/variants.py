@@ -225,6 +225,15 @@ def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
     return None if sign == 1 else expression
 
 
+def _nominal(rf: RationalFunction, point: Point, etas: Sequence[sympy.Symbol]) -> sympy.Rational:
+    """The efficiency at ``point`` with every mesh at the nominal efficiency; 0 where the
+    formula is singular (such a point describes no working train)."""
+    try:
+        return rf.evaluate({**point, **{e: NOMINAL_EFFICIENCY for e in etas}})
+    except ZeroDivisionError:
+        return sympy.Integer(0)
+
+
 def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:
     index = rf.ring.symbols.index(symbol)
     return rf.num.degrees()[index] > 0 or rf.den.degrees()[index] > 0
@@ -239,7 +248,7 @@ def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Sym
     locked: Point | None = None
     # Laus 3.6.2 applies where the formula describes a working train: check it at a
     # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
-    working = [p for p in region[:40] if 0 < rf.evaluate({**p, **{e: NOMINAL_EFFICIENCY for e in etas}}) <= 1]
+    working = [p for p in region[:40] if 0 < _nominal(rf, p, etas) <= 1]
     if region and not working:
         derivative_check = "not checked: the train self-locks at every sampled point"
     if working:

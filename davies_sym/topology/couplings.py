@@ -109,7 +109,7 @@ class Revolute(Coupling):
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Revolute | None:
         links = _read_links(entry, path, reader)
-        at = reader.quantity(entry["at"], f"{path}.at", "length") if "at" in entry else None
+        at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
         if links is not None and axis is not None and axis not in links:
@@ -163,7 +163,7 @@ class GearMesh(Coupling):
             return None
         missing = [g for g in names if g not in gears]
         for g in missing:
-            reader.problem(f"{path}.gears", f"unknown gear {g!r}")
+            reader.unknown(f"{path}.gears", "gear", g)
         if missing:
             return None
         g1, g2 = gears[names[0]], gears[names[1]]
@@ -236,7 +236,7 @@ def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
     if isinstance(value, str) and value.startswith("-") and value[1:] in UNIT:
         return vector([-v for v in UNIT[value[1:]]])
     if isinstance(value, list) and len(value) == 3:
-        parts = [reader.quantity(v, f"{path}[{i}]", "length") for i, v in enumerate(value)]
+        parts = [reader.quantity(v, f"{path}[{i}]", "position") for i, v in enumerate(value)]
         if any(p is None for p in parts):
             return None
         if all(p == 0 for p in parts):
@@ -295,7 +295,7 @@ def _read_screws(value: Any, path: str, reader: EntryReader,
             if key not in coordinates:
                 reader.problem(f"{cpath}.{key}", f"unknown coordinate {key!r} (use {', '.join(coordinates)})")
         for c in coordinates:
-            q = reader.quantity(cmap[c], f"{cpath}.{c}", "length") if c in cmap else sympy.Integer(0)
+            q = reader.quantity(cmap[c], f"{cpath}.{c}", "position") if c in cmap else sympy.Integer(0)
             screw.append(q if q is not None else sympy.Integer(0))
         if all(c == 0 for c in screw):
             reader.problem(cpath, "a unit screw must not be zero")

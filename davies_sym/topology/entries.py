@@ -32,6 +32,8 @@ class EntryReader:
         self.document = document
         self.problems: list[Problem] = []
         self.symbols: dict[str, sympy.Symbol] = {}
+        #: Names whose definition was refused: references to them are not reported again.
+        self.broken: set[str] = set()
 
     def problem(self, path: str, message: str) -> None:
         self.problems.append(Problem(path, message, self.document.line(path)))
@@ -41,6 +43,11 @@ class EntryReader:
             return value
         self.problem(path, f"expected a mapping, got {_describe(value)}")
         return None
+
+    def unknown(self, path: str, kind: str, name: str) -> None:
+        """Report a reference to an undefined name, unless its definition was refused already."""
+        if name not in self.broken:
+            self.problem(path, f"unknown {kind} {shortened(name)}")
 
     def check_keys(self, entry: Mapping[str, Any], path: str, fields: Iterable[Field]) -> None:
         """Report unknown and missing keys of ``entry`` against ``fields``."""
@@ -72,6 +79,7 @@ class EntryReader:
             return None
         pattern, allowed = NAME_PATTERNS[kind]
         if not pattern.fullmatch(name):
+            self.broken.add(name)
             self.problem(path, f"{shortened(name)} is not a valid {kind} name: use {allowed} (at most 40)")
             return None
         return name

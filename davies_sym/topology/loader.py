@@ -23,15 +23,26 @@ from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE,
 from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
 
+#: Largest train file read (bytes).
+MAX_FILE_BYTES = 1_000_000
+
 
 def load(path: str | os.PathLike[str]) -> Train:
     """Read, parse and validate the train file at ``path``."""
     name = os.fspath(path)
     try:
-        with open(name, encoding="utf-8") as handle:
-            text = handle.read()
+        with open(name, "rb") as handle:
+            data = handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], name) from None
+    if len(data) > MAX_FILE_BYTES:
+        raise TopologyError([Problem("", f"the file is larger than {MAX_FILE_BYTES // 1000} kB; a train file is "
+                                     "a few kB")], name)
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise TopologyError([Problem("", f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8")],
+                            name) from None
     return loads(text, name)
 
 
@@ -95,7 +106,7 @@ def build_train(document: SourceDocument) -> Train:
 def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
     """``[x, y]`` (exact) or an angle in degrees whose sine and cosine are square roots."""
     if isinstance(value, list) and len(value) == 2:
-        parts = [reader.quantity(v, f"placement[{i}]", "length") for i, v in enumerate(value)]
+        parts = [reader.quantity(v, f"placement[{i}]", "position") for i, v in enumerate(value)]
         if any(p is None for p in parts):
             return None
         if all(p == 0 for p in parts):
@@ -170,7 +181,7 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
         reader.check_keys(entry, path, GEAR)
         link = reader.name(entry.get("link"), f"{path}.link")
         if link is not None and link not in links:
-            reader.problem(f"{path}.link", f"unknown link {link!r}")
+            reader.unknown(f"{path}.link", "link", link)
         internal = entry.get("internal", False)
         if not isinstance(internal, bool):
             reader.problem(f"{path}.internal", f"expected true or false, got {internal!r}")
@@ -180,6 +191,8 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
         axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry and not tilted else None
         if link is not None and radius is not None:
             gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
+        else:
+            reader.broken.add(name)
     return gears
 
 
@@ -237,8 +250,7 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str],
             continue
         for i, link in enumerate(coupling.links):
             if link not in links:
-                reader.problem(f"{path}.links[{i}]" if kind is not GearMesh else f"{path}.gears",
-                               f"unknown link {link!r}")
+                reader.unknown(f"{path}.links[{i}]" if kind is not GearMesh else f"{path}.gears", "link", link)
         couplings[name] = coupling
     if table is not None and not couplings and not reader.problems:
         reader.problem("couplings", "no couplings given")
@@ -287,7 +299,7 @@ def _read_reference(value: Any, reader: EntryReader, links: list[Link],
     if value is not None:
         name = reader.name(value, "reference")
         if name is not None and name not in names:
-            reader.problem("reference", f"unknown link {name!r}")
+            reader.unknown("reference", "link", name)
             return None
         return name
     if ports is None:
@@ -331,7 +343,7 @@ def _read_states(value: Any, reader: EntryReader, links: set[str],
             for i, item in enumerate(items):
                 link = reader.name(item, f"{path}.{key}[{i}]")
                 if link is not None and link not in links:
-                    reader.problem(f"{path}.{key}[{i}]", f"unknown link {link!r}")
+                    reader.unknown(f"{path}.{key}[{i}]", "link", link)
                 elif link is not None:
                     found.append(link)
             return found

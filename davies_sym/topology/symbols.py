@@ -21,6 +21,7 @@ from davies_sym.topology.expressions import ExpressionError, parse_expression, s
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
     "length": {"positive": True},
     "teeth": {"positive": True},
+    "position": {"real": True},
     "friction": {"positive": True},
     "viscous": {"positive": True},
     "efficiency": {"positive": True},
@@ -62,6 +63,10 @@ def exact_number(value: object) -> sympy.Rational | None:
     return None
 
 
+#: Roles whose numbers must be positive: sizes and loss coefficients.
+POSITIVE_ROLES = frozenset({"length", "teeth", "friction", "viscous", "efficiency"})
+
+
 class QuantityError(ValueError):
     """A quantity could not be read as a number or an expression."""
 
@@ -76,17 +81,22 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol]) -
     if isinstance(value, float) and not math.isfinite(value):
         raise QuantityError(f"expected a finite number, got {value!r}")
     number = exact_number(value)
+    if number is None and isinstance(value, str):
+        try:
+            parsed = parse_expression(value, lambda name: _symbol(name, role, symbols))
+        except ExpressionError as exc:
+            raise QuantityError(str(exc)) from None
+        number = parsed if parsed.is_number else None
+        if number is None:
+            return parsed
     if number is not None:
+        if role in POSITIVE_ROLES and not number > 0:
+            raise QuantityError(f"{shortened(str(value))} must be positive (a size or a coefficient)")
         return number
-    if not isinstance(value, str) or not value.strip():
-        raise QuantityError(f"expected a number or a symbol expression, got {shortened(repr(value))}")
+    raise QuantityError(f"expected a number or a symbol expression, got {shortened(repr(value))}")
 
-    def symbol(name: str) -> sympy.Symbol:
-        if name not in symbols:
-            symbols[name] = make_symbol(name, role)
-        return symbols[name]
 
-    try:
-        return parse_expression(value, symbol)
-    except ExpressionError as exc:
-        raise QuantityError(str(exc)) from None
+def _symbol(name: str, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Symbol:
+    if name not in symbols:
+        symbols[name] = make_symbol(name, role)
+    return symbols[name]

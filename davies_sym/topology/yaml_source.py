@@ -33,43 +33,73 @@ class SourceDocument:
         return None
 
 
-def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[Problem]) -> Any:
+#: Most nodes a document may expand to (aliases count each time they are used).
+MAX_NODES = 100_000
+#: Deepest nesting of mappings and lists.
+MAX_DEPTH = 50
+
+
+class _TooLarge(Exception):
+    """The document expands to too many nodes or nests too deeply."""
+
+
+def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[Problem],
+             budget: list[int], depth: int = 0) -> Any:
+    budget[0] -= 1
+    if budget[0] < 0:
+        raise _TooLarge(f"the document expands to more than {MAX_NODES} entries (aliases used as a bomb?)")
+    if depth > MAX_DEPTH:
+        raise _TooLarge(f"the document nests deeper than {MAX_DEPTH} levels")
     lines.setdefault(path, node.start_mark.line + 1)
+    if node.tag not in _PLAIN_TAGS:
+        problems.append(Problem(path, f"the YAML tag {node.tag!r} is not part of the language; write plain values",
+                                node.start_mark.line + 1))
+        return None
     if isinstance(node, yaml.MappingNode):
         out: dict[str, Any] = {}
         for key_node, value_node in node.value:
+            if key_node.tag == "tag:yaml.org,2002:merge":
+                problems.append(Problem(path, "merge keys (<<) are not part of the language; write the entries out",
+                                        key_node.start_mark.line + 1))
+                continue
+            if not isinstance(key_node, yaml.ScalarNode):
+                problems.append(Problem(path, "a key must be a plain name", key_node.start_mark.line + 1))
+                continue
             key = str(_scalar(key_node))
             child = f"{path}.{key}" if path else key
             if key in out:
                 problems.append(Problem(child, f"duplicate key {key!r}", key_node.start_mark.line + 1))
                 continue
             lines[child] = key_node.start_mark.line + 1
-            out[key] = _convert(value_node, child, lines, problems)
+            out[key] = _convert(value_node, child, lines, problems, budget, depth + 1)
         return out
     if isinstance(node, yaml.SequenceNode):
         items = []
         for index, item in enumerate(node.value):
             child = f"{path}[{index}]"
             lines[child] = item.start_mark.line + 1
-            items.append(_convert(item, child, lines, problems))
+            items.append(_convert(item, child, lines, problems, budget, depth + 1))
         return items
     return _scalar(node)
 
 
 _CONSTRUCTOR = yaml.constructor.SafeConstructor()
+_PLAIN_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool", "null", "map", "seq")}
 
 
 def _scalar(node: yaml.Node) -> Any:
     """Resolve a scalar (int, float, bool, null, string) with PyYAML's safe rules."""
-    if not isinstance(node, yaml.ScalarNode):
-        return yaml.safe_load(yaml.serialize(node))
     return _CONSTRUCTOR.construct_object(node, deep=True)
 
 
 def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
     """Parse YAML text into a :class:`SourceDocument`; syntax errors carry the line."""
+    if text.startswith("\ufeff"):
+        text = text[1:]  # a byte-order mark says nothing about the train
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
+    except RecursionError:
+        raise TopologySyntaxError([Problem("", f"the document nests deeper than {MAX_DEPTH} levels")], name) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark is not None else None
@@ -81,7 +111,12 @@ def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
         raise TopologySyntaxError([Problem("", "the file is empty", 1)], name)
     lines: dict[str, int] = {}
     problems: list[Problem] = []
-    data = _convert(root, "", lines, problems)
+    try:
+        data = _convert(root, "", lines, problems, [MAX_NODES])
+    except _TooLarge as exc:
+        raise TopologySyntaxError([Problem("", str(exc))], name) from None
+    except (yaml.YAMLError, ValueError) as exc:
+        raise TopologySyntaxError([Problem("", f"a value cannot be read: {str(exc)[:200]}")], name) from None
     if problems:
         raise TopologySyntaxError(problems, name)
     return SourceDocument(data, lines, name)

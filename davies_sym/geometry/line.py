@@ -4,8 +4,8 @@ All gear axes are parallel to z and lie in the plane x = 0; a position is a y va
 Which links share an axis comes from the topology (:mod:`.axes`); the meshes then give
 the distances between axes: r_g + r_h for an external mesh, R - r for an internal one.
 A planet is drawn on the +y side of the gear on its carrier's axis, the pinion of an
-internal mesh between two links of one carrier on the +y side of the annulus, and a
-fixed-axis pair with the second-placed gear on the +y side.  Meshes are placed in the
+internal mesh between two links of one carrier on the +y side of the annulus, and of a
+fixed-axis external pair the gear placed second on the +y side of the other.  Meshes are placed in the
 order of their names from the main axis outward, and every mesh that closes a loop
 gives a geometric constraint (r1 - r3 = r2 - r4, Laus section 3.4.1.6), or an error
 when it cannot hold.
@@ -91,9 +91,11 @@ def _place_one(structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapp
         if placed[0] == placed[1]:
             continue
         known = 0 if placed[0] else 1
-        side = side_of_second(mesh, structure, gears) or 1
-        step = side * centre_distance(mesh, gears)
-        positions[ends[1 - known]] = sympy.expand(positions[ends[known]] + (step if known == 0 else -step))
+        side = side_of_second(mesh, structure, gears)
+        distance = centre_distance(mesh, gears)
+        # A fixed-axis external pair: the gear placed now goes outward, whichever is written first.
+        step = distance if side is None else (side if known == 0 else -side) * distance
+        positions[ends[1 - known]] = sympy.expand(positions[ends[known]] + step)
         via[ends[1 - known]] = (mesh.name, ends[known])
         return True
     return False
@@ -109,7 +111,8 @@ def planar_line_layout(train: Train) -> Layout:
     positions = place_classes(train, structure, meshes, gears, problems, via)
     if problems:
         raise GeometryError(problems, train.path)
-    oracle = SignOracle()
+    # An annulus is larger than its pinion: that decides on which side a loop closes.
+    oracle = SignOracle([centre_distance(m, gears) for m in meshes if m.internal])
     centres = {g.name: positions[structure.axis[g.link]] for g in train.gears}
     points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
     constraints: list[GeometricConstraint] = []

@@ -152,8 +152,9 @@ def _place_one(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh
             reach.setdefault(here, []).append((positions[there], centre_distance(mesh, gears), mesh.name))
             if first is None:
                 # ``here`` lies on the side the drawing rules give the mesh's second gear.
-                side = side_of_second(mesh, structure, gears) or 1
-                step = (side if k == 0 else -side) * centre_distance(mesh, gears)
+                side = side_of_second(mesh, structure, gears)
+                distance = centre_distance(mesh, gears)
+                step = distance if side is None else (side if k == 0 else -side) * distance
                 x, y = positions[there]
                 first = (here, (radicals.reduce(x + step * unit[0]), radicals.reduce(y + step * unit[1])), mesh.name)
     if first is None:

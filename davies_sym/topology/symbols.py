@@ -21,7 +21,9 @@ from davies_sym.topology.expressions import ExpressionError, parse_expression, s
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
     "length": {"positive": True},
     "teeth": {"positive": True},
-    "position": {"real": True},
+    # Positions take their names from the radii (at: r1 - r3): the same symbols; only
+    # their numbers may be zero or negative.
+    "position": {"positive": True},
     "friction": {"positive": True},
     "viscous": {"positive": True},
     "efficiency": {"positive": True},

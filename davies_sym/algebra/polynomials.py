@@ -112,13 +112,10 @@ class PolynomialRing:
 
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
-        terms = []
-        for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
-            term: sympy.Expr = sympy.Integer(int(coeff))
-            for sym, exp in zip(self._exprs, monom, strict=False):
-                if exp:
-                    term *= sym ** int(exp)
-            terms.append(term)
+        # One Mul per term and one Add in all: repeated ``*=`` re-flattens every product.
+        terms = [sympy.Mul(sympy.Integer(int(coeff)),
+                           *(sym ** int(exp) for sym, exp in zip(self._exprs, monom, strict=False) if exp))
+                 for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True)]
         return sympy.Add(*terms)
 
     def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:

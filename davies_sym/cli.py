@@ -10,14 +10,14 @@ from collections.abc import Callable, Sequence
 
 import sympy
 
-from davies_sym.efficiency.parameters import formula_symbols
+from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
-from davies_sym.emit.variant_report import variants_document, variants_text
+from davies_sym.emit.variant_report import condition_text, variants_document, variants_text
 from davies_sym.errors import DaviesError, DesignError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.couplings import GearMesh
@@ -44,8 +44,10 @@ def parser() -> argparse.ArgumentParser:
                    help="write the document to FILE (atomically) instead of stdout; with a directory, write "
                    "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out derivations/)")
     p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant")
-    p.add_argument("--eval", nargs="+", metavar="NAME=VALUE",
-                   help="print the efficiency at these values as the last line (exact rationals where possible)")
+    p.add_argument("--eval", nargs="*", metavar="NAME=VALUE",
+                   help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
+                   "(exact where possible; no values when every quantity of the train is a number); with --json "
+                   "one JSON object")
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
     p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
@@ -149,11 +151,16 @@ def _eval_port(train: Train, args: argparse.Namespace) -> str:
     return chosen or train.ports.input
 
 
-def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
+def _evaluate(variants: VariantSet, args: argparse.Namespace) -> dict[str, object]:
+    """The variant, speed ratio and efficiency at the ``--eval`` values (a self-locking
+    design is :class:`NotCoveredError`)."""
     train = variants.train
     values = _values(train, args.eval)
     port = _eval_port(train, args)
-    missing = [str(s) for s in variants.symbols if s not in values]
+    other = train.ports.output if port == train.ports.input else train.ports.input
+    ratio_expr = variants.analysis.speed_ratio().to_expr()
+    needed = sorted({*variants.symbols, *ratio_expr.free_symbols}, key=str)
+    missing = [str(s) for s in needed if s not in values]
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
     for c in variants.analysis.network.layout.constraints:
@@ -162,13 +169,32 @@ def _evaluate(variants: VariantSet, args: argparse.Namespace) -> list[str]:
         if residual.is_number and residual != 0:
             raise DesignError([Problem("--eval", f"the values break the geometric constraint {c} (difference "
                                        f"{residual})")], train.path)
+    ratio = ratio_expr.subs(values)
+    ratio = ratio if port == train.ports.input else 1 / ratio
+    if not (ratio.is_finite and ratio != 0):
+        still = other if ratio != 0 else port
+        raise NotCoveredError(f"port {still} does not turn at these values (speed ratio {port} over {other} "
+                              f"{'0' if ratio == 0 else 'infinite'}): no efficiency")
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)
     if not 0 < value <= 1:
         raise NotCoveredError(f"the train self-locks at these values with {port} as input: variant "
                               f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]")
-    return [f"variant ({variant.number}): input {variant.input}, output {variant.output}",
-            str(sympy.Float(value, 15))]
+    return {"status": "ok", "input": port, "output": other,
+            "variant": {"number": variant.number, "name": variant.name,
+                        "conditions": condition_text(variants, variant)},
+            "speed_ratio": float(ratio), "speed_ratio_exact": sympy.sstr(ratio),
+            "efficiency": float(value), "efficiency_exact": sympy.sstr(value)}
+
+
+def _evaluation_text(evaluation: dict[str, object]) -> str:
+    """Three lines: the variant, the speed ratio, and the efficiency alone (scripts read the last line)."""
+    variant = evaluation["variant"]
+    assert isinstance(variant, dict)
+    ratio, value = evaluation["speed_ratio"], evaluation["efficiency"]
+    return (f"variant ({variant['number']}): input {evaluation['input']}, output {evaluation['output']}\n"
+            f"speed ratio ({evaluation['input']} over {evaluation['output']}): {ratio!r}\n"
+            f"{value!r}\n")
 
 
 def _derive_sets(train: Train, state: str | None, progress: Progress,
@@ -207,13 +233,13 @@ def _state_entry(vs: VariantSet) -> dict[str, object]:
 def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
     if not train.states:
         ((_, vs),) = sets
-        document = train_document(Analysis(train, progress=progress))
+        document = {"status": "ok", **train_document(Analysis(train, progress=progress))}
         if as_json:
             document.update(variants_document(vs))
             return json.dumps(document, indent=2) + "\n"
         return text_summary(document) + "\n" + variants_text(vs) + "\n"
     if as_json:
-        return json.dumps({"name": train.name, "source": train.source, "file": train.path,
+        return json.dumps({"status": "ok", "name": train.name, "source": train.source, "file": train.path,
                            "states": {name: _state_entry(vs) for name, vs in sets}}, indent=2) + "\n"
     parts = [train.name]
     for name, vs in sets:
@@ -258,10 +284,10 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
         if train.states:
             write_atomic(os.path.join(directory, f"{stem}.tex"), latex_states_document([vs for _, vs in sets]))
             for name, vs in sets:
-                write_atomic(os.path.join(directory, f"{stem}_{name}.py"), python_module(vs))
+                write_atomic(os.path.join(directory, f"{stem}_{name}.py"), python_module(vs, file_parameters(train)))
         else:
             write_atomic(os.path.join(directory, f"{stem}.tex"), latex_document(sets[0][1]))
-            write_atomic(os.path.join(directory, f"{stem}.py"), python_module(sets[0][1]))
+            write_atomic(os.path.join(directory, f"{stem}.py"), python_module(sets[0][1], file_parameters(train)))
         progress(f"wrote the derivations of {stem}")
     return status
 
@@ -273,7 +299,7 @@ def _kinematics_only(train: Train) -> bool:
 
 def _kinematics(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str]]:
     """The outputs of a train with several degrees of freedom: motions in the primary speeds."""
-    if args.latex or args.python or args.eval or args.state:
+    if args.latex or args.python or args.eval is not None or args.state:
         raise InputError([Problem("degrees_of_freedom", f"the train has {train.degrees_of_freedom} degrees "
                                   "of freedom: only its kinematics are derived (no efficiency with several "
                                   "inputs yet)")], train.path)
@@ -289,7 +315,7 @@ def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
     sets = _derive_sets(train, args.state, progress, failures)
-    if (args.python or args.eval or args.plot) and len(sets) > 1:
+    if (args.python or args.eval is not None or args.plot) and len(sets) > 1:
         raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
                                   f"{', '.join(st.name for st in train.states)})")], train.path)
     if args.plot:
@@ -299,16 +325,18 @@ def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
     else:
         text = _document(train, sets, args.json, progress)
     # Everything is computed (and every value checked) before anything is written.
-    evaluation = _evaluate(sets[0][1], args) if args.eval else None
+    evaluation = _evaluate(sets[0][1], args) if args.eval is not None else None
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
-        outputs.append((args.python, python_module(sets[0][1])))
+        outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
     if args.out:
         outputs.append((args.out, text))
-    elif evaluation is None or args.json or args.latex:
+    elif evaluation is None or args.latex:
         outputs.append((None, text))
     if evaluation is not None:
-        outputs.append((None, "\n".join(evaluation) + "\n"))
+        state = {"state": args.state} if args.state else {}
+        outputs.append((None, json.dumps({"file": train.path, **state, **evaluation}, indent=2) + "\n"
+                        if args.json else _evaluation_text(evaluation)))
     return outputs
 
 
@@ -317,12 +345,23 @@ def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
     replaces an input file."""
     folder = os.path.dirname(os.path.abspath(target))
     if not os.path.isdir(folder):
-        raise InputError([Problem(option, f"the folder {shortened(folder)} does not exist")], inputs[0])
+        # The nearest ancestor that exists says why: a missing folder or a file in the way.
+        above = folder
+        while not os.path.exists(above):
+            above = os.path.dirname(above)
+        why = (f"{_path_text(above)} is a file, not a folder" if not os.path.isdir(above)
+               else f"the folder {_path_text(folder)} does not exist (create it first)")
+        raise InputError([Problem(option, why)], inputs[0])
     if os.path.isdir(target):
-        raise InputError([Problem(option, f"{shortened(target)} is a folder; give a file name")], inputs[0])
+        raise InputError([Problem(option, f"{_path_text(target)} is a folder; give a file name")], inputs[0])
     for path in inputs:
         if os.path.exists(target) and os.path.exists(path) and os.path.samefile(target, path):
-            raise InputError([Problem(option, f"refusing to overwrite the input file {shortened(path)}")], path)
+            raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}")], path)
+
+
+def _path_text(path: str) -> str:
+    """A path as the user can find it: whole unless absurdly long."""
+    return path if len(path) <= 300 else shortened(path)
 
 
 def _one_file(args: argparse.Namespace, progress: Progress) -> int:
@@ -348,7 +387,7 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
         print("derive: several files need --out DIR (a directory)", file=sys.stderr)
         return 2
-    if args.json or args.latex or args.python or args.eval or args.plot:
+    if args.json or args.latex or args.python or args.eval is not None or args.plot:
         print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
               "--plot take one file", file=sys.stderr)
         return 2
@@ -358,6 +397,13 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
 def _message(exc: DaviesError, path: str) -> str:
     """One message per problem: the located report of an input error, else the file and the reason."""
     return exc.report() if isinstance(exc, InputError) else f"derive: {path}: {exc}"
+
+
+def _status_json(status: str, reason: str) -> str:
+    """The JSON answer of a refusal: ``status`` ("bad input", exit 2; "not covered", exit 3)
+    and the ``reason`` that standard error or the last line gives."""
+    return json.dumps({"status": status, "exit_status": 2 if status == "bad input" else 3, "reason": reason},
+                      indent=2)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -374,10 +420,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _one_file(args, progress)
     except NotCoveredError as exc:
         # A design outside the formulas: the last line says why, never a number.
-        print(f"derive: {args.files[0]}: {exc}")
+        reason = f"derive: {args.files[0]}: {exc}"
+        print(_status_json("not covered", reason) if args.json else reason)
         return 3
     except DaviesError as exc:
-        print(_message(exc, args.files[0]), file=sys.stderr)
+        message = _message(exc, args.files[0])
+        print(message, file=sys.stderr)
+        if args.json:
+            print(_status_json("bad input", message))
         return 2
     except OSError as exc:
         print(f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",

@@ -22,8 +22,16 @@ class Problem:
         where = source or "<input>"
         if self.line is not None:
             where = f"{where}:{self.line}"
-        entry = f" {self.entry}:" if self.entry else ""
-        return f"{where}:{entry} {self.message}"
+        # An entry path holds the user's keys: a huge key is shown by its ends.
+        shown = self.entry if len(self.entry) <= 80 else f"{self.entry[:50]} ... {self.entry[-25:]}"
+        entry = f" {_one_line(shown)}:" if self.entry else ""
+        return f"{where}:{entry} {_one_line(self.message)}"
+
+
+def _one_line(text: str) -> str:
+    """``text`` with control characters escaped, so a problem stays on one line whatever
+    the user's keys and values hold."""
+    return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode("ascii") for ch in text)
 
 
 class DaviesError(Exception):
@@ -67,6 +75,11 @@ class MobilityError(InputError):
     """The degree of freedom does not match the declared one or the ports."""
 
     kind = "mobility error"
+
+
+class MissingValuesError(InputError):
+    """Values that leave the efficiency or a turning condition undetermined; the problem
+    names the symbols still needed."""
 
 
 class DesignError(InputError):

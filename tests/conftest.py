@@ -9,6 +9,7 @@ import sys
 
 import pytest
 import sympy
+from hypothesis import HealthCheck, settings
 
 import davies_sym
 from davies_sym.topology.symbols import make_symbol
@@ -18,6 +19,16 @@ CATALOG = os.path.join(ROOT, "catalog")
 MALFORMED = os.path.join(ROOT, "tests", "malformed")
 # The documentation tools and the literature's printed layouts live beside the package.
 sys.path.insert(0, os.path.join(ROOT, "tools"))
+
+
+#: Hypothesis profiles: ``davies`` (every run, CI included) is deterministic, with a modest
+#: number of examples so that tests/test_properties.py stays under a minute on two cores;
+#: ``davies-slow`` gives the tests marked slow more examples (a few minutes).  No example
+#: database: a run leaves no files behind and every run draws the same examples.
+settings.register_profile("davies", derandomize=True, database=None, deadline=None, max_examples=40,
+                          print_blob=True, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("davies-slow", parent=settings.get_profile("davies"), max_examples=100)
+settings.load_profile("davies")
 
 
 def catalog_path(name: str) -> str:

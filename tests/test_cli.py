@@ -51,7 +51,10 @@ def test_malformed_input_gives_one_clear_error(name):
     path = os.path.join(MALFORMED, name)
     result = run(path, "--json", "--quiet")
     assert result.returncode == 2
-    assert result.stdout == ""
+    # With --json, standard output carries the status and the same reason as standard error.
+    answer = json.loads(result.stdout)
+    assert answer["status"] == "bad input" and answer["exit_status"] == 2
+    assert answer["reason"] == result.stderr.strip()
     assert "Traceback" not in result.stderr
     first = result.stderr.splitlines()[0]
     assert f"{path}:{line}:" in first

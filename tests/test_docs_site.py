@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import glob
 import os
+import re
 import subprocess
 import sys
 
 import pytest
-import sympy
 from docs_site import BUILD_ENVIRONMENT, stage
+from hand.latex import equal_at_random_points, read_latex
 
 import davies_sym
 from davies_sym.efficiency.variants import derive_variants
@@ -41,12 +42,26 @@ def test_every_catalog_train_has_a_page_showing_every_variant(staged):
         if (train.degrees_of_freedom or 1) > 1:
             assert "degrees of freedom" in text
             continue
-        trains = [train_in_state(train, st) for st in train.states] or [train]
-        for one in trains:
-            vs = derive_variants(one)
-            for v in vs.variants:
-                assert f"\\eta_{{({v.number})}} = {sympy.latex(v.efficiency)}$$" in text, (stem, v.name)
+        if train.states:
+            sections = _state_sections(text)
+            assert list(sections) == [st.name for st in train.states], stem
+        else:
+            sections = {None: text}
+        for state, section in sections.items():
+            vs = derive_variants(train_in_state(train, train.state(state)) if state else train)
+            shown = re.findall(r"^\$\$\\eta_\{\((\d+)\)\} = (.*)\$\$$", section, flags=re.MULTILINE)
+            assert [number for number, _ in shown] == [str(v.number) for v in vs.variants], (stem, state)
+            for (_, latex), v in zip(shown, vs.variants, strict=True):
+                # The LaTeX read back (not printed again) equals the variant's formula.
+                assert equal_at_random_points(read_latex(latex, train.symbols.values()), v.efficiency), \
+                    (stem, state, v.name, latex)
         assert "**differs**" not in text, stem
+
+
+def _state_sections(text: str) -> dict[str, str]:
+    """The page's "## State NAME" sections by state name."""
+    parts = re.split(r"^## State ([^:\n]+).*$", text, flags=re.MULTILINE)
+    return dict(zip(parts[1::2], parts[2::2], strict=True))
 
 
 def test_literature_figures_are_on_their_pages(staged):

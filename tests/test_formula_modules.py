@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import importlib.util
+import inspect
 import os
 import random
 import subprocess
@@ -20,6 +21,7 @@ import warnings
 import numpy as np
 import pytest
 import sympy
+from hostile.helpers import run_main
 
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.parameters import admissible_relations, formula_symbols, parameter_table
@@ -107,19 +109,39 @@ def test_module_efficiency_equals_the_exact_variant(name):
             assert float(function(**args)) == pytest.approx(float(v.efficiency.subs(mine[0])), rel=1e-12)
 
 
-@pytest.mark.parametrize("name", NAMES)
+#: Turning conditions per catalog train and state, from the sources: Laus Table 5 (Tuplin,
+#: sign of r2 - r1) and Table 6 (Humpage, one condition on r3 r5 - r2 r4), Chen section
+#: 4.4 (Litvin's face-gear drive, N1 N3 - N2 N4); the Wolfrom set's two annuli (sign of
+#: rp2 - rp1).  A sun-planet-annulus set with a held member has a negative basic ratio and
+#: no turning condition (planetary_simple, Simpson, simple pair); the Ravigneaux second
+#: gear has one (rs1 - rr) that an admissible design never changes (the annulus is larger
+#: than its sun), so one region only.
+TURNING_CONDITIONS = {"humpage": 1, "litvin_face_drive": 1, "planetary_simple": 0, "ravigneaux[first]": 0,
+                      "ravigneaux[second]": 1, "ravigneaux[third]": 0, "ravigneaux[reverse]": 0, "simple_pair": 0,
+                      "simpson[first]": 0, "simpson[second]": 0, "simpson[third]": 0, "simpson[reverse]": 0,
+                      "tuplin": 1, "wolfrom": 1}
+#: The trains whose admissible designs reach two condition regions.
+TWO_REGIONS = ("humpage", "litvin_face_drive", "tuplin", "wolfrom")
+
+
+def test_turning_conditions_per_catalog_state_are_pinned():
+    assert sorted(TURNING_CONDITIONS) == NAMES
+    got = {name: len(variant_set(name).conditions) for name in NAMES}
+    assert got == TURNING_CONDITIONS
+    for name in NAMES:
+        regions = {tuple(v.signs.values()) for v in variant_set(name).variants
+                   if v.feasible and v.input == TRAINS[name].ports.input}
+        assert len(regions) == (2 if name in TWO_REGIONS else 1), name
+
+
+@pytest.mark.parametrize("name", TWO_REGIONS)
 def test_arrays_straddling_a_turning_condition(name):
     """A line of designs from one condition region to another: each element gets its own
     variant (exact values on dyadic points, so the floats are exact inputs)."""
     vs, module = variant_set(name), module_of(name)
-    if not vs.conditions:
-        pytest.skip("no turning condition")
     points = design_points(vs, 40, seed=11)
     signs = [tuple(sympy.sign(c.expression.subs(p)) for c in vs.conditions) for p in points]
     pairs = [(p, q) for i, p in enumerate(points) for j, q in enumerate(points) if signs[i] != signs[j]]
-    regions = {tuple(v.signs.values()) for v in vs.variants if v.feasible and v.input == vs.train.ports.input}
-    if len(regions) < 2:
-        pytest.skip("one feasible condition region only (an annulus larger than its sun)")
     assert pairs, "sampled designs in two regions"
     p, q = pairs[0]
     line = [{s: p[s] + sympy.Rational(k, 16) * (q[s] - p[s]) for s in p} for k in range(17)]
@@ -131,6 +153,49 @@ def test_arrays_straddling_a_turning_condition(name):
             warnings.simplefilter("ignore", module.DesignWarning)
             got = module.efficiency(input=port, **kwargs)
         assert agree(got, [expected(vs, x, port) for x in line])
+
+
+@pytest.mark.parametrize("train", ["simpson", "ravigneaux"])
+def test_the_modules_of_one_files_states_share_one_signature(train):
+    """Design code calls every gear alike: each state's functions take every parameter of
+    the file (those a state does not use are accepted, listed in IGNORED, and ignored)."""
+    states = [n for n in NAMES if n.startswith(f"{train}[")]
+    modules = {n: module_of(n) for n in states}
+    for function in ("efficiency", "losses", "speed_ratio"):
+        names = {n: frozenset(inspect.signature(getattr(m, function)).parameters) for n, m in modules.items()}
+        assert len(set(names.values())) == 1, names
+    for n, m in modules.items():
+        used = {p["name"] for p in m.PARAMETERS}
+        assert set(m.IGNORED).isdisjoint(used), n
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_module_agrees_with_derive_eval(name):
+    """The module's efficiency and speed ratio equal what ``derive --eval`` prints (its
+    last line and the line before) at sampled designs, both input ports."""
+    vs, module = variant_set(name), module_of(name)
+    train = name.split("[")[0]
+    state = ["--state", name.split("[")[1].rstrip("]")] if "[" in name else []
+    for point in design_points(vs, 2, seed=13):
+        if not admissible(vs, point):
+            continue
+        pairs = [f"{s}={point[s]}" for s in point]
+        for port in (vs.train.ports.input, vs.train.ports.output):
+            result = run_main([os.path.join(ROOT, "catalog", f"{train}.yaml"), "--quiet", *state, "--input", port,
+                               "--eval", *pairs])
+            kwargs = {str(s): float(v) for s, v in point.items()}
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", module.DesignWarning)
+                value = float(module.efficiency(input=port, **kwargs))
+            if result.returncode == 3:
+                assert np.isnan(value), (port, value)
+                continue
+            assert result.returncode == 0, result.describe()
+            ratio_line, value_line = result.stdout.splitlines()[-2:]
+            assert value == pytest.approx(float(value_line), rel=1e-12)
+            geometry = {k: v for k, v in kwargs.items() if k in inspect.signature(module.speed_ratio).parameters}
+            ratio = float(module.speed_ratio(input=port, **geometry))
+            assert ratio == pytest.approx(float(ratio_line.rsplit(": ", 1)[1]), rel=1e-12)
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -188,6 +253,11 @@ def test_self_locking_and_inadmissible_designs_give_nan_with_a_warning_or_an_err
         warnings.simplefilter("error")
         quiet = module.efficiency(input="B", errors="ignore", **kwargs)
     assert np.isnan(quiet[1])
+    # Just below zero (not below -1): still self-locking, still NaN.
+    barely = {**design, eta_c: sympy.Rational(79, 100), eta_d: sympy.Rational(79, 100)}
+    assert -1 < vs.evaluate(barely, "B") < 0
+    with pytest.warns(module.DesignWarning, match="1 where the train self-locks"):
+        assert np.isnan(module.efficiency(input="B", r1=40, r2=60, r3=15, eta_C=0.79, eta_D=0.79))
     with pytest.warns(module.DesignWarning):
         assert np.isnan(module.efficiency(r1=40, r2=60, r3=15, eta_C=1.2, eta_D=0.99))
     with pytest.raises(ValueError, match="errors must be"):
@@ -204,7 +274,8 @@ def test_parameters_and_variants_tables():
     assert module.RELATIONS == ("-r1 + r2 + r3 > 0", "r1 - r3 > 0")
     for row, v in zip(module.VARIANTS, vs.variants, strict=True):
         assert row["name"] == v.name and sympy.sympify(row["formula"], locals=dict(vs.train.symbols)) == v.efficiency
-        assert row["latex"] == sympy.latex(v.efficiency)
+        from hand.latex import read_latex, same_rational_function  # the LaTeX read back, not printed again
+        assert same_rational_function(read_latex(row["latex"], vs.train.symbols.values()), v.efficiency), row["latex"]
     assert "Laus 2011, Fig. 7" in module.__doc__ and "r4 = -r1 + r2 + r3" in module.__doc__
 
 

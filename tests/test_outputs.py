@@ -14,6 +14,7 @@ import sys
 import numpy as np
 import pytest
 import sympy
+from hand.latex import LatexError, read_latex, same_rational_function
 from sympy.parsing.latex import parse_latex
 
 import davies_sym
@@ -75,8 +76,24 @@ def test_json_variants():
     for item, v in zip(variants, vs.variants, strict=True):
         parsed = sympy.sympify(item["efficiency"], locals=dict(symbols))
         assert sympy.cancel(parsed - v.efficiency) == 0
-        assert item["latex"] == sympy.latex(v.efficiency)
+        assert same_rational_function(read_latex(item["latex"], symbols.values()), v.efficiency), item["latex"]
         assert item["derivative_check"] == "positive"
+
+
+def test_latex_read_back_catches_a_wrong_formula():
+    """The LaTeX check reads the text: a truncated formula, a swapped sign, another
+    symbol or another exponent fails it; the emitted text passes."""
+    symbols = davies_sym.load(catalog_path("tuplin")).symbols
+    r1, r2, eta_c = symbols["r1"], symbols["r2"], symbols["eta_C"]
+    expected = eta_c * (r1 - r2) ** 2 / (r1 + r2)
+    text = r"\frac{\eta_{C} \left(r_{1} - r_{2}\right)^{2}}{r_{1} + r_{2}}"
+    assert same_rational_function(read_latex(text, symbols.values()), expected)
+    for wrong in (text.replace("-", "+"), text.replace("r_{2}}", "r_{3}}"), text.replace("^{2}", "^{3}"),
+                  text.replace(r"\eta_{C}", r"\eta_{D}")):
+        assert not same_rational_function(read_latex(wrong, symbols.values()), expected), wrong
+    for broken in (text[:-1], text[:-12], text.replace(r"\right", ""), text.replace("r_{1}", "r_{9}"), "r1 + r2"):
+        with pytest.raises(LatexError):
+            read_latex(broken, symbols.values())
 
 
 def test_eval_prints_the_efficiency_last():

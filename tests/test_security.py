@@ -50,6 +50,9 @@ from hostile.helpers import (
 )
 
 PRINTED_MARKER = "HOSTILE-PRINT-MARKER"
+#: The ``print`` payload builds the marker by concatenation: a refusal that quotes the payload
+#: never contains the marker, only a payload that runs prints it.
+_HALF = len(PRINTED_MARKER) // 2
 
 #: Payloads that create the marker file ``{m}`` (or print PRINTED_MARKER) if Python ever evaluates them.
 EXECUTING = {
@@ -65,7 +68,7 @@ EXECUTING = {
     "exec_string": "exec('import os; os.system(\"touch {m}\")') or r1",
     "getattr": "getattr(__import__('os'), 'system')('touch {m}') + r1",
     "walrus": "(k := __import__('os').system('touch {m}')) + r1",
-    "print": f"print('{PRINTED_MARKER}') or r1",
+    "print": f"print('{PRINTED_MARKER[:_HALF]}' + '{PRINTED_MARKER[_HALF:]}') or r1",
     "newline": "r1\n__import__('os').system('touch {m}')",
 }
 
@@ -91,6 +94,15 @@ NOT_GRAMMAR = {
     "set": "{r1}",
     "statement": "r1; r2",
 }
+
+
+def test_print_payload_prints_the_marker_only_when_run(capsys):
+    """The check of the ``print`` payload can fail: run as Python it prints the marker,
+    while its text does not contain it."""
+    payload = EXECUTING["print"]
+    assert PRINTED_MARKER not in payload
+    eval(payload, {"r1": 1})  # the payload is a fixed string of this file
+    assert PRINTED_MARKER in capsys.readouterr().out
 
 
 def marker_of(tmp_path: Path) -> Path:

@@ -14,6 +14,7 @@ import davies_sym
 from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.efficiency.variants import derive_variants
 from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
+from davies_sym.errors import MissingValuesError
 
 from conftest import ROOT, S, catalog_path, catalog_trains, equal, read_text
 
@@ -57,6 +58,17 @@ def test_tuplin_published_numbers_and_wrong_variant():
     assert round(float(vs.evaluate(values)), 4) == 0.9462
     wrong = next(v for v in vs.variants if v.input == "B" and v.signs["c1"] == 1)
     assert round(float(wrong.efficiency.subs(values)), 4) == 0.9443
+
+
+def test_values_that_leave_the_efficiency_open_are_named():
+    """MissingValuesError (an InputError: exit status 2) names what a condition or the
+    formula still needs; the documentation shows such a published number as not evaluated."""
+    vs = tuplin_variants()
+    with pytest.raises(MissingValuesError, match="condition c1 needs values for r1"):
+        vs.evaluate({r2: 60, r3: 15})
+    with pytest.raises(MissingValuesError, match="the efficiency needs values for eta_C, eta_D"):
+        vs.evaluate({r1: 40, r2: 60, r3: 15, r4: 35})
+    assert issubclass(MissingValuesError, davies_sym.InputError)
 
 
 def test_chen_angeles_form_for_r1_greater_than_r2():

@@ -16,7 +16,7 @@ import sympy
 from davies_sym.efficiency.parameters import parameter_table
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.variant_report import condition_text, mesh_text
-from davies_sym.errors import DaviesError
+from davies_sym.errors import MissingValuesError
 from davies_sym.topology.model import Expected, Train
 from davies_sym.topology.symbols import exact_number
 
@@ -60,7 +60,11 @@ def published_checks(variants: VariantSet, state: str | None) -> list[Check]:
         try:
             variant = variants.variant_for(values, port)
             derived = float(variants.evaluate(values, port))
-        except DaviesError:  # a value missing: shown as not evaluated
+        except MissingValuesError:
+            # A published number whose design the paper gives only in part (a radius or an
+            # efficiency not stated): the page lists it as "not evaluated".  Any other
+            # error (a port that is not one, values that break a relation) is a fault of
+            # the catalog file and stops the build.
             out.append(Check(check, None, None))
             continue
         out.append(Check(check, derived, variant.number))
@@ -206,6 +210,9 @@ def api_page() -> str:
             try:
                 signature = str(inspect.signature(obj))
             except (TypeError, ValueError):
+                # inspect.signature's documented refusals: ValueError when an object has no
+                # signature it can read (one implemented in C), TypeError when it cannot
+                # take one; the page then writes the arguments as "(...)".
                 signature = "(...)"
             kind = "class" if inspect.isclass(obj) else "def"
             lines += [f"### `{attr}`", "", "```python", f"{kind} {attr}{signature}", "```", "", *_block(_doc(obj))]

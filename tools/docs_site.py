@@ -75,6 +75,7 @@ nav:
   - Architecture: architecture.md
   - Topology language: topology.md
   - Command line: cli.md
+  - Exit statuses and errors: errors.md
   - Python API: api.md
   - Catalog:
     - catalog/index.md

@@ -6,7 +6,17 @@ import sys
 
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.topology.couplings import KINDS, coupling_fields
-from davies_sym.topology.schema import FORMAT_VERSION, FRICTION, GEAR, LINK, PORTS, STATE, TOP_LEVEL, fields_table
+from davies_sym.topology.schema import (
+    EXPECTED,
+    FORMAT_VERSION,
+    FRICTION,
+    GEAR,
+    LINK,
+    PORTS,
+    STATE,
+    TOP_LEVEL,
+    fields_table,
+)
 
 INTRO = f"""# Topology language, version {FORMAT_VERSION}
 
@@ -60,6 +70,10 @@ output; with numeric radii that violate it, loading fails with a geometry error.
 A quantity is a number (`40`, `0.99`, `"1/3"`, all taken exactly) or an expression
 of symbols (`r1`, `r1 - r3`, `m*z/2`). Radii, friction and viscous coefficients are
 positive symbols. A gear given by `teeth` and `module` gets radius module * teeth / 2.
+Every value stays exact: square roots (`sqrt(2)`, `cos(pi/6)`) are accepted in
+directions (`axis`, `placement`, `direction`, screw coordinates); sizes and
+coefficients are rational expressions of the symbols. Numbers beyond 2^1024, values
+that are not finite and sizes that can never be positive (`-r1`) are refused.
 
 ## Friction convention
 
@@ -83,6 +97,8 @@ def render() -> str:
     parts += ["\n## States\n", "Operating states of a multi-speed set (`states: {name: entry}`). "
               "`derive` derives every state; `--state NAME` picks one for `--eval`, `--latex` and "
               "`--python`.\n", fields_table(STATE)]
+    parts += ["\n## Published checks\n", "`expected:` lists published numbers the catalog tests reproduce, each "
+              "checked on load like every other entry.\n", fields_table(EXPECTED)]
     return "\n".join(parts) + "\n"
 
 

@@ -6,6 +6,7 @@
   null spaces of M_N and D_A (Laus eqs. (19), (23), (56)).
 - :mod:`.radicals`: square roots of the geometry as symbols s with s^2 = m (Laus App. C).
 - :mod:`.signs`: provable signs of expressions in positive symbols.
+- :mod:`.symbol_order`: symbols sorted by name, then assumptions (never hash order).
 - :mod:`.screws`: Plücker coordinates, twists in axis and wrenches in ray formation,
   power as their inner product (Laus section 2.2, eq. (5)).
 """

@@ -14,10 +14,27 @@ from functools import cached_property
 from math import lcm
 
 import sympy
-from flint import fmpq, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
 from davies_sym.algebra.radicals import Radical
+from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
+
+
+def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
+    """Content and irreducible factors of ``p`` (flint), also where python-flint 0.9 cannot
+    order factors whose coefficients exceed a C long (OverflowError in its sort key):
+    then sympy factors the same polynomial, a rare and slower path."""
+    try:
+        content, factors = p.factor()
+    except OverflowError:
+        ctx = p.context()
+        gens = sympy.symbols([f"x{i}" for i in range(len(ctx.names()))])
+        poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens,
+                                    domain="ZZ")
+        whole, parts = poly.factor_list()
+        return int(whole), [(ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts]
+    return int(content), [(f, int(e)) for f, e in factors]
 
 
 class PolynomialRing:
@@ -25,14 +42,20 @@ class PolynomialRing:
 
     def __init__(self, symbols: Iterable[sympy.Symbol], radicals: Iterable[Radical] = ()):
         radicals = tuple(radicals)
-        unique = {s.name: s for s in symbols}
-        unique.update({r.symbol.name: r.symbol for r in radicals})
-        for r in radicals:
-            unique.update({s.name: s for s in r.radicand.free_symbols})  # type: ignore[attr-defined]
+        unique: dict[str, sympy.Symbol] = {}
+        for s in (*symbols, *(r.symbol for r in radicals), *(x for r in radicals for x in r.radicand.free_symbols)):
+            known = unique.setdefault(s.name, s)
+            if known != s:
+                # One name, two symbols: the ring would keep whichever the iterable yields
+                # first (hash order for a set).  The cause is upstream: a symbol made
+                # outside the train's symbol table.
+                first, second = sorted((known, s), key=symbol_key)
+                raise DerivationError(f"symbol {s.name} exists with two sets of assumptions: "
+                                      f"({describe_assumptions(first)}) and ({describe_assumptions(second)})")
         self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
         names = tuple(s.name for s in self.symbols) or ("_one",)
         self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
-        self._gens = dict(zip(self.symbols, self.ctx.gens(), strict=False))
+        self._gens: dict[sympy.Symbol, fmpz_mpoly] = dict(zip(self.symbols, self.ctx.gens(), strict=False))
         self.radicals = radicals
         # Radical symbols stay symbols (positive) in expressions: sign reasoning needs
         # polynomials; documents write them as square roots (RadicalTable.restore).
@@ -122,33 +145,30 @@ class PolynomialRing:
         """``p`` as a product of its irreducible factors (no expansion)."""
         if p.is_zero():
             return sympy.Integer(0)
-        content, factors = p.factor()
+        content, factors = factor(p)
         parts = [self.to_expr(f) ** int(e) for f, e in factors]
         return sympy.Mul(sympy.Integer(int(content)), *parts)
 
-    def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq, ...]:
+    def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq | None, ...]:
         """The generators' values at ``point`` (absent symbols: None), for :meth:`evaluate`."""
-        out = []
+        out: list[fmpq | None] = []
         for symbol in self.symbols:
             value = point.get(symbol)
             if value is None:
                 out.append(None)
             else:
-                r = sympy.Rational(value)  # type: ignore[arg-type]
+                r = sympy.Rational(value)
                 out.append(fmpq(int(r.p), int(r.q)))
         for radical in self.radicals:
             # A radical has a rational value only where its radicand is a square.
             index = self.symbols.index(radical.symbol)
             if out[index] is None:
-                try:
-                    root = sympy.sqrt(radical.radicand.xreplace(dict(point)))  # type: ignore[arg-type]
-                except TypeError:
-                    continue
+                root = sympy.sqrt(radical.radicand.xreplace(dict(point)))
                 if root.is_Rational:
                     out[index] = fmpq(int(root.p), int(root.q))
-        return tuple(out)  # type: ignore[return-value]
+        return tuple(out)
 
-    def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq, ...], rational: object = None) -> fmpq:
+    def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None) -> fmpq:
         """Exact value of ``p`` at ``args`` (from :meth:`point_args`); KeyError names a
         symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
         if not self.symbols:
@@ -157,16 +177,16 @@ class PolynomialRing:
             for symbol, value, degree in zip(self.symbols, args, p.degrees(), strict=True):
                 if value is None and degree > 0:
                     raise KeyError(symbol)
-            args = tuple(fmpq(0) if a is None else a for a in args)
-        return (rational if rational is not None else self.to_rational(p))(*args)  # type: ignore[operator]
+        values = tuple(fmpq(0) if a is None else a for a in args)
+        return (rational if rational is not None else self.to_rational(p))(*values)
 
-    def to_rational(self, p: fmpz_mpoly) -> object:
+    def to_rational(self, p: fmpz_mpoly) -> fmpq_mpoly:
         """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
         return fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex").from_dict(p.to_dict())
 
     def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
         """Integer content and irreducible factors (as sympy expressions) of ``p``."""
-        content, factors = p.factor()
+        content, factors = factor(p)
         return int(content), [(self.to_expr(f), int(e)) for f, e in factors]
 
 
@@ -267,7 +287,7 @@ class RationalFunction:
 
         return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))
 
-    def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq, ...]) -> fmpq:
+    def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq | None, ...]) -> fmpq:
         """Exact value at a rational point (a mapping, or the ring's ``point_args``);
         ZeroDivisionError on a pole."""
         args = point if isinstance(point, tuple) else self.ring.point_args(point)
@@ -275,7 +295,7 @@ class RationalFunction:
         return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
 
     @cached_property
-    def _rational_parts(self) -> tuple[object, object]:
+    def _rational_parts(self) -> tuple[fmpq_mpoly, fmpq_mpoly]:
         return self.ring.to_rational(self.num), self.ring.to_rational(self.den)
 
     def derivative_at(self, symbol: sympy.Symbol, point: Mapping[sympy.Symbol, object]) -> fmpq:

@@ -19,6 +19,11 @@ import sympy
 from davies_sym.algebra.signs import SignOracle
 
 
+class RadicalError(ValueError):
+    """A square root the table cannot write as ``q * s`` (nested roots, or a factor
+    whose sign the known facts do not decide)."""
+
+
 @dataclass(frozen=True)
 class Radical:
     """``symbol = sqrt(radicand)``; the radicand is positive where the design exists."""
@@ -42,10 +47,11 @@ class RadicalTable:
 
     def sqrt(self, value: sympy.Expr) -> sympy.Expr:
         """``sqrt(value)`` of a rational expression positive on the design, as
-        ``q * s`` with ``q`` rational and ``s`` a radical symbol (or just ``q``)."""
+        ``q * s`` with ``q`` rational and ``s`` a radical symbol (or just ``q``);
+        :class:`RadicalError` when it cannot be written so."""
         num, den = sympy.fraction(self.reduce(value))
         if (num * den).free_symbols & {r.symbol for r in self.radicals}:
-            raise ValueError(f"nested square roots: sqrt({self.restore(value)})")
+            raise RadicalError(f"nested square roots: sqrt({self.restore(value)})")
         # sqrt(n / d) = sqrt(n d) / |d|: only the product's square-free part stays inside.
         content, factors = sympy.factor_list(sympy.expand(num * den))
         oracle = SignOracle(self.facts)
@@ -55,13 +61,13 @@ class RadicalTable:
             if exponent >= 2:
                 sign = oracle.factor_sign(base)
                 if sign not in (1, -1):
-                    raise ValueError(f"cannot tell the sign of {base} under a square root")
+                    raise RadicalError(f"cannot tell the sign of {base} under a square root")
                 outside *= (sign * base) ** (exponent // 2)
             inside *= base ** (exponent % 2)
         inside = sympy.expand(inside)
         den_sign = oracle.sign(den)
         if den_sign not in (1, -1):
-            raise ValueError(f"cannot tell the sign of {den} under a square root")
+            raise RadicalError(f"cannot tell the sign of {den} under a square root")
         outside = outside / (den_sign * den)
         if inside == 1:
             return sympy.expand(outside) if outside.is_polynomial() else outside

@@ -42,22 +42,22 @@ def rotation_twist(direction: Vector, point: Vector) -> Screw:
     at the origin (Laus Table 3: a rotation about z through y = r1 gives ``{1; r1}``).
     """
     q = cross(point, direction)
-    return (*direction, *q)  # type: ignore[return-value]
+    return (*direction, *q)
 
 
 def translation_twist(direction: Vector) -> Screw:
     """Unit twist of a pure translation (infinite pitch)."""
-    return (*ORIGIN, *direction)  # type: ignore[return-value]
+    return (*ORIGIN, *direction)
 
 
 def force_wrench(direction: Vector, point: Vector) -> Screw:
     """Unit wrench of a force along ``direction`` through ``point``: ``{point x f; f}``."""
-    return (*cross(point, direction), *direction)  # type: ignore[return-value]
+    return (*cross(point, direction), *direction)
 
 
 def torque_wrench(direction: Vector) -> Screw:
     """Unit wrench of a pure torque (infinite pitch): ``{P; 0}``."""
-    return (*direction, *ORIGIN)  # type: ignore[return-value]
+    return (*direction, *ORIGIN)
 
 
 def power(wrench: Sequence[sympy.Expr], twist: Sequence[sympy.Expr]) -> sympy.Expr:
@@ -77,7 +77,7 @@ def action_along_motion(twist: Screw) -> Screw:
     angular = twist[:3]
     if any(c != 0 for c in angular):
         return torque_wrench(vector(angular))
-    return (*ORIGIN, *twist[3:])  # type: ignore[return-value]
+    return (*ORIGIN, *twist[3:])
 
 
 def axis_letter(direction: Vector) -> str | None:

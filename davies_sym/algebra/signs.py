@@ -11,6 +11,8 @@ from collections.abc import Iterable, Mapping
 
 import sympy
 
+from davies_sym.algebra.symbol_order import sorted_symbols
+
 
 def _poly_sign(expr: sympy.Expr) -> int | None:
     """+1 or -1 if every coefficient has that sign and every symbol is positive."""
@@ -21,7 +23,7 @@ def _poly_sign(expr: sympy.Expr) -> int | None:
         return 1 if expr > 0 else -1
     if not all(s.is_positive for s in expr.free_symbols):
         return None
-    coeffs = sympy.Poly(expr, *sorted(expr.free_symbols, key=str)).coeffs()
+    coeffs = sympy.Poly(expr, *sorted_symbols(expr.free_symbols)).coeffs()
     if all(c > 0 for c in coeffs):
         return 1
     if all(c < 0 for c in coeffs):
@@ -54,14 +56,36 @@ def without_positive_factors(expr: sympy.Expr) -> sympy.Expr:
     return sympy.expand(sign * sympy.Mul(*kept))
 
 
+def _numerator_times_denominator(expr: sympy.Expr) -> sympy.Expr:
+    """A polynomial with the sign of the rational expression ``expr`` (a radius r1**2/r2)."""
+    num, den = sympy.fraction(sympy.together(expr))
+    return sympy.expand(num * den)
+
+
+def _slack_substitution(fact: sympy.Expr) -> dict[sympy.Symbol, sympy.Expr] | None:
+    """``fact`` > 0 solved for its first symbol with a constant coefficient, the fact's
+    value a new positive symbol (None when no symbol has a constant coefficient)."""
+    for symbol in sorted_symbols(fact.free_symbols):
+        if sympy.degree(fact, symbol) != 1:
+            continue
+        coefficient = fact.coeff(symbol)
+        if coefficient.is_number and coefficient != 0:
+            slack = sympy.Dummy("slack", positive=True)
+            return {symbol: sympy.expand((slack - (fact - coefficient * symbol)) / coefficient)}
+    return None
+
+
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
     def __init__(self, facts: Iterable[sympy.Expr] = (),
                  substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()):
-        self.facts = tuple(without_positive_factors(f) for f in facts)
+        self.facts = tuple(without_positive_factors(_numerator_times_denominator(f)) for f in facts)
         #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
         self.substitutions = tuple(dict(s) for s in substitutions)
+        #: Each fact f > 0 linear in a symbol, solved for it with a positive slack f = e:
+        #: a radius 3 r2 - r1 gives r1 -> 3 r2 - e, so 4 r2 - r1 = r2 + e is positive.
+        self.slacks = tuple(s for s in map(_slack_substitution, self.facts) if s is not None)
         self._decided: dict[sympy.Expr, int | None] = {}  # memo: the same factors recur
 
     def factor_sign(self, factor: sympy.Expr) -> int | None:
@@ -80,7 +104,7 @@ class SignOracle:
             ratio = sympy.cancel(expanded / fact)
             if ratio.is_number and ratio != 0:
                 return 1 if ratio > 0 else -1
-        for substitution in self.substitutions:
+        for substitution in self.substitutions + self.slacks:
             # On the constraint the factor may have a plain sign (rr - rp - rs = rp).
             sign = _poly_sign(expanded.subs(substitution))
             if sign in (1, -1):

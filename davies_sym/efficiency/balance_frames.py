@@ -19,7 +19,7 @@ from collections.abc import Callable, Mapping
 
 import sympy
 
-from davies_sym.algebra.screws import cross
+from davies_sym.algebra.screws import Vector, cross
 from davies_sym.errors import DerivationError
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.couplings import GearMesh, Prismatic, Revolute
@@ -50,7 +50,7 @@ def _same(p: Point2, q: Point2) -> bool:
 
 
 def _parallel(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> bool:
-    return all(is_zero(x) for x in cross(a, b))  # type: ignore[arg-type]
+    return all(is_zero(x) for x in cross(a, b))
 
 
 class Frames:
@@ -99,8 +99,8 @@ class PlanarFrames(Frames):
         self.train = train
         number = _numbers(layout, values)
 
-        def pt(point: object) -> Point2:
-            return (number(point[0]), number(point[1]))  # type: ignore[index]
+        def pt(point: Vector) -> Point2:
+            return (number(point[0]), number(point[1]))
 
         self.meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
         self.sliders = [c for c in train.couplings if isinstance(c, Prismatic)]
@@ -223,8 +223,8 @@ class ConicalFrames(Frames):
     def __init__(self, train: Train, values: Values, layout: Layout):
         number = _numbers(layout, values)
 
-        def vec(v: object) -> tuple[sympy.Expr, ...]:
-            return tuple(number(x) for x in v)  # type: ignore[attr-defined]
+        def vec(v: Vector) -> tuple[sympy.Expr, ...]:
+            return tuple(number(x) for x in v)
 
         main = vec(layout.axis)
         self.meshes = [c for c in train.couplings if isinstance(c, GearMesh)]

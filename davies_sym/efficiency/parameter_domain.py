@@ -18,6 +18,7 @@ from functools import cached_property
 import sympy
 
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.geometry.layout import Layout, joint_substitution
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Train
@@ -33,7 +34,7 @@ def geometry_symbols(train: Train) -> set[sympy.Symbol]:
     for c in train.couplings:
         if isinstance(c, Revolute) and c.at is not None:
             out |= c.at.free_symbols
-    return out  # type: ignore[return-value]
+    return out
 
 
 def efficiency_symbols(train: Train) -> list[sympy.Symbol]:
@@ -42,9 +43,9 @@ def efficiency_symbols(train: Train) -> list[sympy.Symbol]:
     for c in train.couplings:
         if isinstance(c, GearMesh) and c.efficiencies is not None:
             for e in c.efficiencies:
-                for s in sorted(e.free_symbols, key=str):
+                for s in sorted_symbols(e.free_symbols):
                     if s not in out:
-                        out.append(s)  # type: ignore[arg-type]
+                        out.append(s)
     return out
 
 
@@ -97,8 +98,8 @@ class ParameterDomain:
         """Up to ``count`` admissible points; ``extra`` symbols drawn in
         ``extra_range / extra_scale``."""
         rng = random.Random(seed)
-        free = sorted(geometry_symbols(self.train) - set(self.eliminated), key=str)
-        others = sorted(set(extra) - geometry_symbols(self.train), key=str)
+        free = sorted_symbols(geometry_symbols(self.train) - set(self.eliminated))
+        others = sorted_symbols(set(extra) - geometry_symbols(self.train))
         produced = 0
         for _ in range(count * attempts):
             point: Point = {s: sympy.Rational(rng.randint(100, 10000), 100) for s in free}

@@ -15,8 +15,10 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.algebra.radicals import restore
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.model import Train
 
 
 @dataclass(frozen=True)
@@ -41,9 +43,9 @@ def _gear_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
     out: dict[sympy.Symbol, str] = {}
     for g in variants.train.gears:
         kind = "internal gear" if g.internal else "gear"
-        for s in sorted(g.radius.free_symbols, key=str):
+        for s in sorted_symbols(g.radius.free_symbols):
             what = "pitch radius" if g.radius == s else "length in the pitch radius"
-            out.setdefault(s, f"{what} of {kind} {g.name} (link {g.link})")  # type: ignore[arg-type]
+            out.setdefault(s, f"{what} of {kind} {g.name} (link {g.link})")
     return out
 
 
@@ -56,8 +58,8 @@ def _efficiency_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
             driver, driven = (first, second) if k == 0 else (second, first)
             text = (f"ordinary efficiency of mesh {role.coupling} (gears {first}, {second}), either gear driving"
                     if both else f"ordinary efficiency of mesh {role.coupling}, gear {driver} driving gear {driven}")
-            for s in eta.free_symbols:
-                out.setdefault(s, text)  # type: ignore[arg-type]
+            for s in sorted_symbols(eta.free_symbols):
+                out.setdefault(s, text)
     return out
 
 
@@ -65,10 +67,10 @@ def _law_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
     out: dict[sympy.Symbol, tuple[str, str]] = {}
     units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed"}
     for law in variants.analysis.network.laws:
-        for s in law.coefficient.free_symbols:
+        for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = variants.train.coupling(law.coupling)
             what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
-            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}",  # type: ignore[index]
+            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}",
                                units.get(law.law, "")))
     return out
 
@@ -77,7 +79,7 @@ def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
     """The symbols of the formulas, the conditions and the speed ratio, sorted by name."""
     layout = variants.analysis.network.layout
     ratio = restore(variants.analysis.speed_ratio().to_expr(), layout.radicals)
-    return sorted(set(variants.symbols) | ratio.free_symbols, key=str)  # type: ignore[arg-type]
+    return sorted_symbols(set(variants.symbols) | ratio.free_symbols)
 
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
@@ -110,7 +112,7 @@ def eliminated_symbols(variants: VariantSet) -> dict[sympy.Symbol, sympy.Expr]:
 
 def _obviously_positive(expr: sympy.Expr) -> bool:
     """A sum of positive terms in positive symbols."""
-    return all(c > 0 for c in sympy.Poly(expr, *sorted(expr.free_symbols, key=str)).coeffs()) and all(
+    return all(c > 0 for c in sympy.Poly(expr, *sorted_symbols(expr.free_symbols)).coeffs()) and all(
         s.is_positive for s in expr.free_symbols)
 
 
@@ -131,3 +133,15 @@ def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
         if relation not in out:
             out.append(relation)
     return tuple(out)
+
+
+def file_parameters(train: Train) -> tuple[str, ...]:
+    """Every parameter any state of ``train`` may take, sorted: the symbols of the file
+    except the friction coefficients of meshes that give ordinary efficiencies (the
+    formulas are written in the efficiencies).  The formula modules of all states of
+    one file accept all of them, so design code calls every state alike."""
+    replaced: set[sympy.Basic] = set()
+    for c in train.couplings:
+        if isinstance(c, GearMesh) and c.efficiencies and c.friction.coulomb is not None:
+            replaced |= c.friction.coulomb.free_symbols
+    return tuple(sorted(name for name, s in train.symbols.items() if s not in replaced))

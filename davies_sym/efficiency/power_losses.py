@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.variants import Variant, VariantSet, substituted, zeta_forms
-from davies_sym.efficiency.virtual_power import mesh_power_flow
+from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 
 
 def lossy_couplings(variants: VariantSet) -> tuple[str, ...]:
@@ -41,8 +41,7 @@ def _input_side(variants: VariantSet, port: str) -> _InputSide:
     if analysis is variants.analysis:
         flows = {r.coupling: r.flow for r in variants.roles}
     else:
-        flows = {r.coupling: mesh_power_flow(analysis, analysis.train.coupling(r.coupling))  # type: ignore[arg-type]
-                 for r in variants.roles}
+        flows = {r.coupling: named_mesh_power_flow(analysis, r.coupling) for r in variants.roles}
     p_in = analysis.port_power_rf(port)
     forms = {name: -(analysis.power_rf(name) / p_in) for name in lossy_couplings(variants)}
     return _InputSide(forms, zeta_forms(flows, variants.roles))

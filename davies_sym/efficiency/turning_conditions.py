@@ -47,6 +47,9 @@ class MeshRole:
     condition: str | None
     orientation: int
     efficiencies: tuple[sympy.Expr, sympy.Expr]
+    #: No virtual power crosses the mesh in this train or state (its set is locked by a
+    #: clutch or unloaded): no gear drives and the mesh loses nothing.
+    idle: bool = False
 
     def first_drives(self, signs: dict[str, int], declared_input: bool) -> bool:
         """Whether the first gear drives for the given condition signs and input side."""
@@ -92,7 +95,7 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
         flow = mesh_power_flow(analysis, c)
         if flow.flow_ratio.is_zero():
             # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
-            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies))
+            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies, idle=True))
             continue
         content, factors = flow.flow_ratio.factor_list()
         sign, undecided = analysis.oracle.classify(content, factors)

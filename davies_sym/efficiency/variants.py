@@ -22,10 +22,12 @@ from dataclasses import dataclass, field
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.mesh_friction import check_mesh_friction
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
-from davies_sym.errors import DerivationError, InputError, Problem
+from davies_sym.efficiency.virtual_power import MeshPowerFlow, named_mesh_power_flow
+from davies_sym.errors import DerivationError, InputError, MissingValuesError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.analysis import Analysis
@@ -99,10 +101,10 @@ class VariantSet:
         """Every symbol a formula or a condition may need, sorted by name."""
         out: set[sympy.Symbol] = set()
         for v in self.variants:
-            out |= v.efficiency.free_symbols  # type: ignore[arg-type]
+            out |= v.efficiency.free_symbols
         for c in self.conditions:
-            out |= c.expression.free_symbols  # type: ignore[arg-type]
-        return sorted(out, key=str)
+            out |= c.expression.free_symbols
+        return sorted_symbols(out)
 
     def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
         """The variant whose conditions hold at ``values`` with ``input`` as input port."""
@@ -116,8 +118,8 @@ class VariantSet:
             value = sympy.sympify(c.expression.subs(values))
             if not value.is_number:
                 missing = sorted(map(str, value.free_symbols))
-                raise InputError([Problem("--eval", f"condition {c.name} needs values for {', '.join(missing)}")],
-                                 self.train.path)
+                raise MissingValuesError([Problem("--eval", f"condition {c.name} needs values for "
+                                                  f"{', '.join(missing)}")], self.train.path)
             signs[c.name] = 1 if value >= 0 else -1
         for v in self.variants:
             if v.input == port and dict(v.signs) == signs:
@@ -130,8 +132,8 @@ class VariantSet:
         value = variant.efficiency.subs(check_values(self.train, values))
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
-            raise InputError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
-                             self.train.path)
+            raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
+                                     self.train.path)
         return value
 
 
@@ -159,6 +161,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
     (``layout``: a geometry other than the one derived from the train)."""
     say = progress or (lambda message: None)
+    check_mesh_friction(train)
     if layout is None:
         train = resolved_train(train)
     etas = efficiency_symbols(train)
@@ -175,8 +178,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
                                     progress=progress, extra_symbols=etas, layout=layout)
         swapped_form = swapped_analysis.efficiency_rf
-        swapped_flows = {r.coupling: mesh_power_flow(swapped_analysis, swapped_analysis.train.coupling(r.coupling))
-                         for r in roles}  # type: ignore[arg-type]
+        swapped_flows = {r.coupling: named_mesh_power_flow(swapped_analysis, r.coupling) for r in roles}
         swapped_zetas = zeta_forms(swapped_flows, roles)
     domain = ParameterDomain.of(train, analysis.network.layout)
     extra = _other_symbols(declared, etas, roles)
@@ -212,7 +214,7 @@ def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
     friction, viscous coefficients, input torque and speed)."""
     out = set(form.to_expr().free_symbols) - set(etas)
     out -= {r.flow.friction_symbol for r in roles}
-    return sorted(out, key=str)  # type: ignore[arg-type]
+    return sorted_symbols(out)
 
 
 def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
@@ -231,6 +233,8 @@ def _nominal(rf: RationalFunction, point: Point, etas: Sequence[sympy.Symbol]) -
     try:
         return rf.evaluate({**point, **{e: NOMINAL_EFFICIENCY for e in etas}})
     except ZeroDivisionError:
+        # A pole of the formula at this sample: 0 lies outside (0, 1], so the point
+        # counts as not working, like a self-locking one.
         return sympy.Integer(0)
 
 

@@ -23,7 +23,7 @@ import sympy
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.screws import rotation_twist
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
-from davies_sym.errors import DerivationError
+from davies_sym.errors import DerivationError, TopologyError
 from davies_sym.topology.couplings import GearMesh
 
 if TYPE_CHECKING:
@@ -106,8 +106,19 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, 
             locked = locked or (c, sides)  # the whole set turns as one block: any member will do
     if locked is not None:
         return locked
-    raise DerivationError(f"mesh {mesh.name}: no link holds both gear axes (no carrier), so its "
-                          "ordinary efficiency is not defined")
+    # A valid file can say this (a bearing joining the wrong links): a located refusal.
+    train = analysis.train
+    raise TopologyError([train.problem(f"couplings.{mesh.name}", "no other link holds the axes of both gears (the "
+                                       "mesh has no carrier), so its ordinary efficiency is not defined; check which "
+                                       "links the bearings join")], train.path)
+
+
+def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
+    """:func:`mesh_power_flow` of the mesh called ``name`` in the analysis's train."""
+    mesh = analysis.train.coupling(name)
+    if not isinstance(mesh, GearMesh):
+        raise DerivationError(f"coupling {name} is not a gear mesh: it has no ordinary efficiency")
+    return mesh_power_flow(analysis, mesh)
 
 
 def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:

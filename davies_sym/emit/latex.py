@@ -58,7 +58,10 @@ def _section(variants: VariantSet) -> list[str]:
                        for r in variants.roles if r.condition == c.name]
             out.append(rf"${c.name}$ & ${sympy.latex(c.simplified)}$ & {', '.join(decided)} \\")
         out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
-    fixed = [r for r in variants.roles if r.condition is None]
+    fixed = [r for r in variants.roles if r.condition is None and not r.idle]
+    idle = [escape(r.coupling) for r in variants.roles if r.idle]
+    if idle:
+        out.append(rf"\noindent Meshes that carry no power (their set locked or unloaded; no loss): {', '.join(idle)}.")
     if fixed:
         text = "; ".join(f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} "
                          "drives" for r in fixed)

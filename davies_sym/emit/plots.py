@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 import sympy
 
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.python_module import python_module
 
@@ -112,7 +113,7 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
     top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
     colours = ["#dbe9f6", "#fde9d9", "#e2f0d9", "#ede1f5", "#fff2cc", "#d9f2f2"]
-    edges = [0, *list(np.nonzero(np.diff(numbers))[0] + 1), len(xs)]
+    edges = [0, *(int(i) + 1 for i in np.nonzero(np.diff(numbers))[0]), len(xs)]
     seen: set[int] = set()
     for a, b in itertools.pairwise(edges):
         n = int(numbers[a])
@@ -183,7 +184,7 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
 def turning_surface_figure(condition: sympy.Expr, x: Sweep, y: Sweep, z: Sweep, title: str) -> Any:
     """The surface condition = 0 over (x, y), solved for z (every real root in z's
     interval), like Laus Fig. 11."""
-    symbols = {str(s): s for s in condition.free_symbols}
+    symbols = {str(s): s for s in sorted_symbols(condition.free_symbols)}
     zs = symbols[z.name]
     roots = sympy.solve(condition, zs)
     if not roots:

@@ -18,9 +18,13 @@ def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
 
 
 def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
-    """``"C: gear 1 drives gear 3 (eta_C)"`` for every mesh."""
+    """``"C: gear 1 drives gear 3 (eta_C)"`` for every mesh (an idle one says so)."""
     out = []
     for role in variants.roles:
+        if role.idle:
+            out.append(f"{role.coupling}: carries no power (gears {role.flow.gears[0]}, {role.flow.gears[1]}; "
+                       f"its set is locked or unloaded), no loss")
+            continue
         first = variant.first_drives[role.coupling]
         driver, driven = role.flow.gears if first else role.flow.gears[::-1]
         eta = role.efficiencies[0 if first else 1]
@@ -55,7 +59,8 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
             "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
             "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
             "decided": r.condition is None,
-            "first_gear_drives_when": (
+            "carries_power": not r.idle,
+            "first_gear_drives_when": "no power crosses the mesh" if r.idle else (
                 ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
                 if r.condition is None else
                 f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"),

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 
 import sympy
 
-from davies_sym.algebra.radicals import RadicalTable
+from davies_sym.algebra.radicals import RadicalError, RadicalTable
 from davies_sym.algebra.screws import Vector, cross, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import axis_structure
@@ -47,9 +47,9 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
         axes.setdefault(g.link, axis)
     for g in train.gears:
         if g.tilted and g.link not in axes:
-            axis = _tilted_axis(train, g, axes, radicals, problems)
-            if axis is not None:
-                axes[g.link] = axis
+            tilted = _tilted_axis(train, g, axes, radicals, problems)
+            if tilted is not None:
+                axes[g.link] = tilted
     tilted_links = {g.link for g in train.gears if g.tilted}
     for g in train.gears:
         if g.link not in axes and g.link not in tilted_links:  # a failed tilt is reported already
@@ -90,7 +90,7 @@ def _tilted_axis(train: Train, gear: Gear, axes: Mapping[str, Vector], radicals:
     rp = gear.radius
     try:
         rise = radicals.sqrt(4 * rp**2 - step**2)
-    except ValueError as exc:
+    except RadicalError as exc:
         problems.append(train.problem(entry, f"the cone geometry cannot be built: {exc}"))
         return None
     return vector([radicals.reduce((rise * e - step * z) / (2 * rp)) for e, z in zip(radial, b, strict=True)])

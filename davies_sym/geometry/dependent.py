@@ -21,6 +21,7 @@ from dataclasses import replace
 import sympy
 
 from davies_sym.algebra.signs import without_positive_factors
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.axes import axis_structure
@@ -57,8 +58,8 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
         expr = without_positive_factors(sympy.expand(c.expression.subs(values)))
         if expr == 0:
             continue  # implied by the constraints solved already
-        candidates = [s for s in sorted(expr.free_symbols, key=str)
-                      if sympy.degree(expr, s) == 1 and str(s) not in independent]  # type: ignore[arg-type]
+        candidates = [s for s in sorted_symbols(expr.free_symbols)
+                      if sympy.degree(expr, s) == 1 and str(s) not in independent]
         if not candidates:
             problems.append(train.problem(
                 "independent" if independent else f"couplings.{c.coupling}",
@@ -77,11 +78,9 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
 
 
 def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
-    """Mesh -> the radius symbols of its gears, the planet's gear first."""
-    try:
-        frames = axis_structure(train).meshes
-    except GeometryError:  # pragma: no cover - the layout reported it already
-        frames = {}
+    """Mesh -> the radius symbols of its gears, the planet's gear first (called after the
+    layout, which has built the same axis structure)."""
+    frames = axis_structure(train).meshes
     out: dict[str, list[sympy.Symbol]] = {}
     for c in train.couplings:
         if isinstance(c, GearMesh):
@@ -89,7 +88,7 @@ def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
             frame = frames.get(c.name)
             if frame is not None and frame.planet == 1:
                 order = order[::-1]  # the planet's gear first
-            out[c.name] = [s for g in order for s in sorted(train.gear(g).radius.free_symbols, key=str)]
+            out[c.name] = [s for g in order for s in sorted_symbols(train.gear(g).radius.free_symbols)]
     return out
 
 
@@ -109,7 +108,7 @@ def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dic
     problems = []
     out = {}
     for symbol, value in values.items():
-        relation = relations.get(symbol)  # type: ignore[call-overload]
+        relation = relations.get(symbol)
         if relation is None:
             out[symbol] = value
             continue

@@ -12,6 +12,7 @@ import sympy
 from davies_sym.algebra.radicals import Radical
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.topology.couplings import Revolute
 from davies_sym.topology.link_groups import LinkGroups
@@ -92,7 +93,7 @@ def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> li
     out = []
     for c in constraints:
         expr = c.expression
-        for s in sorted(expr.free_symbols, key=str):
+        for s in sorted_symbols(expr.free_symbols):
             if sympy.degree(expr, s) == 1:
                 solved = sympy.solve(expr, s)
                 if len(solved) == 1:

@@ -111,8 +111,9 @@ def planar_line_layout(train: Train) -> Layout:
     positions = place_classes(train, structure, meshes, gears, problems, via)
     if problems:
         raise GeometryError(problems, train.path)
-    # An annulus is larger than its pinion: that decides on which side a loop closes.
-    oracle = SignOracle([centre_distance(m, gears) for m in meshes if m.internal])
+    # An annulus is larger than its pinion, and every radius is positive (3 r2 - r1 too):
+    # that decides on which side a loop closes.
+    oracle = SignOracle([centre_distance(m, gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
     centres = {g.name: positions[structure.axis[g.link]] for g in train.gears}
     points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
     constraints: list[GeometricConstraint] = []

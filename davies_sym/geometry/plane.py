@@ -18,7 +18,7 @@ from collections.abc import Mapping, Sequence
 
 import sympy
 
-from davies_sym.algebra.radicals import RadicalTable, has_square_root
+from davies_sym.algebra.radicals import RadicalError, RadicalTable, has_square_root
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
@@ -68,7 +68,10 @@ def plane_layout(train: Train, direction: Point) -> Layout:
             squared = radicals.reduce(offset[0] ** 2 + offset[1] ** 2)
             try:
                 actual = radicals.sqrt(squared)
-            except ValueError:
+            except RadicalError:
+                # The distance of the placed centres is not q * s (nested roots, or a
+                # factor of unknown sign): the mesh then constrains the squared distance,
+                # the same condition for the positive lengths of an admissible design.
                 actual = None
             if actual is None or has_square_root(radicals.restore(actual)):
                 add_constraint(train, constraints, problems, squared, distance**2, mesh.name, oracle)
@@ -161,7 +164,7 @@ def _place_one(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh
         return False
     # Triangles first: a class that meshes two placed classes on distinct axes.
     for group, options in sorted(reach.items(), key=lambda item: (-len({o[0] for o in item[1]}), item[0])):
-        distinct = []
+        distinct: list[tuple[Point, sympy.Expr, str]] = []
         for option in options:
             if all(any(radicals.reduce(a - b) != 0 for a, b in zip(option[0], o[0], strict=True)) for o in distinct):
                 distinct.append(option)
@@ -185,7 +188,7 @@ def _triangle(first: tuple[Point, sympy.Expr, str], second: tuple[Point, sympy.E
     ab = (radicals.reduce(b[0] - a[0]), radicals.reduce(b[1] - a[1]))
     try:
         length = radicals.sqrt(radicals.reduce(ab[0] ** 2 + ab[1] ** 2))
-    except ValueError as exc:
+    except RadicalError as exc:
         problems.append(train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} would close a "
                                       f"triangle whose side is not known to be real ({exc}); give the radii as "
                                       "numbers, or draw the train with another placement"))
@@ -198,7 +201,7 @@ def _triangle(first: tuple[Point, sympy.Expr, str], second: tuple[Point, sympy.E
         return None
     try:
         height = radicals.sqrt(radicals.reduce(da**2 - along**2))
-    except ValueError as exc:
+    except RadicalError as exc:
         problems.append(train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a "
                                       f"triangle: {exc}"))
         return None

@@ -389,6 +389,9 @@ class Analysis:
         return sympy.Matrix(cols).T
 
 
-def analyse(train: Train, **options: object) -> Analysis:
+def analyse(train: Train, *, tree: Sequence[str] | None = None, action_tree: Sequence[str] | None = None,
+            coulomb_signs: str = "resolve", progress: Progress | None = None,
+            extra_symbols: Sequence[sympy.Symbol] = (), layout: Layout | None = None) -> Analysis:
     """Run Davies' method on ``train`` (see :class:`Analysis` for the options)."""
-    return Analysis(train, **options)  # type: ignore[arg-type]
+    return Analysis(train, tree=tree, action_tree=action_tree, coulomb_signs=coulomb_signs, progress=progress,
+                    extra_symbols=extra_symbols, layout=layout)

@@ -113,7 +113,7 @@ class Network:
         table = RadicalTable(list(self.layout.radicals))
 
         def absorb(group: tuple[NamedScrew, ...]) -> tuple[NamedScrew, ...]:
-            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw))  # type: ignore[arg-type]
+            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw))
                          for n in group)
 
         out = {name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
@@ -258,12 +258,12 @@ class Network:
         return sympy.Matrix.vstack(*blocks)
 
 
-def _lift(system: ScrewSystem, reduced: tuple[sympy.Expr, ...]):  # type: ignore[no-untyped-def]
+def _lift(system: ScrewSystem, reduced: tuple[sympy.Expr, ...]) -> tuple[sympy.Expr, ...]:
     full = system.lift * sympy.Matrix(reduced)
     return tuple(sympy.expand(v) for v in full)
 
 
-def _check_reciprocal(train: Train, c: ScrewCoupling, screws) -> None:  # type: ignore[no-untyped-def]
+def _check_reciprocal(train: Train, c: ScrewCoupling, screws: CouplingScrews) -> None:
     problems = []
     for a in screws.constraints:
         for m in screws.motions:

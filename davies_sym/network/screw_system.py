@@ -111,11 +111,11 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
         row = list(system.reduce_wrench(candidate.screw))
         if sympy.Matrix([*rows, row]).rank(simplify=True) > len(rows):
             rows.append(row)
-            chosen.append(NamedScrew(candidate.name, tuple(row)))  # type: ignore[arg-type]
+            chosen.append(NamedScrew(candidate.name, tuple(row)))
         if len(chosen) == system.order - freedom:
             break
     if len(chosen) != system.order - freedom:
         raise DerivationError(f"coupling {name}: found {len(chosen)} independent constraint actions "
                               f"reciprocal to its motions, need {system.order - freedom}")
-    kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)  # type: ignore[arg-type]
+    kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)
     return ReducedCoupling(kept, tuple(chosen))

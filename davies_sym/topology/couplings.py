@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
+from davies_sym.topology.entries import describe
+from davies_sym.topology.expressions import check_name, shortened
 from davies_sym.topology.schema import COUPLING_COMMON, FRICTION, Field
 
 if TYPE_CHECKING:
@@ -46,6 +48,13 @@ class Coupling:
     FIELDS: ClassVar[tuple[Field, ...]] = ()
     DOC: ClassVar[str] = ""
 
+    @classmethod
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
+                   gears: Mapping[str, Any]) -> Coupling | None:
+        """The coupling its entry describes, or None when ``reader`` holds the problems
+        (``gears``: the train's gears by name, for the kinds that join gears)."""
+        raise NotImplementedError
+
 
     @property
     def gears(self) -> tuple[str, str] | None:
@@ -53,7 +62,9 @@ class Coupling:
 
 
 def _read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tuple[str, str] | None:
-    links = entry.get("links")
+    if "links" not in entry:
+        return None  # reported as a missing required key
+    links = entry["links"]
     if not isinstance(links, list) or len(links) != 2:
         reader.problem(f"{path}.links", "expected a list of two link names")
         return None
@@ -107,13 +118,14 @@ class Revolute(Coupling):
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Revolute | None:
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
+                   gears: Mapping[str, Any]) -> Revolute | None:
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
         if links is not None and axis is not None and axis not in links:
-            reader.problem(f"{path}.axis", f"{axis!r} is not one of the coupling's links {list(links)}")
+            reader.problem(f"{path}.axis", f"{shortened(axis)} is not one of the coupling's links {list(links)}")
             axis = None
         return None if links is None else cls(name, links, friction, at, axis)
 
@@ -154,13 +166,16 @@ class GearMesh(Coupling):
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
                    gears: Mapping[str, Any]) -> GearMesh | None:
-        pair = entry.get("gears")
+        if "gears" not in entry:
+            return None  # reported as a missing required key
+        pair = entry["gears"]
         if not isinstance(pair, list) or len(pair) != 2:
             reader.problem(f"{path}.gears", "expected a list of two gear names")
             return None
-        names = [reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair)]
-        if names[0] is None or names[1] is None:
+        first, second = (reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair))
+        if first is None or second is None:
             return None
+        names = (first, second)
         missing = [g for g in names if g not in gears]
         for g in missing:
             reader.unknown(f"{path}.gears", "gear", g)
@@ -175,16 +190,29 @@ class GearMesh(Coupling):
             reader.problem(f"{path}.gears", "two internal gears cannot mesh")
             return None
         internal = g1.internal or g2.internal
+        if internal and not _annulus_larger(g1 if g1.internal else g2, g2 if g1.internal else g1, path, reader):
+            return None
         stated = entry.get("mesh")
         if stated is not None and stated not in ("external", "internal"):
-            reader.problem(f"{path}.mesh", f"expected `external` or `internal`, got {stated!r}")
+            reader.problem(f"{path}.mesh", f"expected `external` or `internal`, got {shortened(str(stated))}")
         elif stated is not None and (stated == "internal") != internal:
-            reader.problem(f"{path}.mesh", f"stated {stated!r} but the gears make an "
+            reader.problem(f"{path}.mesh", f"stated {shortened(str(stated))} but the gears make an "
                            f"{'internal' if internal else 'external'} mesh")
         default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default)
         efficiencies = _read_efficiencies(entry.get("efficiency", f"eta_{name}"), f"{path}.efficiency", reader)
         return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
+
+
+def _annulus_larger(annulus: Any, pinion: Any, path: str, reader: EntryReader) -> bool:
+    """Whether an annulus may be larger than the gear it meshes (refused when its radius is
+    known to be smaller or equal: the pinion would not fit inside)."""
+    if sympy.expand(annulus.radius - pinion.radius).is_positive is not False:
+        return True
+    sizes = [shortened(sympy.sstr(g.radius), 30) for g in (annulus, pinion)]
+    reader.problem(f"{path}.gears", f"the annulus {annulus.name!r} (radius {sizes[0]}) is not larger than the gear "
+                   f"{pinion.name!r} inside it (radius {sizes[1]}); give the annulus the larger radius")
+    return False
 
 
 def _read_efficiencies(value: Any, path: str, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
@@ -198,7 +226,7 @@ def _read_efficiencies(value: Any, path: str, reader: EntryReader) -> tuple[symp
         return None
     for i, r in enumerate(read):
         if r is not None and r.is_number and not 0 < r <= 1:
-            reader.problem(path, f"an ordinary efficiency must lie in (0, 1], got {values[i]!r}")
+            reader.problem(path, f"an ordinary efficiency must lie in (0, 1], got {describe(values[i])}")
             return None
     first = read[0]
     second = read[-1]
@@ -220,9 +248,10 @@ class Prismatic(Coupling):
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> Prismatic | None:
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
+                   gears: Mapping[str, Any]) -> Prismatic | None:
         links = _read_links(entry, path, reader)
-        direction = read_direction(entry.get("direction"), f"{path}.direction", reader)
+        direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
         if links is None or direction is None:
             return None
@@ -236,14 +265,14 @@ def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
     if isinstance(value, str) and value.startswith("-") and value[1:] in UNIT:
         return vector([-v for v in UNIT[value[1:]]])
     if isinstance(value, list) and len(value) == 3:
-        parts = [reader.quantity(v, f"{path}[{i}]", "position") for i, v in enumerate(value)]
+        parts = [reader.quantity(v, f"{path}[{i}]", "position", roots=True) for i, v in enumerate(value)]
         if any(p is None for p in parts):
             return None
         if all(p == 0 for p in parts):
             reader.problem(path, "the direction must not be zero")
             return None
         return vector(parts)
-    reader.problem(path, f"expected x, y, z or a list of three numbers, got {value!r}")
+    reader.problem(path, f"expected x, y, z or a list of three numbers, got {describe(value)}")
     return None
 
 
@@ -266,9 +295,11 @@ class ScrewCoupling(Coupling):
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader) -> ScrewCoupling | None:
+    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
+                   gears: Mapping[str, Any]) -> ScrewCoupling | None:
         links = _read_links(entry, path, reader)
-        motions = _read_screws(entry.get("motions"), f"{path}.motions", reader, TWIST_COORDINATES)
+        motions = (_read_screws(entry["motions"], f"{path}.motions", reader, TWIST_COORDINATES)
+                   if "motions" in entry else None)
         actions = _read_screws(entry.get("actions", {}), f"{path}.actions", reader, WRENCH_COORDINATES)
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
         if links is None or motions is None or actions is None:
@@ -287,20 +318,25 @@ def _read_screws(value: Any, path: str, reader: EntryReader,
     out = []
     for label, coords in entry.items():
         cpath = f"{path}.{label}"
+        # The label names the screw's magnitude, which becomes a symbol of the outputs.
+        why = check_name(label)
+        if why is not None:
+            reader.problem(cpath, f"{why} (a magnitude such as t_C or U_C)")
+            continue
         cmap = reader.mapping(coords, cpath)
         if cmap is None:
             continue
         screw = []
         for key in cmap:
             if key not in coordinates:
-                reader.problem(f"{cpath}.{key}", f"unknown coordinate {key!r} (use {', '.join(coordinates)})")
+                reader.problem(f"{cpath}.{key}", f"unknown coordinate {shortened(key)} (use {', '.join(coordinates)})")
         for c in coordinates:
-            q = reader.quantity(cmap[c], f"{cpath}.{c}", "position") if c in cmap else sympy.Integer(0)
+            q = reader.quantity(cmap[c], f"{cpath}.{c}", "position", roots=True) if c in cmap else sympy.Integer(0)
             screw.append(q if q is not None else sympy.Integer(0))
         if all(c == 0 for c in screw):
             reader.problem(cpath, "a unit screw must not be zero")
         base = label.split("_")[0] if "_" in label else label
-        out.append(NamedScrew(base, tuple(screw)))  # type: ignore[arg-type]
+        out.append(NamedScrew(base, tuple(screw)))
     return tuple(out)
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Mapping
+from dataclasses import replace
 from typing import Any
 
 import sympy
@@ -34,6 +35,13 @@ class EntryReader:
         self.symbols: dict[str, sympy.Symbol] = {}
         #: Names whose definition was refused: references to them are not reported again.
         self.broken: set[str] = set()
+        #: Kinds of names (``link``, ``gear``, ``coupling``) whose table is missing or
+        #: unreadable: the table's own problem says it all, references are not reported.
+        self.unreadable: set[str] = set()
+        #: Kinds whose optional table is absent: the first reference says so, once.
+        self.absent: set[str] = set()
+        #: (kind, name) of each unknown name reported: its problem's index, message and other places.
+        self._unknown: dict[tuple[str, str], tuple[int, str, list[str]]] = {}
 
     def problem(self, path: str, message: str) -> None:
         self.problems.append(Problem(path, message, self.document.line(path)))
@@ -41,13 +49,30 @@ class EntryReader:
     def mapping(self, value: Any, path: str) -> Mapping[str, Any] | None:
         if isinstance(value, Mapping):
             return value
-        self.problem(path, f"expected a mapping, got {_describe(value)}")
+        self.problem(path, f"expected a mapping, got {describe(value)}")
         return None
 
-    def unknown(self, path: str, kind: str, name: str) -> None:
-        """Report a reference to an undefined name, unless its definition was refused already."""
-        if name not in self.broken:
-            self.problem(path, f"unknown {kind} {shortened(name)}")
+    def unknown(self, path: str, kind: str, name: str, message: str | None = None) -> None:
+        """Report a reference to an undefined name, unless its definition or its whole table
+        was refused already (one problem per cause)."""
+        if name in self.broken or kind in self.unreadable:
+            return
+        if kind in self.absent:
+            self.unreadable.add(kind)
+            self.problem(path, f"unknown {kind} {shortened(name)}: the file has no `{kind}s` table; add one "
+                         f"that defines every {kind} the file names")
+            return
+        text = message or f"unknown {kind} {shortened(name)}"
+        first = self._unknown.get((kind, name))
+        if first is None:
+            self._unknown[(kind, name)] = (len(self.problems), text, [])
+            self.problem(path, text)
+            return
+        # The same missing name again: one problem, which lists where else it is used.
+        index, text, also = first
+        also.append(path)
+        shown = ", ".join(also[:3]) + (f" and {len(also) - 3} more" if len(also) > 3 else "")
+        self.problems[index] = replace(self.problems[index], message=f"{text} (also in {shown})")
 
     def check_keys(self, entry: Mapping[str, Any], path: str, fields: Iterable[Field]) -> None:
         """Report unknown and missing keys of ``entry`` against ``fields``."""
@@ -58,12 +83,12 @@ class EntryReader:
                 self.problem(f"{path}.{key}", f"unknown key {key!r} (known: {', '.join(sorted(known))})")
         for f in fields:
             if f.required and f.key not in entry:
-                self.problem(path, f"missing required key {f.key!r}")
+                self.problem(path or f.key, f"missing required key {f.key!r}: add `{f.key}:` ({f.kind})")
 
     def name(self, value: Any, path: str) -> str | None:
         """A name (of a link, gear or coupling): strings and integers are accepted."""
         if isinstance(value, bool) or value is None or isinstance(value, (list, dict, float)):
-            self.problem(path, f"expected a name, got {_describe(value)}")
+            self.problem(path, f"expected a name, got {describe(value)}")
             return None
         return str(value)
 
@@ -84,15 +109,24 @@ class EntryReader:
             return None
         return name
 
-    def quantity(self, value: Any, path: str, role: str) -> sympy.Expr | None:
+    def quantity(self, value: Any, path: str, role: str, roots: bool = False) -> sympy.Expr | None:
+        """``value`` read as a quantity of ``role`` (square roots only where ``roots``), or None
+        with the problem recorded."""
         try:
-            return parse_quantity(value, role, self.symbols)
+            return parse_quantity(value, role, self.symbols, roots)
         except QuantityError as exc:
             self.problem(path, str(exc))
             return None
 
 
-def _describe(value: Any) -> str:
+def describe(value: Any) -> str:
+    """``value`` for a message: its YAML kind and its text, shortened."""
     if value is None:
         return "nothing"
-    return f"{type(value).__name__} {value!r}"
+    if isinstance(value, str):
+        return shortened(value, 40)
+    kinds = {bool: "true/false", int: "number", float: "number", list: "list", dict: "mapping"}
+    text = repr(value)
+    if len(text) > 40:
+        text = f"{text[:18]} ... {text[-17:]}"
+    return f"{kinds.get(type(value), type(value).__name__)} {text}"

@@ -43,11 +43,13 @@ _CONSTANTS: dict[str, sympy.Expr] = {"pi": sympy.pi}
 #: A decimal literal with an exponent small enough to expand (Fraction would expand any).
 _DECIMAL = re.compile(r"(\d+(\.\d*)?|\.\d+)([eE][-+]?\d{1,3})?")
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+#: Names that read as infinities or not-a-number (sympy's ``oo``, ``zoo``, ``nan``; numpy's ``inf``).
+NON_FINITE_NAMES = frozenset({"oo", "zoo", "nan", "inf"})
 #: Names a symbol may not take: Python keywords and built-ins (a generated formula
-#: module uses them), the grammar's functions and constants, and the names the
-#: generated modules define for themselves.
+#: module uses them), the grammar's functions and constants, the non-finite names and
+#: the names the generated modules define for themselves.
 RESERVED_NAMES = frozenset(
-    [*keyword.kwlist, *keyword.softkwlist, *dir(builtins), *_FUNCTIONS, *_CONSTANTS,
+    [*keyword.kwlist, *keyword.softkwlist, *dir(builtins), *_FUNCTIONS, *_CONSTANTS, *NON_FINITE_NAMES,
      "np", "numpy", "math", "warnings", "input", "errors", "state"])
 
 
@@ -69,6 +71,8 @@ def check_name(name: str) -> str | None:
     if not _NAME.fullmatch(name):
         return (f"{shortened(name)} is not a symbol name: use ASCII letters, digits and underscores, "
                 "starting with a letter")
+    if name in NON_FINITE_NAMES:
+        return f"{name!r} reads as a value that is not finite; write a finite number, or name the symbol {name}_1"
     if name in RESERVED_NAMES:
         return f"{name!r} is a reserved name (a Python or formula-module name); choose another, e.g. {name}_1"
     return None

@@ -16,9 +16,11 @@ import networkx as nx
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
+from davies_sym.topology.checks import read_expected
 from davies_sym.topology.couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
-from davies_sym.topology.entries import EntryReader
-from davies_sym.topology.model import Expected, Gear, Link, Ports, State, Train
+from davies_sym.topology.entries import EntryReader, describe
+from davies_sym.topology.expressions import shortened
+from davies_sym.topology.model import Gear, Link, Ports, State, Train
 from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
 from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
@@ -59,29 +61,37 @@ def build_train(document: SourceDocument) -> Train:
     reader.check_keys(data, "", TOP_LEVEL)
     version = data.get("format", FORMAT_VERSION)
     if version != FORMAT_VERSION:
-        reader.problem("format", f"unsupported topology language version {version!r} (this is {FORMAT_VERSION})")
-    links = _read_links(data.get("links"), reader)
+        reader.problem("format", f"unsupported topology language version {describe(version)} (this is "
+                       f"{FORMAT_VERSION})")
+    # A missing table is reported once (its key); references to its names are not.
+    for key, kind in (("links", "link"), ("couplings", "coupling")):
+        if key not in data:
+            reader.unreadable.add(kind)
+    if "gears" not in data:
+        reader.absent.add("gear")
+    links = _read_links(data["links"], reader) if "links" in data else []
     gears = _read_gears(data.get("gears", {}), reader, {link.name for link in links})
-    couplings = _read_couplings(data.get("couplings"), reader, {link.name for link in links}, gears)
-    ports = _read_ports(data.get("ports"), reader, couplings)
+    couplings = _read_couplings(data["couplings"], reader, {link.name for link in links}, gears) \
+        if "couplings" in data else {}
+    ports = _read_ports(data["ports"], reader, couplings) if "ports" in data else None
     if reader.problems:
         raise TopologyError(reader.problems, document.name)
     _check_connected(links, couplings, reader)
     reference = _read_reference(data.get("reference"), reader, links, couplings, ports)
     dof = data.get("degrees_of_freedom")
     if dof is not None and (not isinstance(dof, int) or isinstance(dof, bool) or dof < 1):
-        reader.problem("degrees_of_freedom", f"expected a positive integer, got {dof!r}")
+        reader.problem("degrees_of_freedom", f"expected a positive integer, got {describe(dof)}")
         dof = None
-    expected = _read_expected(data.get("expected", []), reader)
+    expected = read_expected(data.get("expected", []), reader, couplings)
     states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings)
     for i, check in enumerate(expected):
         if check.state is not None and check.state not in {st.name for st in states}:
-            reader.problem(f"expected[{i}].state", f"unknown state {check.state!r}")
+            reader.problem(f"expected[{i}].state", f"unknown state {shortened(check.state)}")
     placement = _read_placement(data["placement"], reader) if "placement" in data else None
     independent = _read_independent(data["independent"], reader) if "independent" in data else None
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
-            reader.problem(key, f"expected text, got {data[key]!r}")
+            reader.problem(key, f"expected text, got {describe(data[key])}")
     if reader.problems or ports is None or reference is None:
         raise TopologyError(reader.problems, document.name)
     return Train(
@@ -106,16 +116,16 @@ def build_train(document: SourceDocument) -> Train:
 def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
     """``[x, y]`` (exact) or an angle in degrees whose sine and cosine are square roots."""
     if isinstance(value, list) and len(value) == 2:
-        parts = [reader.quantity(v, f"placement[{i}]", "position") for i, v in enumerate(value)]
+        parts = [reader.quantity(v, f"placement[{i}]", "position", roots=True) for i, v in enumerate(value)]
         if any(p is None for p in parts):
             return None
         if all(p == 0 for p in parts):
             reader.problem("placement", "the direction must not be zero")
             return None
-        return (parts[0], parts[1])  # type: ignore[return-value]
+        return (parts[0], parts[1])
     angle = exact_number(value)
     if angle is None:
-        reader.problem("placement", f"expected [x, y] or an angle in degrees, got {value!r}")
+        reader.problem("placement", f"expected [x, y] or an angle in degrees, got {describe(value)}")
         return None
     radians = angle * sympy.pi / 180
     cos, sin = sympy.cos(radians), sympy.sin(radians)
@@ -129,13 +139,13 @@ def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.
 def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None:
     """``independent: [r1, r2, r3]``: symbols of the file that stay free."""
     if not isinstance(value, list) or not value:
-        reader.problem("independent", f"expected a list of symbols, got {value!r}")
+        reader.problem("independent", f"expected a list of symbols, got {describe(value)}")
         return None
     names = []
     for i, item in enumerate(value):
         if not isinstance(item, str) or item not in reader.symbols:
-            known = ", ".join(sorted(reader.symbols))
-            reader.problem(f"independent[{i}]", f"{item!r} is not a symbol of the train (symbols: {known})")
+            known = ", ".join(sorted(reader.symbols)[:20])
+            reader.problem(f"independent[{i}]", f"{describe(item)} is not a symbol of the train (symbols: {known})")
         else:
             names.append(item)
     return tuple(names)
@@ -158,33 +168,39 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
             if reader.defined_name(name, f"links.{name}", "link") is None:
                 continue
             if reader.mapping(entry, f"links.{name}") is None:
+                links.append(Link(name))  # defined all the same: only its description is unreadable
                 continue
             reader.check_keys(entry, f"links.{name}", LINK)
             links.append(Link(name, str(entry.get("description", ""))))
     else:
-        reader.problem("links", "expected a list of link names or a mapping of links")
+        reader.problem("links", f"expected a list of link names or a mapping of links, got {describe(value)}")
+        reader.unreadable.add("link")
     if isinstance(value, (list, Mapping)) and len(links) < 2:
         reader.problem("links", "a machine needs at least two links")
+        reader.unreadable.add("link")  # references to the others say nothing more
     return links
 
 
 def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, Gear]:
     gears: dict[str, Gear] = {}
     table = reader.mapping(value, "gears")
+    if table is None:
+        reader.unreadable.add("gear")
     for name, entry in (table or {}).items():
         path = f"gears.{name}"
         if reader.defined_name(name, path, "gear") is None:
             continue
         entry = reader.mapping(entry, path)
         if entry is None:
+            reader.broken.add(name)
             continue
         reader.check_keys(entry, path, GEAR)
-        link = reader.name(entry.get("link"), f"{path}.link")
+        link = reader.name(entry["link"], f"{path}.link") if "link" in entry else None
         if link is not None and link not in links:
             reader.unknown(f"{path}.link", "link", link)
         internal = entry.get("internal", False)
         if not isinstance(internal, bool):
-            reader.problem(f"{path}.internal", f"expected true or false, got {internal!r}")
+            reader.problem(f"{path}.internal", f"expected true or false, got {describe(internal)}")
             internal = False
         radius, teeth, module = _read_size(entry, path, reader)
         tilted = entry.get("axis") == "tilted"
@@ -196,7 +212,8 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
     return gears
 
 
-def _read_size(entry: Mapping[str, Any], path: str, reader: EntryReader):  # type: ignore[no-untyped-def]
+def _read_size(entry: Mapping[str, Any], path: str,
+               reader: EntryReader) -> tuple[sympy.Expr | None, int | sympy.Expr | None, sympy.Expr | None]:
     """Pitch radius from ``radius`` or from ``teeth`` and ``module``."""
     has_radius, has_teeth = "radius" in entry, "teeth" in entry
     if has_radius == has_teeth:
@@ -210,11 +227,12 @@ def _read_size(entry: Mapping[str, Any], path: str, reader: EntryReader):  # typ
         if count is None:
             return None, None, None
         if count.is_number and not (count.is_integer and count > 0):
-            reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {teeth!r}")
+            reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {describe(teeth)}")
             return None, None, None
         teeth = count
     elif not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
-        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got {teeth!r}")
+        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got "
+                       f"{describe(teeth)}")
         return None, None, None
     if "module" not in entry:
         reader.problem(path, "`teeth` needs `module` to give the pitch radius")
@@ -229,32 +247,40 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str],
                     gears: Mapping[str, Gear]) -> dict[str, Coupling]:
     couplings: dict[str, Coupling] = {}
     table = reader.mapping(value, "couplings")
+    if table is None:
+        reader.unreadable.add("coupling")
     for name, entry in (table or {}).items():
         path = f"couplings.{name}"
         if reader.defined_name(name, path, "coupling") is None:
             continue
         entry = reader.mapping(entry, path)
-        if entry is None:
-            continue
-        kind_name = entry.get("type")
-        kind = KINDS.get(kind_name) if isinstance(kind_name, str) else None
-        if kind is None:
-            reader.problem(f"{path}.type", f"unknown coupling type {kind_name!r} (known: {', '.join(KINDS)})")
-            continue
-        reader.check_keys(entry, path, coupling_fields(kind))
-        if kind is GearMesh:
-            coupling = GearMesh.from_entry(name, entry, path, reader, gears)
-        else:
-            coupling = kind.from_entry(name, entry, path, reader)  # type: ignore[attr-defined]
+        kind = _coupling_kind(entry, path, reader) if entry is not None else None
+        # A refused coupling is reported once: ports and states naming it say nothing more.
+        coupling = kind.from_entry(name, entry, path, reader, gears) if kind is not None and entry is not None else None
         if coupling is None:
+            reader.broken.add(name)
             continue
         for i, link in enumerate(coupling.links):
-            if link not in links:
-                reader.unknown(f"{path}.links[{i}]" if kind is not GearMesh else f"{path}.gears", "link", link)
+            # A mesh's links are its gears' links, whose entries report an unknown one.
+            if link not in links and kind is not GearMesh:
+                reader.unknown(f"{path}.links[{i}]", "link", link)
         couplings[name] = coupling
     if table is not None and not couplings and not reader.problems:
         reader.problem("couplings", "no couplings given")
     return couplings
+
+
+def _coupling_kind(entry: Mapping[str, Any], path: str, reader: EntryReader) -> type[Coupling] | None:
+    """The kind ``type`` names, its keys checked, or None with the problem recorded."""
+    kind_name = entry.get("type")
+    kind = KINDS.get(kind_name) if isinstance(kind_name, str) else None
+    if kind is None and "type" not in entry:
+        reader.problem(path, f"missing required key 'type': add `type:` ({', '.join(KINDS)})")
+    elif kind is None:
+        reader.problem(f"{path}.type", f"unknown coupling type {shortened(str(kind_name))} (known: {', '.join(KINDS)})")
+    else:
+        reader.check_keys(entry, path, coupling_fields(kind))
+    return kind
 
 
 def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Coupling]) -> Ports | None:
@@ -270,7 +296,7 @@ def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Couplin
         if name is None:
             continue
         if name not in couplings:
-            reader.problem(f"ports.{role}", f"port on a missing coupling {name!r}")
+            reader.unknown(f"ports.{role}", "coupling", name, f"port on a missing coupling {shortened(name)}")
             continue
         if isinstance(couplings[name], GearMesh):
             reader.problem(f"ports.{role}", f"coupling {name!r} is a gear mesh; a port sits on a "
@@ -331,7 +357,7 @@ def _read_states(value: Any, reader: EntryReader, links: set[str],
         for key in ("input", "output"):
             port = reader.name(entry.get(key), f"{path}.{key}") if key in entry else None
             if port is not None and port not in couplings:
-                reader.problem(f"{path}.{key}", f"port on a missing coupling {port!r}")
+                reader.unknown(f"{path}.{key}", "coupling", port, f"port on a missing coupling {shortened(port)}")
                 port = None
             ports.append(port)
 
@@ -360,29 +386,4 @@ def _read_states(value: Any, reader: EntryReader, links: set[str],
         if ports[0] is not None and ports[1] is not None:
             out.append(State(str(name), ports[0], ports[1], tuple(brake), tuple(clutch), tuple(free),
                              str(entry.get("description", ""))))
-    return tuple(out)
-
-
-def _read_expected(value: Any, reader: EntryReader) -> tuple[Expected, ...]:
-    if not isinstance(value, list):
-        reader.problem("expected", "expected a list of checks")
-        return ()
-    out = []
-    for i, item in enumerate(value):
-        path = f"expected[{i}]"
-        entry = reader.mapping(item, path)
-        if entry is None:
-            continue
-        try:
-            out.append(Expected(
-                quantity=str(entry.get("quantity", "efficiency")),
-                values={str(k): str(v) for k, v in dict(entry.get("values", {})).items()},
-                value=float(entry["value"]),
-                tolerance=float(entry.get("tolerance", 5e-5)),
-                source=str(entry.get("source", "")),
-                input=None if entry.get("input") is None else str(entry["input"]),
-                state=None if entry.get("state") is None else str(entry["state"]),
-            ))
-        except (KeyError, TypeError, ValueError) as exc:
-            reader.problem(path, f"malformed check ({exc})")
     return tuple(out)

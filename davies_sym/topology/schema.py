@@ -89,6 +89,17 @@ STATE = (
     Field("description", "string", False, "What the state is (e.g. first gear)."),
 )
 
+EXPECTED = (
+    Field("quantity", "`efficiency`", False, "What the check compares; `efficiency` (the default) is the only one."),
+    Field("values", "mapping", True,
+          "The design: symbol -> number (exact as written, `0.98` is 49/50), for every symbol of the formula."),
+    Field("value", "number", True, "The published number."),
+    Field("tolerance", "number", False, "Largest accepted difference from `value` (positive); default 5e-5."),
+    Field("source", "string", False, "Where the number is published (document, equation, table)."),
+    Field("input", "coupling", False, "The input port of the check; default the train's input."),
+    Field("state", "state", False, "The operating state of the check (trains with `states`)."),
+)
+
 COUPLING_COMMON = (
     Field("type", "string", True, "Coupling kind: `revolute`, `mesh`, `prismatic` or `screws`."),
     Field("friction", "mapping or `none`", False,

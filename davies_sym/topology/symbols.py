@@ -15,7 +15,7 @@ from types import MappingProxyType
 
 import sympy
 
-from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
+from davies_sym.topology.expressions import MAX_BITS, ExpressionError, parse_expression, shortened
 
 #: Assumptions per symbol role.
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
@@ -59,7 +59,10 @@ def exact_number(value: object) -> sympy.Rational | None:
             return None
         try:
             frac = Fraction(text)
-        except (ValueError, ZeroDivisionError, OverflowError):
+        except (ValueError, ZeroDivisionError):
+            # Shapes the pattern lets through but Fraction refuses ("1.5/3", more digits
+            # than int() reads, "1/0"): not a plain number.  parse_quantity then reads the
+            # text by the expression grammar ("1.5/3" is 1/2 there, "1/0" is refused).
             return None
         return sympy.Rational(frac.numerator, frac.denominator)
     return None
@@ -73,12 +76,14 @@ class QuantityError(ValueError):
     """A quantity could not be read as a number or an expression."""
 
 
-def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Expr:
+def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol], roots: bool = False) -> sympy.Expr:
     """Read a number or an expression of symbols; new names get the assumptions of ``role``.
 
     ``symbols`` collects the symbols of the train (name -> symbol); it is extended with
     any new name met in ``value``.  Text is read by the grammar of
-    :mod:`davies_sym.topology.expressions`, never evaluated as Python.
+    :mod:`davies_sym.topology.expressions`, never evaluated as Python.  The value must be
+    one the exact algebra holds (see :func:`inexact`); square roots only where ``roots``
+    (directions, which the layouts normalise with radical symbols anyway).
     """
     if isinstance(value, float) and not math.isfinite(value):
         raise QuantityError(f"expected a finite number, got {value!r}")
@@ -88,14 +93,50 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol]) -
             parsed = parse_expression(value, lambda name: _symbol(name, role, symbols))
         except ExpressionError as exc:
             raise QuantityError(str(exc)) from None
+        why = inexact(parsed, roots)
+        if why is not None:
+            raise QuantityError(f"{shortened(value)}: {why}")
         number = parsed if parsed.is_number else None
         if number is None:
+            if role in POSITIVE_ROLES and parsed.is_positive is False:
+                raise QuantityError(f"{shortened(value)} is never positive; a size or a coefficient is positive "
+                                    "(write it without the minus sign, or with positive terms)")
             return parsed
     if number is not None:
+        if number.is_Rational and max(abs(number.p).bit_length(), number.q.bit_length()) > MAX_BITS:
+            raise QuantityError(f"{shortened(str(value))} is too large for a number of a train (at most "
+                                f"{MAX_BITS} bits); write it in other units")
         if role in POSITIVE_ROLES and not number > 0:
             raise QuantityError(f"{shortened(str(value))} must be positive (a size or a coefficient)")
         return number
     raise QuantityError(f"expected a number or a symbol expression, got {shortened(repr(value))}")
+
+
+def inexact(expr: sympy.Expr, roots: bool = False) -> str | None:
+    """Why the exact polynomial algebra cannot hold ``expr``, or None when it can: it holds
+    rational functions of the symbols with rational coefficients and, where ``roots``,
+    square roots that are not nested (each becomes a radical symbol).  ``pi`` and the
+    sine of most angles are transcendental; sympy has already written the others
+    (``cos(pi/6)``) as square roots."""
+    if expr.has(sympy.pi):
+        return "pi is exact only in an angle of sin, cos or tan (pi/6); write a rational value such as 355/113"
+    functions = sorted(expr.atoms(sympy.Function), key=str)
+    if functions:
+        hint = f" such as {sympy.N(functions[0], 6)}" if functions[0].is_number else ""
+        return f"{shortened(str(functions[0]), 30)} has no exact value; write a number{hint} instead"
+    for power in sorted(expr.atoms(sympy.Pow), key=str):
+        exponent = power.exp
+        if not exponent.is_Rational or exponent.is_Integer:
+            continue
+        if exponent.q != 2:
+            return "only square roots are exact; write a number instead"
+        if not roots:
+            return ("a square root is exact only in a direction (axis, placement, screw coordinates); write a "
+                    "rational expression instead, e.g. a new symbol for this value")
+        if any(isinstance(p, sympy.Pow) and p.exp.is_Rational and not p.exp.is_Integer
+               for p in sympy.preorder_traversal(power.base)):
+            return "nested square roots are not exact; write a number instead"
+    return None
 
 
 def _symbol(name: str, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Symbol:

@@ -25,12 +25,13 @@ class SourceDocument:
     name: str | None = None
 
     def line(self, path: str) -> int | None:
-        """Line of ``path`` or of its nearest parent that has one."""
+        """Line of ``path`` or of its nearest parent that has one (the document's first line
+        for a top-level key that is missing)."""
         while path:
             if path in self.lines:
                 return self.lines[path]
             path = path.rpartition(".")[0]
-        return None
+        return self.lines.get("")
 
 
 #: Most nodes a document may expand to (aliases count each time they are used).
@@ -40,7 +41,11 @@ MAX_DEPTH = 50
 
 
 class _TooLarge(Exception):
-    """The document expands to too many nodes or nests too deeply."""
+    """The document expands to too many nodes or nests too deeply (``line``: where)."""
+
+    def __init__(self, message: str, line: int | None = None):
+        super().__init__(message)
+        self.line = line
 
 
 def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[Problem],
@@ -49,7 +54,7 @@ def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[P
     if budget[0] < 0:
         raise _TooLarge(f"the document expands to more than {MAX_NODES} entries (aliases used as a bomb?)")
     if depth > MAX_DEPTH:
-        raise _TooLarge(f"the document nests deeper than {MAX_DEPTH} levels")
+        raise _TooLarge(_TOO_DEEP, node.start_mark.line + 1)
     lines.setdefault(path, node.start_mark.line + 1)
     if node.tag not in _PLAIN_TAGS:
         problems.append(Problem(path, f"the YAML tag {node.tag!r} is not part of the language; write plain values",
@@ -83,6 +88,29 @@ def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[P
     return _scalar(node)
 
 
+_TOO_DEEP = f"the document nests deeper than {MAX_DEPTH} levels; a train file needs a few"
+
+
+def _deep_line(text: str) -> int | None:
+    """The line where the nesting first exceeds ``MAX_DEPTH``, from the parser's events
+    (an event stream, not a recursion, so any depth can be scanned)."""
+    depth = 0
+    try:
+        for event in yaml.parse(text, Loader=yaml.SafeLoader):
+            if isinstance(event, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    mark = event.start_mark
+                    return None if mark is None else int(mark.line) + 1
+            elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+                depth -= 1
+    except yaml.YAMLError:
+        # Only the line is sought here: a syntax error met on the way leaves it unknown,
+        # and the nesting is reported without a line.
+        return None
+    return None
+
+
 _CONSTRUCTOR = yaml.constructor.SafeConstructor()
 _PLAIN_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool", "null", "map", "seq")}
 
@@ -95,16 +123,21 @@ def _scalar(node: yaml.Node) -> Any:
 def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
     """Parse YAML text into a :class:`SourceDocument`; syntax errors carry the line."""
     if text.startswith("\ufeff"):
-        text = text[1:]  # a byte-order mark says nothing about the train
+        raise TopologySyntaxError([Problem("", "the file starts with a byte-order mark (U+FEFF); save it as UTF-8 "
+                                           "without a byte-order mark", 1)], name)
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except RecursionError:
-        raise TopologySyntaxError([Problem("", f"the document nests deeper than {MAX_DEPTH} levels")], name) from None
+        raise TopologySyntaxError([Problem("", _TOO_DEEP, _deep_line(text))], name) from None
+    except yaml.reader.ReaderError as exc:
+        line = text.count("\n", 0, exc.position) + 1
+        code = exc.character if isinstance(exc.character, int) else ord(exc.character)
+        raise TopologySyntaxError([Problem("", f"the character U+{code:04X} (a control character) is not allowed in "
+                                           "YAML text; delete it", line)], name) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
-        line = mark.line + 1 if mark is not None else None
         message = " ".join(str(part) for part in (exc.context, exc.problem) if part)
-        raise TopologySyntaxError([Problem("", message, line)], name) from None
+        raise TopologySyntaxError([Problem("", message, mark.line + 1 if mark is not None else None)], name) from None
     except yaml.YAMLError as exc:  # pragma: no cover - unmarked errors are rare
         raise TopologySyntaxError([Problem("", str(exc))], name) from None
     if root is None:
@@ -114,7 +147,7 @@ def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
     try:
         data = _convert(root, "", lines, problems, [MAX_NODES])
     except _TooLarge as exc:
-        raise TopologySyntaxError([Problem("", str(exc))], name) from None
+        raise TopologySyntaxError([Problem("", str(exc), exc.line)], name) from None
     except (yaml.YAMLError, ValueError) as exc:
         raise TopologySyntaxError([Problem("", f"a value cannot be read: {str(exc)[:200]}")], name) from None
     if problems:

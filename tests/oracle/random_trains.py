@@ -404,9 +404,11 @@ def _flow(entries: list[tuple[str, str]]) -> str:
     return "{" + ", ".join(f"{k}: {v}" for k, v in entries) + "}"
 
 
-def spelling(train: RandomTrain, name: str) -> Spelling:
-    """``train`` written in the spelling ``name`` (see the module docstring)."""
-    rng = random.Random(f"{train.family}:{train.seed}:{name}")
+def spelling(train: RandomTrain, name: str, rng: random.Random | None = None) -> Spelling:
+    """``train`` written in the spelling ``name`` (see the module docstring); parts may be
+    joined with ``+`` (``reversed+renamed``).  ``rng`` chooses the order of entries, the
+    names and the tooth counts (default: seeded by the train and the spelling)."""
+    rng = rng or random.Random(f"{train.family}:{train.seed}:{name}")
     parts = set(name.split("+")) if name != "combined" else {"reversed", "flipped", "shuffled", "renamed",
                                                               "teeth", "placement"}
     if name == "catalog":

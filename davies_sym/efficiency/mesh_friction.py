@@ -1,0 +1,65 @@
+"""What the variants need of each mesh's friction, checked before they are derived.
+
+The variants replace each mesh's friction coefficient by the solution of its
+ordinary-efficiency equation (Laus eqs. (74)-(75)).  So each mesh needs a
+load-dependent law (Coulomb or signed linear) whose coefficient is a symbol used
+nowhere else: a number cannot be solved for, and a symbol shared with a radius, an
+efficiency or another mesh would be replaced in the wrong places.  The friction form of
+:func:`davies_sym.analyse` has no such need and keeps accepting these trains.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import sympy
+
+from davies_sym.errors import Problem, TopologyError
+from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
+from davies_sym.topology.model import Train
+
+
+def check_mesh_friction(train: Train) -> None:
+    """Raise :class:`TopologyError` (every problem, located) unless each mesh of ``train``
+    has a load-dependent friction law with a symbol of its own."""
+    problems = [p for c in train.couplings if isinstance(c, GearMesh) for p in _problems(train, c)]
+    if problems:
+        raise TopologyError(problems, train.path)
+
+
+def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
+    law = "coulomb" if mesh.friction.coulomb is not None else "linear"
+    coefficient = mesh.friction.coulomb if mesh.friction.coulomb is not None else mesh.friction.linear
+    entry = f"couplings.{mesh.name}.friction"
+    if coefficient is None:
+        return [train.problem(entry, f"a mesh needs a coulomb or linear friction law, from which its ordinary "
+                              f"efficiency is derived; remove `friction:` (the default is coulomb: zeta_{mesh.name})")]
+    if not isinstance(coefficient, sympy.Symbol):
+        return [train.problem(f"{entry}.{law}", f"the coefficient is solved from the mesh's ordinary efficiency, so "
+                              f"it must be a symbol, not {sympy.sstr(coefficient)[:40]}; write {law}: "
+                              f"zeta_{mesh.name} and give the efficiency (`efficiency:`) instead")]
+    if any(coefficient in q.free_symbols for q in _other_quantities(train, mesh)):
+        return [train.problem(f"{entry}.{law}", f"{coefficient} is also used elsewhere in the train; give each mesh "
+                              f"a friction symbol of its own, e.g. zeta_{mesh.name}")]
+    return []
+
+
+def _other_quantities(train: Train, mesh: GearMesh) -> Iterator[sympy.Expr]:
+    """Every quantity of ``train`` but the load-dependent friction coefficient of ``mesh``."""
+    for g in train.gears:
+        yield g.radius
+    for c in train.couplings:
+        yield from _coupling_quantities(c, own=c.name == mesh.name)
+
+
+def _coupling_quantities(c: Coupling, own: bool) -> Iterator[sympy.Expr]:
+    laws = (c.friction.viscous,) if own else (c.friction.coulomb, c.friction.linear, c.friction.viscous)
+    yield from (x for x in laws if x is not None)
+    if isinstance(c, GearMesh) and c.efficiencies is not None:
+        yield from c.efficiencies
+    if isinstance(c, Revolute) and c.at is not None:
+        yield c.at
+    if isinstance(c, Prismatic):
+        yield from c.direction
+    if isinstance(c, ScrewCoupling):
+        yield from (x for s in (*c.motion_screws, *c.action_screws) for x in s.screw)

@@ -1,0 +1,202 @@
+"""The hand-written part of every generated formula module (numpy only).
+
+:mod:`davies_sym.emit.python_module` copies this file's imports, types and functions
+into each module it writes, and puts the train's own tables and formulas where the
+placeholders below stand.  Keeping this code in a real module means it is linted,
+type-checked (``mypy --strict``) and imported like the rest of the package, so a
+generated module can only differ from it in data and formulas.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from typing import Any, Final, TypedDict
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+Array = NDArray[np.float64]
+_Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
+
+
+class Parameter(TypedDict):
+    """A parameter of the formulas and its admissible range (low excluded unless closed_low)."""
+
+    name: str
+    meaning: str
+    unit: str
+    low: float
+    high: float
+    closed_low: bool
+
+
+class Variant(TypedDict):
+    """One formula of the efficiency and where it holds."""
+
+    name: str
+    number: int
+    input: str
+    output: str
+    region: int
+    conditions: tuple[str, ...]
+    conditions_latex: tuple[str, ...]
+    meshes: tuple[str, ...]
+    formula: str
+    latex: str
+    feasible: bool
+
+
+class DesignWarning(RuntimeWarning):
+    """Some design points are outside the admissible parameters or self-lock (NaN there)."""
+
+
+class DesignError(ValueError):
+    """Raised instead of DesignWarning with errors='raise'."""
+
+
+# Placeholders: each generated module has its own tables and formulas here.
+PORTS: Final[tuple[str, str]] = ("input", "output")
+LOSSY: Final[tuple[str, ...]] = ()
+PARAMETERS: Final[tuple[Parameter, ...]] = ()
+IGNORED: Final[tuple[str, ...]] = ()
+RELATIONS: Final[tuple[str, ...]] = ()
+DEPENDENT: Final[dict[str, str]] = {}
+CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
+VARIANTS: Final[tuple[Variant, ...]] = ()
+_CONDITIONS: Final[_Table] = {}
+_RELATIONS: Final[_Table] = {}
+_DEPENDENT: Final[_Table] = {}
+_EFFICIENCY: Final[_Table] = {}
+_LOSSES: Final[_Table] = {}
+_RATIO: Final[_Table] = {}
+
+
+def _array(value: ArrayLike) -> Array:
+    return np.asarray(value, dtype=np.float64)
+
+
+def _check_input(input: str) -> None:
+    if input not in PORTS:
+        raise ValueError(f"input must be one of {PORTS}, got {input!r}")
+
+
+def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int64]:
+    """Bit k set where turning condition k is negative."""
+    code = np.zeros(shape, dtype=np.int64)
+    for bit, (function, names) in enumerate(_CONDITIONS.values()):
+        code |= np.asarray(function(**{n: values[n] for n in names}) < 0, dtype=np.int64) << bit
+    return code
+
+
+def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> Array:
+    """The function of the variant that holds, evaluated element by element (each
+    variant only on its own points); shape (width, *broadcast shape)."""
+    _check_input(input)
+    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
+    result = np.full((width, *shape), np.nan)
+    with np.errstate(all="ignore"):
+        code = _region(values, shape)
+        for variant in VARIANTS:
+            if variant["input"] != input:
+                continue
+            function, names = table[variant["name"]]
+            mask = code == variant["region"]
+            if mask.all():
+                parts = function(**{n: values[n] for n in names})
+                for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
+                    result[k, ...] = part
+            elif mask.any():
+                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
+                          for n in names}
+                parts = function(**chosen)
+                for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
+                    result[k, mask] = part
+    return result
+
+
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+    """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
+    for name, value in given.items():
+        if value is None:
+            continue
+        function, names = _DEPENDENT[name]
+        implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
+        bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
+        if bad.any():
+            k = np.flatnonzero(bad)[0]
+            actual = np.ravel(_array(value))[k]
+            expected = np.ravel(implied)[k]
+            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                              f"the difference is {actual - expected}")
+
+
+def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
+    """Where every parameter is in its range and every relation positive."""
+    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
+    ok = np.ones(shape, dtype=bool)
+    with np.errstate(all="ignore"):
+        for p in PARAMETERS:
+            if p["name"] not in values:
+                continue
+            v = values[p["name"]]
+            ok &= ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+        for function, names in _RELATIONS.values():
+            if all(n in values for n in names):
+                ok &= function(**{n: values[n] for n in names})
+    return ok
+
+
+def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
+    """NaN (with a warning, or an error) where the design is not admissible or self-locks."""
+    if errors not in ("warn", "raise", "ignore"):
+        raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
+    outside = ~_admissible(values)
+    with np.errstate(invalid="ignore"):
+        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside
+    if not (outside.any() or locked.any()):
+        return result
+    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+               f"(PARAMETERS, RELATIONS) and {int(np.count_nonzero(locked))} where the train self-locks "
+               "(efficiency outside (0, 1]): NaN there")
+    if errors == "raise":
+        raise DesignError(message)
+    if errors == "warn":
+        warnings.warn(message, DesignWarning, stacklevel=4)
+    return np.where(outside | locked, np.nan, result)
+
+
+def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
+    """What ``efficiency`` returns, once its arguments are arrays."""
+    (result,) = _select(input, values, _EFFICIENCY, 1)
+    return _screened(result, values, errors)
+
+
+def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
+    """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    (result,) = _select(input, values, _EFFICIENCY, 1)
+    bad = np.isnan(_screened(result, values, errors))
+    parts = _select(input, values, _LOSSES, len(LOSSY))
+    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+
+
+def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
+    """Input speed over output speed with ``input`` as the input port; NaN (with a
+    warning, or an error) where the design is not admissible."""
+    _check_input(input)
+    if errors not in ("warn", "raise", "ignore"):
+        raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
+    function, names = _RATIO[PORTS[0]]
+    with np.errstate(all="ignore"):
+        ratio = _array(function(**{n: values[n] for n in names}))
+        ratio = ratio if input == PORTS[0] else _array(1 / ratio)
+    outside = ~_admissible(values) | ~np.isfinite(ratio)
+    if not outside.any():
+        return ratio
+    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+               "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
+    if errors == "raise":
+        raise DesignError(message)
+    if errors == "warn":
+        warnings.warn(message, DesignWarning, stacklevel=3)
+    return np.where(outside, np.nan, ratio)

@@ -121,7 +121,8 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     port = _eval_port(train, args)
     x = _sweep(train, "--plot", args.plot)
     y = _sweep(train, "--vs", args.vs) if args.vs else None
-    published = [f"{k}={v}" for k, v in train.published_design(args.state).items()]
+    # A published value for a name the file no longer has (written as a number) is not a default.
+    published = [f"{k}={v}" for k, v in train.published_design(args.state).items() if k in train.symbols]
     values = {str(k): float(v) for k, v in _values(train, [*published, *args.at], "--at").items()}
     swept = {x.name} | ({y.name} if y else set())
     needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]

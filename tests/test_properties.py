@@ -37,8 +37,9 @@ from oracle.compare import LOCKING, OK, compare
 from oracle.random_trains import generate, spelling
 
 TRAINS = tuple(sorted(p.stem for p in CATALOG.glob("*.yaml")))
-#: Trains whose harmless mutations derive for seconds (Ravigneaux ~15 s): a tenth of the examples.
-COSTLY = ("humpage", "ravigneaux", "simpson")
+#: Trains whose harmless mutations derive for seconds (Humpage 5 s, Ravigneaux 15 s): only the slow
+#: run mutates them, with this fraction of its examples.
+COSTLY = {"humpage": 20, "simpson": 10, "ravigneaux": 50}
 NAMED_TABLES = ("links", "gears", "couplings", "states")
 
 #: Names that Python, sympy or the generated modules give a meaning to.
@@ -199,7 +200,7 @@ def assert_answered_or_refused(result: Result, path: Path, text: str, single: bo
 
 def _check_mutations(train: str, profile: settings) -> None:
     data = _load(train)
-    examples = profile.max_examples // 10 if train in COSTLY else profile.max_examples
+    examples = profile.max_examples // COSTLY.get(train, 1)
 
     @settings(profile, max_examples=max(examples, 2))
     @given(mutation=mutations(data))
@@ -215,7 +216,7 @@ def _check_mutations(train: str, profile: settings) -> None:
     check()
 
 
-@pytest.mark.parametrize("train", TRAINS)
+@pytest.mark.parametrize("train", [t for t in TRAINS if t not in COSTLY])
 def test_mutated_catalog_file_is_answered_or_refused(train: str) -> None:
     _check_mutations(train, settings.get_profile("davies"))
 

@@ -227,3 +227,25 @@ def test_unreachable_condition_combination_is_reported_infeasible():
     for v in vs.variants:
         if v.feasible:
             assert v.derivative_check == "positive"
+
+
+def test_partial_derivative_rule_flags_a_wrong_power_direction():
+    """Laus section 3.6.2: with the right driver in every mesh the efficiency increases
+    with each mesh efficiency; a variant whose mesh C runs the wrong way (eta_C where
+    1/eta_C belongs) has a negative partial derivative in eta_C, and the check says so."""
+    from dataclasses import replace
+
+    from davies_sym.efficiency.variants import _checked
+
+    vs = tuplin_variants()
+    right = vs.variants[0]
+    domain = ParameterDomain.of(vs.train, vs.analysis.network.layout)
+    (c1,) = vs.conditions
+    region = [p for p in domain.samples(60, seed=3) if domain.value(c1.expression, p) * right.signs[c1.name] > 0]
+    assert region
+    etas = efficiency_symbols(vs.train)
+    ring = right.efficiency_rf.ring
+    wrong = replace(right, efficiency_rf=ring.rational(right.efficiency.subs(eC, 1 / eC)))
+    args = (region, etas, vs.analysis, vs.conditions, random.Random(1))
+    assert _checked(right, *args).derivative_check == "positive"
+    assert _checked(wrong, *args).derivative_check == "failed: eta_C"

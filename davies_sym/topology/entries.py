@@ -120,13 +120,12 @@ class EntryReader:
 
 
 def describe(value: Any) -> str:
-    """``value`` for a message: its YAML kind and its text, shortened."""
+    """``value`` for a message, as written in YAML and shortened (a huge value is shown by its ends)."""
     if value is None:
         return "nothing"
+    if isinstance(value, bool):
+        return "true" if value else "false"
     if isinstance(value, str):
         return shortened(value, 40)
-    kinds = {bool: "true/false", int: "number", float: "number", list: "list", dict: "mapping"}
     text = repr(value)
-    if len(text) > 40:
-        text = f"{text[:18]} ... {text[-17:]}"
-    return f"{kinds.get(type(value), type(value).__name__)} {text}"
+    return text if len(text) <= 40 else f"{text[:18]} ... {text[-17:]} ({len(text)} characters)"

@@ -209,6 +209,8 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
             gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
         else:
             reader.broken.add(name)
+    if table and not gears:
+        reader.unreadable.add("gear")  # not one gear could be read: the table's problems say it all
     return gears
 
 
@@ -265,6 +267,8 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str],
             if link not in links and kind is not GearMesh:
                 reader.unknown(f"{path}.links[{i}]", "link", link)
         couplings[name] = coupling
+    if table and not couplings:
+        reader.unreadable.add("coupling")  # not one coupling could be read: the table's problems say it all
     if table is not None and not couplings and not reader.problems:
         reader.problem("couplings", "no couplings given")
     return couplings

@@ -1,4 +1,7 @@
-"""The validated, immutable model of a train (what :func:`davies_sym.load` returns)."""
+"""The validated, immutable model of a train (what :func:`davies_sym.load` returns).
+
+:class:`Gear` lives in :mod:`.gear` (couplings read gears too) and is named here as part
+of the model."""
 
 from __future__ import annotations
 
@@ -10,6 +13,7 @@ import sympy
 
 from davies_sym.errors import Problem
 from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.gear import Gear as Gear  # named here as part of the model
 
 
 @dataclass(frozen=True)
@@ -18,24 +22,6 @@ class Link:
 
     name: str
     description: str = ""
-
-
-@dataclass(frozen=True)
-class Gear:
-    """A gear fixed to a link, with its pitch radius (number or expression)."""
-
-    name: str
-    link: str
-    radius: sympy.Expr
-    internal: bool = False
-    teeth: int | sympy.Expr | None = None
-    module: sympy.Expr | None = None
-    #: Direction of the gear axis through the common apex (intersecting-axis trains);
-    #: None for parallel-axis trains (axes along z).
-    axis: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
-    #: The axis is tilted by the cone geometry: derived from the two coaxial gears this
-    #: gear meshes (the Humpage planet, Laus eq. (80)).
-    tilted: bool = False
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,26 @@
+"""A gear of a train: which link carries it and its pitch circle (read by the couplings
+and held by the model)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy
+
+
+@dataclass(frozen=True)
+class Gear:
+    """A gear fixed to a link, with its pitch radius (number or expression)."""
+
+    name: str
+    link: str
+    radius: sympy.Expr
+    internal: bool = False
+    teeth: int | sympy.Expr | None = None
+    module: sympy.Expr | None = None
+    #: Direction of the gear axis through the common apex (intersecting-axis trains);
+    #: None for parallel-axis trains (axes along z).
+    axis: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
+    #: The axis is tilted by the cone geometry: derived from the two coaxial gears this
+    #: gear meshes (the Humpage planet, Laus eq. (80)).
+    tilted: bool = False

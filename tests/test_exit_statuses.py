@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 from hostile.helpers import run_main
@@ -135,3 +136,17 @@ def test_idle_meshes_are_reported_as_carrying_no_power():
                       "eta_E=0.9", "eta_F=0.9", "rs=20", "rr1=50", "rr2=50"])
     assert value.returncode == 0, value.describe()
     assert value.stdout.splitlines()[-1] == "1.0"
+
+
+def test_dependent_motion_screws_are_located_bad_input(tmp_path):
+    """Two unit motions of coupling C along the same screw (the second twice the first):
+    exit 2 at the coupling's line and entry, not a bare message."""
+    from conftest import ROOT
+
+    source = tmp_path / "screws.yaml"
+    text = (Path(ROOT) / "tests" / "data" / "tuplin_screws.yaml").read_text()
+    doubled = "motions: {t_C: {t: 1, u: r1}, s_C: {t: 2, u: 2*r1}}"
+    source.write_text(text.replace("motions: {t_C: {t: 1, u: r1}}", doubled))
+    result = run_main([str(source), "--quiet"])
+    assert result.returncode == 2, result.describe()
+    assert f"{source}:8: couplings.C.motions: its unit motion screws are not independent" in result.stderr

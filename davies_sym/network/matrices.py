@@ -21,7 +21,13 @@ from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
 from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws
-from davies_sym.network.screw_system import ReducedCoupling, ScrewSystem, minimal_screw_system, reduce_coupling
+from davies_sym.network.screw_system import (
+    CouplingScrewError,
+    ReducedCoupling,
+    ScrewSystem,
+    minimal_screw_system,
+    reduce_coupling,
+)
 from davies_sym.topology.couplings import Coupling, GearMesh, ScrewCoupling
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
@@ -100,7 +106,11 @@ class Network:
         for c in train.couplings:
             if isinstance(c, ScrewCoupling):
                 _check_reciprocal(train, c, full[c.name])
-            self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
+            try:
+                self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
+            except CouplingScrewError as exc:
+                entry = f"couplings.{c.name}" + (".motions" if isinstance(c, ScrewCoupling) else "")
+                raise TopologyError([train.problem(entry, exc.reason)], train.path) from exc
         self.motions, self.actions, self.laws = self._variables()
         self._check_names()
 

@@ -88,6 +88,16 @@ def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
     return ScrewSystem(tuple(chosen), lift)
 
 
+class CouplingScrewError(DerivationError):
+    """A coupling's own screws are inconsistent (dependent motions, too few constraints);
+    the caller, which knows the file, locates it."""
+
+    def __init__(self, coupling: str, message: str):
+        self.coupling = coupling
+        self.reason = message
+        super().__init__(f"coupling {coupling}: {message}")
+
+
 @dataclass(frozen=True)
 class ReducedCoupling:
     """A coupling's kept unit twists and its independent constraint wrenches."""
@@ -102,7 +112,8 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
     reduced_motions = sympy.Matrix([list(system.reduce_twist(m.screw)) for m in motions])
     freedom = reduced_motions.rank(simplify=True)
     if freedom != len(motions):
-        raise DerivationError(f"coupling {name}: its unit motion screws are not independent")
+        raise CouplingScrewError(name, "its unit motion screws are not independent; give screws that span "
+                                       "different motions")
     chosen: list[NamedScrew] = []
     rows: list[list[sympy.Expr]] = []
     for candidate in screws.constraints:
@@ -115,7 +126,7 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
         if len(chosen) == system.order - freedom:
             break
     if len(chosen) != system.order - freedom:
-        raise DerivationError(f"coupling {name}: found {len(chosen)} independent constraint actions "
-                              f"reciprocal to its motions, need {system.order - freedom}")
+        raise CouplingScrewError(name, f"found {len(chosen)} independent constraint actions reciprocal to its "
+                                       f"motions, need {system.order - freedom}")
     kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)
     return ReducedCoupling(kept, tuple(chosen))

@@ -176,9 +176,8 @@ def test_module_agrees_with_derive_eval(name):
     vs, module = variant_set(name), module_of(name)
     train = name.split("[")[0]
     state = ["--state", name.split("[")[1].rstrip("]")] if "[" in name else []
-    for point in design_points(vs, 2, seed=13):
-        if not admissible(vs, point):
-            continue
+    # One admissible design (each call derives the train afresh, as a user's would).
+    for point in [p for p in design_points(vs, 6, seed=13) if admissible(vs, p)][:1]:
         pairs = [f"{s}={point[s]}" for s in point]
         for port in (vs.train.ports.input, vs.train.ports.output):
             result = run_main([os.path.join(ROOT, "catalog", f"{train}.yaml"), "--quiet", *state, "--input", port,

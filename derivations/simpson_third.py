@@ -241,23 +241,33 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     return ok
 
 
-def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
-    """NaN (with a warning, or an error) where the design is not admissible or self-locks."""
+def _check_errors(errors: str) -> None:
     if errors not in ("warn", "raise", "ignore"):
         raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
-    outside = ~_admissible(values)
-    with np.errstate(invalid="ignore"):
-        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside
-    if not (outside.any() or locked.any()):
+
+
+def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
+    """``result`` with NaN where ``bad``, after a DesignWarning (or a DesignError) saying
+    why; ``stacklevel`` points the warning at the caller of the entry point."""
+    if not bad.any():
         return result
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               f"(PARAMETERS, RELATIONS) and {int(np.count_nonzero(locked))} where the train self-locks "
-               "(efficiency outside (0, 1]): NaN there")
     if errors == "raise":
         raise DesignError(message)
     if errors == "warn":
-        warnings.warn(message, DesignWarning, stacklevel=4)
-    return np.where(outside | locked, np.nan, result)
+        warnings.warn(message, DesignWarning, stacklevel=stacklevel + 1)
+    return np.where(bad, np.nan, result)
+
+
+def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
+    """NaN (with a warning, or an error) where the design is not admissible or self-locks."""
+    _check_errors(errors)
+    outside = ~_admissible(values)
+    with np.errstate(invalid="ignore"):
+        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside
+    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+               f"(PARAMETERS, RELATIONS) and {int(np.count_nonzero(locked))} where the train self-locks "
+               "(efficiency outside (0, 1]): NaN there")
+    return _nan_where(outside | locked, result, message, errors, stacklevel=4)
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
@@ -278,22 +288,15 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
     """Input speed over output speed with ``input`` as the input port; NaN (with a
     warning, or an error) where the design is not admissible."""
     _check_input(input)
-    if errors not in ("warn", "raise", "ignore"):
-        raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
+    _check_errors(errors)
     function, names = _RATIO[PORTS[0]]
     with np.errstate(all="ignore"):
         ratio = _array(function(**{n: values[n] for n in names}))
         ratio = ratio if input == PORTS[0] else _array(1 / ratio)
     outside = ~_admissible(values) | ~np.isfinite(ratio)
-    if not outside.any():
-        return ratio
     message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
                "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
-    if errors == "raise":
-        raise DesignError(message)
-    if errors == "warn":
-        warnings.warn(message, DesignWarning, stacklevel=3)
-    return np.where(outside, np.nan, ratio)
+    return _nan_where(outside, ratio, message, errors, stacklevel=3)
 
 
 def efficiency(

@@ -82,19 +82,22 @@ def _call(function: str, *args: ast.expr) -> ast.Call:
 @dataclass(frozen=True)
 class _Runtime:
     """The parts of :mod:`formula_runtime`: the import block and, in order, the source
-    of every other top-level statement (placeholders: their name and annotation)."""
+    of every other top-level statement (placeholders: their name and annotation); and
+    the names it defines or imports, which a train's names may not take."""
 
     imports: str
     before: tuple[str, ...]
     placeholders: dict[str, ast.expr]
     after: tuple[str, ...]
+    names: frozenset[str]
 
 
 @cache
 def _runtime() -> _Runtime:
     source = inspect.getsource(formula_runtime)
     lines = source.split("\n")
-    body = ast.parse(source).body[1:]  # without the docstring
+    tree = ast.parse(source)
+    body = tree.body[1:]  # without the docstring
     imports = [n for n in body if isinstance(n, (ast.Import, ast.ImportFrom))]
     block = "\n".join(lines[imports[0].lineno - 1:imports[-1].end_lineno])
     before: list[str] = []
@@ -107,7 +110,16 @@ def _runtime() -> _Runtime:
         segment = ast.get_source_segment(source, node)
         assert segment is not None
         (after if placeholders else before).append(segment)
-    return _Runtime(block, tuple(before), placeholders, tuple(after))
+    # The entry points' own arguments and the builtin the tables use are taken too.
+    names = {"input", "errors", "values", "efficiency", "losses", "speed_ratio", "float"}
+    for part in ast.walk(tree):
+        if isinstance(part, (ast.FunctionDef, ast.ClassDef)):
+            names.add(part.name)
+        elif isinstance(part, ast.alias):
+            names.add((part.asname or part.name).split(".")[0])
+        elif isinstance(part, ast.Name) and isinstance(part.ctx, ast.Store):
+            names.add(part.id)
+    return _Runtime(block, tuple(before), placeholders, tuple(after), frozenset(names))
 
 
 def _constant(name: str, value: ast.expr) -> ast.AnnAssign:
@@ -115,29 +127,10 @@ def _constant(name: str, value: ast.expr) -> ast.AnnAssign:
     return ast.AnnAssign(ast.Name(name, ast.Store()), _runtime().placeholders[name], value, simple=1)
 
 
-def _check_identifier(variants: VariantSet, name: str, what: str) -> None:
-    """``name`` may be written as an identifier of the generated module."""
-    ok = (name.isascii() and name.isidentifier() and not keyword.iskeyword(name)
-          and not name.startswith("_") and name not in _reserved())
-    if not ok:
-        raise DerivationError(f"the {what} {name!r} cannot be a name "
-                              "in the generated module (a Python keyword, a name the module uses, or not an "
-                              "ASCII identifier); rename it in the topology file")
-
-
-@cache
-def _reserved() -> frozenset[str]:
-    """Names the generated module defines or imports, and the entry points' own arguments."""
-    tree = ast.parse(inspect.getsource(formula_runtime))
-    names = {"input", "errors", "values", "efficiency", "losses", "speed_ratio", "float"}
-    for node in ast.walk(tree):
-        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
-            names.add(node.name)
-        elif isinstance(node, ast.alias):
-            names.add((node.asname or node.name).split(".")[0])
-        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-            names.add(node.id)
-    return frozenset(names)
+def _usable(name: str) -> bool:
+    """Whether ``name`` may be written as an identifier of the generated module."""
+    return (name.isascii() and name.isidentifier() and not keyword.iskeyword(name)
+            and name not in _runtime().names)
 
 
 def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
@@ -305,10 +298,11 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     radicals = variants.analysis.network.layout.radicals
     symbols = [str(s) for s in variants.symbols]
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
-    for s in {*symbols, *accepted, *dependent_of}:
-        _check_identifier(variants, s, "symbol")
-    for c in variants.conditions:
-        _check_identifier(variants, f"condition_{c.name}", "turning condition")
+    for s in sorted({*symbols, *accepted, *dependent_of}):
+        if not _usable(s) or s.startswith("_"):
+            raise DerivationError(f"the symbol {s!r} cannot be a name in the generated module (a Python keyword, "
+                                  "a name the module uses, or not an ASCII identifier); rename it in the topology "
+                                  "file")
     lossy = lossy_couplings(variants)
     functions: list[ast.FunctionDef] = []
     tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
@@ -365,8 +359,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     ]
     names = [f.name for f in functions]
     for f in functions:
-        if (f.name in _reserved() or not f.name.isascii() or not f.name.isidentifier() or keyword.iskeyword(f.name)
-                or names.count(f.name) > 1):
+        if not _usable(f.name) or names.count(f.name) > 1:
             raise DerivationError(f"the generated function name {f.name!r} is not "
                                   "usable (not an ASCII identifier, or two ports or conditions give the same "
                                   "name); rename the ports in the topology file")

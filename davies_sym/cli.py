@@ -20,7 +20,7 @@ from davies_sym.emit.report import kinematics_document, kinematics_text, text_su
 from davies_sym.emit.variant_report import condition_text, variants_document, variants_text
 from davies_sym.errors import DaviesError, DesignError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
@@ -67,8 +67,7 @@ def _values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[
     """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
     efficiencies in (0, 1])."""
     problems, out = [], {}
-    efficiencies = {e for c in train.couplings if isinstance(c, GearMesh) and c.efficiencies
-                    for e in c.efficiencies if isinstance(e, sympy.Symbol)}
+    efficiencies = mesh_efficiency_symbols(train.couplings)
     for pair in pairs:
         name, sep, text = pair.partition("=")
         name = name.strip()
@@ -84,12 +83,9 @@ def _values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[
         except ExpressionError as exc:
             problems.append(Problem(option, f"{name}: {exc}"))
             continue
-        symbol = train.symbols[name]
-        if symbol in efficiencies and not 0 < value <= 1:
-            problems.append(Problem(option, f"{name} = {text} is not an efficiency: it lies in (0, 1]"))
-            continue
-        if symbol.is_positive and not value > 0:
-            problems.append(Problem(option, f"{name} = {text} must be positive"))
+        why = role_problem(name, train.symbols[name], value, text, efficiencies)
+        if why is not None:
+            problems.append(Problem(option, why))
             continue
         out[train.symbols[name]] = value
     if problems:

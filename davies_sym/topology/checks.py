@@ -9,7 +9,7 @@ sizes positive, mesh efficiencies in (0, 1].
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import sympy
@@ -61,8 +61,7 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
     entry = reader.mapping(value, path)
     if entry is None:
         return {}
-    efficiencies = {e for c in couplings.values() if isinstance(c, GearMesh) and c.efficiencies
-                    for e in c.efficiencies if isinstance(e, sympy.Symbol)}
+    efficiencies = mesh_efficiency_symbols(couplings.values())
     out = {}
     for name, item in entry.items():
         where = f"{path}.{name}"
@@ -74,14 +73,30 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
         if number is None:
             continue
         # A value for a name the train does not use (a radius written as a number) is kept.
-        symbol = reader.symbols.get(name)
-        if symbol in efficiencies and not 0 < number <= 1:
-            reader.problem(where, f"{name} = {shortened(str(item))} is not an efficiency: write a number in (0, 1]")
-        elif symbol is not None and symbol.is_positive and not number > 0:
-            reader.problem(where, f"{name} = {shortened(str(item))} must be positive")
+        why = role_problem(name, reader.symbols.get(name), number, shortened(str(item)), efficiencies)
+        if why is not None:
+            reader.problem(where, why)
         else:
             out[name] = str(item)
     return out
+
+
+def mesh_efficiency_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:
+    """The symbols written as a mesh's ordinary efficiency."""
+    return {e for c in couplings if isinstance(c, GearMesh) and c.efficiencies
+            for e in c.efficiencies if isinstance(e, sympy.Symbol)}
+
+
+def role_problem(name: str, symbol: sympy.Symbol | None, number: sympy.Expr, shown: str,
+                 efficiencies: set[sympy.Symbol]) -> str | None:
+    """Why ``number`` (shown to the user as ``shown``) cannot be the value of ``symbol``:
+    an efficiency lies in (0, 1], a size is positive; None when it can (or the symbol is
+    unknown)."""
+    if symbol in efficiencies and not 0 < number <= 1:
+        return f"{name} = {shown} is not an efficiency: write a number in (0, 1]"
+    if symbol is not None and symbol.is_positive and not number > 0:
+        return f"{name} = {shown} must be positive"
+    return None
 
 
 def _exact(value: Any, path: str, reader: EntryReader) -> sympy.Expr | None:

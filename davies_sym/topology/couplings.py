@@ -17,6 +17,7 @@ import sympy
 from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
 from davies_sym.topology.entries import describe
 from davies_sym.topology.expressions import check_name, shortened
+from davies_sym.topology.gear import Gear
 from davies_sym.topology.schema import COUPLING_COMMON, FRICTION, Field
 
 if TYPE_CHECKING:
@@ -50,7 +51,7 @@ class Coupling:
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Any]) -> Coupling | None:
+                   gears: Mapping[str, Gear]) -> Coupling | None:
         """The coupling its entry describes, or None when ``reader`` holds the problems
         (``gears``: the train's gears by name, for the kinds that join gears)."""
         raise NotImplementedError
@@ -119,7 +120,7 @@ class Revolute(Coupling):
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Any]) -> Revolute | None:
+                   gears: Mapping[str, Gear]) -> Revolute | None:
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
@@ -165,7 +166,7 @@ class GearMesh(Coupling):
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Any]) -> GearMesh | None:
+                   gears: Mapping[str, Gear]) -> GearMesh | None:
         if "gears" not in entry:
             return None  # reported as a missing required key
         pair = entry["gears"]
@@ -204,7 +205,7 @@ class GearMesh(Coupling):
         return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
 
 
-def _annulus_larger(annulus: Any, pinion: Any, path: str, reader: EntryReader) -> bool:
+def _annulus_larger(annulus: Gear, pinion: Gear, path: str, reader: EntryReader) -> bool:
     """Whether an annulus may be larger than the gear it meshes (refused when its radius is
     known to be smaller or equal: the pinion would not fit inside)."""
     if sympy.expand(annulus.radius - pinion.radius).is_positive is not False:
@@ -249,7 +250,7 @@ class Prismatic(Coupling):
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Any]) -> Prismatic | None:
+                   gears: Mapping[str, Gear]) -> Prismatic | None:
         links = _read_links(entry, path, reader)
         direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
@@ -296,7 +297,7 @@ class ScrewCoupling(Coupling):
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Any]) -> ScrewCoupling | None:
+                   gears: Mapping[str, Gear]) -> ScrewCoupling | None:
         links = _read_links(entry, path, reader)
         motions = (_read_screws(entry["motions"], f"{path}.motions", reader, TWIST_COORDINATES)
                    if "motions" in entry else None)

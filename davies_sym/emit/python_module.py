@@ -263,10 +263,10 @@ def _module_doc(variants: VariantSet, ignored: Sequence[str]) -> str:
     return "\n".join(parts)
 
 
-def _tables(variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str]) -> list[ast.stmt]:
+def _tables(variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str],
+            relations: Sequence[sympy.Expr]) -> list[ast.stmt]:
     """The public tables: ports, losses, parameters, relations, conditions, variants."""
     train = variants.train
-    relations = admissible_relations(variants)
     parameters = tuple({"name": p.name, "meaning": p.meaning, "unit": p.unit, "low": p.low, "high": p.high,
                         "closed_low": p.closed_low} for p in parameter_table(variants))
     variant_rows = []
@@ -318,7 +318,8 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     for c in variants.conditions:
         add("_CONDITIONS", c.name, f"condition_{c.name}", f"Turning condition {c.name}: {sympy.sstr(c.simplified)}.",
             [restore(c.expression, radicals)])
-    for k, r in enumerate(admissible_relations(variants), start=1):
+    relations = admissible_relations(variants)
+    for k, r in enumerate(relations, start=1):
         add("_RELATIONS", f"{sympy.sstr(r)} > 0", f"_relation_{k}", f"Whether {sympy.sstr(r)} > 0.", [r],
             "NDArray[np.bool_]", relation=True)
     fractions_of = all_loss_fractions(variants)
@@ -368,7 +369,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     items: list[tuple[int, str | ast.stmt]] = [(0, docstring(_module_doc(variants, ignored), "")),
                                                 (1, runtime.imports)]
     items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
-    items += [(2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored))]
+    items += [(2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored, relations))]
     items += [(2, f) for f in functions]
     items += [(2 if k == 0 else 0, _constant(name, _table(rows))) for k, (name, rows) in enumerate(tables.items())]
     items += [(2, text) for text in runtime.after]

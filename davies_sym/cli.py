@@ -13,12 +13,13 @@ import sympy
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.evaluation import evaluate
 from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
-from davies_sym.emit.variant_report import condition_text, variants_document, variants_text
-from davies_sym.errors import DaviesError, DesignError, InputError, NotCoveredError, Problem
+from davies_sym.emit.variant_report import variants_document, variants_text
+from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
@@ -146,52 +147,6 @@ def _eval_port(train: Train, args: argparse.Namespace) -> str:
     if chosen is not None and chosen not in ports:
         raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
     return chosen or train.ports.input
-
-
-def _evaluate(variants: VariantSet, args: argparse.Namespace) -> dict[str, object]:
-    """The variant, speed ratio and efficiency at the ``--eval`` values (a self-locking
-    design is :class:`NotCoveredError`)."""
-    train = variants.train
-    values = _values(train, args.eval)
-    port = _eval_port(train, args)
-    other = train.ports.output if port == train.ports.input else train.ports.input
-    ratio_expr = variants.analysis.speed_ratio().to_expr()
-    needed = sorted({*variants.symbols, *ratio_expr.free_symbols}, key=str)
-    missing = [str(s) for s in needed if s not in values]
-    if missing:
-        raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
-    for c in variants.analysis.network.layout.constraints:
-        # A constraint no parameter could be solved for (a nonlinear one) is checked here.
-        residual = sympy.expand(c.expression.subs(values))
-        if residual.is_number and residual != 0:
-            raise DesignError([Problem("--eval", f"the values break the geometric constraint {c} (difference "
-                                       f"{residual})")], train.path)
-    ratio = ratio_expr.subs(values)
-    ratio = ratio if port == train.ports.input else 1 / ratio
-    if not (ratio.is_finite and ratio != 0):
-        still = other if ratio != 0 else port
-        raise NotCoveredError(f"port {still} does not turn at these values (speed ratio {port} over {other} "
-                              f"{'0' if ratio == 0 else 'infinite'}): no efficiency")
-    variant = variants.variant_for(values, port)
-    value = variants.evaluate(values, port)
-    if not 0 < value <= 1:
-        raise NotCoveredError(f"the train self-locks at these values with {port} as input: variant "
-                              f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]")
-    return {"status": "ok", "input": port, "output": other,
-            "variant": {"number": variant.number, "name": variant.name,
-                        "conditions": condition_text(variants, variant)},
-            "speed_ratio": float(ratio), "speed_ratio_exact": sympy.sstr(ratio),
-            "efficiency": float(value), "efficiency_exact": sympy.sstr(value)}
-
-
-def _evaluation_text(evaluation: dict[str, object]) -> str:
-    """Three lines: the variant, the speed ratio, and the efficiency alone (scripts read the last line)."""
-    variant = evaluation["variant"]
-    assert isinstance(variant, dict)
-    ratio, value = evaluation["speed_ratio"], evaluation["efficiency"]
-    return (f"variant ({variant['number']}): input {evaluation['input']}, output {evaluation['output']}\n"
-            f"speed ratio ({evaluation['input']} over {evaluation['output']}): {ratio!r}\n"
-            f"{value!r}\n")
 
 
 def _derive_sets(train: Train, state: str | None, progress: Progress,
@@ -322,7 +277,9 @@ def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
     else:
         text = _document(train, sets, args.json, progress)
     # Everything is computed (and every value checked) before anything is written.
-    evaluation = _evaluate(sets[0][1], args) if args.eval is not None else None
+    chosen = sets[0][1].train  # the state's train: its own ports and symbols
+    evaluation = (evaluate(sets[0][1], _values(chosen, args.eval), _eval_port(chosen, args))
+                  if args.eval is not None else None)
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
@@ -332,8 +289,8 @@ def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
         outputs.append((None, text))
     if evaluation is not None:
         state = {"state": args.state} if args.state else {}
-        outputs.append((None, json.dumps({"file": train.path, **state, **evaluation}, indent=2) + "\n"
-                        if args.json else _evaluation_text(evaluation)))
+        outputs.append((None, json.dumps({"file": train.path, **state, **evaluation.document()}, indent=2) + "\n"
+                        if args.json else evaluation.text()))
     return outputs
 
 

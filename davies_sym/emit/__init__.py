@@ -2,6 +2,6 @@
 
 Text reports (:mod:`.report`, :mod:`.variant_report`), JSON documents, LaTeX
 (:mod:`.latex`), generated formula modules for design code (:mod:`.python_module`),
-figures (:mod:`.plots`, :mod:`.graph_drawing`) and atomic file writing (:mod:`.atomic`).
-Nothing here derives; it only formats.
+figures (:mod:`.plots`, :mod:`.graph_drawing`), the ``--eval`` answer (:mod:`.evaluation`)
+and atomic file writing (:mod:`.atomic`). Nothing here derives; it only formats.
 """

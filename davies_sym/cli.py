@@ -69,6 +69,7 @@ def _values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[
     efficiencies in (0, 1])."""
     problems, out = [], {}
     efficiencies = mesh_efficiency_symbols(train.couplings)
+    defined = {str(d.symbol): d for d in train.definitions}
     for pair in pairs:
         name, sep, text = pair.partition("=")
         name = name.strip()
@@ -78,6 +79,11 @@ def _values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[
         if name not in train.symbols:
             problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: "
                                     f"{', '.join(sorted(train.symbols))})"))
+            continue
+        if name in defined:
+            d = defined[name]
+            problems.append(Problem(option, f"{name} is the {d.meaning} ({d.source}); give "
+                                    f"{', '.join(sorted(map(str, d.expression.free_symbols)))} instead"))
             continue
         try:
             value = parse_expression(text)

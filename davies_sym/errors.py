@@ -89,6 +89,13 @@ class DesignError(InputError):
     kind = "design error"
 
 
+class MeasurementError(InputError):
+    """A file of measured operating points (CSV) that cannot be read as a table of
+    finite numbers: every problem with its line and column."""
+
+    kind = "data error"
+
+
 class NotCoveredError(DaviesError):
     """A valid design the formulas do not cover (it self-locks, or lies outside every
     variant's region): the command line gives the reason and exit status 3."""
@@ -96,3 +103,15 @@ class NotCoveredError(DaviesError):
 
 class DerivationError(DaviesError):
     """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""
+
+
+class CalibrationError(DaviesError):
+    """Measurements that cannot support a fit of the loss parameters: too few rows, a
+    model undefined at the data, no convergence, or a parameter the data do not determine.
+
+    ``cause`` says which, for a caller that maps causes to exit statuses: ``"rows"``,
+    ``"non-finite"``, ``"convergence"``, ``"undetermined"`` or ``"arguments"``."""
+
+    def __init__(self, message: str, cause: str = ""):
+        self.cause = cause
+        super().__init__(message)

@@ -16,7 +16,8 @@ import pytest
 PACKAGE = Path(__file__).resolve().parent.parent / "davies_sym"
 
 #: The stages in pipeline order; a module may import its own stage and the ones before.
-STAGES = ("errors", "algebra", "topology", "geometry", "network", "efficiency", "emit", "cli", "__init__")
+STAGES = ("errors", "algebra", "losses", "topology", "geometry", "network", "efficiency", "emit", "calibration", "cli",
+          "__init__")
 
 
 def _module_name(path: Path) -> str:

@@ -7,6 +7,7 @@ import sys
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.topology.couplings import KINDS, coupling_fields
 from davies_sym.topology.schema import (
+    BEARING,
     EXPECTED,
     FORMAT_VERSION,
     FRICTION,
@@ -14,6 +15,7 @@ from davies_sym.topology.schema import (
     LINK,
     PORTS,
     STATE,
+    TOOTH_CONTACT,
     TOP_LEVEL,
     fields_table,
 )
@@ -94,6 +96,14 @@ def render() -> str:
         parts += [f"\n### `type: {name}`\n", kind.DOC + "\n", fields_table(coupling_fields(kind))]
     parts += ["\n## Friction\n", "`friction: none`, or a mapping of laws to coefficients:\n",
               fields_table(FRICTION)]
+    parts += ["\n### Journal bearing\n", "`friction: {bearing: {...}}` on a revolute (Laus App. D): the Coulomb law "
+              "whose friction-circle radius `zeta_<coupling>` the formulas keep, with its definition stated beside "
+              "them.\n", fields_table(BEARING)]
+    parts += ["\n### Tooth contact\n", "`efficiency: {...}` on an external spur mesh: both ordinary efficiencies from "
+              "the tooth geometry and the flank friction coefficient (Laus App. A, eqs. (134)-(136)); the formulas "
+              "keep `eta_<coupling>_<driver>_<driven>` and state their definitions, `--eval`, the plots and the "
+              "formula modules take the parameters (`derive catalog/buckingham_pair.yaml --eval mu=0.0272`).\n",
+              fields_table(TOOTH_CONTACT)]
     parts += ["\n## States\n", "Operating states of a multi-speed set (`states: {name: entry}`). "
               "`derive` derives every state; `--state NAME` picks one for `--eval`, `--latex` and "
               "`--python`.\n", fields_table(STATE)]

@@ -16,7 +16,8 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.variants import VariantSet
+from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, VariantSet
+from davies_sym.losses.definitions import parameters_of
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -65,7 +66,7 @@ def _efficiency_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
 
 def _law_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
     out: dict[sympy.Symbol, tuple[str, str]] = {}
-    units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed"}
+    units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed", "drag": "torque"}
     for law in variants.analysis.network.laws:
         for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = variants.train.coupling(law.coupling)
@@ -75,21 +76,36 @@ def _law_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
     return out
 
 
+def _definition_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
+    """The parameters of the loss models (a flank or journal friction coefficient, a
+    journal radius), named by what they define."""
+    out: dict[sympy.Symbol, tuple[str, str]] = {}
+    gears = _gear_meanings(variants)
+    for d in variants.train.definitions:
+        for s in sorted_symbols(d.expression.free_symbols):
+            if s not in gears:
+                out.setdefault(s, (f"parameter of the {d.meaning} ({d.source})", d.unit_of(s)))
+    return out
+
+
 def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
     """The symbols of the formulas, the conditions and the speed ratio, sorted by name."""
     layout = variants.analysis.network.layout
     ratio = restore(variants.analysis.speed_ratio().to_expr(), layout.radicals)
-    return sorted_symbols(set(variants.symbols) | ratio.free_symbols)
+    return sorted_symbols(parameters_of(set(variants.symbols) | ratio.free_symbols, variants.train.definitions))
 
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
     """Every symbol of :func:`formula_symbols`, in its order."""
     geometry, etas, laws = _gear_meanings(variants), _efficiency_meanings(variants), _law_meanings(variants)
-    analysis = variants.analysis
-    ports = {analysis.input_motion.symbol: "input speed", analysis.input_action.symbol: "input torque"}
+    defined = _definition_meanings(variants)
+    ports = {INPUT_SPEED: "input speed", INPUT_TORQUE: "input torque"}
     out = []
     for s in formula_symbols(variants):
-        if s in etas:
+        if s in defined:
+            meaning, unit = defined[s]
+            out.append(Parameter(str(s), meaning, unit, 0.0, math.inf))
+        elif s in etas:
             out.append(Parameter(str(s), etas[s], "1", 0.0, 1.0))
         elif s in geometry:
             out.append(Parameter(str(s), geometry[s], "length (one unit for all)", 0.0, math.inf))
@@ -97,8 +113,8 @@ def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
             meaning, unit = laws[s]
             out.append(Parameter(str(s), meaning, unit, 0.0, math.inf, closed_low=True))
         elif s in ports:
-            out.append(Parameter(str(s), f"{ports[s]} ({variants.train.ports.input} as input)",
-                                 "rad/s" if "speed" in ports[s] else "torque", -math.inf, math.inf))
+            out.append(Parameter(str(s), f"{ports[s]} (magnitude, at the input port)",
+                                 "rad/s" if "speed" in ports[s] else "torque", 0.0, math.inf))
         else:
             out.append(Parameter(str(s), "symbol of the topology file", "", -math.inf, math.inf))
     return tuple(out)

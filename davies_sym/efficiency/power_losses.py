@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from davies_sym.algebra.polynomials import RationalFunction
-from davies_sym.efficiency.variants import Variant, VariantSet, substituted, zeta_forms
+from davies_sym.efficiency.variants import Variant, VariantSet, at_operating_point, substituted, zeta_forms
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 
 
@@ -43,7 +43,8 @@ def _input_side(variants: VariantSet, port: str) -> _InputSide:
     else:
         flows = {r.coupling: named_mesh_power_flow(analysis, r.coupling) for r in variants.roles}
     p_in = analysis.port_power_rf(port)
-    forms = {name: -(analysis.power_rf(name) / p_in) for name in lossy_couplings(variants)}
+    forms = {name: at_operating_point(-(analysis.power_rf(name) / p_in), analysis)
+             for name in lossy_couplings(variants)}
     return _InputSide(forms, zeta_forms(flows, variants.roles))
 
 

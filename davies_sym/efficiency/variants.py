@@ -30,6 +30,7 @@ from davies_sym.efficiency.virtual_power import MeshPowerFlow, named_mesh_power_
 from davies_sym.errors import DerivationError, InputError, MissingValuesError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
+from davies_sym.losses.definitions import completed
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.model import Train
 
@@ -37,6 +38,21 @@ Progress = Callable[[str], None]
 
 #: Ordinary efficiency used for the partial-derivative check (Glover's external value).
 NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
+
+#: Where dependent sources (viscous, drag) make the efficiency depend on the operating
+#: point, the formulas take the input torque and speed as magnitudes (input power T_in w_in).
+INPUT_TORQUE = sympy.Symbol("T_in", positive=True)
+INPUT_SPEED = sympy.Symbol("w_in", positive=True)
+OPERATING_SYMBOLS = (INPUT_TORQUE, INPUT_SPEED)
+
+
+def at_operating_point(form: RationalFunction, analysis: Analysis) -> RationalFunction:
+    """``form`` with the input port's torque and speed magnitudes written as T_in and
+    w_in (the input turning forwards and putting power in: Laus's primary variables,
+    eq. (53) and the efficiency after it)."""
+    torque = form.ring.rational(analysis.input_power_sign * INPUT_TORQUE)
+    form = form.substitute(analysis.input_action.symbol, torque)
+    return form.substitute(analysis.input_motion.symbol, form.ring.rational(INPUT_SPEED))
 
 
 @dataclass(frozen=True, eq=False)
@@ -108,7 +124,7 @@ class VariantSet:
 
     def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
         """The variant whose conditions hold at ``values`` with ``input`` as input port."""
-        values = check_values(self.train, values)
+        values = completed(check_values(self.train, values), self.train.definitions)
         port = input or self.train.ports.input
         if port not in (self.train.ports.input, self.train.ports.output):
             raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
@@ -129,7 +145,7 @@ class VariantSet:
     def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (exact when the values are), right variant chosen."""
         variant = self.variant_for(values, input)
-        value = variant.efficiency.subs(check_values(self.train, values))
+        value = variant.efficiency.subs(completed(check_values(self.train, values), self.train.definitions))
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
             raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
@@ -165,24 +181,36 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     if layout is None:
         train = resolved_train(train)
     etas = efficiency_symbols(train)
-    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=etas, layout=layout)
+    taken = sorted(str(s) for s in OPERATING_SYMBOLS if str(s) in train.symbols)
+    if taken:
+        raise InputError([Problem("", f"{', '.join(taken)} name the input torque and speed of the formulas; "
+                                  "rename the symbol in the file")], train.path)
+    extra = [*etas, *OPERATING_SYMBOLS]
+    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=extra, layout=layout)
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
-    declared = analysis.efficiency_rf
+    declared = at_operating_point(analysis.efficiency_rf, analysis)
     zetas = zeta_forms({r.coupling: r.flow for r in roles}, roles)
     role_names = {r.coupling for r in roles}
-    # Other friction laws (bearings, viscous) change with the input side: derive again.
-    resolve_again = any(law.coupling not in role_names for law in analysis.network.laws)
+    # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
+    # too) changes with the input side: derive the other side again.
+    resolve_again = any(law.coupling not in role_names or law.law not in ("coulomb", "linear")
+                        for law in analysis.network.laws)
     swapped_analysis = None
     if resolve_again:
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
-                                    progress=progress, extra_symbols=etas, layout=layout)
-        swapped_form = swapped_analysis.efficiency_rf
+                                    progress=progress, extra_symbols=extra, layout=layout)
+        swapped_form = at_operating_point(swapped_analysis.efficiency_rf, swapped_analysis)
         swapped_flows = {r.coupling: named_mesh_power_flow(swapped_analysis, r.coupling) for r in roles}
         swapped_zetas = zeta_forms(swapped_flows, roles)
     domain = ParameterDomain.of(train, analysis.network.layout)
-    extra = _other_symbols(declared, etas, roles)
-    points = list(domain.samples(samples, seed=seed, extra=extra))
+    others = _other_symbols(declared, etas, roles)
+    points = list(domain.samples(samples, seed=seed, extra=others))
+    operating = random.Random(seed)
+    for point in points:
+        # Loads and speeds well above what the small drawn loss coefficients take.
+        point.update({INPUT_TORQUE: sympy.Integer(operating.randint(50, 500)),
+                      INPUT_SPEED: sympy.Integer(operating.randint(1, 10))})
     regions: dict[tuple[int, ...], list[Point]] = {}
     for point in points:
         key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)

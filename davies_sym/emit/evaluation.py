@@ -13,9 +13,11 @@ from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import Variant, VariantSet
 from davies_sym.emit.variant_report import condition_text
 from davies_sym.errors import DesignError, InputError, NotCoveredError, Problem
+from davies_sym.losses.definitions import completed
 
 
 @dataclass(frozen=True)
@@ -49,8 +51,9 @@ def evaluate(variants: VariantSet, values: Mapping[sympy.Symbol, sympy.Expr], po
     train = variants.train
     other = train.ports.output if port == train.ports.input else train.ports.input
     ratio_expr = variants.analysis.speed_ratio().to_expr()
-    needed = sorted({*variants.symbols, *ratio_expr.free_symbols}, key=str)
+    needed = formula_symbols(variants)
     missing = [str(s) for s in needed if s not in values]
+    values = completed(values, train.definitions)
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
     for c in variants.analysis.network.layout.constraints:

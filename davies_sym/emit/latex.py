@@ -84,4 +84,7 @@ def _section(variants: VariantSet) -> list[str]:
                 r"\end{equation}"]
         for n in notes(v):
             out.append(rf"\noindent {escape(n)}.\\")
+    for d in variants.train.definitions:
+        out += [rf"\noindent where ${sympy.latex(d.symbol)}$ is the {escape(d.meaning)} ({escape(d.source)}):",
+                r"\begin{equation*}", rf"{sympy.latex(d.symbol)} = {sympy.latex(d.expression)}", r"\end{equation*}"]
     return out

@@ -36,6 +36,7 @@ import sympy
 from sympy.printing.numpy import NumPyPrinter
 
 from davies_sym.algebra.radicals import restore
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
 from davies_sym.efficiency.variants import Variant, VariantSet
@@ -43,6 +44,7 @@ from davies_sym.emit import formula_runtime
 from davies_sym.emit.code_layout import WIDTH, docstring, literal, module_source
 from davies_sym.emit.variant_report import condition_text, mesh_text
 from davies_sym.errors import DerivationError
+from davies_sym.losses.definitions import parameters_of, substituted
 
 _TEMPORARY = "_t"
 #: Room for one printed expression: the width less an indent, ``_t12 = `` and ``_array(...)``.
@@ -296,7 +298,12 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     state's module takes them all and ignores those its formulas do not use)."""
     train = variants.train
     radicals = variants.analysis.network.layout.radicals
-    symbols = [str(s) for s in variants.symbols]
+
+    def public(expr: sympy.Expr) -> sympy.Expr:
+        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
+        return substituted(restore(expr, radicals), train.definitions)
+
+    symbols = [str(s) for s in sorted_symbols(parameters_of(variants.symbols, train.definitions))]
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
     for s in sorted({*symbols, *accepted, *dependent_of}):
         if not _usable(s) or s.startswith("_"):
@@ -317,7 +324,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
 
     for c in variants.conditions:
         add("_CONDITIONS", c.name, f"condition_{c.name}", f"Turning condition {c.name}: {sympy.sstr(c.simplified)}.",
-            [restore(c.expression, radicals)])
+            [public(c.expression)])
     relations = admissible_relations(variants)
     for k, r in enumerate(relations, start=1):
         add("_RELATIONS", f"{sympy.sstr(r)} > 0", f"_relation_{k}", f"Whether {sympy.sstr(r)} > 0.", [r],
@@ -325,16 +332,16 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     fractions_of = all_loss_fractions(variants)
     for v in variants.variants:
         doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
-        add("_EFFICIENCY", v.name, v.name, doc, [restore(v.efficiency, radicals)])
+        add("_EFFICIENCY", v.name, v.name, doc, [public(v.efficiency)])
         fractions = fractions_of[v.name]
         add("_LOSSES", v.name, f"_losses_{v.name}", f"Losses over the input power in variant ({v.number}).",
-            [restore(fractions[n].to_expr(), radicals) for n in lossy],
+            [public(fractions[n].to_expr()) for n in lossy],
             "tuple[Array, ...]" if len(lossy) > 1 else "Array")
     needs = {}
     for name, r in dependent_of.items():
         needs[name] = add("_DEPENDENT", name, f"_dependent_{name}", f"{r} (the geometric constraint {r.constraint}).",
-                          [restore(r.expression, radicals)])
-    ratio = restore(variants.analysis.speed_ratio().to_expr(), radicals)
+                          [public(r.expression)])
+    ratio = public(variants.analysis.speed_ratio().to_expr())
     ratio_args = add("_RATIO", train.ports.input, "_ratio_formula", f"Speed ratio with {train.ports.input} as input.",
                      [ratio])
 

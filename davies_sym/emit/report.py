@@ -23,7 +23,7 @@ FRICTION_CONVENTION = (
 
 def _friction(coupling: Any) -> dict[str, str]:
     f = coupling.friction
-    return {law: sympy.sstr(getattr(f, law)) for law in ("coulomb", "linear", "viscous")
+    return {law: sympy.sstr(getattr(f, law)) for law in ("coulomb", "linear", "viscous", "drag")
             if getattr(f, law) is not None}
 
 

@@ -82,7 +82,9 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
             "self_locking_sampled": v.self_locking_point is not None,
             "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
         })
-    return {"turning_conditions": conditions, "meshes": meshes, "variants": items}
+    definitions = [{"symbol": str(d.symbol), "expression": sympy.sstr(d.expression), "latex": sympy.latex(d.expression),
+                    "meaning": d.meaning, "source": d.source} for d in variants.train.definitions]
+    return {"turning_conditions": conditions, "meshes": meshes, "variants": items, "definitions": definitions}
 
 
 def variants_text(variants: VariantSet) -> str:
@@ -99,4 +101,7 @@ def variants_text(variants: VariantSet) -> str:
             lines.append(f"      {m}")
         for n in notes(v):
             lines.append(f"      {n}")
+    for d in variants.train.definitions:
+        lines.append(f"  where {d.symbol} ({d.meaning}, {d.source}):")
+        lines.append(f"      {d.symbol} = {sympy.sstr(d.expression)}")
     return "\n".join(lines)

@@ -21,7 +21,7 @@ from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
-from davies_sym.network.matrices import ActionVariable, FrictionLaw, Network
+from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
@@ -203,6 +203,11 @@ class Analysis:
         return power(self.input_action.wrench, self.input_motion.twist)
 
     @property
+    def input_power_sign(self) -> int:
+        """+1 when the input torque and speed magnitudes of equal sign put power in."""
+        return 1 if self._input_pairing() > 0 else -1
+
+    @property
     def coulomb_sign_values(self) -> dict[str, sympy.Expr]:
         """sign(transmitted force) * sign(relative motion) of every Coulomb law, with
         positive input power, or its sign symbol where the ports do not decide it."""
@@ -256,7 +261,8 @@ class Analysis:
         net = self.network
         names = [v.name for v in net.actions]
         rows = []
-        ordered = [law for law in net.laws if law.law != "viscous"] + [law for law in net.laws if law.law == "viscous"]
+        ordered = ([law for law in net.laws if law.law not in SOURCE_LAWS]
+                   + [law for law in net.laws if law.law in SOURCE_LAWS])
         for law in ordered:
             entries = self._law_row(law)
             rows.append([entries.get(n, 0) for n in names])
@@ -265,13 +271,27 @@ class Analysis:
 
     @cached_property
     def dependent_sources(self) -> sympy.Matrix:
-        """nu: right-hand side of the source rows, T = -b t (eqs. (50)-(51), (53))."""
+        """nu: right-hand side of the source rows, T = -b t (eqs. (50)-(51), (53)), and
+        T = -D sign(t) for a constant drag."""
         values = []
-        for law in self.network.laws:
+        for law in self.network.laws:  # in the order of the source rows of D_A
             if law.law == "viscous":
                 speed = self.motion_magnitudes[law.motion].to_expr()
                 values.append(-law.coefficient * speed)
+            elif law.law == "drag":
+                values.append(-law.coefficient * self._direction(law))
         return sympy.Matrix(values)
+
+    def _direction(self, law: FrictionLaw) -> int:
+        """sign(t) of a drag law's coupling with the input turning forwards (t_in > 0):
+        the constant torque opposes it."""
+        sign, undecided = self.oracle.classify(*self.motion_coefficients[law.motion].factor_list())
+        if sign not in (1, -1):
+            raise DerivationError(
+                f"coupling {law.coupling}: which way it turns depends on the geometry (the sign of "
+                f"{sympy.sstr(undecided)}), so its constant drag has no single closed form; give its losses as "
+                "a viscous law, or fix the geometry so the direction is known")
+        return int(sign)
 
     @cached_property
     def action_solution(self) -> dict[str, tuple[RationalFunction, RationalFunction]]:

@@ -32,6 +32,12 @@ from davies_sym.topology.couplings import Coupling, GearMesh, ScrewCoupling
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
 
+#: Roles of the action variables a lossless network leaves out.
+LOSS_ROLES = ("friction", "viscous", "drag")
+
+#: Laws that are dependent sources (their torque follows from the motion, Laus eq. (51)).
+SOURCE_LAWS = ("viscous", "drag")
+
 
 @dataclass(frozen=True)
 class MotionVariable:
@@ -49,7 +55,7 @@ class MotionVariable:
 @dataclass(frozen=True)
 class ActionVariable:
     """An action magnitude (e.g. ``U_C``) with its reduced unit wrench and its role:
-    ``port``, ``friction`` (load-dependent law), ``viscous`` or ``constraint``."""
+    ``port``, ``friction`` (load-dependent law), ``viscous``, ``drag`` or ``constraint``."""
 
     name: str
     coupling: str
@@ -172,6 +178,11 @@ class Network:
                 name = f"{base}ddag_{c.name}" if (has_port or load_law) else f"{base}_{c.name}"
                 actions.append(ActionVariable(name, c.name, wrench, "viscous"))
                 laws.append(FrictionLaw(c.name, name, "viscous", c.friction.viscous, cm[0].name, None))
+            if c.friction.drag is not None:
+                others = has_port or load_law or c.friction.viscous is not None
+                name = f"{base}drag_{c.name}" if others else f"{base}_{c.name}"
+                actions.append(ActionVariable(name, c.name, wrench, "drag"))
+                laws.append(FrictionLaw(c.name, name, "drag", c.friction.drag, cm[0].name, None))
             actions += constraints
         return tuple(motions), tuple(actions), tuple(laws)
 
@@ -211,7 +222,7 @@ class Network:
 
     def coupling_actions(self, coupling: str, lossless: bool = False) -> list[ActionVariable]:
         return [v for v in self.actions if v.coupling == coupling
-                and not (lossless and v.role in ("friction", "viscous"))]
+                and not (lossless and v.role in LOSS_ROLES)]
 
     # -- matrices (Laus eqs. (17), (19), (54)-(56), App. E) --------------------------
     @property
@@ -228,7 +239,7 @@ class Network:
         return sympy.Matrix([list(v.wrench) for v in cols]).T
 
     def action_columns(self, lossless: bool = False) -> list[ActionVariable]:
-        return [v for v in self.actions if not (lossless and v.role in ("friction", "viscous"))]
+        return [v for v in self.actions if not (lossless and v.role in LOSS_ROLES)]
 
     def motion_index_matrix(self) -> sympy.Matrix:
         """X_M (e x F): 1 where motion alpha belongs to edge j (App. E)."""

@@ -15,26 +15,15 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
+from davies_sym.losses.definitions import Definition
 from davies_sym.topology.entries import describe
 from davies_sym.topology.expressions import check_name, shortened
 from davies_sym.topology.gear import Gear
-from davies_sym.topology.schema import COUPLING_COMMON, FRICTION, Field
+from davies_sym.topology.loss_entries import Friction, read_friction, tooth_contact
+from davies_sym.topology.schema import COUPLING_COMMON, Field
 
 if TYPE_CHECKING:
     from davies_sym.topology.entries import EntryReader
-
-
-@dataclass(frozen=True)
-class Friction:
-    """Friction laws of one coupling (Laus Table 2); ``None`` means the law is absent."""
-
-    coulomb: sympy.Expr | None = None
-    linear: sympy.Expr | None = None
-    viscous: sympy.Expr | None = None
-
-    @property
-    def lossless(self) -> bool:
-        return self.coulomb is None and self.linear is None and self.viscous is None
 
 
 @dataclass(frozen=True)
@@ -61,6 +50,11 @@ class Coupling:
     def gears(self) -> tuple[str, str] | None:
         return None
 
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        """Symbols of this coupling's laws that a loss model defines."""
+        return self.friction.definitions
+
 
 def _read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tuple[str, str] | None:
     if "links" not in entry:
@@ -77,26 +71,6 @@ def _read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tup
         reader.problem(f"{path}.links", f"a coupling must join two different links, got {a!r} twice")
         return None
     return (a, b)
-
-
-def read_friction(value: Any, path: str, reader: EntryReader, default: Friction) -> Friction:
-    """Read a ``friction`` entry: ``none``, or a mapping of laws to coefficients."""
-    if value is None:
-        return default
-    if isinstance(value, str) and value.strip().lower() == "none":
-        return Friction()
-    entry = reader.mapping(value, path)
-    if entry is None:
-        return default
-    reader.check_keys(entry, path, FRICTION)
-    laws: dict[str, sympy.Expr | None] = {}
-    for f in FRICTION:
-        if f.key in entry:
-            role = "viscous" if f.key == "viscous" else "friction"
-            laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
-    if "coulomb" in laws and "linear" in laws:
-        reader.problem(path, "choose one load-dependent law: `coulomb` or `linear`, not both")
-    return Friction(**laws)
 
 
 @dataclass(frozen=True)
@@ -123,7 +97,7 @@ class Revolute(Coupling):
                    gears: Mapping[str, Gear]) -> Revolute | None:
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
         if links is not None and axis is not None and axis not in links:
             reader.problem(f"{path}.axis", f"{shortened(axis)} is not one of the coupling's links {list(links)}")
@@ -146,6 +120,8 @@ class GearMesh(Coupling):
     internal: bool = False
     #: Ordinary efficiencies: (first gear drives, second gear drives), Laus eqs. (32), (34).
     efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
+    #: The efficiencies as functions of the tooth geometry (Laus App. A), when given so.
+    efficiency_definitions: tuple[Definition, ...] = ()
 
     kind: ClassVar[str] = "mesh"
     DOC: ClassVar[str] = ("Gear mesh between two gears. The edge goes from the link of the first gear "
@@ -154,15 +130,21 @@ class GearMesh(Coupling):
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("gears", "[gear, gear]", True, "The two meshing gears."),
         Field("mesh", "`external` or `internal`", False, "Checked against the gears."),
-        Field("efficiency", "symbol or number, or a list of two", False,
+        Field("efficiency", "symbol or number, a list of two, or a mapping", False,
               "Ordinary efficiency of the mesh (carrier held). One value serves both power "
-              "directions; a list gives [first gear drives, second gear drives]. "
+              "directions; a list gives [first gear drives, second gear drives]; a mapping derives both "
+              "from the tooth geometry of an external spur mesh (Laus App. A, eq. (136)): "
+              "`eta_<coupling>_<gear>_<gear>` (driver first), see *Tooth contact*. "
               "Default: `eta_<coupling>`."),
     )
 
     @property
     def gears(self) -> tuple[str, str]:
         return self.mesh_gears
+
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        return self.friction.definitions + self.efficiency_definitions
 
     @classmethod
     def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
@@ -200,9 +182,15 @@ class GearMesh(Coupling):
             reader.problem(f"{path}.mesh", f"stated {shortened(str(stated))} but the gears make an "
                            f"{'internal' if internal else 'external'} mesh")
         default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default)
-        efficiencies = _read_efficiencies(entry.get("efficiency", f"eta_{name}"), f"{path}.efficiency", reader)
-        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default, name)
+        value = entry.get("efficiency", f"eta_{name}")
+        definitions: tuple[Definition, ...] = ()
+        if isinstance(value, Mapping):
+            definitions = tooth_contact(value, f"{path}.efficiency", reader, name, (g1, g2))
+            efficiencies = (definitions[0].symbol, definitions[1].symbol) if definitions else None
+        else:
+            efficiencies = _read_efficiencies(value, f"{path}.efficiency", reader)
+        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions)
 
 
 def _annulus_larger(annulus: Gear, pinion: Gear, path: str, reader: EntryReader) -> bool:
@@ -253,7 +241,7 @@ class Prismatic(Coupling):
                    gears: Mapping[str, Gear]) -> Prismatic | None:
         links = _read_links(entry, path, reader)
         direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
         if links is None or direction is None:
             return None
         return cls(name, links, friction, direction)
@@ -302,7 +290,7 @@ class ScrewCoupling(Coupling):
         motions = (_read_screws(entry["motions"], f"{path}.motions", reader, TWIST_COORDINATES)
                    if "motions" in entry else None)
         actions = _read_screws(entry.get("actions", {}), f"{path}.actions", reader, WRENCH_COORDINATES)
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction())
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
         if links is None or motions is None or actions is None:
             return None
         if not motions:

@@ -12,6 +12,7 @@ from types import MappingProxyType
 import sympy
 
 from davies_sym.errors import Problem
+from davies_sym.losses.definitions import Definition
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear import Gear as Gear  # named here as part of the model
 
@@ -104,6 +105,11 @@ class Train:
     #: Parameters solved from the geometric constraints and substituted into the gears;
     #: None until the geometry has been solved (:func:`davies_sym.geometry.dependent.resolved_train`).
     dependent: tuple[Relation, ...] | None = None
+
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        """Symbols that loss models define in other parameters (Laus App. A, App. D)."""
+        return tuple(d for c in self.couplings for d in c.definitions)
 
     def problem(self, entry: str, message: str) -> Problem:
         """A :class:`Problem` at ``entry`` with the line it has in the source file."""

@@ -116,6 +116,34 @@ FRICTION = (
     Field("viscous", "symbol or number", False,
           "Linear viscous law, Laus Table 2 eq. (11): T = -b t, a dependent source "
           "(eqs. (50)-(53)); makes the efficiency depend on the input torque and speed."),
+    Field("drag", "symbol or number", False,
+          "Load-independent drag: a constant torque against the coupling's relative motion "
+          "(churning, seals), a dependent source like the viscous law; makes the efficiency "
+          "depend on the input torque."),
+    Field("bearing", "mapping", False,
+          "Journal bearing (Laus App. D): `mu` (friction coefficient), `radius` (journal radius) "
+          "and optionally `contact` (`catalogue`: mu is the bearing's own coefficient, the default; "
+          "`new`: uniform pressure, mu times pi/2; `worn`: cosine pressure, mu times 4/pi). Gives the "
+          "Coulomb law with the friction-circle radius zeta_<coupling> = k mu radius, loaded by the "
+          "bearing's reaction force."),
+)
+
+BEARING = (
+    Field("mu", "symbol or number", True, "Friction coefficient of the journal."),
+    Field("radius", "symbol or number", True, "Journal radius (the unit of the pitch radii)."),
+    Field("contact", "`catalogue`, `new` or `worn`", False,
+          "How the pressure spreads over the journal (Laus Table 16); default `catalogue`."),
+)
+
+TOOTH_CONTACT = (
+    Field("mu", "symbol or number", True, "Sliding friction coefficient of the tooth flanks."),
+    Field("pressure_angle", "number (degrees)", True, "Pressure angle of the involute teeth."),
+    Field("addendum", "symbol or number", False,
+          "Addendum of both gears; default: the gears' module (both gears need the same one)."),
+    Field("approach", "symbol or number", False,
+          "Approach length DP along the path of contact (Laus eq. (135)); default: from the addenda."),
+    Field("recess", "symbol or number", False,
+          "Recess length EP (Laus eq. (134)); default: from the addenda. Give both or neither."),
 )
 
 

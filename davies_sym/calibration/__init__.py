@@ -1,0 +1,14 @@
+"""Calibration stage: named loss parameters of a model fitted to measured operating points.
+
+It owns reading the measurements (:mod:`.measurements`: a CSV file of finite numbers, every
+problem with its line and column), the least-squares fit with standard errors and the
+refusals of a fit the data cannot support (:mod:`.least_squares`, scipy), and the text and
+residual figure of a fit (:mod:`.report`).  It knows nothing about gear trains: the model
+is any function of the parameter values giving one residual per measured row.
+"""
+
+from davies_sym.calibration.least_squares import Fit, fit
+from davies_sym.calibration.measurements import Measurements, read_measurements
+from davies_sym.calibration.report import fit_text, residual_figure
+
+__all__ = ["Fit", "Measurements", "fit", "fit_text", "read_measurements", "residual_figure"]

@@ -1,0 +1,159 @@
+"""Loss entries of a topology file: the friction laws of a coupling (Laus Table 2), a
+journal bearing's Coulomb law (App. D) and a mesh's efficiencies from its tooth
+geometry (App. A), read into laws and the definitions of their coefficients."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import sympy
+
+from davies_sym.losses.definitions import Definition
+from davies_sym.losses.journal_bearing import CONTACT_LAWS, friction_circle_radius
+from davies_sym.losses.tooth_contact import contact_lengths, spur_mesh_efficiency
+from davies_sym.topology.entries import describe
+from davies_sym.topology.gear import Gear
+from davies_sym.topology.schema import BEARING, FRICTION, TOOTH_CONTACT
+from davies_sym.topology.symbols import make_symbol
+
+if TYPE_CHECKING:
+    from davies_sym.topology.entries import EntryReader
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Friction laws of one coupling (Laus Table 2); ``None`` means the law is absent."""
+
+    coulomb: sympy.Expr | None = None
+    linear: sympy.Expr | None = None
+    viscous: sympy.Expr | None = None
+    #: Constant torque against the relative motion (a dependent source).
+    drag: sympy.Expr | None = None
+    #: Coefficients a loss model defines (a journal's friction-circle radius, App. D).
+    definitions: tuple[Definition, ...] = ()
+
+    @property
+    def lossless(self) -> bool:
+        return self.coulomb is None and self.linear is None and self.viscous is None and self.drag is None
+
+
+def read_friction(value: Any, path: str, reader: EntryReader, default: Friction, name: str = "") -> Friction:
+    """Read a ``friction`` entry of coupling ``name``: ``none``, or a mapping of laws to
+    coefficients (a ``bearing`` gives the Coulomb law of a journal, Laus App. D)."""
+    if value is None:
+        return default
+    if isinstance(value, str) and value.strip().lower() == "none":
+        return Friction()
+    entry = reader.mapping(value, path)
+    if entry is None:
+        return default
+    reader.check_keys(entry, path, FRICTION)
+    laws: dict[str, sympy.Expr | None] = {}
+    for f in FRICTION:
+        if f.key in entry and f.key != "bearing":
+            role = "viscous" if f.key == "viscous" else "friction"
+            laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
+    definitions: tuple[Definition, ...] = ()
+    if "bearing" in entry:
+        if "coulomb" in laws or "linear" in laws:
+            reader.problem(path, "`bearing` gives the Coulomb law of the journal: write it without `coulomb` "
+                           "or `linear`")
+        journal = _read_bearing(entry["bearing"], f"{path}.bearing", reader, name)
+        if journal is not None:
+            laws["coulomb"], definitions = journal.symbol, (journal,)
+    if "coulomb" in laws and "linear" in laws:
+        reader.problem(path, "choose one load-dependent law: `coulomb` or `linear`, not both")
+    return Friction(**laws, definitions=definitions)
+
+
+def _read_bearing(value: Any, path: str, reader: EntryReader, name: str) -> Definition | None:
+    """The friction-circle radius of a journal bearing as a definition (Laus App. D)."""
+    entry = reader.mapping(value, path)
+    if entry is None:
+        return None
+    reader.check_keys(entry, path, BEARING)
+    if "mu" not in entry or "radius" not in entry:
+        return None  # reported as missing required keys
+    mu = reader.quantity(entry["mu"], f"{path}.mu", "friction")
+    radius = reader.quantity(entry["radius"], f"{path}.radius", "length")
+    contact = entry.get("contact", "catalogue")
+    if contact not in CONTACT_LAWS:
+        reader.problem(f"{path}.contact", f"expected one of {', '.join(CONTACT_LAWS)}, got {describe(contact)}")
+        return None
+    if mu is None or radius is None:
+        return None
+    zeta = _defined_symbol(f"zeta_{name}", "friction", reader)
+    return Definition(zeta, friction_circle_radius(mu, radius, contact),
+                      f"friction-circle radius of journal bearing {name} ({contact} contact)",
+                      "Laus App. D, Table 16", _units((mu, "1"), (radius, "length (one unit for all)")))
+
+
+def tooth_contact(entry: Mapping[str, Any], path: str, reader: EntryReader, name: str,
+                   gears: tuple[Gear, Gear]) -> tuple[Definition, ...]:
+    """Both ordinary efficiencies of an external spur mesh from its tooth geometry (Laus
+    App. A): eq. (136) with the approach and recess lengths of eqs. (134)-(135)."""
+    reader.check_keys(entry, path, TOOTH_CONTACT)
+    if any(g.internal for g in gears):
+        reader.problem(path, "the tooth-contact model (Laus App. A) covers external spur meshes; give the "
+                       "ordinary efficiency of this internal mesh as a symbol or a number")
+        return ()
+    if "mu" not in entry or "pressure_angle" not in entry:
+        return ()  # reported as missing required keys
+    mu = reader.quantity(entry["mu"], f"{path}.mu", "friction")
+    degrees = reader.quantity(entry["pressure_angle"], f"{path}.pressure_angle", "angle")
+    if degrees is not None and not (degrees.is_number and 0 < degrees < 45):
+        reader.problem(f"{path}.pressure_angle", f"expected a number of degrees between 0 and 45, got "
+                       f"{describe(entry['pressure_angle'])}")
+        degrees = None
+    lengths = [reader.quantity(entry[k], f"{path}.{k}", "length") if k in entry else None
+               for k in ("addendum", "approach", "recess")]
+    addendum, approach, recess = lengths
+    if ("approach" in entry) != ("recess" in entry):
+        reader.problem(path, "give both `approach` and `recess`, or neither (they are then computed from the addenda)")
+        return ()
+    if addendum is None and "addendum" not in entry:
+        modules = {g.module for g in gears}
+        if len(modules) != 1 or None in modules:
+            if approach is None:
+                reader.problem(path, "the addendum defaults to the gears' module, but these gears do not share "
+                               "one: give `addendum` (or `approach` and `recess`)")
+                return ()
+        else:
+            addendum = modules.pop()
+    if mu is None or degrees is None or (approach is None and addendum is None):
+        return ()
+    angle = degrees * sympy.pi / 180
+    out = []
+    for driver, driven in (gears, gears[::-1]):
+        if approach is not None and recess is not None:
+            # Lengths are given for the first gear driving; the other way round the pitch
+            # point splits the path of contact the other way.
+            lengths_of = (approach, recess) if driver is gears[0] else (recess, approach)
+        else:
+            assert addendum is not None
+            lengths_of = contact_lengths(driver.radius, driven.radius, addendum, angle)
+        symbol = _defined_symbol(f"eta_{name}_{driver.name}_{driven.name}", "efficiency", reader)
+        out.append(Definition(symbol, spur_mesh_efficiency(driver.radius, driven.radius, angle, mu, *lengths_of),
+                              f"ordinary efficiency of mesh {name}, gear {driver.name} driving gear {driven.name}, "
+                              "from the tooth geometry", "Laus App. A, eqs. (134)-(136)",
+                              _units((mu, "1"), *((x, "length (one unit for all)")
+                                                  for x in (addendum, approach, recess) if x is not None))))
+    return tuple(out)
+
+
+
+
+def _defined_symbol(name: str, role: str, reader: EntryReader) -> sympy.Symbol:
+    """The train's symbol ``name`` (gear names may hold characters a symbol may not)."""
+    name = re.sub(r"\W", "_", name, flags=re.ASCII)
+    if name not in reader.symbols:
+        reader.symbols[name] = make_symbol(name, role)
+    return reader.symbols[name]
+
+
+def _units(*given: tuple[sympy.Expr, str]) -> tuple[tuple[str, str], ...]:
+    """(symbol name, unit) of every symbol in the given parameters."""
+    return tuple((str(s), unit) for value, unit in given for s in sorted(value.free_symbols, key=str))

@@ -10,7 +10,9 @@ from collections.abc import Callable, Sequence
 
 import sympy
 
+from davies_sym.calibration.command import run as calibration_command
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
+from davies_sym.efficiency.several_inputs import derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.emit.evaluation import evaluate
@@ -18,6 +20,7 @@ from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import Sweep, efficiency_figure, png_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import kinematics_document, kinematics_text, text_summary, train_document
+from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
 from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
@@ -227,8 +230,8 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
         try:
             train = load(path)
             if _kinematics_only(train):
-                print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom, kinematics only: "
-                      "nothing written", file=sys.stderr)
+                print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom: no LaTeX or module is "
+                      "written for it yet (derive it alone for its regions)", file=sys.stderr)
                 continue
             failures: list[str] = []
             sets = _derive_sets(train, None, progress, failures)
@@ -251,19 +254,38 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
 
 
 def _kinematics_only(train: Train) -> bool:
-    """A train of several degrees of freedom: only its kinematics are derived."""
-    return train.degrees_of_freedom is not None and train.degrees_of_freedom > 1
+    """A train of several degrees of freedom: its kinematics, and with one input port per
+    degree of freedom its power-flow regions and efficiency."""
+    return (train.degrees_of_freedom is not None and train.degrees_of_freedom > 1) or len(train.ports.inputs) > 1
 
 
 def _kinematics(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str]]:
-    """The outputs of a train with several degrees of freedom: motions in the primary speeds."""
-    if args.latex or args.python or args.eval is not None or args.state:
-        raise InputError([Problem("degrees_of_freedom", f"the train has {train.degrees_of_freedom} degrees "
-                                  "of freedom: only its kinematics are derived (no efficiency with several "
-                                  "inputs yet)")], train.path)
-    document = kinematics_document(Analysis(train, progress=progress))
-    text = json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n"
-    return [(args.out, text)]
+    """The outputs of a train with several degrees of freedom: with several input ports the
+    regions and efficiency (text, JSON, --eval), else the motions in the primary speeds."""
+    several = len(train.ports.inputs) > 1
+    if args.latex or args.python or args.state or args.plot or (args.eval is not None and not several):
+        why = ("--latex, --python and --plot are not written for trains with several inputs yet" if several else
+               "list one input port per degree of freedom (ports: {input: [A, B], ...}) to derive the efficiency")
+        raise InputError([Problem("ports.input", f"the train has {train.degrees_of_freedom or 'several'} degrees "
+                                  f"of freedom: {why}")], train.path)
+    if not several:
+        document = kinematics_document(Analysis(train, progress=progress))
+        return [(args.out, json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n")]
+    regions = derive_several_inputs(train, progress=progress)
+    if args.eval is not None:
+        values = {}
+        for pair in args.eval:
+            name, sep, text = pair.partition("=")
+            if not sep:
+                raise InputError([Problem("--eval", f"expected NAME=VALUE, got {shortened(pair)}")], train.path)
+            try:
+                values[name.strip()] = parse_expression(text)
+            except ExpressionError as exc:
+                raise InputError([Problem("--eval", f"{name.strip()}: {exc}")], train.path) from None
+        answer = evaluate_several(regions, values)
+        return [(None, json.dumps(answer.document(), indent=2) + "\n" if args.json else answer.text())]
+    document = several_inputs_document(regions)
+    return [(args.out, json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n")]
 
 
 def _efficiency(train: Train, args: argparse.Namespace, progress: Progress,
@@ -368,6 +390,9 @@ def _status_json(status: str, reason: str) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["calibrate"]:
+        return calibration_command(argv[1:])
     args = parser().parse_args(argv)
 
     def progress(message: str) -> None:

@@ -76,14 +76,14 @@ def test_sr20_two_degree_of_freedom_kinematics():
     assert len(free) == 2
 
 
-def test_sr20_cli_prints_the_kinematics():
+def test_sr20_cli_prints_the_kinematics_and_regions():
     import subprocess
     import sys
 
     result = subprocess.run([sys.executable, "-m", "davies_sym.cli", catalog_path("sr20_differential")],
                             capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
-    assert "degrees of freedom: 2" in result.stdout and "t_A = -t_K + 2*t_O" in result.stdout
+    assert "speed of O: w_O = w_A/2 + w_K/2" in result.stdout and "inputs A, K" in result.stdout
 
 
 def test_litvin_face_gear_drive_chen_eqs_4_17_and_4_24():

@@ -76,6 +76,7 @@ nav:
   - Topology language: topology.md
   - Command line: cli.md
   - Exit statuses and errors: errors.md
+  - Losses and calibration: calibration.md
   - Python API: api.md
   - Catalog:
     - catalog/index.md

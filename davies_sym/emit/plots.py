@@ -27,6 +27,7 @@ import numpy as np
 import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.python_module import python_module
 
@@ -104,7 +105,7 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     xs = sweep.values(POINTS_1D)
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
     names = [p["name"] for p in module.PARAMETERS]
-    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in variants.symbols}}
+    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), xs.shape)
     losses = {k: np.broadcast_to(v, xs.shape) for k, v in
               module.losses(input=input, errors="ignore", **arguments).items()}
@@ -148,7 +149,7 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
     module = module or formula_module(variants)
     gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
-    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in variants.symbols}}
+    arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), gx.shape)
     numbers = _variant_numbers(module, kwargs, input, gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan

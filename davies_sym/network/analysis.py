@@ -14,7 +14,7 @@ from functools import cached_property
 
 import sympy
 
-from davies_sym.algebra.linalg import Row, gauss_jordan
+from davies_sym.algebra.linalg import Reduce, Row, gauss_jordan
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
@@ -87,10 +87,15 @@ class Analysis:
         self._reduce = self.ring.reduce if self.ring.radicals else None
 
     # -- helpers ---------------------------------------------------------------------
+    @property
+    def reduce(self) -> Reduce | None:
+        """Reduction of polynomials modulo the layout's radical relations (None without radicals)."""
+        return self._reduce
+
     def _rf(self, expr: sympy.Expr) -> RationalFunction:
         return self.ring.rational(expr)
 
-    def _rows(self, matrix: sympy.Matrix) -> list[Row]:
+    def rows(self, matrix: sympy.Matrix) -> list[Row]:
         """Sparse polynomial rows; a row with fractions (pitch points of tilted bevel
         axes) is multiplied by the lcm of its denominators, which leaves its equation."""
         rows = []
@@ -116,7 +121,7 @@ class Analysis:
         net = self.network
         M_N = net.network_motion_matrix()
         index = net.motions.index(self.input_motion)
-        elimination = gauss_jordan(self._rows(M_N), len(net.motions), prefer_free=[index],
+        elimination = gauss_jordan(self.rows(M_N), len(net.motions), prefer_free=[index],
                                    reduce=self._reduce)
         free = elimination.free
         dof = len(free)
@@ -150,7 +155,7 @@ class Analysis:
         on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
                         for v in net.coupling_motions(c.name) if v is not self.input_motion]
         prefer = [net.motions.index(self.input_motion), *on_reference]
-        elimination = gauss_jordan(self._rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
+        elimination = gauss_jordan(self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
                                    reduce=self._reduce)
         solution = elimination.solution(self.ring)
         return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
@@ -180,7 +185,7 @@ class Analysis:
         net = self.network
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
-        elimination = gauss_jordan(self._rows(net.network_action_matrix(lossless=True)), len(cols),
+        elimination = gauss_jordan(self.rows(net.network_action_matrix(lossless=True)), len(cols),
                                    prefer_free=[index], reduce=self._reduce)
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
@@ -306,7 +311,7 @@ class Analysis:
         sources = sympy.zeros(D.rows, 1)
         for k in range(nu.rows):
             sources[D.rows - nu.rows + k] = -nu[k]
-        rows = self._rows(D.row_join(sources))
+        rows = self.rows(D.row_join(sources))
         index = net.actions.index(self.input_action)
         elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const], reduce=self._reduce)
         free = [j for j in elimination.free if j != const]

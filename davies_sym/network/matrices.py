@@ -144,7 +144,7 @@ class Network:
         motions: list[MotionVariable] = []
         actions: list[ActionVariable] = []
         laws: list[FrictionLaw] = []
-        ports = {self.train.ports.input, self.train.ports.output}
+        ports = set(self.train.ports.every)
         for c in self.train.couplings:
             red = self.reduced[c.name]
             names = _unique([m.name for m in red.motions])

@@ -16,6 +16,7 @@ import networkx as nx
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
+from davies_sym.topology.calibration_entry import read_calibrate
 from davies_sym.topology.checks import read_expected
 from davies_sym.topology.couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
 from davies_sym.topology.entries import EntryReader, describe
@@ -89,6 +90,7 @@ def build_train(document: SourceDocument) -> Train:
             reader.problem(f"expected[{i}].state", f"unknown state {shortened(check.state)}")
     placement = _read_placement(data["placement"], reader) if "placement" in data else None
     independent = _read_independent(data["independent"], reader) if "independent" in data else None
+    calibrate = read_calibrate(data["calibrate"], reader) if "calibrate" in data else None
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
             reader.problem(key, f"expected text, got {describe(data[key])}")
@@ -108,6 +110,7 @@ def build_train(document: SourceDocument) -> Train:
         path=document.name,
         locations=MappingProxyType(dict(document.lines)),
         states=states,
+        calibrate=calibrate,
         placement=placement,
         independent=independent,
     )
@@ -292,25 +295,42 @@ def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Couplin
     if entry is None:
         return None
     reader.check_keys(entry, "ports", PORTS)
-    names: dict[str, str] = {}
+    names: dict[str, list[str]] = {}
     for role in ("input", "output"):
         if role not in entry:
             continue
-        name = reader.name(entry[role], f"ports.{role}")
-        if name is None:
+        # Several inputs (a differential driven on two shafts) are written as a list.
+        values = entry[role] if role == "input" and isinstance(entry[role], list) else [entry[role]]
+        paths = [f"ports.{role}[{i}]" if len(values) > 1 else f"ports.{role}" for i in range(len(values))]
+        found = [_port(v, path, reader, couplings) for v, path in zip(values, paths, strict=True)]
+        if not values or None in found:
+            if not values:
+                reader.problem(f"ports.{role}", "expected a coupling name or a list of them")
             continue
-        if name not in couplings:
-            reader.unknown(f"ports.{role}", "coupling", name, f"port on a missing coupling {shortened(name)}")
-            continue
-        if isinstance(couplings[name], GearMesh):
-            reader.problem(f"ports.{role}", f"coupling {name!r} is a gear mesh; a port sits on a "
-                           "revolute or prismatic coupling (a shaft)")
-            continue
-        names[role] = name
-    if len(names) == 2 and names["input"] == names["output"]:
-        reader.problem("ports", "input and output must be different couplings")
+        names[role] = [n for n in found if n is not None]
+    if len(names) != 2:
         return None
-    return Ports(names["input"], names["output"]) if len(names) == 2 else None
+    every = [*names["input"], *names["output"]]
+    if len(set(every)) != len(every):
+        reader.problem("ports", "every port must be a different coupling (an input is also the output, or "
+                       "listed twice)")
+        return None
+    first, *others = names["input"]
+    return Ports(first, names["output"][0], tuple(others))
+
+
+def _port(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Coupling]) -> str | None:
+    name = reader.name(value, path)
+    if name is None:
+        return None
+    if name not in couplings:
+        reader.unknown(path, "coupling", name, f"port on a missing coupling {shortened(name)}")
+        return None
+    if isinstance(couplings[name], GearMesh):
+        reader.problem(path, f"coupling {name!r} is a gear mesh; a port sits on a revolute or prismatic "
+                       "coupling (a shaft)")
+        return None
+    return name
 
 
 def _check_connected(links: list[Link], couplings: Mapping[str, Coupling], reader: EntryReader) -> None:

@@ -13,6 +13,7 @@ import sympy
 
 from davies_sym.errors import Problem
 from davies_sym.losses.definitions import Definition
+from davies_sym.topology.calibration_entry import CalibrationDefaults
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear import Gear as Gear  # named here as part of the model
 
@@ -31,6 +32,18 @@ class Ports:
 
     input: str
     output: str
+    #: Further inputs of a train with several degrees of freedom (a differential driven on
+    #: two shafts, Mantriota and Pennestri 2003).
+    others: tuple[str, ...] = ()
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return (self.input, *self.others)
+
+    @property
+    def every(self) -> tuple[str, ...]:
+        """Every port: the inputs, then the output."""
+        return (*self.inputs, self.output)
 
     def swapped(self) -> Ports:
         return Ports(self.output, self.input)
@@ -105,6 +118,8 @@ class Train:
     #: Parameters solved from the geometric constraints and substituted into the gears;
     #: None until the geometry has been solved (:func:`davies_sym.geometry.dependent.resolved_train`).
     dependent: tuple[Relation, ...] | None = None
+    #: What ``derive calibrate`` fits by default (the ``calibrate`` entry).
+    calibrate: CalibrationDefaults | None = None
 
     @property
     def definitions(self) -> tuple[Definition, ...]:

@@ -51,6 +51,8 @@ TOP_LEVEL = (
           "Default: the annulus radius when it is a sum of the others (r_R = r_S + 2 r_P), "
           "else a radius of the mesh that closes the loop, its planet's gear first."),
     Field("expected", "list", False, "Published numbers to check (used by the catalog tests)."),
+    Field("calibrate", "mapping", False,
+          "Loss parameters `derive calibrate` fits when the command line names none (see *Calibration*)."),
     Field("notes", "string", False, "Free text."),
 )
 
@@ -74,7 +76,9 @@ GEAR = (
 )
 
 PORTS = (
-    Field("input", "coupling", True, "Coupling that carries the input torque (or force)."),
+    Field("input", "coupling or list of couplings", True,
+          "Coupling that carries the input torque (or force); a train with several degrees of freedom "
+          "lists one input per degree of freedom (a differential driven on two shafts)."),
     Field("output", "coupling", True, "Coupling that carries the output torque (or force)."),
 )
 
@@ -153,3 +157,9 @@ def fields_table(fields: tuple[Field, ...]) -> str:
     for f in fields:
         rows.append(f"| `{f.key}` | {f.kind} | {'yes' if f.required else 'no'} | {f.doc} |")
     return "\n".join(rows)
+
+CALIBRATE = (
+    Field("fit", "list of symbols", True, "The loss parameters fitted to measured data."),
+    Field("start", "mapping", False, "Start values of the fit (symbol -> positive number); default: 0.95 for "
+          "an efficiency, 0.1 for other coefficients."),
+)

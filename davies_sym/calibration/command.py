@@ -1,0 +1,132 @@
+"""``derive calibrate TRAIN.yaml DATA.csv [--fit NAME ...] [--predict OTHER.csv] [--json]
+[-o FIG.png] [--at NAME=VALUE ...]``: fit loss parameters of a train to test-rig data.
+
+The parameters named by ``--fit`` (default: the train's ``calibrate: {fit: [...]}``) are
+fitted by least squares to the measured efficiencies (column ``eta``) of DATA; the others
+take the values of ``--at``.  The answer holds each fitted value with its standard
+error, the residuals and, with ``--predict``, the efficiency predicted at every row of
+the other file and, where it has ``eta``, the mean absolute error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+
+import numpy as np
+
+from davies_sym.calibration.least_squares import Fit, fit
+from davies_sym.calibration.measurements import Measurements, read_measurements
+from davies_sym.calibration.report import fit_text, residual_figure
+from davies_sym.calibration.train_model import TrainModel, columns_of, parameters_of
+from davies_sym.efficiency.parameter_domain import efficiency_symbols
+from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
+from davies_sym.efficiency.variants import VariantSet, derive_variants
+from davies_sym.emit.atomic import write_atomic
+from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
+from davies_sym.topology.expressions import ExpressionError, parse_expression
+from davies_sym.topology.loader import load
+from davies_sym.topology.model import Train
+
+#: Start values where the file gives none: an ordinary efficiency, any other coefficient.
+START_EFFICIENCY, START_COEFFICIENT = 0.95, 0.1
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="derive calibrate", description="Fit loss parameters of a train to "
+                                "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).")
+    p.add_argument("train", metavar="TRAIN.yaml")
+    p.add_argument("data", metavar="DATA.csv")
+    p.add_argument("--fit", nargs="+", metavar="NAME", help="parameters to fit (default: the file's calibrate: fit)")
+    p.add_argument("--predict", nargs="+", metavar="OTHER.csv",
+                   help="predict the efficiency at every row of other files (rows in the order of the files)")
+    p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[], help="values of the parameters not fitted")
+    p.add_argument("--json", action="store_true", help="one JSON object")
+    p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (PNG)")
+    p.add_argument("--quiet", action="store_true", help="no progress messages")
+    return p
+
+
+def _derived(train: Train) -> VariantSet | SeveralInputs:
+    return derive_several_inputs(train) if len(train.ports.inputs) > 1 else derive_variants(train)
+
+
+def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
+    out = {}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        try:
+            value = parse_expression(text) if sep else None
+        except ExpressionError as exc:
+            raise InputError([Problem("--at", f"{name}: {exc}")], train.path) from None
+        if value is None or not value.is_number:
+            raise InputError([Problem("--at", f"expected NAME=NUMBER, got {pair!r}")], train.path)
+        out[name.strip()] = float(value)
+    return out
+
+
+def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[str] | None) -> tuple[str, ...]:
+    if names is None:
+        if train.calibrate is None:
+            raise InputError([Problem("--fit", "name the parameters to fit (the file has no calibrate: fit)")],
+                             train.path)
+        names = train.calibrate.fit
+    known = parameters_of(derived)
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise InputError([Problem("--fit", f"{', '.join(unknown)} is not a parameter of the formulas (they take: "
+                                  f"{', '.join(known)})")], train.path)
+    return tuple(names)
+
+
+def calibrate(train: Train, data: Measurements, names: Sequence[str] | None = None,
+              fixed: dict[str, float] | None = None) -> tuple[TrainModel, Fit]:
+    """The fitted model of ``train`` on ``data`` (the rows' ``eta``)."""
+    derived = _derived(train)
+    fitted = _fitted(train, derived, names)
+    model = TrainModel(derived, fitted, fixed or {})
+    efficiencies = {str(s) for s in efficiency_symbols(train)}
+    given = train.calibrate.start if train.calibrate else {}
+    start = {n: given.get(n, START_EFFICIENCY if n in efficiencies else START_COEFFICIENT) for n in fitted}
+    upper = {n: 1.0 if n in efficiencies else np.inf for n in fitted}
+    lower = {n: 1e-9 if n in efficiencies else 0.0 for n in fitted}
+    measured = data.column("eta")
+    return model, fit(lambda values: model.predict(data, values) - measured, fitted, start, lower, upper,
+                      source=data.path)
+
+
+def run(argv: Sequence[str]) -> int:
+    """The ``derive calibrate`` command; returns the exit status (0, or 2 for bad input)."""
+    args = parser().parse_args(argv)
+    try:
+        train = load(args.train)
+        columns = columns_of(_derived(train))
+        data = read_measurements(args.data, [*columns, "eta"])
+        others = [read_measurements(path, columns, ["eta"]) for path in args.predict or ()]
+        model, result = calibrate(train, data, args.fit, _fixed(train, args.at))
+    except CalibrationError as exc:
+        print(f"derive calibrate: {exc}", file=sys.stderr)
+        return 2
+    except DaviesError as exc:
+        print(exc.report() if isinstance(exc, InputError) else f"derive calibrate: {args.train}: {exc}",
+              file=sys.stderr)
+        return 2
+    document = {"status": "ok", "train": train.path, "data": data.path, **result.as_dict()}
+    lines = [fit_text(result)]
+    if others:
+        predicted = np.concatenate([model.predict(other, result.parameters) for other in others])
+        document["predicted_efficiency"] = [None if np.isnan(v) else float(v) for v in predicted]
+        rows = [(other.path, line) for other in others for line in other.lines]
+        lines.append(f"predicted efficiency at the {len(rows)} rows of {', '.join(o.path for o in others)}:")
+        lines += [f"  {path}:{line}: {v:.4f}" for (path, line), v in zip(rows, predicted, strict=True)]
+        if all("eta" in other for other in others):
+            measured = np.concatenate([other.column("eta") for other in others])
+            error = float(np.nanmean(np.abs(predicted - measured)))
+            document["mean_absolute_error"] = error
+            lines.append(f"mean absolute error against the measured eta: {error:.4f}")
+    if args.out:
+        write_atomic(args.out, residual_figure(result))
+    print(json.dumps(document, indent=2) if args.json else "\n".join(lines))
+    return 0

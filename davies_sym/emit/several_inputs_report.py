@@ -1,0 +1,129 @@
+"""Text, JSON and ``--eval`` answers of a train driven on several shafts: the speeds in
+the input speeds, the speed conditions, and per power-flow region the driving gear of
+each mesh, the ports that put power in and take it out, every port torque in the load
+torque and the efficiency (Mantriota and Pennestri 2003, eq. (6))."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
+from davies_sym.errors import DerivationError, InputError, NotCoveredError, Problem
+from davies_sym.losses.definitions import completed
+
+
+def _condition_text(si: SeveralInputs, region: Region) -> list[str]:
+    return [f"{sympy.sstr(c.form)} {'>' if region.signs[c.name] > 0 else '<'} 0" for c in si.conditions]
+
+
+def _mesh_text(si: SeveralInputs, region: Region) -> list[str]:
+    out = []
+    for mesh, first in region.first_drives.items():
+        gears = si.train.coupling(mesh).gears or ("", "")
+        driver, driven = gears if first else gears[::-1]
+        out.append(f"{mesh}: gear {driver} drives gear {driven}")
+    return out
+
+
+def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
+    """The JSON document: kinematics, conditions and regions with their closed forms."""
+    train = si.train
+    return {
+        "status": "ok", "name": train.name, "source": train.source, "file": train.path,
+        "inputs": list(train.ports.inputs), "output": train.ports.output,
+        "input_speeds": [str(s) for s in si.speeds], "load_torque": str(LOAD_TORQUE),
+        "port_speeds": {p: sympy.sstr(v.to_expr()) for p, v in si.port_speeds.items()},
+        "speed_conditions": [{"name": c.name, "expression": sympy.sstr(c.form), "decides": list(c.decides)}
+                             for c in si.conditions],
+        "regions": [{"number": r.number, "conditions": _condition_text(si, r), "meshes": _mesh_text(si, r),
+                     "power_in": list(r.inputs), "power_out": list(r.outputs),
+                     "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
+                     "efficiency": sympy.sstr(r.efficiency), "latex": sympy.latex(r.efficiency)}
+                    for r in si.regions],
+    }
+
+
+def several_inputs_text(document: Mapping[str, Any]) -> str:
+    """Plain text of :func:`several_inputs_document`."""
+    lines = [document["name"],
+             f"  inputs {', '.join(document['inputs'])} (speeds {', '.join(document['input_speeds'])}), output "
+             f"{document['output']} (load torque {document['load_torque']}, resisting its motion)"]
+    lines += [f"  speed of {p}: w_{p} = {v}" for p, v in document["port_speeds"].items()
+              if f"w_{p}" not in document["input_speeds"]]
+    for c in document["speed_conditions"]:
+        lines.append(f"  speed condition {c['name']}: sign of {c['expression']} ({'; '.join(c['decides'])})")
+    for r in document["regions"]:
+        lines.append(f"  ({r['number']}) where {' and '.join(r['conditions'])}: power in at "
+                     f"{', '.join(r['power_in'])}, out at {', '.join(r['power_out'])}")
+        lines += [f"      {m}" for m in r["meshes"]]
+        lines += [f"      T_{p} = {t}" for p, t in r["torques"].items()]
+        lines.append(f"      eta = {r['efficiency']}")
+    return "\n".join(lines)
+
+
+@dataclass(frozen=True)
+class SeveralEvaluation:
+    """The region, port torques and efficiency at given speeds, load and parameters."""
+
+    region: Region
+    conditions: tuple[str, ...]
+    torques: Mapping[str, sympy.Expr]
+    efficiency: sympy.Expr
+    #: Power into the train at each port (negative where the port takes power out).
+    powers: Mapping[str, sympy.Expr]
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        return tuple(p for p, v in self.powers.items() if v > 0)
+
+    @property
+    def outputs(self) -> tuple[str, ...]:
+        return tuple(p for p, v in self.powers.items() if v < 0)
+
+    def document(self) -> dict[str, object]:
+        return {"status": "ok", "region": self.region.number, "conditions": list(self.conditions),
+                "power_in": list(self.inputs), "power_out": list(self.outputs),
+                "powers": {p: float(v) for p, v in self.powers.items()},
+                "torques": {p: float(t) for p, t in self.torques.items()},
+                "efficiency": float(self.efficiency), "efficiency_exact": sympy.sstr(self.efficiency)}
+
+    def text(self) -> str:
+        torques = ", ".join(f"T_{p} = {float(t)!r}" for p, t in self.torques.items())
+        return (f"region ({self.region.number}): power in at {', '.join(self.inputs)}, out at "
+                f"{', '.join(self.outputs)}\n{torques}\n{float(self.efficiency)!r}\n")
+
+
+def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> SeveralEvaluation:
+    """The answer of ``--eval`` for a train with several inputs (``values`` by name)."""
+    train = si.train
+    known = {str(s): s for s in (*si.speeds, LOAD_TORQUE)} | dict(train.symbols)
+    unknown = sorted(set(values) - set(known))
+    if unknown:
+        raise InputError([Problem("--eval", f"unknown symbol {unknown[0]} (this train takes: "
+                                  f"{', '.join(sorted(known))})")], train.path)
+    point = completed({known[k]: v for k, v in values.items()}, train.definitions)
+    try:
+        region = si.region_at(point)
+    except DerivationError as exc:
+        raise InputError([Problem("--eval", str(exc))], train.path) from None
+    eta = sympy.sympify(region.efficiency.subs(point))
+    torques = {p: sympy.sympify(t.to_expr().subs(point)) for p, t in region.torques.items()}
+    missing = sorted({str(s) for e in (eta, *torques.values()) for s in e.free_symbols})
+    if missing:
+        raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
+    for mesh, (force, assumed) in region.tooth_forces.items():
+        if sympy.sign(force.to_expr().subs(point)) == -assumed:
+            raise NotCoveredError(f"the losses reverse the tooth force of mesh {mesh} at these values (region "
+                                  f"({region.number}) assumes the lossless direction): the load is too small for "
+                                  "the drag")
+    if not 0 < eta <= 1:
+        raise NotCoveredError(f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "
+                              "the losses exceed the power put in (the load is too small for the drag, or the "
+                              "train self-locks)")
+    powers = {p: sympy.sympify(t * si.port_speeds[p].to_expr().subs(point) * si.pairing[p])
+              for p, t in torques.items()}
+    return SeveralEvaluation(region, tuple(_condition_text(si, region)), torques, eta, powers)

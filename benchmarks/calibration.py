@@ -12,7 +12,7 @@ import subprocess
 import sys
 import time
 
-from davies_sym.calibration.command import calibrate
+from davies_sym.calibration.command import calibrate, derived_model
 from davies_sym.calibration.measurements import read_measurements
 from davies_sym.topology.loader import load
 
@@ -35,10 +35,10 @@ def main() -> None:
     train = load(TRAIN)
     data = read_measurements(TABLES[0], [*COLUMNS, "eta"])
     others = [read_measurements(path, COLUMNS, ["eta"]) for path in TABLES[1:]]
-    model, result = calibrate(train, data)
+    model, result = calibrate(derived_model(train), data)
     print(f"fit: {', '.join(f'{n} = {v:.6g}' for n, v in result.parameters.items())} "
           f"({result.evaluations} model evaluations)")
-    print(f"derive the regions and fit Table I: {best(lambda: calibrate(train, data)):.3f} s")
+    print(f"derive the regions and fit Table I: {best(lambda: calibrate(derived_model(train), data)):.3f} s")
     print(f"predict Tables II-V ({sum(len(o) for o in others)} rows): "
           f"{best(lambda: [model.predict(o, result.parameters) for o in others]):.4f} s")
     start = time.perf_counter()

@@ -25,7 +25,7 @@ from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
-from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
+from davies_sym.topology.expressions import ExpressionError, assignments, parse_expression, shortened
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
@@ -273,16 +273,7 @@ def _kinematics(train: Train, args: argparse.Namespace, progress: Progress) -> l
         return [(args.out, json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n")]
     regions = derive_several_inputs(train, progress=progress)
     if args.eval is not None:
-        values = {}
-        for pair in args.eval:
-            name, sep, text = pair.partition("=")
-            if not sep:
-                raise InputError([Problem("--eval", f"expected NAME=VALUE, got {shortened(pair)}")], train.path)
-            try:
-                values[name.strip()] = parse_expression(text)
-            except ExpressionError as exc:
-                raise InputError([Problem("--eval", f"{name.strip()}: {exc}")], train.path) from None
-        answer = evaluate_several(regions, values)
+        answer = evaluate_several(regions, assignments(args.eval, "--eval", train.path))
         return [(None, json.dumps(answer.document(), indent=2) + "\n" if args.json else answer.text())]
     document = several_inputs_document(regions)
     return [(args.out, json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n")]

@@ -83,7 +83,7 @@ def test_sr20_cli_prints_the_kinematics_and_regions():
     result = subprocess.run([sys.executable, "-m", "davies_sym.cli", catalog_path("sr20_differential")],
                             capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
-    assert "speed of O: w_O = w_A/2 + w_K/2" in result.stdout and "inputs A, K" in result.stdout
+    assert "speed of O: omega_O = omega_A/2 + omega_K/2" in result.stdout and "inputs A, K" in result.stdout
 
 
 def test_litvin_face_gear_drive_chen_eqs_4_17_and_4_24():

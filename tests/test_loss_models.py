@@ -189,7 +189,7 @@ def test_every_variant_falls_as_the_loss_grows(law: str, side: str) -> None:
 
 def test_drag_on_the_output_by_hand_efficiency_rises_with_load() -> None:
     """Constant drag D on the output shaft B: P_out = eta_C P_in - D w_B with
-    w_B = w_in r1/r2, so eta = eta_C - D r1 / (r2 T_in); rising with the input torque."""
+    w_B = omega_in r1/r2, so eta = eta_C - D r1 / (r2 tau_in); rising with the input torque."""
     variants = derive_variants(_pair(b=", friction: {drag: D}"))
     for torque in (5, 10, 40):
         values = _values(variants, r1=20, r2=50, eta_C="0.98", D="0.5")
@@ -199,8 +199,9 @@ def test_drag_on_the_output_by_hand_efficiency_rises_with_load() -> None:
 
 
 def test_viscous_on_the_output_by_hand_when_it_is_the_input() -> None:
-    """Viscous b on shaft A with B the input (speed w_in, torque T_in): gear 1 turns at
-    w_in r2/r1 and loses b (w_in r2/r1)^2 after the mesh: eta = eta_C - b w_in r2^2/(T_in r1^2)."""
+    """Viscous b on shaft A with B the input (speed omega_in, torque tau_in): gear 1 turns at
+    omega_in r2/r1 and loses b (omega_in r2/r1)^2 after the mesh:
+    eta = eta_C - b omega_in r2^2/(tau_in r1^2)."""
     variants = derive_variants(_pair(a=", friction: {viscous: b}"))
     values = _values(variants, r1=20, r2=50, eta_C="0.98", b="0.01")
     values |= {INPUT_TORQUE: sympy.Integer(30), INPUT_SPEED: sympy.Integer(4)}
@@ -209,5 +210,17 @@ def test_viscous_on_the_output_by_hand_when_it_is_the_input() -> None:
 
 
 def test_operating_point_names_are_reserved() -> None:
-    with pytest.raises(davies_sym.InputError, match="T_in, w_in name the input torque and speed"):
-        derive_variants(_pair(a=", friction: {viscous: T_in*w_in}"))
+    with pytest.raises(davies_sym.InputError, match="omega_in, tau_in name the input torque and speed"):
+        derive_variants(_pair(a=", friction: {viscous: tau_in*omega_in}"))
+
+
+def test_ports_named_in_and_out_do_not_meet_the_operating_point_symbols() -> None:
+    """Couplings called `in` and `out` have the magnitudes T_in, t_in, T_out: the input
+    torque and speed of the formulas are tau_in and omega_in, so such a train derives, and
+    its drag variant is the hand formula eta = eta_C - D r1 / (r2 tau_in) (drag on the output)."""
+    text = PAIR.format(a="", b=", friction: {drag: D}").replace("A:", "in:").replace("B:", "out:").replace(
+        "{input: A, output: B}", "{input: in, output: out}")
+    variants = derive_variants(davies_sym.loads(text, "in_out.yaml"))
+    values = _values(variants, r1=20, r2=50, eta_C="0.98", D="0.5")
+    values |= {INPUT_TORQUE: sympy.Integer(10), INPUT_SPEED: sympy.Integer(7)}
+    assert variants.evaluate(values) == sympy.Rational(98, 100) - sympy.Rational(1, 2) * 20 / (50 * 10)

@@ -49,7 +49,7 @@ def _point(si, w_a: F, w_k: F, load: F, losses: dict[str, F]) -> dict[sympy.Symb
     symbols = dict(si.train.symbols)
     out = {symbols[k]: sympy.Rational(v.numerator, v.denominator) for k, v in losses.items()}
     w = dict(zip(("A", "K"), (w_a, w_k), strict=True))
-    out |= {s: sympy.Rational(w[str(s)[2:]].numerator, w[str(s)[2:]].denominator) for s in si.speeds}
+    out |= {s: sympy.Rational(w[p].numerator, w[p].denominator) for p, s in zip(("A", "K"), si.speeds, strict=True)}
     out[LOAD_TORQUE] = sympy.Rational(load.numerator, load.denominator)
     return out
 
@@ -96,7 +96,7 @@ def test_regions_reach_every_sector_and_tend_to_one_without_losses(lossy) -> Non
 
 def test_region_one_by_hand() -> None:
     """Both inputs forward, w_A > w_K, mesh losses only (both meshes eta): in the carrier frame
-    the sun drives through both meshes, T_A = T_out / (2 eta^2) (the tooth ratio 1/2, Willis),
+    the sun drives through both meshes, T_A = tau_out / (2 eta^2) (the tooth ratio 1/2, Willis),
     and eta* = (w_A + w_K) / (2 w_K + (w_A - w_K) / eta^2) (power in at both inputs)."""
     text = Path(catalog_path("sr20_differential")).read_text().replace(", friction: {drag: D_P}", "").replace(
         "  fit: [eta_M, D_P]\n  start: {eta_M: 0.95, D_P: 0.1}", "  fit: [eta_M]")
@@ -109,7 +109,7 @@ def test_region_one_by_hand() -> None:
 
 
 def test_eval_prints_region_torques_and_efficiency_last() -> None:
-    result = run_main([catalog_path("sr20_differential"), "--eval", "w_A=309", "w_K=51", "T_out=5.08",
+    result = run_main([catalog_path("sr20_differential"), "--eval", "omega_A=309", "omega_K=51", "tau_out=5.08",
                        "eta_M=0.95", "D_P=0", "--quiet"])
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
@@ -122,7 +122,7 @@ def test_eval_says_where_power_really_flows_when_drag_dominates() -> None:
     """A planet-bearing drag of 5 N m against a load of 0.01 N m: the carrier shaft is driven
     backwards in torque (it takes power), which the lossless directions of region (1) do not
     say; the answer reports the actual directions and eq. (6), the oracle's number."""
-    result = run_main([catalog_path("sr20_differential"), "--eval", "w_A=309", "w_K=51", "T_out=0.01",
+    result = run_main([catalog_path("sr20_differential"), "--eval", "omega_A=309", "omega_K=51", "tau_out=0.01",
                        "eta_M=0.95", "D_P=5", "--quiet"])
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
@@ -202,12 +202,13 @@ def test_a_parameter_the_formulas_do_not_take_is_refused(tmp_path: Path) -> None
 
 def test_evaluate_several_names_missing_values(lossy) -> None:
     with pytest.raises(davies_sym.InputError, match="missing values for"):
-        evaluate_several(lossy, {"w_A": sympy.Integer(300), "w_K": sympy.Integer(50), "T_out": sympy.Integer(5)})
+        evaluate_several(lossy, {"omega_A": sympy.Integer(300), "omega_K": sympy.Integer(50),
+                                 "tau_out": sympy.Integer(5)})
 
 
 def test_calibrating_a_one_input_train_with_values_given_by_at(tmp_path: Path) -> None:
-    """A fixed-axis pair with drag D on the output shaft: eta = eta_C - D r1 / (r2 T_in)
-    (by hand: the output loses D w_B with w_B = w_in r1/r2).  Rows from that formula with
+    """A fixed-axis pair with drag D on the output shaft: eta = eta_C - D r1 / (r2 tau_in)
+    (by hand: the output loses D w_B with w_B = omega_in r1/r2).  Rows from that formula with
     eta_C = 0.97, D = 0.8 N m and noise 0.001; the fit recovers both within three standard
     errors, the radii given with --at."""
     train = tmp_path / "pair.yaml"

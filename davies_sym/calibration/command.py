@@ -20,13 +20,13 @@ import numpy as np
 from davies_sym.calibration.least_squares import Fit, fit
 from davies_sym.calibration.measurements import Measurements, read_measurements
 from davies_sym.calibration.report import fit_text, residual_figure
-from davies_sym.calibration.train_model import TrainModel, columns_of, parameters_of
+from davies_sym.calibration.train_model import TrainModel, columns_of, fittable_parameters
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
-from davies_sym.topology.expressions import ExpressionError, parse_expression
+from davies_sym.topology.expressions import assignments
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 
@@ -49,22 +49,8 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _derived(train: Train) -> VariantSet | SeveralInputs:
-    return derive_several_inputs(train) if len(train.ports.inputs) > 1 else derive_variants(train)
-
-
 def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
-    out = {}
-    for pair in pairs:
-        name, sep, text = pair.partition("=")
-        try:
-            value = parse_expression(text) if sep else None
-        except ExpressionError as exc:
-            raise InputError([Problem("--at", f"{name}: {exc}")], train.path) from None
-        if value is None or not value.is_number:
-            raise InputError([Problem("--at", f"expected NAME=NUMBER, got {pair!r}")], train.path)
-        out[name.strip()] = float(value)
-    return out
+    return {name: float(value) for name, value in assignments(pairs, "--at", train.path).items()}
 
 
 def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[str] | None) -> tuple[str, ...]:
@@ -73,7 +59,7 @@ def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[s
             raise InputError([Problem("--fit", "name the parameters to fit (the file has no calibrate: fit)")],
                              train.path)
         names = train.calibrate.fit
-    known = parameters_of(derived)
+    known = fittable_parameters(derived)
     unknown = [n for n in names if n not in known]
     if unknown:
         raise InputError([Problem("--fit", f"{', '.join(unknown)} is not a parameter of the formulas (they take: "
@@ -81,10 +67,16 @@ def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[s
     return tuple(names)
 
 
-def calibrate(train: Train, data: Measurements, names: Sequence[str] | None = None,
+def derived_model(train: Train) -> VariantSet | SeveralInputs:
+    """What the formulas of ``train`` are: its variants, or the regions of a train driven
+    on several shafts."""
+    return derive_several_inputs(train) if len(train.ports.inputs) > 1 else derive_variants(train)
+
+
+def calibrate(derived: VariantSet | SeveralInputs, data: Measurements, names: Sequence[str] | None = None,
               fixed: dict[str, float] | None = None) -> tuple[TrainModel, Fit]:
-    """The fitted model of ``train`` on ``data`` (the rows' ``eta``)."""
-    derived = _derived(train)
+    """The fitted model of a derived train on ``data`` (the rows' ``eta``)."""
+    train = derived.train
     fitted = _fitted(train, derived, names)
     model = TrainModel(derived, fitted, fixed or {})
     efficiencies = {str(s) for s in efficiency_symbols(train)}
@@ -102,10 +94,11 @@ def run(argv: Sequence[str]) -> int:
     args = parser().parse_args(argv)
     try:
         train = load(args.train)
-        columns = columns_of(_derived(train))
+        derived = derived_model(train)
+        columns = columns_of(derived)
         data = read_measurements(args.data, [*columns, "eta"])
         others = [read_measurements(path, columns, ["eta"]) for path in args.predict or ()]
-        model, result = calibrate(train, data, args.fit, _fixed(train, args.at))
+        model, result = calibrate(derived, data, args.fit, _fixed(train, args.at))
     except CalibrationError as exc:
         print(f"derive calibrate: {exc}", file=sys.stderr)
         return 2

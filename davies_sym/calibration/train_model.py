@@ -75,8 +75,8 @@ class TrainModel:
         known = {**self.fixed, **values}
         condition_signs: dict[str, FloatArray] = {}
         if isinstance(self.derived, SeveralInputs):
-            # The speed symbols are named like their columns (w_A).
-            speeds = {str(s): data.column(str(s)) * RPM for s in self.derived.speeds}
+            ports = self.derived.train.ports.inputs
+            speeds = {str(s): data.column(f"w_{p}") * RPM for p, s in zip(ports, self.derived.speeds, strict=True)}
             operating = {**speeds, str(LOAD_TORQUE): np.abs(data.column(self.required[-1]))}
             for c in self.derived.conditions:
                 form = sympy.lambdify(list(self.derived.speeds), c.form, "numpy")
@@ -104,7 +104,7 @@ def columns_of(derived: VariantSet | SeveralInputs) -> tuple[str, ...]:
     return (f"w_{train.ports.input}", f"T_{train.ports.input}")
 
 
-def parameters_of(derived: VariantSet | SeveralInputs) -> Sequence[str]:
+def fittable_parameters(derived: VariantSet | SeveralInputs) -> Sequence[str]:
     """The parameters the formulas take besides the operating point."""
     if isinstance(derived, SeveralInputs):
         train = derived.train

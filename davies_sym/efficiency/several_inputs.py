@@ -12,8 +12,9 @@ power in are signs of linear forms in the input speeds: each is a *speed conditi
 line through the origin of the plane of input speeds.  A *region* is one choice of all
 signs that admissible designs reach; in it every sign is known, zeta is replaced by the
 ordinary efficiency of the driving direction (eqs. (74)-(75)) and the efficiency is
-the power that leaves the train at its outputs over the power that enters at its inputs,
-Mantriota and Pennestri eq. (6), in closed form.
+Mantriota and Pennestri's eq. (6), the output's power over the sum of the input shafts'
+powers, in closed form; the region also says which ports put power in and which take it
+out (a shaft driven backwards by the others takes power, and lowers that sum).
 """
 
 from __future__ import annotations
@@ -30,9 +31,8 @@ import sympy
 
 from davies_sym.algebra.linalg import gauss_jordan
 from davies_sym.algebra.polynomials import RationalFunction
-from davies_sym.algebra.screws import power
 from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols
-from davies_sym.efficiency.virtual_power import MeshPowerFlow, find_carrier, mesh_power_flow
+from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
@@ -43,12 +43,13 @@ from davies_sym.topology.model import Train
 Progress = Callable[[str], None]
 
 #: The magnitude of the torque the load puts on the output (it resists the output's motion).
-LOAD_TORQUE = sympy.Symbol("T_out", positive=True)
+LOAD_TORQUE = sympy.Symbol("tau_out", positive=True)
 
 
 def speed_symbol(port: str) -> sympy.Symbol:
-    """The speed of an input port (signed, along the coupling's positive direction)."""
-    return sympy.Symbol(f"w_{port}", real=True)
+    """The speed of an input port (signed, along the coupling's positive direction); no
+    coupling's magnitude is named so (those are t_<coupling>, w_<coupling>, ...)."""
+    return sympy.Symbol(f"omega_{port}", real=True)
 
 
 @dataclass(frozen=True)
@@ -91,28 +92,18 @@ class _SeveralInputAnalysis(Analysis):
     @cached_property
     def motion_magnitudes(self) -> dict[str, RationalFunction]:
         net = self.network
-        inputs = [net.coupling_motions(p)[0] for p in self.train.ports.inputs]
-        prefer = [net.motions.index(v) for v in inputs]
-        elimination = gauss_jordan(self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
-                                   reduce=self.reduce)
-        if sorted(elimination.free) != sorted(prefer):
-            extra = [net.motions[j].name for j in elimination.free if j not in prefer]
+        inputs = {net.coupling_motions(p)[0].name: speed_symbol(p) for p in self.train.ports.inputs}
+        combinations = self.motions_in(list(inputs))
+        free = {name for combo in combinations.values() for name in combo}
+        if free != set(inputs):
+            extra = sorted(free - set(inputs))
             raise MobilityError([self.train.problem(
-                "ports.input", f"the train has {len(elimination.free)} degrees of freedom but "
-                f"{len(prefer)} input ports drive it" + (f" (also free: {', '.join(extra)})" if extra else
-                                                         "; an input port cannot turn on its own"))],
+                "ports.input", f"the train has {len(free)} degrees of freedom but {len(inputs)} input ports drive "
+                "it" + (f" (also free: {', '.join(extra)})" if extra else "; an input port cannot turn on its own"))],
                 self.train.path)
-        solution = elimination.solution(self.ring)
-        speeds = {j: RationalFunction.polynomial(self.ring, self.ring.gen(speed_symbol(net.motions[j].coupling)))
-                  for j in prefer}
+        speeds = {name: RationalFunction.polynomial(self.ring, self.ring.gen(s)) for name, s in inputs.items()}
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
-        out = {}
-        for k, v in enumerate(net.motions):
-            total = zero
-            for j, coefficient in solution[k].items():
-                total = total + coefficient * speeds[j]
-            out[v.name] = total
-        return out
+        return {name: sum((c * speeds[j] for j, c in combo.items()), zero) for name, combo in combinations.items()}
 
 
 @dataclass(frozen=True, eq=False)
@@ -147,10 +138,10 @@ class SeveralInputs:
         raise DerivationError(f"no region has the signs {signs}: no admissible design reaches them")
 
 
-def _primitive(form: RationalFunction, analysis: Analysis) -> tuple[int, sympy.Expr]:
-    """A linear form as (sign of its geometric factors, the factor in the speeds)."""
+def _primitive(form: RationalFunction, analysis: Analysis, speeds: frozenset[sympy.Symbol]) -> tuple[int, sympy.Expr]:
+    """A linear form in the input ``speeds`` as (sign of its geometric factors, the factor
+    in the speeds)."""
     content, factors = form.factor_list()
-    speeds = {s for s in form.ring.symbols if str(s).startswith("w_")}
     moving = [(f, e) for f, e in factors if f.free_symbols & speeds]
     fixed = [(f, e) for f, e in factors if not f.free_symbols & speeds]
     if len(moving) != 1 or moving[0][1] != 1:
@@ -188,6 +179,7 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     train = resolved_train(train)
     ports = train.ports
     speeds = tuple(speed_symbol(p) for p in ports.inputs)
+    moving = frozenset(speeds)
     etas = efficiency_symbols(train)
     clash = sorted(str(s) for s in (*speeds, LOAD_TORQUE) if str(s) in train.symbols)
     if clash:
@@ -203,12 +195,11 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     say("speeds in the input speeds (null space of M_N)")
     motion = analysis.motion_magnitudes
     port_speeds = {p: motion[net.coupling_motions(p)[0].name] for p in ports.every}
-    pairing = {p: 1 if power(net.port_action(p).wrench, net.coupling_motions(p)[0].twist) > 0 else -1
-               for p in ports.every}
+    pairing = {p: analysis.port_power_sign(p) for p in ports.every}
     conditions = _Conditions()
     said: dict[str, tuple[int, int]] = {}
     for p in ports.every:
-        sign, form = _primitive(port_speeds[p], analysis)
+        sign, form = _primitive(port_speeds[p], analysis, moving)
         k, orientation = conditions.add(form, f"port {p} turns forwards")
         said[f"port {p}"] = (k, sign * orientation)
     say("virtual power through the meshes")
@@ -218,18 +209,15 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     for law in net.laws:
         mesh = train.coupling(law.coupling)
         if isinstance(mesh, GearMesh) and law.law in ("coulomb", "linear"):
-            flow = mesh_power_flow(analysis, mesh)
-            flows[mesh.name] = flow
-            _, sides = find_carrier(analysis, mesh)
-            transmitted = analysis.inner([analysis.ring.rational(v) for v in
-                                          net.coupling_actions(mesh.name, lossless=True)[0].wrench], sides[0])
-            # Lossless tooth force per unit load torque: its sign times the carrier-frame speed.
+            flows[mesh.name] = flow = mesh_power_flow(analysis, mesh)
+            # Lossless tooth force per unit load torque times its power on the first gear's side
+            # in the carrier frame (a linear form in the input speeds).
             force = lossless[law.transmitted or ""] / lossless[load_action]
-            sign, form = _primitive(force * transmitted, analysis)
+            sign, form = _primitive(force * flow.transmitted_power[0], analysis, moving)
             k, orientation = conditions.add(form, f"mesh {mesh.name}: which gear drives")
             said[f"mesh {mesh.name}"] = (k, sign * orientation)
         elif law.law == "drag":
-            sign, form = _primitive(motion[law.motion], analysis)
+            sign, form = _primitive(motion[law.motion], analysis, moving)
             k, orientation = conditions.add(form, f"coupling {law.coupling} turns forwards")
             said[f"drag {law.coupling}"] = (k, sign * orientation)
     names = [f"s{k + 1}" for k in range(len(conditions.forms))]

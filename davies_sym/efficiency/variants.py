@@ -40,15 +40,16 @@ Progress = Callable[[str], None]
 NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
 
 #: Where dependent sources (viscous, drag) make the efficiency depend on the operating
-#: point, the formulas take the input torque and speed as magnitudes (input power T_in w_in).
-INPUT_TORQUE = sympy.Symbol("T_in", positive=True)
-INPUT_SPEED = sympy.Symbol("w_in", positive=True)
+#: point, the formulas take the input torque and speed as magnitudes (input power
+#: tau_in omega_in).  No coupling's magnitude is named so (those are T_<coupling>, t_<coupling>, ...).
+INPUT_TORQUE = sympy.Symbol("tau_in", positive=True)
+INPUT_SPEED = sympy.Symbol("omega_in", positive=True)
 OPERATING_SYMBOLS = (INPUT_TORQUE, INPUT_SPEED)
 
 
 def at_operating_point(form: RationalFunction, analysis: Analysis) -> RationalFunction:
-    """``form`` with the input port's torque and speed magnitudes written as T_in and
-    w_in (the input turning forwards and putting power in: Laus's primary variables,
+    """``form`` with the input port's torque and speed magnitudes written as tau_in and
+    omega_in (the input turning forwards and putting power in: Laus's primary variables,
     eq. (53) and the efficiency after it)."""
     torque = form.ring.rational(analysis.input_power_sign * INPUT_TORQUE)
     form = form.substitute(analysis.input_action.symbol, torque)

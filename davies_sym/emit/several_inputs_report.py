@@ -11,7 +11,7 @@ from typing import Any
 
 import sympy
 
-from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
+from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs, speed_symbol
 from davies_sym.errors import DerivationError, InputError, NotCoveredError, Problem
 from davies_sym.losses.definitions import completed
 
@@ -52,8 +52,8 @@ def several_inputs_text(document: Mapping[str, Any]) -> str:
     lines = [document["name"],
              f"  inputs {', '.join(document['inputs'])} (speeds {', '.join(document['input_speeds'])}), output "
              f"{document['output']} (load torque {document['load_torque']}, resisting its motion)"]
-    lines += [f"  speed of {p}: w_{p} = {v}" for p, v in document["port_speeds"].items()
-              if f"w_{p}" not in document["input_speeds"]]
+    lines += [f"  speed of {p}: {speed_symbol(p)} = {v}" for p, v in document["port_speeds"].items()
+              if str(speed_symbol(p)) not in document["input_speeds"]]
     for c in document["speed_conditions"]:
         lines.append(f"  speed condition {c['name']}: sign of {c['expression']} ({'; '.join(c['decides'])})")
     for r in document["regions"]:

@@ -154,7 +154,13 @@ class Analysis:
         # Primary speeds: the input, then the other couplings on the reference (shaft speeds).
         on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
                         for v in net.coupling_motions(c.name) if v is not self.input_motion]
-        prefer = [net.motions.index(self.input_motion), *on_reference]
+        return self.motions_in([self.input_motion.name, *(net.motions[j].name for j in on_reference)])
+
+    def motions_in(self, preferred: Sequence[str]) -> dict[str, dict[str, RationalFunction]]:
+        """Every motion magnitude as a combination of the free ones of Null(M_N), chosen
+        among ``preferred`` (motion names) first: eq. (1) for any mobility."""
+        net = self.network
+        prefer = [net.motions.index(net.motion(name)) for name in preferred]
         elimination = gauss_jordan(self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
                                    reduce=self._reduce)
         solution = elimination.solution(self.ring)
@@ -210,7 +216,12 @@ class Analysis:
     @property
     def input_power_sign(self) -> int:
         """+1 when the input torque and speed magnitudes of equal sign put power in."""
-        return 1 if self._input_pairing() > 0 else -1
+        return self.port_power_sign(self.train.ports.input)
+
+    def port_power_sign(self, port: str) -> int:
+        """+1 when a port's torque and speed magnitudes of equal sign put power in."""
+        net = self.network
+        return 1 if power(net.port_action(port).wrench, net.coupling_motions(port)[0].twist) > 0 else -1
 
     @property
     def coulomb_sign_values(self) -> dict[str, sympy.Expr]:

@@ -23,10 +23,12 @@ import ast
 import builtins
 import keyword
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 
 import sympy
+
+from davies_sym.errors import InputError, Problem
 
 #: Longest expression accepted (characters).
 MAX_LENGTH = 500
@@ -222,3 +224,23 @@ def _describe(node: ast.AST) -> str:
         if isinstance(node, kind):
             return text
     return f"a {type(node).__name__.lower()}"
+
+
+def assignments(pairs: Sequence[str], option: str, source: str | None) -> dict[str, sympy.Expr]:
+    """``NAME=VALUE`` pairs of the command line as exact numbers by name; every malformed
+    pair is reported at once (an :class:`~davies_sym.errors.InputError` naming ``option``)."""
+    out: dict[str, sympy.Expr] = {}
+    problems = []
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
+            continue
+        try:
+            out[name] = parse_expression(text)
+        except ExpressionError as exc:
+            problems.append(Problem(option, f"{name}: {exc}"))
+    if problems:
+        raise InputError(problems, source)
+    return out

@@ -17,7 +17,7 @@ from davies_sym.losses.tooth_contact import contact_lengths, spur_mesh_efficienc
 from davies_sym.topology.entries import describe
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.schema import BEARING, FRICTION, TOOTH_CONTACT
-from davies_sym.topology.symbols import make_symbol
+from davies_sym.topology.symbols import train_symbol
 
 if TYPE_CHECKING:
     from davies_sym.topology.entries import EntryReader
@@ -148,10 +148,7 @@ def tooth_contact(entry: Mapping[str, Any], path: str, reader: EntryReader, name
 
 def _defined_symbol(name: str, role: str, reader: EntryReader) -> sympy.Symbol:
     """The train's symbol ``name`` (gear names may hold characters a symbol may not)."""
-    name = re.sub(r"\W", "_", name, flags=re.ASCII)
-    if name not in reader.symbols:
-        reader.symbols[name] = make_symbol(name, role)
-    return reader.symbols[name]
+    return train_symbol(re.sub(r"\W", "_", name, flags=re.ASCII), role, reader.symbols)
 
 
 def _units(*given: tuple[sympy.Expr, str]) -> tuple[tuple[str, str], ...]:

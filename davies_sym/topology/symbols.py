@@ -90,7 +90,7 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol], r
     number = exact_number(value)
     if number is None and isinstance(value, str):
         try:
-            parsed = parse_expression(value, lambda name: _symbol(name, role, symbols))
+            parsed = parse_expression(value, lambda name: train_symbol(name, role, symbols))
         except ExpressionError as exc:
             raise QuantityError(str(exc)) from None
         why = inexact(parsed, roots)
@@ -139,7 +139,8 @@ def inexact(expr: sympy.Expr, roots: bool = False) -> str | None:
     return None
 
 
-def _symbol(name: str, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Symbol:
+def train_symbol(name: str, role: str, symbols: dict[str, sympy.Symbol]) -> sympy.Symbol:
+    """The train's symbol ``name``, made with the assumptions of ``role`` when new."""
     if name not in symbols:
         symbols[name] = make_symbol(name, role)
     return symbols[name]

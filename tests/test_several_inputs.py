@@ -84,6 +84,43 @@ def test_every_region_equals_the_oracle(lossy, seed: int) -> None:
     assert checked >= 6
 
 
+#: Catalog radii (module x teeth / 2) over the oracle's radii in metres (diametral pitches 425 and
+#: 406.25 per metre): a friction-circle radius in catalog units is this many times the oracle's.
+CATALOG_PER_METRE = 27625
+
+
+def test_bearing_coulomb_friction_in_every_region_equals_the_oracle() -> None:
+    """Coulomb friction in the planet bearing (on the carrier) and in the carrier's housing
+    bearing, loaded by their reactions (Laus eq. (21)), with mesh efficiencies and planet drag:
+    both input torques and eta* equal the oracle's friction-circle balance exactly, in every
+    direction of the input speeds."""
+    text = Path(catalog_path("sr20_differential")).read_text(encoding="utf-8").replace(
+        "friction: {drag: D_P}", "friction: {coulomb: rho_P, drag: D_P}").replace(
+        "  K: {type: revolute, links: [0, c], at: 0}", "  K: {type: revolute, links: [0, c], at: 0, friction: "
+        "{coulomb: rho_K}}")
+    si = derive_several_inputs(davies_sym.loads(text, "sr20_bearings.yaml"))
+    assert [c.decides for c in si.conditions if "coupling P turns forwards" in c.decides]
+    rng = random.Random(7)
+    reached = set()
+    for _ in range(40):
+        w_a, w_k = F(rng.randint(-600, 600)), F(rng.randint(-600, 600))
+        if 0 in (w_a, w_k, w_a + w_k, w_a - w_k):
+            continue
+        losses = {"eta_M": F(rng.randint(90, 99), 100), "rho_P": F(rng.randint(0, 30), 1000),
+                  "rho_K": F(rng.randint(0, 30), 1000), "D_P": F(rng.randint(0, 20), 100)}
+        load = F(rng.randint(20, 80))
+        train = sr20(eta_1=losses["eta_M"], eta_2=losses["eta_M"], drag={"p": losses["D_P"]},
+                     rho={"p": losses["rho_P"] / CATALOG_PER_METRE, "c": losses["rho_K"] / CATALOG_PER_METRE})
+        truth = sr20_at_row({"w_A": w_a, "w_K": w_k, "T_O": -load if w_a + w_k > 0 else load}, train=train)
+        point = _point(si, w_a, w_k, load, losses)
+        region = si.region_at(point)
+        reached.add(region.number)
+        assert region.torques["A"].to_expr().subs(point) == sympy.Rational(truth.T_A.numerator, truth.T_A.denominator)
+        assert region.torques["K"].to_expr().subs(point) == sympy.Rational(truth.T_K.numerator, truth.T_K.denominator)
+        assert region.efficiency.subs(point) == sympy.Rational(truth.eta.numerator, truth.eta.denominator)
+    assert len(reached) == 8
+
+
 def test_regions_reach_every_sector_and_tend_to_one_without_losses(lossy) -> None:
     """Four lines through the origin (w_A, w_K, w_A + w_K, w_A - w_K) make eight sectors; with
     every loss zero each region's efficiency is 1."""

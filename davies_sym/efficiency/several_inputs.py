@@ -36,7 +36,6 @@ from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
-from davies_sym.network.matrices import SOURCE_LAWS
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -76,9 +75,10 @@ class Region:
     #: Torque the outside applies at each port, in the load torque and the input speeds.
     torques: Mapping[str, RationalFunction] = field(repr=False)
     efficiency_rf: RationalFunction = field(repr=False)
-    #: Tooth force of each mesh with the sign the region assumes for it: where losses
-    #: larger than the load reverse one, the region's formulas do not hold.
-    tooth_forces: Mapping[str, tuple[RationalFunction, int]] = field(default_factory=dict, repr=False)
+    #: The tooth force of each mesh and the reaction loading each bearing's Coulomb law,
+    #: with the sign the region assumes for it: where losses larger than the load reverse
+    #: one, the region's formulas do not hold.
+    loaded_forces: Mapping[str, tuple[RationalFunction, int]] = field(default_factory=dict, repr=False)
 
     @property
     def efficiency(self) -> sympy.Expr:
@@ -188,10 +188,6 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     analysis = _SeveralInputAnalysis(train, coulomb_signs="mesh-linear", progress=progress,
                                      extra_symbols=[*etas, *speeds, LOAD_TORQUE])
     net = analysis.network
-    for law in net.laws:
-        if law.law not in SOURCE_LAWS and not isinstance(train.coupling(law.coupling), GearMesh):
-            raise DerivationError(f"coupling {law.coupling}: a load-dependent friction law outside the meshes is "
-                                  "not derived for trains with several inputs; give its loss as drag or viscous")
     say("speeds in the input speeds (null space of M_N)")
     motion = analysis.motion_magnitudes
     port_speeds = {p: motion[net.coupling_motions(p)[0].name] for p in ports.every}
@@ -216,10 +212,11 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
             sign, form = _primitive(force * flow.transmitted_power[0], analysis, moving)
             k, orientation = conditions.add(form, f"mesh {mesh.name}: which gear drives")
             said[f"mesh {mesh.name}"] = (k, sign * orientation)
-        elif law.law == "drag":
+        elif law.law in ("drag", "coulomb") and f"turn {law.coupling}" not in said:
+            # A constant drag and a bearing's Coulomb friction oppose the relative motion.
             sign, form = _primitive(motion[law.motion], analysis, moving)
             k, orientation = conditions.add(form, f"coupling {law.coupling} turns forwards")
-            said[f"drag {law.coupling}"] = (k, sign * orientation)
+            said[f"turn {law.coupling}"] = (k, sign * orientation)
     names = [f"s{k + 1}" for k in range(len(conditions.forms))]
     found = _reached_signs(train, analysis, conditions.forms, speeds, samples, seed)
     regions: list[Region] = []
@@ -278,19 +275,33 @@ def _region(number: int, signs: dict[str, int], vector: tuple[int, ...], said: M
     index = {n: j for j, n in enumerate(names)}
     const = len(names)
     rows = analysis.rows(net.network_action_matrix())
+    output_action = net.port_action(ports.output).name
+
+    def lossless_sign(action: str) -> int:
+        """Sign of an action magnitude without losses (they all scale with the load)."""
+        return _sign(lossless[action] / lossless[output_action], analysis) * load_sign
+
     for law in net.laws:
-        if law.law in ("coulomb", "linear"):
+        if law.coupling in flows:
             mesh = train.coupling(law.coupling)
             assert isinstance(mesh, GearMesh) and mesh.efficiencies is not None
             eta = mesh.efficiencies[0] if first[law.coupling] else mesh.efficiencies[1]
             zeta = flows[law.coupling].friction_for(eta, first[law.coupling])
             # T - zeta U = 0 (signed law), over zeta's denominator.
             rows.append({index[law.variable]: zeta.den, index[law.transmitted or ""]: -zeta.num})
+        elif law.law in ("coulomb", "linear"):
+            # A bearing: T = -zeta |U| sign(t) (Laus eq. (21)) with the region's signs of the
+            # reaction U and the relative motion t; a linear law is T = zeta U as written.
+            transmitted = law.transmitted or ""
+            factor = (lossless_sign(transmitted) * sign_of(f"turn {law.coupling}") if law.law == "coulomb"
+                      else -1)
+            value = ring.rational(factor * law.coefficient)
+            rows.append({index[law.variable]: value.den, index[transmitted]: value.num})
         elif law.law == "viscous":
             speed = analysis.motion_magnitudes[law.motion] * ring.rational(law.coefficient)
             rows.append({index[law.variable]: speed.den, const: speed.num})  # T = -b t
         else:
-            value = ring.rational(law.coefficient * sign_of(f"drag {law.coupling}"))
+            value = ring.rational(law.coefficient * sign_of(f"turn {law.coupling}"))
             rows.append({index[law.variable]: value.den, const: value.num})  # T = -D sign(t)
     rows = [{j: p for j, p in r.items() if not p.is_zero()} for r in rows]
     load = index[net.port_action(ports.output).name]
@@ -305,21 +316,18 @@ def _region(number: int, signs: dict[str, int], vector: tuple[int, ...], said: M
         j = index[net.port_action(p).name]
         torques[p] = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
     powers = {p: torques[p] * port_speeds[p] * ring.rational(pairing[p]) for p in ports.every}
-    lossless_sign = {p: _sign(lossless[net.port_action(p).name] / lossless[net.port_action(ports.output).name],
-                              analysis) * load_sign * sign_of(f"port {p}") * pairing[p] for p in ports.every}
-    inputs = tuple(p for p in ports.every if lossless_sign[p] > 0)
-    outputs = tuple(p for p in ports.every if lossless_sign[p] < 0)
+    power_sign = {p: lossless_sign(net.port_action(p).name) * sign_of(f"port {p}") * pairing[p] for p in ports.every}
+    inputs = tuple(p for p in ports.every if power_sign[p] > 0)
+    outputs = tuple(p for p in ports.every if power_sign[p] < 0)
     # Mantriota and Pennestri eq. (6): the output's power over the sum of the driving
     # shafts' powers, each with its sign (a shaft that takes power lowers the sum).
     p_in = sum((powers[p] for p in ports.inputs), zero)
     forces = {}
     for law in net.laws:
-        if law.coupling in flows:
+        if law.coupling in flows or law.law == "coulomb":
             j = index[law.transmitted or ""]
             force = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
-            assumed = _sign(lossless[law.transmitted or ""] / lossless[net.port_action(ports.output).name],
-                            analysis) * load_sign
-            forces[law.coupling] = (force, assumed)
+            forces[law.coupling] = (force, lossless_sign(law.transmitted or ""))
     return Region(number, signs, first, inputs, outputs, torques, -(powers[ports.output] / p_in), forces)
 
 

@@ -25,212 +25,58 @@ the same bytes.
 from __future__ import annotations
 
 import ast
-import inspect
-import keyword
 import os
-from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
-from functools import cache
+from collections.abc import Sequence
 
 import sympy
-from sympy.printing.numpy import NumPyPrinter
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
 from davies_sym.efficiency.variants import Variant, VariantSet
-from davies_sym.emit import formula_runtime
-from davies_sym.emit.code_layout import WIDTH, docstring, literal, module_source
+from davies_sym.emit import formula_code, formula_runtime
+from davies_sym.emit.code_layout import docstring, literal, module_source
+from davies_sym.emit.formula_code import call, constant, formula_function, name_node, runtime_of, table, usable
 from davies_sym.emit.variant_report import condition_text, mesh_text
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 
-_TEMPORARY = "_t"
-#: Room for one printed expression: the width less an indent, ``_t12 = `` and ``_array(...)``.
-_BUDGET = WIDTH - 30
+#: The entry points' own arguments: a train's names may not take them.
+_ENTRY_NAMES = frozenset({"input", "errors", "values", "efficiency", "losses", "speed_ratio"})
 
 
-class _Printer(NumPyPrinter):  # type: ignore[misc]  # sympy has no type information
-    """numpy code with the module written ``np`` (the generated module imports it so)."""
-
-    def _module_format(self, fqn: str, register: bool = True) -> str:
-        name = str(super()._module_format(fqn, register))
-        return "np." + name[len("numpy."):] if name.startswith("numpy.") else name
-
-
-def _code(expr: sympy.Basic) -> str:
-    return str(_Printer({"fully_qualified_modules": True}).doprint(expr))
-
-
-def _parsed(expr: sympy.Basic) -> ast.expr:
-    """The printer's code of ``expr`` as a node."""
-    return ast.parse(_code(expr), mode="eval").body
-
-
-def _width(expr: sympy.Basic) -> int:
-    """Characters of ``expr`` as the module writes it (``ast.unparse`` spaces the operators)."""
-    return len(ast.unparse(_parsed(expr)))
-
-
-def _name(text: str) -> ast.Name:
-    return ast.Name(text, ast.Load())
-
-
-def _call(function: str, *args: ast.expr) -> ast.Call:
-    return ast.Call(_name(function), list(args), [])
-
-
-@dataclass(frozen=True)
-class _Runtime:
-    """The parts of :mod:`formula_runtime`: the import block and, in order, the source
-    of every other top-level statement (placeholders: their name and annotation); and
-    the names it defines or imports, which a train's names may not take."""
-
-    imports: str
-    before: tuple[str, ...]
-    placeholders: dict[str, ast.expr]
-    after: tuple[str, ...]
-    names: frozenset[str]
-
-
-@cache
-def _runtime() -> _Runtime:
-    source = inspect.getsource(formula_runtime)
-    lines = source.split("\n")
-    tree = ast.parse(source)
-    body = tree.body[1:]  # without the docstring
-    imports = [n for n in body if isinstance(n, (ast.Import, ast.ImportFrom))]
-    block = "\n".join(lines[imports[0].lineno - 1:imports[-1].end_lineno])
-    before: list[str] = []
-    after: list[str] = []
-    placeholders: dict[str, ast.expr] = {}
-    for node in body[len(imports):]:
-        if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
-            placeholders[node.target.id] = node.annotation
-            continue
-        segment = ast.get_source_segment(source, node)
-        assert segment is not None
-        (after if placeholders else before).append(segment)
-    # The entry points' own arguments and the builtin the tables use are taken too.
-    names = {"input", "errors", "values", "efficiency", "losses", "speed_ratio", "float"}
-    for part in ast.walk(tree):
-        if isinstance(part, (ast.FunctionDef, ast.ClassDef)):
-            names.add(part.name)
-        elif isinstance(part, ast.alias):
-            names.add((part.asname or part.name).split(".")[0])
-        elif isinstance(part, ast.Name) and isinstance(part.ctx, ast.Store):
-            names.add(part.id)
-    return _Runtime(block, tuple(before), placeholders, tuple(after), frozenset(names))
+def _runtime() -> formula_code.Runtime:
+    return runtime_of(formula_runtime, _ENTRY_NAMES)
 
 
 def _constant(name: str, value: ast.expr) -> ast.AnnAssign:
-    """``NAME: <annotation of the placeholder> = value``."""
-    return ast.AnnAssign(ast.Name(name, ast.Store()), _runtime().placeholders[name], value, simple=1)
+    return constant(_runtime(), name, value)
 
 
 def _usable(name: str) -> bool:
-    """Whether ``name`` may be written as an identifier of the generated module."""
-    return (name.isascii() and name.isidentifier() and not keyword.iskeyword(name)
-            and name not in _runtime().names)
-
-
-def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
-            steps: list[tuple[sympy.Symbol, sympy.Expr]]) -> sympy.Expr:
-    """``expr`` with long parts moved into temporaries (appended to ``steps``) until its
-    code is at most :data:`_BUDGET` characters: sums and products in groups of terms,
-    other functions argument by argument."""
-    if _width(expr) <= _BUDGET or not expr.args:
-        return expr
-    args = [_fitted(a, fresh, steps) for a in expr.args]
-    if expr.is_Add or expr.is_Mul:
-        groups: list[list[sympy.Expr]] = [[]]
-        for a in args:
-            if groups[-1] and _width(expr.func(*groups[-1], a)) > _BUDGET:
-                groups.append([])
-            groups[-1].append(a)
-        parts = []
-        for group in groups:
-            if len(group) == 1:
-                parts.append(group[0])
-                continue
-            symbol = next(fresh)
-            steps.append((symbol, expr.func(*group)))
-            parts.append(symbol)
-        if len(parts) == len(args):  # no group formed: every argument alone is long
-            parts = [_temporary(a, fresh, steps) for a in args]
-        return _fitted(expr.func(*parts), fresh, steps)
-    rebuilt = expr.func(*args)
-    if _width(rebuilt) <= _BUDGET:
-        return rebuilt
-    return expr.func(*(_temporary(a, fresh, steps) for a in args))
-
-
-def _temporary(expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tuple[sympy.Symbol, sympy.Expr]]) \
-        -> sympy.Expr:
-    if expr.is_Atom:
-        return expr
-    symbol = next(fresh)
-    steps.append((symbol, expr))
-    return symbol
-
-
-def _formula_function(name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array",
-                      relation: bool = False) -> tuple[ast.FunctionDef, tuple[str, ...]]:
-    """A function of the symbols of ``exprs`` returning them (one: an array, several: a
-    tuple; ``relation``: whether the expression is positive), common subexpressions and
-    long parts computed once, each on its own line; also its argument names."""
-    args = tuple(sorted({str(s) for e in exprs for s in e.free_symbols}))
-    body: list[ast.stmt] = [docstring(doc, "    ")]
-    body += [ast.Assign([ast.Name(a, ast.Store())], _call("_array", _name(a))) for a in args]
-    fresh = sympy.numbered_symbols(_TEMPORARY)
-    replacements, reduced = sympy.cse(list(exprs), symbols=fresh, order="canonical")
-    steps: list[tuple[sympy.Symbol, sympy.Expr]] = []
-    for symbol, value in replacements:
-        steps.append((symbol, _fitted(value, fresh, steps)))
-    results = [_fitted(e, fresh, steps) for e in reduced]
-    body += [ast.Assign([ast.Name(str(s), ast.Store())], _parsed(v)) for s, v in steps]
-    returned: ast.expr
-    if relation:
-        returned = ast.Call(ast.Attribute(_name("np"), "asarray", ast.Load()),
-                                   [ast.Compare(_parsed(results[0]), [ast.Gt()], [ast.Constant(0)])], [])
-    elif len(results) == 1:
-        returned = _call("_array", _parsed(results[0]))
-    else:
-        returned = ast.Tuple([_call("_array", _parsed(r)) for r in results], ast.Load())
-    body.append(ast.Return(returned))
-    arguments = ast.arguments([], [], None, [ast.arg(a, _name("ArrayLike")) for a in args], [None] * len(args),
-                              None, [])
-    returns_node = ast.parse(returns, mode="eval").body
-    return ast.FunctionDef(name, arguments, body, [], returns_node, None), args
-
-
-def _table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:
-    """``{key: (function, (argument names))}``."""
-    return ast.Dict([ast.Constant(k) for k, _, _ in entries],
-                    [ast.Tuple([_name(f), literal(tuple(a))], ast.Load()) for _, f, a in entries])
-
+    return usable(_runtime(), name)
 
 def _entry_point(name: str, doc: str, required: Sequence[str], optional: Sequence[str],
-                 checked: Sequence[str], returns: str, call: ast.expr, default_input: str) -> ast.FunctionDef:
+                 checked: Sequence[str], returns: str, returned: ast.expr, default_input: str) -> ast.FunctionDef:
     """``name(*, input, errors, required..., optional=None...)``: the required arguments
     as arrays, the ``checked`` optional ones (dependent parameters) against their
-    relations, the others accepted and ignored; returns ``call``."""
-    params = [ast.arg("input", _name("str")), ast.arg("errors", _name("str"))]
+    relations, the others accepted and ignored; returns ``returned``."""
+    params = [ast.arg("input", name_node("str")), ast.arg("errors", name_node("str"))]
     defaults: list[ast.expr | None] = [ast.Constant(default_input), ast.Constant("warn")]
-    params += [ast.arg(a, _name("ArrayLike")) for a in required]
+    params += [ast.arg(a, name_node("ArrayLike")) for a in required]
     defaults += [None] * len(required)
-    maybe = ast.BinOp(_name("ArrayLike"), ast.BitOr(), ast.Constant(None))
+    maybe = ast.BinOp(name_node("ArrayLike"), ast.BitOr(), ast.Constant(None))
     params += [ast.arg(a, maybe) for a in optional]
     defaults += [ast.Constant(None) for _ in optional]
-    values = ast.Dict([ast.Constant(a) for a in required], [_call("_array", _name(a)) for a in required])
+    values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a)) for a in required])
     body: list[ast.stmt] = [docstring(doc, "    "),
                             ast.AnnAssign(ast.Name("values", ast.Store()), ast.parse("dict[str, Array]", mode="eval")
                                           .body, values, simple=1)]
     if checked:
-        given = ast.Dict([ast.Constant(a) for a in checked], [_name(a) for a in checked])
-        body.append(ast.Expr(_call("_consistent", given, _name("values"))))
-    body.append(ast.Return(call))
+        given = ast.Dict([ast.Constant(a) for a in checked], [name_node(a) for a in checked])
+        body.append(ast.Expr(call("_consistent", given, name_node("values"))))
+    body.append(ast.Return(returned))
     arguments = ast.arguments([], [], None, params, defaults, None, [])
     return ast.FunctionDef(name, arguments, body, [], ast.parse(returns, mode="eval").body, None)
 
@@ -317,7 +163,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
 
     def add(table: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array",
             relation: bool = False) -> tuple[str, ...]:
-        function, args = _formula_function(name, doc, exprs, returns, relation)
+        function, args = formula_function(name, doc, exprs, returns, relation)
         functions.append(function)
         tables[table].append((key, name, args))
         return args
@@ -348,22 +194,22 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     every = sorted({*symbols, *accepted, *dependent_of, *ratio_args})
     ignored = sorted(set(every) - {*symbols, *ratio_args, *dependent_of})
 
-    def entry(name: str, doc: str, required: Sequence[str], returns: str, call: ast.expr) -> ast.FunctionDef:
+    def entry(name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr) -> ast.FunctionDef:
         checked = [d for d, args in needs.items() if set(args) <= set(required)]
         optional = [a for a in every if a not in required]
-        return _entry_point(name, doc, required, optional, checked, returns, call, train.ports.input)
+        return _entry_point(name, doc, required, optional, checked, returns, returned, train.ports.input)
 
-    arrays = (_name("input"), _name("errors"), _name("values"))
+    arrays = (name_node("input"), name_node("errors"), name_node("values"))
     entries = [
         entry("efficiency", "Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen "
               "element by element; NaN where the design is not admissible or self-locks (errors: 'warn', 'raise', "
-              "'ignore').", symbols, "Array", _call("_efficiency", *arrays)),
+              "'ignore').", symbols, "Array", call("_efficiency", *arrays)),
         entry("losses", "Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), "
               "the variant chosen element by element; NaN where efficiency is.", symbols, "dict[str, Array]",
-              _call("_losses", *arrays)),
+              call("_losses", *arrays)),
         entry("speed_ratio", f"Input speed over output speed with `input` as the input port ({sympy.sstr(ratio)} "
               f"with {train.ports.input} as input); NaN where the design is not admissible.", ratio_args, "Array",
-              _call("_speed_ratio", *arrays)),
+              call("_speed_ratio", *arrays)),
     ]
     names = [f.name for f in functions]
     for f in functions:
@@ -378,7 +224,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
     items += [(2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored, relations))]
     items += [(2, f) for f in functions]
-    items += [(2 if k == 0 else 0, _constant(name, _table(rows))) for k, (name, rows) in enumerate(tables.items())]
+    items += [(2 if k == 0 else 0, _constant(name, table(rows))) for k, (name, rows) in enumerate(tables.items())]
     items += [(2, text) for text in runtime.after]
     items += [(2, f) for f in entries]
     return module_source(items)

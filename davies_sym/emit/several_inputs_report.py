@@ -115,9 +115,10 @@ def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> Sev
     missing = sorted({str(s) for e in (eta, *torques.values()) for s in e.free_symbols})
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
-    for mesh, (force, assumed) in region.tooth_forces.items():
+    for coupling, (force, assumed) in region.loaded_forces.items():
         if sympy.sign(force.to_expr().subs(point)) == -assumed:
-            raise NotCoveredError(f"the losses reverse the tooth force of mesh {mesh} at these values (region "
+            what = "tooth force of mesh" if coupling in region.first_drives else "reaction in coupling"
+            raise NotCoveredError(f"the losses reverse the {what} {coupling} at these values (region "
                                   f"({region.number}) assumes the lossless direction): the load is too small for "
                                   "the drag")
     if not 0 < eta <= 1:

@@ -1,0 +1,187 @@
+"""The code-writing parts every generated formula module shares: sympy's numpy printer,
+formulas as functions with common subexpressions (sympy ``cse``) and long parts on lines
+of their own, lookup tables of those functions, and the hand-written runtime a module
+copies (a real module of this package, so it is linted and type-checked; the generated
+module only adds data and formulas where its placeholders stand)."""
+
+from __future__ import annotations
+
+import ast
+import inspect
+import keyword
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from functools import cache
+from types import ModuleType
+
+import sympy
+from sympy.printing.numpy import NumPyPrinter
+
+from davies_sym.emit.code_layout import WIDTH, docstring, literal
+
+_TEMPORARY = "_t"
+#: Room for one printed expression: the width less an indent, ``_t12 = `` and ``_array(...)``.
+_BUDGET = WIDTH - 30
+
+
+class _Printer(NumPyPrinter):  # type: ignore[misc]  # sympy has no type information
+    """numpy code with the module written ``np`` (the generated module imports it so)."""
+
+    def _module_format(self, fqn: str, register: bool = True) -> str:
+        name = str(super()._module_format(fqn, register))
+        return "np." + name[len("numpy."):] if name.startswith("numpy.") else name
+
+
+def _code(expr: sympy.Basic) -> str:
+    return str(_Printer({"fully_qualified_modules": True}).doprint(expr))
+
+
+def parsed(expr: sympy.Basic) -> ast.expr:
+    """The printer's code of ``expr`` as a node."""
+    return ast.parse(_code(expr), mode="eval").body
+
+
+def _width(expr: sympy.Basic) -> int:
+    """Characters of ``expr`` as the module writes it (``ast.unparse`` spaces the operators)."""
+    return len(ast.unparse(parsed(expr)))
+
+
+def name_node(text: str) -> ast.Name:
+    return ast.Name(text, ast.Load())
+
+
+def call(function: str, *args: ast.expr) -> ast.Call:
+    return ast.Call(name_node(function), list(args), [])
+
+
+@dataclass(frozen=True)
+class Runtime:
+    """The parts of a runtime module: the import block and, in order, the source of every
+    other top-level statement (placeholders: their name and annotation); and the names it
+    defines or imports, which a train's names may not take."""
+
+    imports: str
+    before: tuple[str, ...]
+    placeholders: dict[str, ast.expr]
+    after: tuple[str, ...]
+    names: frozenset[str]
+
+
+@cache
+def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
+    """The parts of ``module``; ``taken``: names its entry points add (their arguments)."""
+    source = inspect.getsource(module)
+    lines = source.split("\n")
+    tree = ast.parse(source)
+    body = tree.body[1:]  # without the docstring
+    imports = [n for n in body if isinstance(n, (ast.Import, ast.ImportFrom))]
+    block = "\n".join(lines[imports[0].lineno - 1:imports[-1].end_lineno])
+    before: list[str] = []
+    after: list[str] = []
+    placeholders: dict[str, ast.expr] = {}
+    for node in body[len(imports):]:
+        if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            placeholders[node.target.id] = node.annotation
+            continue
+        segment = ast.get_source_segment(source, node)
+        assert segment is not None
+        (after if placeholders else before).append(segment)
+    names = {*taken, "float"}  # the builtin the tables use
+    for part in ast.walk(tree):
+        if isinstance(part, (ast.FunctionDef, ast.ClassDef)):
+            names.add(part.name)
+        elif isinstance(part, ast.alias):
+            names.add((part.asname or part.name).split(".")[0])
+        elif isinstance(part, ast.Name) and isinstance(part.ctx, ast.Store):
+            names.add(part.id)
+    return Runtime(block, tuple(before), placeholders, tuple(after), frozenset(names))
+
+
+def constant(runtime: Runtime, name: str, value: ast.expr) -> ast.AnnAssign:
+    """``NAME: <annotation of the placeholder> = value``."""
+    return ast.AnnAssign(ast.Name(name, ast.Store()), runtime.placeholders[name], value, simple=1)
+
+
+def usable(runtime: Runtime, name: str) -> bool:
+    """Whether ``name`` may be written as an identifier of the generated module."""
+    return (name.isascii() and name.isidentifier() and not keyword.iskeyword(name)
+            and name not in runtime.names)
+
+
+def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
+            steps: list[tuple[sympy.Symbol, sympy.Expr]]) -> sympy.Expr:
+    """``expr`` with long parts moved into temporaries (appended to ``steps``) until its
+    code is at most :data:`_BUDGET` characters: sums and products in groups of terms,
+    other functions argument by argument."""
+    if _width(expr) <= _BUDGET or not expr.args:
+        return expr
+    args = [_fitted(a, fresh, steps) for a in expr.args]
+    if expr.is_Add or expr.is_Mul:
+        groups: list[list[sympy.Expr]] = [[]]
+        for a in args:
+            if groups[-1] and _width(expr.func(*groups[-1], a)) > _BUDGET:
+                groups.append([])
+            groups[-1].append(a)
+        parts = []
+        for group in groups:
+            if len(group) == 1:
+                parts.append(group[0])
+                continue
+            symbol = next(fresh)
+            steps.append((symbol, expr.func(*group)))
+            parts.append(symbol)
+        if len(parts) == len(args):  # no group formed: every argument alone is long
+            parts = [_temporary(a, fresh, steps) for a in args]
+        return _fitted(expr.func(*parts), fresh, steps)
+    rebuilt = expr.func(*args)
+    if _width(rebuilt) <= _BUDGET:
+        return rebuilt
+    return expr.func(*(_temporary(a, fresh, steps) for a in args))
+
+
+def _temporary(expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tuple[sympy.Symbol, sympy.Expr]]) \
+        -> sympy.Expr:
+    if expr.is_Atom:
+        return expr
+    symbol = next(fresh)
+    steps.append((symbol, expr))
+    return symbol
+
+
+def formula_function(name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array",
+                      relation: bool = False) -> tuple[ast.FunctionDef, tuple[str, ...]]:
+    """A function of the symbols of ``exprs`` returning them (one: an array, several: a
+    tuple; ``relation``: whether the expression is positive), common subexpressions and
+    long parts computed once, each on its own line; also its argument names."""
+    args = tuple(sorted({str(s) for e in exprs for s in e.free_symbols}))
+    body: list[ast.stmt] = [docstring(doc, "    ")]
+    body += [ast.Assign([ast.Name(a, ast.Store())], call("_array", name_node(a))) for a in args]
+    fresh = sympy.numbered_symbols(_TEMPORARY)
+    replacements, reduced = sympy.cse(list(exprs), symbols=fresh, order="canonical")
+    steps: list[tuple[sympy.Symbol, sympy.Expr]] = []
+    for symbol, value in replacements:
+        steps.append((symbol, _fitted(value, fresh, steps)))
+    results = [_fitted(e, fresh, steps) for e in reduced]
+    body += [ast.Assign([ast.Name(str(s), ast.Store())], parsed(v)) for s, v in steps]
+    returned: ast.expr
+    if relation:
+        returned = ast.Call(ast.Attribute(name_node("np"), "asarray", ast.Load()),
+                                   [ast.Compare(parsed(results[0]), [ast.Gt()], [ast.Constant(0)])], [])
+    elif len(results) == 1:
+        returned = call("_array", parsed(results[0]))
+    else:
+        returned = ast.Tuple([call("_array", parsed(r)) for r in results], ast.Load())
+    body.append(ast.Return(returned))
+    arguments = ast.arguments([], [], None, [ast.arg(a, name_node("ArrayLike")) for a in args], [None] * len(args),
+                              None, [])
+    returns_node = ast.parse(returns, mode="eval").body
+    return ast.FunctionDef(name, arguments, body, [], returns_node, None), args
+
+
+
+def table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:
+    """``{key: (function, (argument names))}``."""
+    return ast.Dict([ast.Constant(k) for k, _, _ in entries],
+                    [ast.Tuple([name_node(f), literal(tuple(a))], ast.Load()) for _, f, a in entries])
+
+

@@ -19,6 +19,8 @@ from oracle.lossy_balance import Bearing, LossyTrain, solve
 
 import davies_sym
 from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, derive_variants
+from davies_sym.emit.evaluation import evaluate
+from davies_sym.errors import NotCoveredError
 
 PAIR = """\
 name: pair
@@ -134,3 +136,32 @@ def test_planetary_with_mesh_efficiencies_and_planet_bearing_friction(losses: di
             _check(variants, oracle, values, losses, "B", "out", "in", speed, -load / ratio)
         else:
             _check(variants, oracle, values, losses, "A", "in", "out", speed, -load)
+
+
+@pytest.mark.parametrize("load", [F(1, 10), F(1), F(5), F(20)])
+def test_light_load_that_reverses_a_tooth_force_is_refused_not_miscomputed(load: F) -> None:
+    """Sun input, planet drag 5 against a carrier load: below a load of about 19 the drag
+    reverses the ring mesh's tooth force, the oracle's ring mesh changes its driving gear,
+    and the variant's formula (lossless driver) would be wrong; --eval refuses there (exit 3)
+    and gives the oracle's number above it."""
+    rs, rp, eta1, eta2 = F(3), F(2), F(97, 100), F(98, 100)
+    members = (Member("0"), Member("s"), Member("c"), Member("p", "c", (F(0), rs + rp)))
+    gears = (Gear("S", "s", rs), Gear("P", "p", rp), Gear("R", "0", rs + 2 * rp, True))
+    meshes = (Mesh("SP", ("S", "P"), eta1), Mesh("RP", ("R", "P"), eta2))
+    oracle = LossyTrain("planetary", members, gears, meshes, "0", {"in": "s", "out": "c"}, (Bearing("p", drag=F(5)),))
+    variants = _engine(PLANETARY, ("s", "c", "p"), {"p": {"drag": F(5)}})
+    result = solve(oracle, {"in": F(50)}, "out", -load)
+    symbols = variants.train.symbols
+    rational = {k: sympy.Rational(v.numerator, v.denominator) for k, v in
+                {"rs": rs, "rp": rp, "eta_SP": eta1, "eta_RP": eta2, "D_p": F(5)}.items()}
+    point = {symbols[k]: v for k, v in rational.items()}
+    torque = abs(result.torques["in"])
+    point |= {INPUT_TORQUE: sympy.Rational(torque.numerator, torque.denominator), INPUT_SPEED: sympy.Integer(50)}
+    formula = variants.evaluate(point, input="A")
+    truth = sympy.Rational(result.efficiency.numerator, result.efficiency.denominator)
+    if load < 19:
+        assert formula != truth
+        with pytest.raises(NotCoveredError, match="reverse the tooth force of mesh RP"):
+            evaluate(variants, point, "A")
+    else:
+        assert evaluate(variants, point, "A").efficiency == truth == formula

@@ -10,6 +10,7 @@ constraints eliminated some radii.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -18,6 +19,7 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, VariantSet
 from davies_sym.losses.definitions import parameters_of
+from davies_sym.network.matrices import FrictionLaw
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -40,9 +42,9 @@ class Parameter:
         return f"{low}{self.low:g}, {high}"
 
 
-def _gear_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
+def _gear_meanings(train: Train) -> dict[sympy.Symbol, str]:
     out: dict[sympy.Symbol, str] = {}
-    for g in variants.train.gears:
+    for g in train.gears:
         kind = "internal gear" if g.internal else "gear"
         for s in sorted_symbols(g.radius.free_symbols):
             what = "pitch radius" if g.radius == s else "length in the pitch radius"
@@ -50,38 +52,40 @@ def _gear_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
     return out
 
 
-def _efficiency_meanings(variants: VariantSet) -> dict[sympy.Symbol, str]:
+def _efficiency_meanings(train: Train) -> dict[sympy.Symbol, str]:
     out: dict[sympy.Symbol, str] = {}
-    for role in variants.roles:
-        first, second = role.flow.gears
-        both = role.efficiencies[0] == role.efficiencies[1]
-        for k, eta in enumerate(role.efficiencies):
+    for mesh in train.couplings:
+        if not isinstance(mesh, GearMesh) or mesh.efficiencies is None or mesh.gears is None:
+            continue
+        first, second = mesh.gears
+        both = mesh.efficiencies[0] == mesh.efficiencies[1]
+        for k, eta in enumerate(mesh.efficiencies):
             driver, driven = (first, second) if k == 0 else (second, first)
-            text = (f"ordinary efficiency of mesh {role.coupling} (gears {first}, {second}), either gear driving"
-                    if both else f"ordinary efficiency of mesh {role.coupling}, gear {driver} driving gear {driven}")
+            text = (f"ordinary efficiency of mesh {mesh.name} (gears {first}, {second}), either gear driving"
+                    if both else f"ordinary efficiency of mesh {mesh.name}, gear {driver} driving gear {driven}")
             for s in sorted_symbols(eta.free_symbols):
                 out.setdefault(s, text)
     return out
 
 
-def _law_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
+def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbol, tuple[str, str]]:
     out: dict[sympy.Symbol, tuple[str, str]] = {}
     units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed", "drag": "torque"}
-    for law in variants.analysis.network.laws:
+    for law in laws:
         for s in sorted_symbols(law.coefficient.free_symbols):
-            coupling = variants.train.coupling(law.coupling)
+            coupling = train.coupling(law.coupling)
             what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
             out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}",
                                units.get(law.law, "")))
     return out
 
 
-def _definition_meanings(variants: VariantSet) -> dict[sympy.Symbol, tuple[str, str]]:
+def _definition_meanings(train: Train) -> dict[sympy.Symbol, tuple[str, str]]:
     """The parameters of the loss models (a flank or journal friction coefficient, a
     journal radius), named by what they define."""
     out: dict[sympy.Symbol, tuple[str, str]] = {}
-    gears = _gear_meanings(variants)
-    for d in variants.train.definitions:
+    gears = _gear_meanings(train)
+    for d in train.definitions:
         for s in sorted_symbols(d.expression.free_symbols):
             if s not in gears:
                 out.setdefault(s, (f"parameter of the {d.meaning} ({d.source})", d.unit_of(s)))
@@ -97,24 +101,34 @@ def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
     """Every symbol of :func:`formula_symbols`, in its order."""
-    geometry, etas, laws = _gear_meanings(variants), _efficiency_meanings(variants), _law_meanings(variants)
-    defined = _definition_meanings(variants)
-    ports = {INPUT_SPEED: "input speed", INPUT_TORQUE: "input torque"}
+    ports = {INPUT_SPEED: Parameter(str(INPUT_SPEED), "input speed (magnitude, at the input port)", "rad/s", 0.0,
+                                    math.inf),
+             INPUT_TORQUE: Parameter(str(INPUT_TORQUE), "input torque (magnitude, at the input port)", "torque",
+                                     0.0, math.inf)}
+    return parameters_of_train(variants.train, variants.analysis.network.laws, formula_symbols(variants), ports)
+
+
+def parameters_of_train(train: Train, laws: Sequence[FrictionLaw], symbols: Sequence[sympy.Symbol],
+                        operating: Mapping[sympy.Symbol, Parameter]) -> tuple[Parameter, ...]:
+    """The rows of ``symbols`` (in their order): loss-model parameters, ordinary
+    efficiencies in (0, 1], lengths and friction coefficients, and the ``operating``
+    quantities (speeds and torques at the ports) as given."""
+    geometry, etas, law_meanings = _gear_meanings(train), _efficiency_meanings(train), _law_meanings(train, laws)
+    defined = _definition_meanings(train)
     out = []
-    for s in formula_symbols(variants):
-        if s in defined:
+    for s in symbols:
+        if s in operating:
+            out.append(operating[s])
+        elif s in defined:
             meaning, unit = defined[s]
             out.append(Parameter(str(s), meaning, unit, 0.0, math.inf))
         elif s in etas:
             out.append(Parameter(str(s), etas[s], "1", 0.0, 1.0))
         elif s in geometry:
             out.append(Parameter(str(s), geometry[s], "length (one unit for all)", 0.0, math.inf))
-        elif s in laws:
-            meaning, unit = laws[s]
+        elif s in law_meanings:
+            meaning, unit = law_meanings[s]
             out.append(Parameter(str(s), meaning, unit, 0.0, math.inf, closed_low=True))
-        elif s in ports:
-            out.append(Parameter(str(s), f"{ports[s]} (magnitude, at the input port)",
-                                 "rad/s" if "speed" in ports[s] else "torque", 0.0, math.inf))
         else:
             out.append(Parameter(str(s), "symbol of the topology file", "", -math.inf, math.inf))
     return tuple(out)

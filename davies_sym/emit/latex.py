@@ -26,19 +26,19 @@ def _sign(sign: int) -> str:
     return "$> 0$" if sign > 0 else "$< 0$"
 
 
-_PREAMBLE = [r"\documentclass[11pt]{article}", r"\usepackage{amsmath}", r"\usepackage{booktabs}",
+PREAMBLE = [r"\documentclass[11pt]{article}", r"\usepackage{amsmath}", r"\usepackage{booktabs}",
              r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}"]
 
 
 def latex_document(variants: VariantSet) -> str:
     """The whole document of one train (or one state) as a string."""
-    return "\n".join([*_PREAMBLE, *_section(variants), r"\end{document}", ""])
+    return "\n".join([*PREAMBLE, *_section(variants), r"\end{document}", ""])
 
 
 def latex_states_document(sets: list[VariantSet]) -> str:
     """One document with a section per operating state."""
     body = [line for vs in sets for line in [*_section(vs), r"\clearpage"]]
-    return "\n".join([*_PREAMBLE, *body[:-1], r"\end{document}", ""])
+    return "\n".join([*PREAMBLE, *body[:-1], r"\end{document}", ""])
 
 
 def _section(variants: VariantSet) -> list[str]:

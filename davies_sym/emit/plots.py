@@ -18,7 +18,7 @@ from __future__ import annotations
 import io
 import itertools
 import textwrap
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from types import ModuleType
 from typing import Any
@@ -49,12 +49,18 @@ class Sweep:
 
 def formula_module(variants: VariantSet) -> ModuleType:
     """The generated module of ``variants``, compiled in memory."""
+    return compiled_module(python_module(variants), variants.train.name)
+
+
+def compiled_module(source: str, name: str) -> ModuleType:
+    """A generated module's ``source`` compiled in memory (``name``: the train's)."""
     module = ModuleType("davies_sym_formulas")
-    exec(compile(python_module(variants), f"<formulas of {variants.train.name}>", "exec"), module.__dict__)
+    exec(compile(source, f"<formulas of {name}>", "exec"), module.__dict__)
     return module
 
 
-def _figure(width: float = 7.0, height: float = 5.0) -> Any:
+def new_figure(width: float = 7.0, height: float = 5.0) -> Any:
+    """A matplotlib figure with constrained layout (no pyplot state)."""
     from matplotlib.figure import Figure
 
     return Figure(figsize=(width, height), layout="constrained")
@@ -67,7 +73,8 @@ def png_bytes(figure: Any) -> bytes:
     return buffer.getvalue()
 
 
-def _label(module: ModuleType, name: str) -> str:
+def label(module: ModuleType, name: str) -> str:
+    """An axis label: the parameter's name, meaning and unit (from ``PARAMETERS``)."""
     for p in module.PARAMETERS:
         if p["name"] == name:
             unit = "" if p["unit"] in ("", "1") else f" [{p['unit']}]"
@@ -75,7 +82,8 @@ def _label(module: ModuleType, name: str) -> str:
     return name
 
 
-def _fixed_text(values: Mapping[str, float], skip: Sequence[str]) -> str:
+def fixed_text(values: Mapping[str, float], skip: Sequence[str]) -> str:
+    """The values held fixed in a figure, wrapped for its title."""
     text = ", ".join(f"{k} = {v:g}" for k, v in sorted(values.items()) if k not in skip)
     return "\n".join(textwrap.wrap(text, 90))
 
@@ -97,6 +105,56 @@ def _describe(module: ModuleType, number: int) -> str:
     return f"({number}) " + (", ".join(v["conditions"]) or "every design")
 
 
+def shade_regions(axes: Sequence[Any], xs: np.ndarray, numbers: np.ndarray, describe: Callable[[int], str]) -> None:
+    """Each stretch of ``xs`` where region ``numbers`` holds shaded in the first of
+    ``axes`` (labelled once by ``describe``), the changes marked in all (0: none holds)."""
+    colours = ["#dbe9f6", "#fde9d9", "#e2f0d9", "#ede1f5", "#fff2cc", "#d9f2f2", "#f2dcdb", "#e4dfec"]
+    edges = [0, *(int(i) + 1 for i in np.nonzero(np.diff(numbers))[0]), len(xs)]
+    seen: set[int] = set()
+    for a, b in itertools.pairwise(edges):
+        n = int(numbers[a])
+        if n == 0:
+            continue
+        axes[0].axvspan(xs[a], xs[b - 1], color=colours[(n - 1) % len(colours)], zorder=0,
+                        label=None if n in seen else describe(n))
+        seen.add(n)
+        if a > 0:
+            for axis in axes:
+                axis.axvline(xs[a], color="grey", linestyle="--", linewidth=1)
+
+
+def map_regions(axis: Any, gx: np.ndarray, gy: np.ndarray, numbers: np.ndarray, eta: np.ndarray,
+                count: int, conditions: Mapping[str, np.ndarray], describe: Callable[[int], str], blank: str,
+                legend_below: bool = False) -> None:
+    """Regions coloured by number (NaN blank, labelled ``blank``), efficiency contours in
+    percent, each condition's zero curve in red, and a legend of the regions present."""
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    palette = ["#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#f7b6d2", "#dbdb8d", "#c49c94", "#c7c7c7",
+               "#6baed6", "#fd8d3c", "#74c476", "#9e9ac8", "#e377c2", "#bcbd22", "#8c6d31", "#17becf"]
+    colours = [palette[k % len(palette)] for k in range(max(count, 1))]
+    axis.pcolormesh(gx, gy, np.ma.masked_invalid(numbers), cmap=ListedColormap(colours), vmin=0.5,
+                    vmax=max(count, 1) + 0.5, shading="auto")
+    finite = eta[np.isfinite(eta)]
+    if finite.size and finite.max() > finite.min():
+        levels = [v for v in (10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99)
+                  if 100 * finite.min() < v < 100 * finite.max()]
+        contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
+        axis.clabel(contours, fmt="%.1f %%", fontsize=7)
+    for name, level in conditions.items():
+        if np.nanmin(level) < 0 < np.nanmax(level):
+            curve = axis.contour(gx, gy, level, levels=[0], colors="crimson", linewidths=2)
+            axis.clabel(curve, fmt={0.0: f"{name} = 0"}, fontsize=8)
+    present = sorted({int(n) for n in numbers[np.isfinite(numbers)]})
+    handles = [Patch(color=colours[(n - 1) % len(colours)], label=describe(n)) for n in present]
+    handles.append(Patch(facecolor="white", edgecolor="grey", label=blank))
+    if legend_below:
+        axis.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncols=2)
+    else:
+        axis.legend(handles=handles, fontsize=8, loc="best")
+
+
 def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str,
                       module: ModuleType | None = None) -> Any:
     """Efficiency and stacked losses against one parameter, variant regions marked
@@ -110,24 +168,12 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     losses = {k: np.broadcast_to(v, xs.shape) for k, v in
               module.losses(input=input, errors="ignore", **arguments).items()}
     numbers = _variant_numbers(module, {k: kwargs[k] for k in names if k in kwargs}, input, xs.shape)
-    figure = _figure(7.0, 6.0)
+    figure = new_figure(7.0, 6.0)
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
     top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
-    colours = ["#dbe9f6", "#fde9d9", "#e2f0d9", "#ede1f5", "#fff2cc", "#d9f2f2"]
-    edges = [0, *(int(i) + 1 for i in np.nonzero(np.diff(numbers))[0]), len(xs)]
-    seen: set[int] = set()
-    for a, b in itertools.pairwise(edges):
-        n = int(numbers[a])
-        if n == 0:
-            continue
-        top.axvspan(xs[a], xs[b - 1], color=colours[(n - 1) % len(colours)], zorder=0,
-                    label=None if n in seen else _describe(module, n))
-        seen.add(n)
-        if a > 0:
-            for axis in (top, bottom):
-                axis.axvline(xs[a], color="grey", linestyle="--", linewidth=1)
+    shade_regions((top, bottom), xs, numbers, lambda n: _describe(module, n))
     top.set_ylabel("efficiency [%]")
-    top.set_title(f"{variants.train.name}\ninput {input}; {_fixed_text(values, [sweep.name])}", fontsize=9)
+    top.set_title(f"{variants.train.name}\ninput {input}; {fixed_text(values, [sweep.name])}", fontsize=9)
     top.legend(fontsize=8, loc="best")
     top.grid(True, alpha=0.3)
     if losses:
@@ -135,7 +181,7 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
                          alpha=0.8)
         bottom.legend(fontsize=8, loc="upper left")
     bottom.set_ylabel("loss [% of input power]")
-    bottom.set_xlabel(_label(module, sweep.name), fontsize=9)
+    bottom.set_xlabel(label(module, sweep.name), fontsize=9)
     bottom.grid(True, alpha=0.3)
     return figure
 
@@ -143,9 +189,6 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
 def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str,
                   module: ModuleType | None = None) -> Any:
     """Variant regions, turning-condition curves and efficiency contours over two parameters."""
-    from matplotlib.colors import ListedColormap
-    from matplotlib.patches import Patch
-
     module = module or formula_module(variants)
     gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
@@ -153,32 +196,17 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), gx.shape)
     numbers = _variant_numbers(module, kwargs, input, gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
-    figure = _figure(7.0, 5.5)
+    figure = new_figure(7.0, 5.5)
     axis = figure.subplots()
-    palette = ["#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#fdd0a2", "#9edae5", "#c7e9c0", "#dadaeb"]
-    count = len(module.VARIANTS)
-    axis.pcolormesh(gx, gy, np.ma.masked_invalid(numbers), cmap=ListedColormap(palette[:max(count, 1)]),
-                    vmin=0.5, vmax=count + 0.5, shading="auto")
-    finite = eta[np.isfinite(eta)]
-    if finite.size and finite.max() > finite.min():
-        levels = [v for v in (10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99)
-                  if 100 * finite.min() < v < 100 * finite.max()]
-        contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
-        axis.clabel(contours, fmt="%.1f %%", fontsize=7)
     with np.errstate(all="ignore"):
-        for name, (function, args) in module._CONDITIONS.items():
-            level = np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
-            if np.nanmin(level) < 0 < np.nanmax(level):
-                curve = axis.contour(gx, gy, level, levels=[0], colors="crimson", linewidths=2)
-                axis.clabel(curve, fmt={0.0: f"{name} = 0"}, fontsize=8)
-    present = sorted({int(n) for n in numbers[np.isfinite(numbers)]})
-    handles = [Patch(color=palette[(n - 1) % len(palette)], label=_describe(module, n)) for n in present]
-    handles.append(Patch(facecolor="white", edgecolor="grey", label="self-locking or not admissible"))
-    axis.legend(handles=handles, fontsize=8, loc="best")
-    axis.set_xlabel(_label(module, x.name), fontsize=9)
-    axis.set_ylabel(_label(module, y.name), fontsize=9)
+        levels = {name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
+                  for name, (function, args) in module._CONDITIONS.items()}
+    map_regions(axis, gx, gy, numbers, eta, len(module.VARIANTS), levels, lambda n: _describe(module, n),
+                "self-locking or not admissible")
+    axis.set_xlabel(label(module, x.name), fontsize=9)
+    axis.set_ylabel(label(module, y.name), fontsize=9)
     axis.set_title(f"{variants.train.name}: variants, turning conditions (red), efficiency [%]\n"
-                   f"input {input}; {_fixed_text(values, [x.name, y.name])}", fontsize=9)
+                   f"input {input}; {fixed_text(values, [x.name, y.name])}", fontsize=9)
     return figure
 
 
@@ -191,7 +219,7 @@ def turning_surface_figure(condition: sympy.Expr, x: Sweep, y: Sweep, z: Sweep, 
     if not roots:
         raise ValueError(f"the condition {condition} does not depend on {z.name}")
     gx, gy = np.meshgrid(x.values(150), y.values(150))
-    figure = _figure(6.5, 5.5)
+    figure = new_figure(6.5, 5.5)
     axis = figure.add_subplot(projection="3d")
     for root in roots:
         function = sympy.lambdify([symbols[x.name], symbols[y.name]], root, "numpy")

@@ -16,17 +16,35 @@ from davies_sym.errors import DerivationError, InputError, NotCoveredError, Prob
 from davies_sym.losses.definitions import completed
 
 
-def _condition_text(si: SeveralInputs, region: Region) -> list[str]:
+def condition_text(si: SeveralInputs, region: Region) -> list[str]:
+    """The region's speed conditions, e.g. ``omega_A - omega_K > 0``."""
     return [f"{sympy.sstr(c.form)} {'>' if region.signs[c.name] > 0 else '<'} 0" for c in si.conditions]
 
 
-def _mesh_text(si: SeveralInputs, region: Region) -> list[str]:
+def force_text(si: SeveralInputs, region: Region) -> list[str]:
+    """Where the region holds beyond its speed conditions: each loaded force (tooth force,
+    bearing reaction) with the sign the region gives it."""
+    out = []
+    for coupling, (force, assumed) in region.loaded_forces.items():
+        what = "tooth force of" if coupling in region.first_drives else "reaction in"
+        flipped = " (reversed by the losses)" if coupling in region.reversed else ""
+        out.append(f"{what} {coupling}{flipped}: {sympy.sstr(force.to_expr())} {'>' if assumed > 0 else '<'} 0")
+    return out
+
+
+def drivers(si: SeveralInputs, region: Region) -> list[tuple[str, str, str]]:
+    """(mesh, driving gear, driven gear) of every mesh in the region."""
     out = []
     for mesh, first in region.first_drives.items():
         gears = si.train.coupling(mesh).gears or ("", "")
         driver, driven = gears if first else gears[::-1]
-        out.append(f"{mesh}: gear {driver} drives gear {driven}")
+        out.append((mesh, driver, driven))
     return out
+
+
+def mesh_text(si: SeveralInputs, region: Region) -> list[str]:
+    """Which gear drives in each mesh, e.g. ``M1: gear 1 drives gear 2``."""
+    return [f"{mesh}: gear {driver} drives gear {driven}" for mesh, driver, driven in drivers(si, region)]
 
 
 def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
@@ -37,10 +55,12 @@ def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
         "inputs": list(train.ports.inputs), "output": train.ports.output,
         "input_speeds": [str(s) for s in si.speeds], "load_torque": str(LOAD_TORQUE),
         "port_speeds": {p: sympy.sstr(v.to_expr()) for p, v in si.port_speeds.items()},
+        "load_dependent": any(r.reversed for r in si.regions),
         "speed_conditions": [{"name": c.name, "expression": sympy.sstr(c.form), "decides": list(c.decides)}
                              for c in si.conditions],
-        "regions": [{"number": r.number, "conditions": _condition_text(si, r), "meshes": _mesh_text(si, r),
+        "regions": [{"number": r.number, "conditions": condition_text(si, r), "meshes": mesh_text(si, r),
                      "power_in": list(r.inputs), "power_out": list(r.outputs),
+                     "reversed": sorted(r.reversed), "forces": force_text(si, r),
                      "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
                      "efficiency": sympy.sstr(r.efficiency), "latex": sympy.latex(r.efficiency)}
                     for r in si.regions],
@@ -57,8 +77,11 @@ def several_inputs_text(document: Mapping[str, Any]) -> str:
     for c in document["speed_conditions"]:
         lines.append(f"  speed condition {c['name']}: sign of {c['expression']} ({'; '.join(c['decides'])})")
     for r in document["regions"]:
-        lines.append(f"  ({r['number']}) where {' and '.join(r['conditions'])}: power in at "
-                     f"{', '.join(r['power_in'])}, out at {', '.join(r['power_out'])}")
+        reversed_text = f"; the losses reverse the force in {', '.join(r['reversed'])}" if r["reversed"] else ""
+        lines.append(f"  ({r['number']}) where {' and '.join(r['conditions'])}{reversed_text}: without losses power "
+                     f"in at {', '.join(r['power_in'])}, out at {', '.join(r['power_out'])}")
+        if document["load_dependent"]:
+            lines += [f"      holds where the {f}" for f in r["forces"]]
         lines += [f"      {m}" for m in r["meshes"]]
         lines += [f"      T_{p} = {t}" for p, t in r["torques"].items()]
         lines.append(f"      eta = {r['efficiency']}")
@@ -115,16 +138,10 @@ def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> Sev
     missing = sorted({str(s) for e in (eta, *torques.values()) for s in e.free_symbols})
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
-    for coupling, (force, assumed) in region.loaded_forces.items():
-        if sympy.sign(force.to_expr().subs(point)) == -assumed:
-            what = "tooth force of mesh" if coupling in region.first_drives else "reaction in coupling"
-            raise NotCoveredError(f"the losses reverse the {what} {coupling} at these values (region "
-                                  f"({region.number}) assumes the lossless direction): the load is too small for "
-                                  "the drag")
     if not 0 < eta <= 1:
         raise NotCoveredError(f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "
                               "the losses exceed the power put in (the load is too small for the drag, or the "
                               "train self-locks)")
     powers = {p: sympy.sympify(t * si.port_speeds[p].to_expr().subs(point) * si.pairing[p])
               for p, t in torques.items()}
-    return SeveralEvaluation(region, tuple(_condition_text(si, region)), torques, eta, powers)
+    return SeveralEvaluation(region, tuple(condition_text(si, region)), torques, eta, powers)

@@ -1,0 +1,124 @@
+"""What the user writes on the command line: the parser of ``derive`` and the readers
+of ``NAME=VALUE`` values, ``NAME=START:STOP`` sweeps and the ``--input``/``--output``
+choice, each refusing bad input with a message naming the option."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Collection, Sequence
+
+import sympy
+
+from davies_sym.emit.plots import Sweep
+from davies_sym.errors import InputError, Problem
+from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
+from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
+from davies_sym.topology.model import Train
+from davies_sym.topology.symbols import exact_number
+
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
+    p = argparse.ArgumentParser(
+        prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
+        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="topology file (YAML); several files need --out DIR")
+    form = p.add_mutually_exclusive_group()
+    form.add_argument("--json", action="store_true", help="print the JSON document")
+    form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants (of "
+                      "the power-flow regions for a train with several inputs)")
+    p.add_argument("-o", "--out", metavar="FILE|DIR",
+                   help="write the document to FILE (atomically) instead of stdout; with a directory, write "
+                   "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out derivations/)")
+    p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant (per "
+                   "power-flow region for a train with several inputs)")
+    p.add_argument("--eval", nargs="*", metavar="NAME=VALUE",
+                   help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
+                   "(exact where possible; no values when every quantity of the train is a number); with --json "
+                   "one JSON object")
+    p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
+    p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
+    p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
+                   "--eval, --python and --plot need one)")
+    p.add_argument("--plot", metavar="NAME=START:STOP",
+                   help="figure of the efficiency and the losses (the port torques for a train with several "
+                   "inputs) against one parameter (PNG, -o FILE)")
+    p.add_argument("--vs", metavar="NAME=START:STOP",
+                   help="with --plot: a second parameter; the figure shows the variant regions, the turning-condition "
+                   "curves and efficiency contours over both (e.g. the two input speeds of a differential: its "
+                   "power-flow regions)")
+    p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[],
+                   help="with --plot: values of the other parameters (default: the first published check of the file)")
+    p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
+    return p
+
+
+def values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[sympy.Symbol, sympy.Expr]:
+    """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
+    efficiencies in (0, 1])."""
+    problems, out = [], {}
+    efficiencies = mesh_efficiency_symbols(train.couplings)
+    defined = {str(d.symbol): d for d in train.definitions}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
+            continue
+        if name not in train.symbols:
+            problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: "
+                                    f"{', '.join(sorted(train.symbols))})"))
+            continue
+        if name in defined:
+            d = defined[name]
+            problems.append(Problem(option, f"{name} is the {d.meaning} ({d.source}); give "
+                                    f"{', '.join(sorted(map(str, d.expression.free_symbols)))} instead"))
+            continue
+        try:
+            value = parse_expression(text)
+        except ExpressionError as exc:
+            problems.append(Problem(option, f"{name}: {exc}"))
+            continue
+        why = role_problem(name, train.symbols[name], value, text, efficiencies)
+        if why is not None:
+            problems.append(Problem(option, why))
+            continue
+        out[train.symbols[name]] = value
+    if problems:
+        raise InputError(problems, train.path)
+    return out
+
+
+def sweep(train: Train, option: str, text: str, names: Collection[str] | None = None) -> Sweep:
+    """``NAME=START:STOP`` as a sweep of one of ``names`` (default: the train's symbols)."""
+    known = sorted(train.symbols if names is None else names)
+    name, sep, interval = text.partition("=")
+    start, colon, stop = interval.partition(":")
+    bounds = (exact_number(start.strip()), exact_number(stop.strip()))
+    if not sep or not colon or None in bounds:
+        raise InputError([Problem(option, f"expected NAME=START:STOP, got {text!r}")], train.path)
+    if name.strip() not in known:
+        raise InputError([Problem(option, f"unknown symbol {name.strip()!r} (the train has: "
+                                  f"{', '.join(known)})")], train.path)
+    low, high = (float(v) for v in bounds)  # type: ignore[arg-type]
+    if not low < high:
+        raise InputError([Problem(option, f"the interval {text!r} is empty (START < STOP)")], train.path)
+    return Sweep(name.strip(), low, high)
+
+
+def eval_port(train: Train, args: argparse.Namespace) -> str:
+    ports = (train.ports.input, train.ports.output)
+    chosen = args.input
+    if args.output is not None:
+        if args.output not in ports:
+            raise InputError([Problem("--output", f"{args.output!r} is not a port (ports: {', '.join(ports)})")],
+                             train.path)
+        other = ports[1] if args.output == ports[0] else ports[0]
+        if chosen is not None and chosen != other:
+            raise InputError([Problem("--input", f"input {chosen!r} and output {args.output!r} are not the two "
+                                      f"ports of the train ({', '.join(ports)})")], train.path)
+        chosen = other
+    if chosen is not None and chosen not in ports:
+        raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
+    return chosen or train.ports.input

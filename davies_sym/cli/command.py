@@ -1,0 +1,147 @@
+"""The ``derive`` command: one file to standard output or to files, many files into a
+directory, and ``derive calibrate``; every refusal is a located message and an exit
+status (2 bad input, 3 a design the formulas do not cover), never a traceback."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from collections.abc import Callable, Sequence
+
+from davies_sym.calibration.command import run as calibration_command
+from davies_sym.cli.arguments import parser
+from davies_sym.cli.messages import message, status_json
+from davies_sym.cli.one_input import one_input_outputs, write_derivations
+from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations, several_outputs
+from davies_sym.emit.atomic import write_atomic
+from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem
+from davies_sym.topology.expressions import shortened
+from davies_sym.topology.loader import load
+
+Progress = Callable[[str], None]
+
+
+def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> int:
+    """LaTeX and Python module of every train, named after its file (``derivations/``);
+    a train with states gets one LaTeX file and a module per state.  A file that fails
+    is reported and the others are still written."""
+    os.makedirs(directory, exist_ok=True)
+    status = 0
+    for path in files:
+        stem = os.path.splitext(os.path.basename(path))[0]
+        outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py")]
+        clash = [o for o in outputs if any(os.path.exists(o) and os.path.samefile(o, f) for f in files
+                                           if os.path.exists(f))]
+        clash += [o for o in os.listdir(directory) if o.startswith(f"{stem}_") and
+                  any(os.path.samefile(os.path.join(directory, o), f) for f in files if os.path.exists(f))]
+        if clash:
+            print(f"input error: {path}: --out: refusing to overwrite the input file {clash[0]}", file=sys.stderr)
+            status = 2
+            continue
+        failures: list[str] = []
+        try:
+            train = load(path)
+            written = (several_derivations(train, stem, progress) if several_degrees_of_freedom(train)
+                       else write_derivations(train, stem, progress, failures))
+        except DaviesError as exc:
+            print(message(exc, path), file=sys.stderr)
+            status = 2
+            continue
+        for line in failures:
+            print(line, file=sys.stderr)
+            status = 2
+        if not written:
+            print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom and one input port: only its "
+                  "kinematics is derived (list one input port per degree of freedom for formulas)", file=sys.stderr)
+            continue
+        for name, content in written:
+            write_atomic(os.path.join(directory, name), content)
+        progress(f"wrote the derivations of {stem}")
+    return status
+
+
+def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
+    """Before anything is derived: an output goes into an existing folder and never
+    replaces an input file."""
+    folder = os.path.dirname(os.path.abspath(target))
+    if not os.path.isdir(folder):
+        # The nearest ancestor that exists says why: a missing folder or a file in the way.
+        above = folder
+        while not os.path.exists(above):
+            above = os.path.dirname(above)
+        why = (f"{_path_text(above)} is a file, not a folder" if not os.path.isdir(above)
+               else f"the folder {_path_text(folder)} does not exist (create it first)")
+        raise InputError([Problem(option, why)], inputs[0])
+    if os.path.isdir(target):
+        raise InputError([Problem(option, f"{_path_text(target)} is a folder; give a file name")], inputs[0])
+    for path in inputs:
+        if os.path.exists(target) and os.path.exists(path) and os.path.samefile(target, path):
+            raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}")], path)
+
+
+def _path_text(path: str) -> str:
+    """A path as the user can find it: whole unless absurdly long."""
+    return path if len(path) <= 300 else shortened(path)
+
+
+def _one_file(args: argparse.Namespace, progress: Progress) -> int:
+    path = args.files[0]
+    for target, option in ((args.out, "-o"), (args.python, "--python")):
+        if target:
+            _check_target(target, option, [path])
+    train = load(path)
+    failures: list[str] = []
+    outputs = (several_outputs(train, args, progress) if several_degrees_of_freedom(train)
+               else one_input_outputs(train, args, progress, failures))
+    for target, content in outputs:
+        if target is None:
+            sys.stdout.write(content if isinstance(content, str) else content.decode())
+        else:
+            write_atomic(target, content)
+    for line in failures:
+        print(line, file=sys.stderr)
+    return 2 if failures else 0
+
+
+def _many_files(args: argparse.Namespace, progress: Progress) -> int:
+    if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
+        print("derive: several files need --out DIR (a directory)", file=sys.stderr)
+        return 2
+    if args.json or args.latex or args.python or args.eval is not None or args.plot:
+        print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
+              "--plot take one file", file=sys.stderr)
+        return 2
+    return _derive_into(args.out, args.files, progress)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["calibrate"]:
+        return calibration_command(argv[1:])
+    args = parser().parse_args(argv)
+
+    def progress(text: str) -> None:
+        if not args.quiet:
+            print(f"derive: {text}", file=sys.stderr, flush=True)
+
+    if len(args.files) > 1 or (args.out and os.path.isdir(args.out)):
+        return _many_files(args, progress)
+    try:
+        return _one_file(args, progress)
+    except NotCoveredError as exc:
+        # A design outside the formulas: the last line says why, never a number.
+        reason = f"derive: {args.files[0]}: {exc}"
+        print(status_json("not covered", reason) if args.json else reason)
+        return 3
+    except DaviesError as exc:
+        reason = message(exc, args.files[0])
+        print(reason, file=sys.stderr)
+        if args.json:
+            print(status_json("bad input", reason))
+        return 2
+    except OSError as exc:
+        print(f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",
+              file=sys.stderr)
+        return 2

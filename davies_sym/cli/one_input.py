@@ -1,0 +1,146 @@
+"""The outputs of a train driven at one port: the document of every variant (text, JSON,
+LaTeX, of every operating state), the formula module, the figures and ``--eval``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable
+
+import sympy
+
+from davies_sym.cli.arguments import eval_port, sweep, values
+from davies_sym.cli.messages import message
+from davies_sym.efficiency.parameters import file_parameters, formula_symbols
+from davies_sym.efficiency.variants import VariantSet, derive_variants
+from davies_sym.emit.evaluation import evaluate
+from davies_sym.emit.latex import latex_document, latex_states_document
+from davies_sym.emit.plots import efficiency_figure, png_bytes, region_figure
+from davies_sym.emit.python_module import python_module
+from davies_sym.emit.report import text_summary, train_document
+from davies_sym.emit.variant_report import variants_document, variants_text
+from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.model import Train
+from davies_sym.topology.states import train_in_state
+
+Progress = Callable[[str], None]
+
+
+def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
+    """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
+    train = variants.train
+    if not args.out:
+        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    port = eval_port(train, args)
+    x = sweep(train, "--plot", args.plot)
+    y = sweep(train, "--vs", args.vs) if args.vs else None
+    # A published value for a name the file no longer has (written as a number) is not a default.
+    published = [f"{k}={v}" for k, v in train.published_design(args.state).items() if k in train.symbols]
+    given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at").items()}
+    swept = {x.name} | ({y.name} if y else set())
+    needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]
+    missing = [n for n in needed if n not in given]
+    if missing:
+        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
+    fixed = {n: given[n] for n in needed}
+    if y is None:
+        return png_bytes(efficiency_figure(variants, x, fixed, port))
+    return png_bytes(region_figure(variants, x, y, fixed, port))
+
+
+def derive_sets(train: Train, state: str | None, progress: Progress,
+                 failures: list[str]) -> list[tuple[str, VariantSet]]:
+    """The variants of the train, or of each of its states (only ``state`` if given).  A
+    state that cannot be derived is reported in ``failures`` (its message names the state)
+    and the others are still derived; when none can be, the first error is raised."""
+    if not train.states:
+        if state is not None:
+            raise InputError([Problem("--state", "the train has no states")], train.path)
+        return [("", derive_variants(train, progress=progress))]
+    names = [st.name for st in train.states]
+    if state is not None and state not in names:
+        raise InputError([Problem("--state", f"unknown state {state!r} (states: {', '.join(names)})")], train.path)
+    chosen = [st for st in train.states if state is None or st.name == state]
+    out, first = [], None
+    for st in chosen:
+        progress(f"state {st.name}")
+        try:
+            out.append((st.name, derive_variants(train_in_state(train, st), progress=progress)))
+        except DaviesError as exc:
+            first = first or exc
+            failures += [f"{line} (state {st.name})" for line in message(exc, train.path or "").splitlines()]
+    if not out and first is not None:
+        failures.clear()
+        raise first
+    return out
+
+
+def _state_entry(vs: VariantSet) -> dict[str, object]:
+    ratio = vs.analysis.speed_ratio().to_expr()
+    return {"name": vs.train.name, "input": vs.train.ports.input, "output": vs.train.ports.output,
+            "speed_ratio": sympy.sstr(ratio), **variants_document(vs)}
+
+
+def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
+    if not train.states:
+        ((_, vs),) = sets
+        document = {"status": "ok", **train_document(Analysis(train, progress=progress))}
+        if as_json:
+            document.update(variants_document(vs))
+            return json.dumps(document, indent=2) + "\n"
+        return text_summary(document) + "\n" + variants_text(vs) + "\n"
+    if as_json:
+        return json.dumps({"status": "ok", "name": train.name, "source": train.source, "file": train.path,
+                           "states": {name: _state_entry(vs) for name, vs in sets}}, indent=2) + "\n"
+    parts = [train.name]
+    for name, vs in sets:
+        parts.append(f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "
+                     f"{vs.train.ports.output}; speed ratio {sympy.sstr(vs.analysis.speed_ratio().to_expr())}")
+        parts.append(variants_text(vs))
+    return "\n".join(parts) + "\n"
+
+
+def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress,
+                failures: list[str]) -> list[tuple[str | None, str | bytes]]:
+    """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation
+    (of the states that derive; the others are reported in ``failures``)."""
+    if (args.vs or args.at) and not args.plot:
+        raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    sets = derive_sets(train, args.state, progress, failures)
+    if (args.python or args.eval is not None or args.plot) and len(sets) > 1:
+        raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
+                                  f"{', '.join(st.name for st in train.states)})")], train.path)
+    if args.plot:
+        return [(args.out, _plot(sets[0][1], args))]
+    if args.latex:
+        text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
+    else:
+        text = _document(train, sets, args.json, progress)
+    # Everything is computed (and every value checked) before anything is written.
+    chosen = sets[0][1].train  # the state's train: its own ports and symbols
+    evaluation = (evaluate(sets[0][1], values(chosen, args.eval), eval_port(chosen, args))
+                  if args.eval is not None else None)
+    outputs: list[tuple[str | None, str | bytes]] = []
+    if args.python:
+        outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
+    if args.out:
+        outputs.append((args.out, text))
+    elif evaluation is None or args.latex:
+        outputs.append((None, text))
+    if evaluation is not None:
+        state = {"state": args.state} if args.state else {}
+        outputs.append((None, json.dumps({"file": train.path, **state, **evaluation.document()}, indent=2) + "\n"
+                        if args.json else evaluation.text()))
+    return outputs
+
+
+def write_derivations(train: Train, stem: str, progress: Progress, failures: list[str]) -> list[tuple[str, str]]:
+    """(file name, content) of the LaTeX document and formula module of every state that
+    derives (a state that does not is reported in ``failures``)."""
+    sets = derive_sets(train, None, progress, failures)
+    if train.states:
+        return [(f"{stem}.tex", latex_states_document([vs for _, vs in sets]))] + [
+            (f"{stem}_{name}.py", python_module(vs, file_parameters(train))) for name, vs in sets]
+    return [(f"{stem}.tex", latex_document(sets[0][1])), (f"{stem}.py", python_module(sets[0][1],
+                                                                                     file_parameters(train)))]

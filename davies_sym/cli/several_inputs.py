@@ -1,0 +1,118 @@
+"""The outputs of a train of several degrees of freedom: with one input port per degree
+of freedom its power-flow regions (text, JSON, LaTeX, formula module, figures,
+``--eval``), else its motions in the primary speeds."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable
+
+from davies_sym.cli.arguments import sweep
+from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
+from davies_sym.emit.plots import png_bytes
+from davies_sym.emit.report import kinematics_document, kinematics_text
+from davies_sym.emit.several_inputs_latex import several_inputs_latex
+from davies_sym.emit.several_inputs_module import several_inputs_module
+from davies_sym.emit.several_inputs_plots import (
+    several_efficiency_figure,
+    several_inputs_formulas,
+    several_region_figure,
+)
+from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
+from davies_sym.errors import InputError, Problem
+from davies_sym.network.analysis import Analysis
+from davies_sym.topology.expressions import assignments
+from davies_sym.topology.model import Train
+
+Progress = Callable[[str], None]
+
+
+def several_degrees_of_freedom(train: Train) -> bool:
+    """A train of several degrees of freedom, or one driven at several ports."""
+    return (train.degrees_of_freedom is not None and train.degrees_of_freedom > 1) or len(train.ports.inputs) > 1
+
+
+def _refuse(train: Train, args: argparse.Namespace) -> None:
+    """Options that do not apply: a state, a chosen input or output (the regions say where
+    power goes in); and for a train with fewer input ports than freedoms, everything but
+    its kinematics."""
+    several = len(train.ports.inputs) > 1
+    if not several and (args.latex or args.python or args.plot or args.eval is not None):
+        raise InputError([Problem("ports.input", f"the train has {train.degrees_of_freedom or 'several'} degrees "
+                                  "of freedom: list one input port per degree of freedom (ports: {input: [A, B], "
+                                  "...}) to derive the efficiency")], train.path)
+    if args.state:
+        raise InputError([Problem("--state", "operating states are derived for trains of one degree of freedom "
+                                  "only")], train.path)
+    for option, given in (("--input", args.input), ("--output", args.output)):
+        if given is not None:
+            raise InputError([Problem(option, "a train driven at several ports has no single input: its "
+                                      "power-flow regions say which ports put power in (give the input speeds "
+                                      "to --eval instead)")], train.path)
+    if (args.vs or args.at) and not args.plot:
+        raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+
+
+def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
+    """The PNG of ``--plot`` (and ``--vs``) with the other parameters from ``--at``."""
+    train = si.train
+    if not args.out:
+        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    module = several_inputs_formulas(si)
+    names = [p["name"] for p in module.PARAMETERS]
+    x = sweep(train, "--plot", args.plot, names)
+    y = sweep(train, "--vs", args.vs, names) if args.vs else None
+    given = assignments(args.at, "--at", train.path)
+    unknown = sorted(set(given) - set(names))
+    if unknown:
+        raise InputError([Problem("--at", f"unknown symbol {unknown[0]} (the formulas take: {', '.join(names)})")],
+                         train.path)
+    swept = {x.name} | ({y.name} if y else set())
+    missing = [n for n in names if n not in given and n not in swept]
+    if missing:
+        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
+    fixed = {n: float(v) for n, v in given.items() if n not in swept}
+    if y is None:
+        return png_bytes(several_efficiency_figure(si, x, fixed, module))
+    return png_bytes(several_region_figure(si, x, y, fixed, module))
+
+
+def several_outputs(train: Train, args: argparse.Namespace,
+                    progress: Progress) -> list[tuple[str | None, str | bytes]]:
+    """The outputs asked for, all computed before anything is written."""
+    _refuse(train, args)
+    if len(train.ports.inputs) == 1:
+        document = kinematics_document(Analysis(train, progress=progress))
+        return [(args.out, json.dumps(document, indent=2) + "\n" if args.json else kinematics_text(document) + "\n")]
+    si = derive_several_inputs(train, progress=progress)
+    if args.plot:
+        return [(args.out, _plot(si, args))]
+    if args.latex:
+        text = several_inputs_latex(si)
+    else:
+        document = several_inputs_document(si)
+        text = json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n"
+    answer = (evaluate_several(si, assignments(args.eval, "--eval", train.path)) if args.eval is not None
+              else None)
+    outputs: list[tuple[str | None, str | bytes]] = []
+    if args.python:
+        outputs.append((args.python, several_inputs_module(si)))
+    if args.out:
+        outputs.append((args.out, text))
+    elif answer is None or args.latex:
+        outputs.append((None, text))
+    if answer is not None:
+        outputs.append((None, json.dumps({"file": train.path, **answer.document()}, indent=2) + "\n"
+                        if args.json else answer.text()))
+    return outputs
+
+
+def several_derivations(train: Train, stem: str, progress: Progress) -> list[tuple[str, str]]:
+    """(file name, content) of the LaTeX document and formula module of a train driven
+    at several ports; none for one with fewer input ports than freedoms (its kinematics
+    has no formulas to write)."""
+    if len(train.ports.inputs) == 1:
+        return []
+    si = derive_several_inputs(train, progress=progress)
+    return [(f"{stem}.tex", several_inputs_latex(si)), (f"{stem}.py", several_inputs_module(si))]

@@ -1,0 +1,123 @@
+"""The closed forms of one power-flow region of a train driven on several shafts: the
+action null space of D_A with the region's signs (Laus eq. (51)), each mesh's law in the
+ordinary efficiency of its driving direction (eqs. (74)-(75)), each bearing's Coulomb
+moment with the region's signs of its reaction and relative motion (eq. (21)), the
+dependent sources (viscous, drag) on the right-hand side; then the port torques in the
+load torque and Mantriota and Pennestri's efficiency (eq. (6))."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import sympy
+
+from davies_sym.algebra.linalg import gauss_jordan
+from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region
+from davies_sym.efficiency.virtual_power import MeshPowerFlow
+from davies_sym.errors import DerivationError
+from davies_sym.network.analysis import Analysis
+from davies_sym.network.matrices import FrictionLaw
+from davies_sym.topology.couplings import GearMesh
+
+
+@dataclass(frozen=True, eq=False)
+class RegionContext:
+    """What every region of one train shares."""
+
+    analysis: Analysis
+    #: Key ("port P", "mesh M", "turn C") -> (speed condition index, orientation).
+    said: Mapping[str, tuple[int, int]]
+    flows: Mapping[str, MeshPowerFlow]
+    port_speeds: Mapping[str, RationalFunction]
+    pairing: Mapping[str, int]
+    #: Lossless action magnitudes per unit torque of the first input.
+    lossless: Mapping[str, RationalFunction]
+
+
+def region_forms(context: RegionContext, number: int, signs: dict[str, int], vector: tuple[int, ...],
+                 reversed_forces: frozenset[str] = frozenset()) -> Region:
+    """The closed forms of one region (Laus eq. (51) with the region's signs): the speed
+    conditions' signs ``vector`` and the couplings whose loaded force is reversed."""
+    analysis, flows, pairing = context.analysis, context.flows, context.pairing
+    train, net, ring = analysis.train, analysis.network, analysis.ring
+    ports = train.ports
+
+    def sign_of(key: str) -> int:
+        k, orientation = context.said[key]
+        return vector[k] * orientation
+
+    output_turns = sign_of(f"port {ports.output}")
+    load_sign = -pairing[ports.output] * output_turns  # the load resists the output's motion
+    # A reversed tooth force swaps the driving gear of its mesh.
+    first = {m: (sign_of(f"mesh {m}") * load_sign > 0) != (m in reversed_forces) for m in flows}
+    names = [v.name for v in net.actions]
+    index = {n: j for j, n in enumerate(names)}
+    const = len(names)
+    rows = analysis.rows(net.network_action_matrix())
+    output_action = net.port_action(ports.output).name
+
+    def lossless_sign(action: str) -> int:
+        """Sign of an action magnitude without losses (they all scale with the load)."""
+        return _sign(context.lossless[action] / context.lossless[output_action], analysis) * load_sign
+
+    def assumed_sign(law: FrictionLaw) -> int:
+        """The sign the region gives the force loading ``law``."""
+        return lossless_sign(law.transmitted or "") * (-1 if law.coupling in reversed_forces else 1)
+
+    for law in net.laws:
+        if law.coupling in flows:
+            mesh = train.coupling(law.coupling)
+            assert isinstance(mesh, GearMesh) and mesh.efficiencies is not None
+            eta = mesh.efficiencies[0] if first[law.coupling] else mesh.efficiencies[1]
+            zeta = flows[law.coupling].friction_for(eta, first[law.coupling])
+            # T - zeta U = 0 (signed law), over zeta's denominator.
+            rows.append({index[law.variable]: zeta.den, index[law.transmitted or ""]: -zeta.num})
+        elif law.law in ("coulomb", "linear"):
+            # A bearing: T = -zeta |U| sign(t) (Laus eq. (21)) with the region's signs of the
+            # reaction U and the relative motion t; a linear law is T = zeta U as written.
+            transmitted = law.transmitted or ""
+            factor = assumed_sign(law) * sign_of(f"turn {law.coupling}") if law.law == "coulomb" else -1
+            value = ring.rational(factor * law.coefficient)
+            rows.append({index[law.variable]: value.den, index[transmitted]: value.num})
+        elif law.law == "viscous":
+            speed = analysis.motion_magnitudes[law.motion] * ring.rational(law.coefficient)
+            rows.append({index[law.variable]: speed.den, const: speed.num})  # T = -b t
+        else:
+            value = ring.rational(law.coefficient * sign_of(f"turn {law.coupling}"))
+            rows.append({index[law.variable]: value.den, const: value.num})  # T = -D sign(t)
+    rows = [{j: p for j, p in r.items() if not p.is_zero()} for r in rows]
+    load = index[net.port_action(ports.output).name]
+    elimination = gauss_jordan(rows, const + 1, prefer_free=[load, const], reduce=analysis.reduce)
+    if sorted(elimination.free) != [load, const]:
+        raise DerivationError("the actions are not determined by the load torque alone")
+    solution = elimination.solution(ring)
+    zero = RationalFunction.polynomial(ring, ring.zero)
+    load_torque = ring.rational(load_sign * LOAD_TORQUE)
+    torques = {}
+    for p in ports.every:
+        j = index[net.port_action(p).name]
+        torques[p] = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
+    powers = {p: torques[p] * context.port_speeds[p] * ring.rational(pairing[p]) for p in ports.every}
+    power_sign = {p: lossless_sign(net.port_action(p).name) * sign_of(f"port {p}") * pairing[p] for p in ports.every}
+    inputs = tuple(p for p in ports.every if power_sign[p] > 0)
+    outputs = tuple(p for p in ports.every if power_sign[p] < 0)
+    # Mantriota and Pennestri eq. (6): the output's power over the sum of the driving
+    # shafts' powers, each with its sign (a shaft that takes power lowers the sum).
+    p_in = sum((powers[p] for p in ports.inputs), zero)
+    forces = {}
+    for law in net.laws:
+        if law.coupling in flows or law.law == "coulomb":
+            j = index[law.transmitted or ""]
+            force = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
+            forces[law.coupling] = (force, assumed_sign(law))
+    return Region(number, signs, first, inputs, outputs, torques, -(powers[ports.output] / p_in), forces,
+                  reversed_forces)
+
+
+def _sign(value: RationalFunction, analysis: Analysis) -> int:
+    sign, undecided = analysis.oracle.classify(*value.factor_list())
+    if sign not in (1, -1):
+        raise DerivationError(f"the sign of {sympy.sstr(undecided)} depends on the geometry")
+    return int(sign)

@@ -1,0 +1,209 @@
+"""The hand-written part of every generated formula module of a train driven on several
+shafts (numpy only).
+
+:mod:`davies_sym.emit.several_inputs_module` copies this file's imports, types and
+functions into each module it writes and puts the train's tables and formulas where the
+placeholders below stand, so this code is linted, type-checked and imported like the
+rest of the package.
+
+The speed conditions are linear forms in the input speeds; their signs pick the
+power-flow regions with those signs; of these, the one whose loaded forces (tooth
+forces, bearing reactions) all have the signs it assumes holds (at light load, drag can
+reverse a tooth force and swap a mesh's driving gear).  A point gets NaN (with a
+warning, or an error) where it lies on a condition line, where no region's forces agree,
+outside the parameters' ranges, or where the efficiency is outside (0, 1].
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from typing import Any, Final, TypedDict
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+Array = NDArray[np.float64]
+_Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
+
+
+class Parameter(TypedDict):
+    """A parameter of the formulas and its range (low excluded unless closed_low)."""
+
+    name: str
+    meaning: str
+    unit: str
+    low: float
+    high: float
+    closed_low: bool
+
+
+class Region(TypedDict):
+    """One power-flow region: where it holds, which gears drive, where power goes in and
+    out, and its efficiency (Mantriota and Pennestri 2003, eq. (6))."""
+
+    name: str
+    number: int
+    code: int
+    conditions: tuple[str, ...]
+    meshes: tuple[str, ...]
+    power_in: tuple[str, ...]
+    power_out: tuple[str, ...]
+    reversed: tuple[str, ...]
+    forces: tuple[str, ...]
+    formula: str
+    latex: str
+
+
+class DesignWarning(RuntimeWarning):
+    """Some points are in no region, outside the ranges, or where losses exceed the load (NaN there)."""
+
+
+class DesignError(ValueError):
+    """Raised instead of DesignWarning with errors='raise'."""
+
+
+# Placeholders: each generated module has its own tables and formulas here.
+INPUTS: Final[tuple[str, ...]] = ()
+OUTPUT: Final[str] = ""
+PORTS: Final[tuple[str, ...]] = ()
+PARAMETERS: Final[tuple[Parameter, ...]] = ()
+SPEEDS: Final[dict[str, str]] = {}
+CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
+REGIONS: Final[tuple[Region, ...]] = ()
+_CONDITIONS: Final[_Table] = {}
+_SPEEDS: Final[_Table] = {}
+_EFFICIENCY: Final[_Table] = {}
+_TORQUES: Final[_Table] = {}
+_FORCES: Final[_Table] = {}
+
+
+def _array(value: ArrayLike) -> Array:
+    return np.asarray(value, dtype=np.float64)
+
+
+def _check_errors(errors: str) -> None:
+    if errors not in ("warn", "raise", "ignore"):
+        raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
+
+
+def _shape(values: dict[str, Array]) -> tuple[int, ...]:
+    return np.broadcast_shapes(*(v.shape for v in values.values()))
+
+
+def _codes(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.bool_]]:
+    """Bit k set where speed condition k is negative; and where some condition is zero
+    (the speeds on a boundary between regions)."""
+    shape = _shape(values)
+    code = np.zeros(shape, dtype=np.int64)
+    boundary = np.zeros(shape, dtype=bool)
+    with np.errstate(all="ignore"):
+        for bit, (function, names) in enumerate(_CONDITIONS.values()):
+            level = np.broadcast_to(function(**{n: values[n] for n in names}), shape)
+            code |= np.asarray(level < 0, dtype=np.int64) << bit
+            boundary |= ~(level != 0)
+    return code, boundary
+
+
+def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
+    """The number of the region that holds at each point: its speed conditions hold and
+    every loaded force has the sign it assumes; 0 where none holds (on a condition line,
+    or the losses reverse forces as no region covers), -1 where several do."""
+    code, boundary = _codes(values)
+    numbers = np.zeros(code.shape, dtype=np.int64)
+    count = np.zeros(code.shape, dtype=np.int64)
+    with np.errstate(all="ignore"):
+        for region in REGIONS:
+            mask = np.array((code == region["code"]) & ~boundary, dtype=bool)
+            if mask.any() and region["name"] in _FORCES:
+                function, names = _FORCES[region["name"]]
+                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
+                          for n in names}
+                forces = function(**chosen)
+                agree = np.all([np.asarray(f) >= 0 for f in (forces if isinstance(forces, tuple) else (forces,))],
+                               axis=0)
+                mask[mask] = np.broadcast_to(agree, (int(np.count_nonzero(mask)),))
+            numbers[mask] = region["number"]
+            count += mask
+    numbers[count > 1] = -1
+    return numbers
+
+
+def _select(values: dict[str, Array], table: _Table, width: int) -> Array:
+    """The function of the region that holds, evaluated on that region's points only;
+    shape (width, *broadcast shape), NaN where no region holds."""
+    numbers = _region_numbers(values)
+    result = np.full((width, *numbers.shape), np.nan)
+    with np.errstate(all="ignore"):
+        for region in REGIONS:
+            mask = numbers == region["number"]
+            if not mask.any() or region["name"] not in table:
+                continue
+            function, names = table[region["name"]]
+            chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
+                      for n in names}
+            parts = function(**chosen)
+            for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
+                result[k, mask] = part
+    return result
+
+
+def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
+    """Where some parameter is outside its range (PARAMETERS)."""
+    bad = np.zeros(_shape(values), dtype=bool)
+    with np.errstate(all="ignore"):
+        for p in PARAMETERS:
+            v = values[p["name"]]
+            bad |= ~(((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"]))
+    return bad
+
+
+def _not_covered(values: dict[str, Array]) -> tuple[NDArray[np.bool_], str]:
+    """Where the formulas do not hold, and why (counts of each reason)."""
+    numbers = _region_numbers(values)
+    outside = _outside_ranges(values)
+    _, boundary = _codes(values)
+    on_line = boundary & ~outside
+    nowhere = (numbers <= 0) & ~boundary & ~outside
+    with np.errstate(invalid="ignore"):
+        (eta,) = _select(values, _EFFICIENCY, 1)
+        locked = ~((eta > 0) & (eta <= 1 + 1e-12)) & (numbers > 0) & ~outside
+    why = (f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
+           f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
+           "no region's loaded forces agree with their assumed signs (losses reversing forces as no region "
+           f"covers) and {int(np.count_nonzero(locked))} with an efficiency outside (0, 1]: NaN there")
+    return outside | on_line | nowhere | locked, why
+
+
+def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
+    """``result`` (shape (width, *shape)) with NaN where the formulas do not hold."""
+    _check_errors(errors)
+    bad, why = _not_covered(values)
+    if not bad.any():
+        return result
+    if errors == "raise":
+        raise DesignError(why)
+    if errors == "warn":
+        warnings.warn(why, DesignWarning, stacklevel=4)
+    return np.where(bad, np.nan, result)
+
+
+def _efficiency(errors: str, values: dict[str, Array]) -> Array:
+    """What ``efficiency`` returns, once its arguments are arrays."""
+    return _array(_screened(_select(values, _EFFICIENCY, 1), values, errors)[0])
+
+
+def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
+    """What ``torques`` returns: the torque the outside applies at each port."""
+    parts = _screened(_select(values, _TORQUES, len(PORTS)), values, errors)
+    return {port: part for port, part in zip(PORTS, parts, strict=True)}
+
+
+def _speeds(values: dict[str, Array]) -> dict[str, Array]:
+    """What ``speeds`` returns: the speed of every port."""
+    shape = _shape(values)
+    out = {}
+    with np.errstate(all="ignore"):
+        for port, (function, names) in _SPEEDS.items():
+            out[port] = np.broadcast_to(_array(function(**{n: values[n] for n in names})), shape)
+    return out

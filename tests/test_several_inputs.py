@@ -275,3 +275,27 @@ ports: {input: A, output: B}
         assert abs(fitted[name]["value"] - true) < 3 * fitted[name]["standard_error"]
     missing = run_main(["calibrate", str(train), str(data), "--fit", "eta_C", "D"])
     assert missing.returncode == 2 and "give values for r1, r2" in missing.stderr
+
+
+def test_viscous_friction_on_a_mesh_beside_its_efficiency() -> None:
+    """A viscous law on mesh M1 beside its ordinary efficiency is a dependent source, not
+    a second mesh law: with b_M = 0 every region equals the catalog train's, and b_M > 0
+    lowers the efficiency; a mesh whose friction has no Coulomb or linear law (its
+    efficiency would be dropped) is refused with the file's line, as for one input."""
+    base = Path(catalog_path("sr20_differential")).read_text(encoding="utf-8")
+    old = 'M1: {type: mesh, gears: ["1", "2"], efficiency: eta_M}'
+    viscous = derive_several_inputs(davies_sym.loads(base.replace(
+        old, 'M1: {type: mesh, gears: ["1", "2"], efficiency: eta_M, friction: {coulomb: zeta_M1, viscous: b_M}}'),
+        "sr20_viscous.yaml"))
+    plain = derive_several_inputs(davies_sym.load(catalog_path("sr20_differential")))
+    b_m = viscous.train.symbols["b_M"]
+    assert [(dict(r.signs), r.reversed) for r in viscous.regions] == [(dict(r.signs), r.reversed)
+                                                                       for r in plain.regions]
+    point = _point(viscous, F(309), F(51), F(5), {"eta_M": F(19, 20), "D_P": F(1, 2)})
+    for r, q in zip(viscous.regions, plain.regions, strict=True):
+        assert sympy.cancel(r.efficiency.subs(b_m, 0) - q.efficiency) == 0
+    region = viscous.region_at({**point, b_m: 0})
+    assert region.efficiency.subs({**point, b_m: sympy.Rational(1, 1000)}) < region.efficiency.subs({**point, b_m: 0})
+    with pytest.raises(davies_sym.TopologyError, match=r"sr20_bad.yaml:\d+: couplings.M1.friction: a mesh needs"):
+        derive_several_inputs(davies_sym.loads(base.replace(
+            old, 'M1: {type: mesh, gears: ["1", "2"], efficiency: eta_M, friction: {viscous: b_M}}'), "sr20_bad.yaml"))

@@ -10,13 +10,26 @@ efficiency or another mesh would be replaced in the wrong places.  The friction 
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Collection, Iterator
 
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
+from davies_sym.network.matrices import FrictionLaw
 from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
 from davies_sym.topology.model import Train
+
+
+def is_mesh_law(law: FrictionLaw, meshes: Collection[str]) -> bool:
+    """Whether ``law`` is the own friction law of one of ``meshes`` (the Coulomb or linear
+    law its ordinary efficiency replaces); a viscous law or drag on a mesh is not."""
+    return law.coupling in meshes and law.law in ("coulomb", "linear")
+
+
+def only_mesh_laws(laws: Collection[FrictionLaw], meshes: Collection[str]) -> bool:
+    """Whether every loss is a mesh's own law, so every force scales with the load and the
+    reversed input is the declared one inverted."""
+    return all(is_mesh_law(law, meshes) for law in laws)
 
 
 def check_mesh_friction(train: Train) -> None:

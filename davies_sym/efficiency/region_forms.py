@@ -7,13 +7,14 @@ load torque and Mantriota and Pennestri's efficiency (eq. (6))."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 
 import sympy
 
 from davies_sym.algebra.linalg import gauss_jordan
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.efficiency.mesh_friction import is_mesh_law
 from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region
 from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.errors import DerivationError
@@ -34,6 +35,12 @@ class RegionContext:
     pairing: Mapping[str, int]
     #: Lossless action magnitudes per unit torque of the first input.
     lossless: Mapping[str, RationalFunction]
+
+
+def is_loaded(law: FrictionLaw, meshes: Collection[str]) -> bool:
+    """Whether a region assumes the sign of the force loading ``law``: a mesh's tooth force
+    (it decides the driving gear) or a bearing's Coulomb reaction (the moment's sense)."""
+    return is_mesh_law(law, meshes) or law.law == "coulomb"
 
 
 def region_forms(context: RegionContext, number: int, signs: dict[str, int], vector: tuple[int, ...],
@@ -67,7 +74,7 @@ def region_forms(context: RegionContext, number: int, signs: dict[str, int], vec
         return lossless_sign(law.transmitted or "") * (-1 if law.coupling in reversed_forces else 1)
 
     for law in net.laws:
-        if law.coupling in flows:
+        if is_mesh_law(law, flows):
             mesh = train.coupling(law.coupling)
             assert isinstance(mesh, GearMesh) and mesh.efficiencies is not None
             eta = mesh.efficiencies[0] if first[law.coupling] else mesh.efficiencies[1]
@@ -108,7 +115,7 @@ def region_forms(context: RegionContext, number: int, signs: dict[str, int], vec
     p_in = sum((powers[p] for p in ports.inputs), zero)
     forces = {}
     for law in net.laws:
-        if law.coupling in flows or law.law == "coulomb":
+        if is_loaded(law, flows):
             j = index[law.transmitted or ""]
             force = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
             forces[law.coupling] = (force, assumed_sign(law))

@@ -27,9 +27,10 @@ from itertools import combinations
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region, SeveralInputs, SpeedCondition, speed_symbol
-from davies_sym.efficiency.region_forms import RegionContext, region_forms
+from davies_sym.efficiency.region_forms import RegionContext, is_loaded, region_forms
 from davies_sym.efficiency.region_sampling import holds_somewhere, reached_signs
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
@@ -102,6 +103,7 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
                           seed: int = 0) -> SeveralInputs:
     """Every power-flow region of ``train`` (several input ports) with its closed forms."""
     say = progress or (lambda message: None)
+    check_mesh_friction(train)
     train = resolved_train(train)
     ports = train.ports
     speeds = tuple(speed_symbol(p) for p in ports.inputs)
@@ -146,10 +148,10 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     names = [f"s{k + 1}" for k in range(len(conditions.forms))]
     found = reached_signs(train, analysis, conditions.forms, speeds, samples, seed)
     context = RegionContext(analysis, said, flows, port_speeds, pairing, lossless)
-    loaded = [law.coupling for law in net.laws if law.coupling in flows or law.law == "coulomb"]
+    loaded = [law.coupling for law in net.laws if is_loaded(law, flows)]
     # Only losses that do not scale with the tooth forces (drag, viscous, bearing friction)
     # can reverse a loaded force.
-    reversible = loaded if any(law.coupling not in flows for law in net.laws) else []
+    reversible = [] if only_mesh_laws(net.laws, flows) else loaded
     reversals = [frozenset(c) for size in range(1, len(reversible) + 1) for c in combinations(reversible, size)]
     regions: list[Region] = []
     for k, (signs, points) in enumerate(found.items()):

@@ -23,7 +23,7 @@ import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.mesh_friction import check_mesh_friction
+from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, named_mesh_power_flow
@@ -195,8 +195,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     role_names = {r.coupling for r in roles}
     # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
     # too) changes with the input side: derive the other side again.
-    resolve_again = any(law.coupling not in role_names or law.law not in ("coulomb", "linear")
-                        for law in analysis.network.laws)
+    resolve_again = not only_mesh_laws(analysis.network.laws, role_names)
     swapped_analysis = None
     if resolve_again:
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",

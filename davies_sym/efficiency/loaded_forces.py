@@ -16,26 +16,25 @@ from collections.abc import Mapping
 
 import sympy
 
-from davies_sym.efficiency.variants import Variant, VariantSet, at_operating_point, substituted, zeta_forms
-from davies_sym.efficiency.virtual_power import named_mesh_power_flow
+from davies_sym.efficiency.mesh_friction import is_mesh_law
+from davies_sym.efficiency.variants import Variant, VariantSet, at_operating_point, substituted
 
 
 def reversed_meshes(variants: VariantSet, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> list[str]:
     """The meshes whose tooth force at ``values`` (input torque and speed included) has
     the opposite sign of its lossless one in ``variant``; empty when no law but the
     meshes' own friction is present (every force then scales with the load)."""
-    declared = variant.input == variants.train.ports.input
-    analysis = variants.analysis if declared else variants.swapped
-    if analysis is None:
+    if variants.swapped is None:
         return []
-    roles = [r for r in variants.roles if not r.idle]
-    zetas = zeta_forms({r.coupling: named_mesh_power_flow(analysis, r.coupling) for r in roles}, roles)
+    declared = variant.input == variants.train.ports.input
+    analysis, zetas = (variants.analysis, variants.zetas) if declared else (variants.swapped, variants.swapped_zetas)
+    roles = variants.roles
     torque = analysis.input_action.symbol
     solution = analysis.action_solution
     lossless = analysis.lossless_action_coefficients
     out = []
-    for role in roles:
-        law = next(law for law in analysis.network.laws if law.coupling == role.coupling)
+    for role in (r for r in roles if not r.idle):
+        law = next(law for law in analysis.network.laws if is_mesh_law(law, (role.coupling,)))
         a, b = solution[law.transmitted or ""]
         force = a * analysis.ring.rational(torque) + b
         force = at_operating_point(substituted(force, roles, zetas, variant.first_drives), analysis)

@@ -112,6 +112,10 @@ class VariantSet:
     #: The derivation with input and output swapped, when friction laws other than the
     #: meshes' make it differ from the declared one (None otherwise).
     swapped: Analysis | None = field(default=None, repr=False)
+    #: zeta of every mesh in both directions (Laus eqs. (74)-(75)) in the declared
+    #: derivation and, when there is one, in the swapped derivation.
+    zetas: Mapping[tuple[str, bool], RationalFunction] = field(default_factory=dict, repr=False)
+    swapped_zetas: Mapping[tuple[str, bool], RationalFunction] = field(default_factory=dict, repr=False)
 
     @property
     def symbols(self) -> list[sympy.Symbol]:
@@ -197,6 +201,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     # too) changes with the input side: derive the other side again.
     resolve_again = not only_mesh_laws(analysis.network.laws, role_names)
     swapped_analysis = None
+    swapped_zetas: dict[tuple[str, bool], RationalFunction] = {}
     if resolve_again:
         swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
                                     progress=progress, extra_symbols=extra, layout=layout)
@@ -233,7 +238,8 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
             variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
             variants.append(_checked(variant, region, etas, analysis, conditions, rng))
-    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared, swapped_analysis)
+    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared, swapped_analysis,
+                      zetas, swapped_zetas)
 
 
 def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],

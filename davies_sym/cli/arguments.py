@@ -5,7 +5,7 @@ choice, each refusing bad input with a message naming the option."""
 from __future__ import annotations
 
 import argparse
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 
 import sympy
 
@@ -105,6 +105,28 @@ def sweep(train: Train, option: str, text: str, names: Collection[str] | None = 
     if not low < high:
         raise InputError([Problem(option, f"the interval {text!r} is empty (START < STOP)")], train.path)
     return Sweep(name.strip(), low, high)
+
+
+def plot_sweeps(train: Train, args: argparse.Namespace,
+                names: Collection[str] | None = None) -> tuple[Sweep, Sweep | None]:
+    """``--plot`` and ``--vs`` as sweeps of ``names`` (default: the train's symbols); a
+    figure needs its file (``-o FILE.png``)."""
+    if not args.out:
+        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    x = sweep(train, "--plot", args.plot, names)
+    return x, (sweep(train, "--vs", args.vs, names) if args.vs else None)
+
+
+def held_values(train: Train, given: Mapping[str, float], needed: Iterable[str],
+                sweeps: tuple[Sweep, Sweep | None]) -> dict[str, float]:
+    """The values a figure holds fixed: every ``needed`` name but the swept ones, each
+    from ``given`` (``--at``); the missing ones are named."""
+    swept = {s.name for s in sweeps if s is not None}
+    held = [n for n in needed if n not in swept]
+    missing = [n for n in held if n not in given]
+    if missing:
+        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
+    return {n: float(given[n]) for n in held}
 
 
 def eval_port(train: Train, args: argparse.Namespace) -> str:

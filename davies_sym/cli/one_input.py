@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 import sympy
 
-from davies_sym.cli.arguments import eval_port, sweep, values
+from davies_sym.cli.arguments import eval_port, held_values, plot_sweeps, values
 from davies_sym.cli.messages import message
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
@@ -30,20 +30,12 @@ Progress = Callable[[str], None]
 def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
     train = variants.train
-    if not args.out:
-        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    x, y = plot_sweeps(train, args)
     port = eval_port(train, args)
-    x = sweep(train, "--plot", args.plot)
-    y = sweep(train, "--vs", args.vs) if args.vs else None
     # A published value for a name the file no longer has (written as a number) is not a default.
     published = [f"{k}={v}" for k, v in train.published_design(args.state).items() if k in train.symbols]
     given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at").items()}
-    swept = {x.name} | ({y.name} if y else set())
-    needed = [str(s) for s in formula_symbols(variants) if str(s) not in swept]
-    missing = [n for n in needed if n not in given]
-    if missing:
-        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
-    fixed = {n: given[n] for n in needed}
+    fixed = held_values(train, given, [str(s) for s in formula_symbols(variants)], (x, y))
     if y is None:
         return png_bytes(efficiency_figure(variants, x, fixed, port))
     return png_bytes(region_figure(variants, x, y, fixed, port))

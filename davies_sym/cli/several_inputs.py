@@ -8,7 +8,7 @@ import argparse
 import json
 from collections.abc import Callable
 
-from davies_sym.cli.arguments import sweep
+from davies_sym.cli.arguments import held_values, plot_sweeps
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.emit.plots import png_bytes
 from davies_sym.emit.report import kinematics_document, kinematics_text
@@ -57,22 +57,15 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
 def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
     """The PNG of ``--plot`` (and ``--vs``) with the other parameters from ``--at``."""
     train = si.train
-    if not args.out:
-        raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
     module = several_inputs_formulas(si)
     names = [p["name"] for p in module.PARAMETERS]
-    x = sweep(train, "--plot", args.plot, names)
-    y = sweep(train, "--vs", args.vs, names) if args.vs else None
+    x, y = plot_sweeps(train, args, names)
     given = assignments(args.at, "--at", train.path)
     unknown = sorted(set(given) - set(names))
     if unknown:
         raise InputError([Problem("--at", f"unknown symbol {unknown[0]} (the formulas take: {', '.join(names)})")],
                          train.path)
-    swept = {x.name} | ({y.name} if y else set())
-    missing = [n for n in names if n not in given and n not in swept]
-    if missing:
-        raise InputError([Problem("--at", f"missing values for {', '.join(missing)}")], train.path)
-    fixed = {n: float(v) for n, v in given.items() if n not in swept}
+    fixed = held_values(train, {n: float(v) for n, v in given.items()}, names, (x, y))
     if y is None:
         return png_bytes(several_efficiency_figure(si, x, fixed, module))
     return png_bytes(several_region_figure(si, x, y, fixed, module))

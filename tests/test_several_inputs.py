@@ -18,6 +18,8 @@ from hostile.helpers import run_main
 from oracle.lossy_balance import NoConsistentSolution, sr20, sr20_at_row
 
 import davies_sym
+from davies_sym.calibration.measurements import read_measurements
+from davies_sym.calibration.train_model import TrainModel
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, derive_several_inputs
 from davies_sym.emit.several_inputs_report import evaluate_several
 
@@ -197,6 +199,27 @@ def test_calibration_recovers_known_parameters_from_noisy_synthetic_data(tmp_pat
     fitted = json.loads(result.stdout)["parameters"]
     for name, true in (("eta_M", 0.96), ("D_P", 0.5)):
         assert abs(fitted[name]["value"] - true) < 3 * fitted[name]["standard_error"]
+
+
+def test_calibration_predicts_with_the_region_the_load_picks(tmp_path: Path) -> None:
+    """Rows in the sector w_A < w_K (both forward), where a planet drag larger than the load's
+    share reverses the tooth force of M1: heavy loads keep the lossless region, light loads
+    take the reversed one.  The calibration model's predictions equal the oracle's efficiency
+    row by row, each row with its own region."""
+    train = sr20(eta_1=F(24, 25), eta_2=F(24, 25), drag={"p": F(2)})
+    rows, truths = [], []
+    for w_a, w_k, load in ((100, 300, F(40)), (50, 400, F(30)), (100, 300, F(1, 5)), (60, 500, F(1, 2))):
+        rows.append({"w_A": float(w_a), "w_K": float(w_k), "T_O": -float(load)})
+        truths.append(float(sr20_at_row({"w_A": F(w_a), "w_K": F(w_k), "T_O": -load}, train=train).eta))
+    data = read_measurements(_write(tmp_path / "rig.csv", rows), ["w_A", "w_K", "T_O"])
+    si = derive_several_inputs(davies_sym.load(catalog_path("sr20_differential")))
+    model = TrainModel(si, ("D_P",), {"eta_M": 0.96})
+    np.testing.assert_allclose(model.predict(data, {"D_P": 2.0}), truths, rtol=1e-12)
+    symbols = si.train.symbols
+    regions = {si.region_at({si.speeds[0]: int(r["w_A"]), si.speeds[1]: int(r["w_K"]), symbols["D_P"]: 2,
+                             symbols["eta_M"]: sympy.Rational(24, 25), LOAD_TORQUE: sympy.nsimplify(-r["T_O"])}).number
+               for r in rows}
+    assert len(regions) == 2
 
 
 def test_calibrate_on_table_1_predicts_tables_2_to_5_better_than_the_paper(tmp_path: Path) -> None:

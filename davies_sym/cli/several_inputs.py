@@ -13,11 +13,10 @@ from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_i
 from davies_sym.emit.plots import png_bytes
 from davies_sym.emit.report import kinematics_document, kinematics_text
 from davies_sym.emit.several_inputs_latex import several_inputs_latex
-from davies_sym.emit.several_inputs_module import several_inputs_module
+from davies_sym.emit.several_inputs_module import several_inputs_formulas, several_inputs_module
 from davies_sym.emit.several_inputs_plots import (
     several_efficiency_figure,
-    several_inputs_formulas,
-    several_region_figure,
+        several_region_figure,
 )
 from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
 from davies_sym.errors import InputError, Problem

@@ -185,3 +185,8 @@ def table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:
                     [ast.Tuple([name_node(f), literal(tuple(a))], ast.Load()) for _, f, a in entries])
 
 
+def compiled_module(source: str, name: str) -> ModuleType:
+    """A generated module's ``source`` compiled in memory (``name``: the train's)."""
+    module = ModuleType("davies_sym_formulas")
+    exec(compile(source, f"<formulas of {name}>", "exec"), module.__dict__)
+    return module

@@ -29,6 +29,7 @@ import sympy
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
 
 POINTS_1D = 400
@@ -50,13 +51,6 @@ class Sweep:
 def formula_module(variants: VariantSet) -> ModuleType:
     """The generated module of ``variants``, compiled in memory."""
     return compiled_module(python_module(variants), variants.train.name)
-
-
-def compiled_module(source: str, name: str) -> ModuleType:
-    """A generated module's ``source`` compiled in memory (``name``: the train's)."""
-    module = ModuleType("davies_sym_formulas")
-    exec(compile(source, f"<formulas of {name}>", "exec"), module.__dict__)
-    return module
 
 
 def new_figure(width: float = 7.0, height: float = 5.0) -> Any:

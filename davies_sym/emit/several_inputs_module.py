@@ -24,6 +24,7 @@ from __future__ import annotations
 import ast
 import os
 from collections.abc import Sequence
+from types import ModuleType
 
 import sympy
 
@@ -33,7 +34,16 @@ from davies_sym.efficiency.parameters import Parameter, parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
 from davies_sym.emit.code_layout import docstring, literal, module_source
-from davies_sym.emit.formula_code import call, constant, formula_function, name_node, runtime_of, table, usable
+from davies_sym.emit.formula_code import (
+    call,
+    compiled_module,
+    constant,
+    formula_function,
+    name_node,
+    runtime_of,
+    table,
+    usable,
+)
 from davies_sym.emit.several_inputs_report import condition_text, force_text, mesh_text
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
@@ -175,3 +185,9 @@ def several_inputs_module(si: SeveralInputs) -> str:
     items += [(2, text) for text in runtime.after]
     items += [(2, f) for f in entries]
     return module_source(items)
+
+
+def several_inputs_formulas(si: SeveralInputs) -> ModuleType:
+    """The generated module of ``si``, compiled in memory (figures and calibration use
+    the numbers design code gets)."""
+    return compiled_module(several_inputs_module(si), si.train.name)

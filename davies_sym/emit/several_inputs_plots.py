@@ -24,19 +24,13 @@ from davies_sym.emit.plots import (
     POINTS_1D,
     POINTS_2D,
     Sweep,
-    compiled_module,
     fixed_text,
     label,
     map_regions,
     new_figure,
     shade_regions,
 )
-from davies_sym.emit.several_inputs_module import several_inputs_module
-
-
-def several_inputs_formulas(si: SeveralInputs) -> ModuleType:
-    """The generated module of ``si``, compiled in memory."""
-    return compiled_module(several_inputs_module(si), si.train.name)
+from davies_sym.emit.several_inputs_module import several_inputs_formulas
 
 
 def _describe(module: ModuleType, number: int) -> str:

@@ -139,7 +139,8 @@ def test_module_is_deterministic_and_lists_its_regions(lossy, module) -> None:
 
 def test_latex_document_formulas_equal_the_oracle(lossy) -> None:
     """Each region's eta* equation, parsed back from the LaTeX, equals the oracle's
-    efficiency at a point of that region; the document is standalone and balanced."""
+    efficiency at a point of that region, and the conditions on its loaded forces, read
+    back, hold there; the document is standalone and balanced."""
     text = several_inputs_latex(lossy)
     assert text.startswith(r"\documentclass") and text.rstrip().endswith(r"\end{document}")
     assert text.count("{") == text.count("}")
@@ -159,6 +160,13 @@ def test_latex_document_formulas_equal_the_oracle(lossy) -> None:
         seen.add(number)
         value = read_latex(equations[number], symbols).subs(point)
         assert value == sympy.Rational(case["eta"].numerator, case["eta"].denominator)
+        # The region's own conditions on its loaded forces, read back, hold at the point.
+        section = text.split(rf"\paragraph{{Region ({number})}}")[1].split(r"\paragraph")[0]
+        held = re.findall(r"Holds where .*:\n\\begin\{equation\*\}\n(.*) ([<>]) 0\n", section)
+        assert len(held) == len(lossy.regions[number - 1].loaded_forces)
+        for body, relation in held:
+            force = read_latex(body, symbols).subs(point)
+            assert force > 0 if relation == ">" else force < 0
     assert len({lossy.regions[n - 1].reversed for n in seen}) > 1 and len(seen) >= 12
 
 

@@ -14,7 +14,7 @@ import sympy
 
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, SeveralInputs, speed_symbol
 from davies_sym.emit.latex import PREAMBLE, escape
-from davies_sym.emit.several_inputs_report import drivers, mesh_text
+from davies_sym.emit.several_inputs_report import drivers, force_conditions, mesh_text
 
 
 def _ports(names: tuple[str, ...]) -> str:
@@ -51,10 +51,16 @@ def several_inputs_latex(si: SeveralInputs) -> str:
         driving = ", ".join(escape(driver) for _, driver, _ in drivers(si, r))
         out.append(" & ".join([f"({r.number})", *signs, _ports(r.inputs), _ports(r.outputs), driving]) + r" \\")
     out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
+    load_dependent = any(r.reversed for r in si.regions)
     for r in si.regions:
         where = ", ".join(f"${c.name} {'>' if r.signs[c.name] > 0 else '<'} 0$" for c in si.conditions)
         out.append(rf"\paragraph{{Region ({r.number})}} Where {where}: "
                    + escape("; ".join(mesh_text(si, r))) + ".")
+        if load_dependent:
+            # Regions of one speed sector differ by the loaded forces' signs.
+            for what, force, sign in force_conditions(r):
+                out += [rf"\noindent Holds where the {escape(what)}:", r"\begin{equation*}",
+                        rf"{sympy.latex(force)} {'>' if sign > 0 else '<'} 0", r"\end{equation*}"]
         torques = [rf"T_{{{escape(p)}}} &= {sympy.latex(t.to_expr())}" for p, t in r.torques.items()]
         out += [r"\begin{align*}", r" \\ ".join(torques), r"\end{align*}"]
         out += [r"\begin{equation}", rf"\eta^* = {sympy.latex(r.efficiency)}", rf"\tag{{{r.number}}}",

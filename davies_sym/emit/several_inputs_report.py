@@ -21,15 +21,21 @@ def condition_text(si: SeveralInputs, region: Region) -> list[str]:
     return [f"{sympy.sstr(c.form)} {'>' if region.signs[c.name] > 0 else '<'} 0" for c in si.conditions]
 
 
-def force_text(si: SeveralInputs, region: Region) -> list[str]:
-    """Where the region holds beyond its speed conditions: each loaded force (tooth force,
-    bearing reaction) with the sign the region gives it."""
+def force_conditions(region: Region) -> list[tuple[str, sympy.Expr, int]]:
+    """Where the region holds beyond its speed conditions: (what the force is, the force,
+    the sign the region gives it) for each loaded force (tooth force, bearing reaction)."""
     out = []
     for coupling, (force, assumed) in region.loaded_forces.items():
         what = "tooth force of" if coupling in region.first_drives else "reaction in"
         flipped = " (reversed by the losses)" if coupling in region.reversed else ""
-        out.append(f"{what} {coupling}{flipped}: {sympy.sstr(force.to_expr())} {'>' if assumed > 0 else '<'} 0")
+        out.append((f"{what} {coupling}{flipped}", force.to_expr(), assumed))
     return out
+
+
+def force_text(si: SeveralInputs, region: Region) -> list[str]:
+    """:func:`force_conditions` as text, e.g. ``tooth force of M1: ... > 0``."""
+    return [f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0" for what, force, sign in
+            force_conditions(region)]
 
 
 def drivers(si: SeveralInputs, region: Region) -> list[tuple[str, str, str]]:

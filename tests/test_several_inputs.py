@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 import sympy
 from hostile.helpers import run_main
-from oracle.lossy_balance import NoConsistentSolution, sr20, sr20_at_row
+from oracle.balance import Gear, Member, Mesh
+from oracle.lossy_balance import Bearing, LossyTrain, NoConsistentSolution, solve, sr20, sr20_at_row
 
 import davies_sym
 from davies_sym.calibration.measurements import read_measurements
@@ -322,3 +323,63 @@ def test_viscous_friction_on_a_mesh_beside_its_efficiency() -> None:
     with pytest.raises(davies_sym.TopologyError, match=r"sr20_bad.yaml:\d+: couplings.M1.friction: a mesh needs"):
         derive_several_inputs(davies_sym.loads(base.replace(
             old, 'M1: {type: mesh, gears: ["1", "2"], efficiency: eta_M, friction: {viscous: b_M}}'), "sr20_bad.yaml"))
+
+
+RING_OUTPUT = """
+name: ring-output differential
+links: [frame, sun, arm, planet, ring]
+reference: frame
+gears:
+  s: {link: sun, radius: rs}
+  p: {link: planet, radius: rp}
+  r: {link: ring, radius: rr, internal: true}
+couplings:
+  Out: {type: revolute, links: [frame, ring]}
+  In1: {type: revolute, links: [frame, sun]}
+  In2: {type: revolute, links: [frame, arm]}
+  Pin: {type: revolute, links: [arm, planet], friction: {coulomb: rho_pin, drag: D_pin}}
+  g_sp: {type: mesh, gears: [p, s], efficiency: eta_a}
+  g_rp: {type: mesh, gears: [r, p], efficiency: eta_c}
+ports:
+  output: Out
+  input: [In2, In1]
+"""
+
+
+def test_a_ring_output_differential_written_otherwise_equals_the_oracle() -> None:
+    """Another train and spelling: sun and arm driven, the internal ring loaded, symbolic
+    radii (the ring's eliminated by the coaxial constraint), no degrees_of_freedom entry (one
+    per input port is expected), Coulomb friction and drag in the planet pin.  At random
+    geometry, losses, loads down to 0.1 and speeds in every direction, eta* equals the oracle's
+    exactly; light-load regions where the losses reverse forces are reached."""
+    si = derive_several_inputs(davies_sym.loads(RING_OUTPUT, "ring_output.yaml"))
+    symbols = si.train.symbols
+    speeds = dict(zip(si.train.ports.inputs, si.speeds, strict=True))
+    rng = random.Random(4)
+    reached = set()
+    for _ in range(40):
+        rs, rp = F(rng.randint(10, 40)), F(rng.randint(5, 30))
+        w_arm, w_sun = F(rng.randint(-500, 500)), F(rng.randint(-500, 500))
+        eta_a, eta_c = F(rng.randint(90, 99), 100), F(rng.randint(90, 99), 100)
+        rho, drag, load = F(rng.randint(0, 20), 10), F(rng.randint(0, 300), 100), F(rng.randint(1, 400), 10)
+        values = {"rs": rs, "rp": rp, "rr": rs + 2 * rp, "eta_a": eta_a, "eta_c": eta_c, "rho_pin": rho,
+                  "D_pin": drag}
+        point = {symbols[k]: sympy.Rational(v.numerator, v.denominator) for k, v in values.items() if k in symbols}
+        point |= {speeds["In2"]: int(w_arm), speeds["In1"]: int(w_sun), LOAD_TORQUE: sympy.Rational(load.numerator,
+                                                                                                      load.denominator)}
+        w_out = si.port_speeds["Out"].to_expr().subs(point)
+        if 0 in (w_out, w_arm, w_sun, w_arm - w_sun):
+            continue
+        members = (Member("frame"), Member("sun"), Member("arm"), Member("planet", "arm", (F(0), rs + rp)),
+                   Member("ring"))
+        gears = (Gear("s", "sun", rs), Gear("p", "planet", rp), Gear("r", "ring", rs + 2 * rp, True))
+        oracle = LossyTrain("ring output", members, gears, (Mesh("g_sp", ("p", "s"), eta_a),
+                                                            Mesh("g_rp", ("r", "p"), eta_c)),
+                            "frame", {"In1": "sun", "In2": "arm", "Out": "ring"}, (Bearing("planet", rho=rho,
+                                                                                          drag=drag),))
+        truth = solve(oracle, {"In2": w_arm, "In1": w_sun}, "Out", -load if w_out > 0 else load)
+        region = si.region_at(point)
+        reached.add(region.reversed)
+        assert region.efficiency.subs(point) == sympy.Rational(truth.efficiency.numerator,
+                                                               truth.efficiency.denominator)
+    assert len(reached) > 1

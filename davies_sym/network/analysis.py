@@ -133,12 +133,18 @@ class Analysis:
             problems.append(self.train.problem(
                 "degrees_of_freedom",
                 f"the train has {dof} degree(s) of freedom, the file says {self.train.degrees_of_freedom}"))
-        elif dof != 1 and self.train.degrees_of_freedom is None:
-            extra = [net.motions[j].name for j in free if j != index]
-            problems.append(self.train.problem(
-                "ports",
-                f"the train has {dof} degrees of freedom but one input port drives it; also free: "
-                f"{', '.join(extra)}" if dof > 1 else "the train has no degree of freedom"))
+        elif self.train.degrees_of_freedom is None and dof != len(self.train.ports.inputs):
+            # Without a stated mobility, one degree of freedom per input port is expected.
+            driven = {m.name for p in self.train.ports.inputs for m in net.coupling_motions(p)[:1]}
+            extra = [net.motions[j].name for j in free if net.motions[j].name not in driven]
+            inputs = len(self.train.ports.inputs)
+            count = "one input port drives" if inputs == 1 else f"{inputs} input ports drive"
+            text = f"the train has {dof} degrees of freedom but {count} it"
+            if extra:
+                text += f"; also free: {', '.join(extra)}"
+            if dof == 0:
+                text = "the train has no degree of freedom"
+            problems.append(self.train.problem("ports", text))
         if problems:
             raise MobilityError(problems, self.train.path)
         solution = elimination.solution(self.ring)

@@ -10,9 +10,10 @@ This state does not use eta_1, eta_2, rps, rs1: the functions accept them (as ev
 ignore them (IGNORED).
 
 efficiency(**params) takes the parameters of PARAMETERS (scalars or numpy arrays, broadcast together), picks the
-variant element by element from the turning conditions and the input port, and gives NaN with a DesignWarning
-(errors='raise': a DesignError) where the design is outside the admissible parameters or self-locks.  speed_ratio
-and losses work the same way.
+variant element by element from the turning conditions, the input port and the signs of the loaded forces, and
+gives NaN with a DesignWarning (errors='raise': a DesignError) where the design is outside the admissible
+parameters, the losses reverse loaded forces as no variant covers, or the train self-locks.  speed_ratio, losses
+and variant work the same way.
 """
 
 from __future__ import annotations
@@ -55,10 +56,13 @@ class Variant(TypedDict):
     formula: str
     latex: str
     feasible: bool
+    reversed: tuple[str, ...]
+    forces: tuple[str, ...]
 
 
 class DesignWarning(RuntimeWarning):
-    """Some design points are outside the admissible parameters or self-lock (NaN there)."""
+    """Some design points are outside the admissible parameters, self-lock, or lie where
+    the losses reverse loaded forces as no variant covers (NaN there)."""
 
 
 class DesignError(ValueError):
@@ -118,6 +122,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'formula': 'eta_3*eta_4',
         'latex': '\\eta_{3} \\eta_{4}',
         'feasible': True,
+        'reversed': (),
+        'forces': (),
     },
     {
         'name': 'D_to_B',
@@ -131,6 +137,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'formula': 'eta_3*eta_4',
         'latex': '\\eta_{3} \\eta_{4}',
         'feasible': True,
+        'reversed': (),
+        'forces': (),
     },
 )
 
@@ -190,6 +198,7 @@ _LOSSES: Final[_Table] = {
     'D_to_B': (_losses_D_to_B, ('eta_3', 'eta_4')),
 }
 _RATIO: Final[_Table] = {'B': (_ratio_formula, ('rr', 'rs2'))}
+_FORCES: Final[_Table] = {}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -209,25 +218,51 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
     return code
 
 
-def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds, evaluated element by element (each
-    variant only on its own points); shape (width, *broadcast shape)."""
+def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
+    """The number of the variant that holds at each point with ``input`` as input port:
+    its turning conditions hold and each of its loaded forces has the sign it needs (at
+    light load the losses reverse some); 0 where none does.  Where a force is zero two
+    variants agree and give the same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
-    result = np.full((width, *shape), np.nan)
+    numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
         for variant in VARIANTS:
             if variant["input"] != input:
                 continue
+            mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
+            if mask.any() and variant["name"] in _FORCES:
+                function, names = _FORCES[variant["name"]]
+                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
+                          for n in names}
+                forces = function(**chosen)
+                # A force that depends on none of the arrays comes back as a scalar.
+                size = (int(np.count_nonzero(mask)),)
+                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
+                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                mask[mask] = agree
+            numbers[mask] = variant["number"]
+    return numbers
+
+
+def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> Array:
+    """The function of the variant that holds, evaluated element by element (each
+    variant only on its own points); shape (width, *broadcast shape), NaN where none holds."""
+    numbers = _variant_numbers(input, values)
+    result = np.full((width, *numbers.shape), np.nan)
+    with np.errstate(all="ignore"):
+        for variant in VARIANTS:
+            mask = numbers == variant["number"]
+            if not mask.any():
+                continue
             function, names = table[variant["name"]]
-            mask = code == variant["region"]
             if mask.all():
                 parts = function(**{n: values[n] for n in names})
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, ...] = part
-            elif mask.any():
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
+            else:
+                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
                           for n in names}
                 parts = function(**chosen)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
@@ -284,28 +319,31 @@ def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str,
     return np.where(bad, np.nan, result)
 
 
-def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
-    """NaN (with a warning, or an error) where the design is not admissible or self-locks."""
+def _screened(result: Array, input: str, values: dict[str, Array], errors: str) -> Array:
+    """NaN (with a warning, or an error) where the design is not admissible, no variant
+    holds (the losses reverse loaded forces as none covers) or the train self-locks."""
     _check_errors(errors)
     outside = ~_admissible(values)
+    uncovered = (_variant_numbers(input, values) == 0) & ~outside
     with np.errstate(invalid="ignore"):
-        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside
+        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
     message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               f"(PARAMETERS, RELATIONS) and {int(np.count_nonzero(locked))} where the train self-locks "
+               f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
+               f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
                "(efficiency outside (0, 1]): NaN there")
-    return _nan_where(outside | locked, result, message, errors, stacklevel=4)
+    return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
     (result,) = _select(input, values, _EFFICIENCY, 1)
-    return _screened(result, values, errors)
+    return _screened(result, input, values, errors)
 
 
 def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
     (result,) = _select(input, values, _EFFICIENCY, 1)
-    bad = np.isnan(_screened(result, values, errors))
+    bad = np.isnan(_screened(result, input, values, errors))
     parts = _select(input, values, _LOSSES, len(LOSSY))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
@@ -323,6 +361,20 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
     message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
                "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
     return _nan_where(outside, ratio, message, errors, stacklevel=3)
+
+
+def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.int64]:
+    """What ``variant`` returns: the variant numbers, 0 where none holds or the design is
+    not admissible (with a warning, or an error)."""
+    _check_errors(errors)
+    numbers = _variant_numbers(input, values)
+    bad = (numbers == 0) | ~_admissible(values)
+    if bad.any() and errors != "ignore":
+        message = f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant"
+        if errors == "raise":
+            raise DesignError(message)
+        warnings.warn(message, DesignWarning, stacklevel=3)
+    return np.where(bad, 0, numbers)
 
 
 def efficiency(
@@ -365,6 +417,27 @@ def losses(
     """
     values: dict[str, Array] = {'eta_3': _array(eta_3), 'eta_4': _array(eta_4)}
     return _losses(input, errors, values)
+
+
+def variant(
+    *,
+    input: str = 'B',
+    errors: str = 'warn',
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    eta_1: ArrayLike | None = None,
+    eta_2: ArrayLike | None = None,
+    rpl: ArrayLike | None = None,
+    rps: ArrayLike | None = None,
+    rr: ArrayLike | None = None,
+    rs1: ArrayLike | None = None,
+    rs2: ArrayLike | None = None,
+) -> NDArray[np.int64]:
+    """Number of the variant that holds with `input` as the input port (VARIANTS), element by element: its turning
+    conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
+    """
+    values: dict[str, Array] = {'eta_3': _array(eta_3), 'eta_4': _array(eta_4)}
+    return _variant(input, errors, values)
 
 
 def speed_ratio(

@@ -1022,9 +1022,11 @@ def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
                 chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
                           for n in names}
                 forces = function(**chosen)
-                agree = np.all([np.asarray(f) >= 0 for f in (forces if isinstance(forces, tuple) else (forces,))],
-                               axis=0)
-                mask[mask] = np.broadcast_to(agree, (int(np.count_nonzero(mask)),))
+                # A force that depends on none of the arrays comes back as a scalar.
+                size = (int(np.count_nonzero(mask)),)
+                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
+                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                mask[mask] = agree
             numbers[mask] = region["number"]
             count += mask
     numbers[count > 1] = -1

@@ -18,7 +18,8 @@ import sympy
 from hostile.helpers import run_main
 
 import davies_sym
-from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, derive_variants
+from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
+from davies_sym.efficiency.variants import derive_variants
 
 from conftest import catalog_path
 

@@ -5,10 +5,9 @@ Columns (one row per operating point): ``w_<PORT>`` the speed in rpm and ``T_<PO
 the torque in N m of the port couplings, optional ``eta`` the measured efficiency.  A
 train with one input reads the input's speed and torque (its formulas take them as
 magnitudes); a train driven on several shafts reads every input's speed and the output's
-torque, the load.  In each row the variant or power-flow region is the one whose
-conditions hold there: for a train driven on several shafts the one the generated
-formula module picks (speed conditions, then the signs of the loaded forces, which the
-losses reverse at light load).
+torque, the load.  In each row the variant or power-flow region is the one the generated
+formula module picks: its turning or speed conditions hold there, and its loaded forces
+have the signs it assumes (the losses reverse some at light load).
 """
 
 from __future__ import annotations
@@ -23,9 +22,12 @@ import numpy.typing as npt
 import sympy
 
 from davies_sym.calibration.measurements import Measurements
+from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
 from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, SeveralInputs
-from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, VariantSet
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.formula_code import compiled_module
+from davies_sym.emit.python_module import python_module
 from davies_sym.emit.several_inputs_module import several_inputs_formulas
 from davies_sym.errors import InputError, Problem
 from davies_sym.losses.definitions import substituted
@@ -42,22 +44,20 @@ class TrainModel:
     fitted: tuple[str, ...]
     fixed: Mapping[str, float]
     required: tuple[str, ...] = field(init=False)
-    #: Per formula: the function, its argument names and the region's number (0: the variant).
+    #: Per formula: the function, its argument names and the number of its variant or region.
     _pieces: tuple[tuple[Callable[..., FloatArray], tuple[str, ...], int], ...] = field(init=False)
-    _regions: ModuleType | None = field(init=False)
+    _regions: ModuleType = field(init=False)
 
     def __post_init__(self) -> None:
         train = self.derived.train
         required = columns_of(self.derived)
-        regions = None
         if isinstance(self.derived, SeveralInputs):
             pieces = [self._piece(r.efficiency, r.number) for r in self.derived.regions]
             regions = several_inputs_formulas(self.derived)
         else:
-            values = {s: sympy.Float(v) for s in train.symbols.values() if str(s) in self.fixed
-                      for v in [self.fixed[str(s)]]}
-            variant = self.derived.variant_for(values)
-            pieces = [self._piece(variant.efficiency, 0)]
+            port = train.ports.input
+            pieces = [self._piece(v.efficiency, v.number) for v in self.derived.variants if v.input == port]
+            regions = compiled_module(python_module(self.derived), train.name)
         object.__setattr__(self, "required", required)
         object.__setattr__(self, "_pieces", tuple(pieces))
         object.__setattr__(self, "_regions", regions)
@@ -80,17 +80,20 @@ class TrainModel:
     def predict(self, data: Measurements, values: Mapping[str, float]) -> FloatArray:
         """The efficiency the formulas give at every row, NaN where no formula applies."""
         known = {**self.fixed, **values}
-        numbers = np.zeros(len(data), dtype=np.int64)
-        if isinstance(self.derived, SeveralInputs) and self._regions is not None:
+        if isinstance(self.derived, SeveralInputs):
             ports = self.derived.train.ports.inputs
             speeds = {str(s): data.column(f"w_{p}") * RPM for p, s in zip(ports, self.derived.speeds, strict=True)}
             operating = {**speeds, str(LOAD_TORQUE): np.abs(data.column(self.required[-1]))}
-            parameters = [p["name"] for p in self._regions.PARAMETERS]
-            numbers = np.broadcast_to(self._regions.region(**{n: operating.get(n, known.get(n)) for n in parameters}),
-                                      (len(data),))
         else:
             operating = {str(INPUT_SPEED): np.abs(data.column(self.required[0])) * RPM,
                          str(INPUT_TORQUE): np.abs(data.column(self.required[1]))}
+        # The variant or region of each row: the one the generated formula module picks.
+        parameters = {p["name"]: operating.get(p["name"], known.get(p["name"])) for p in self._regions.PARAMETERS}
+        if isinstance(self.derived, SeveralInputs):
+            chosen = self._regions.region(**parameters)
+        else:
+            chosen = self._regions.variant(input=self.derived.train.ports.input, errors="ignore", **parameters)
+        numbers = np.broadcast_to(chosen, (len(data),))
         out = np.full(len(data), np.nan)
         for function, names, number in self._pieces:
             mask = numbers == number

@@ -54,10 +54,13 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[sympy.Symbol, sympy.Expr]:
+def values(train: Train, pairs: Sequence[str], option: str = "--eval",
+           operating: Collection[sympy.Symbol] = ()) -> dict[sympy.Symbol, sympy.Expr]:
     """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
-    efficiencies in (0, 1])."""
+    efficiencies in (0, 1]) and of the ``operating`` symbols the formulas take besides
+    (input torque and speed, positive)."""
     problems, out = [], {}
+    symbols = {**train.symbols, **{str(s): s for s in operating}}
     efficiencies = mesh_efficiency_symbols(train.couplings)
     defined = {str(d.symbol): d for d in train.definitions}
     for pair in pairs:
@@ -66,9 +69,9 @@ def values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[s
         if not sep or not name:
             problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
             continue
-        if name not in train.symbols:
+        if name not in symbols:
             problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: "
-                                    f"{', '.join(sorted(train.symbols))})"))
+                                    f"{', '.join(sorted(symbols))})"))
             continue
         if name in defined:
             d = defined[name]
@@ -80,11 +83,11 @@ def values(train: Train, pairs: Sequence[str], option: str = "--eval") -> dict[s
         except ExpressionError as exc:
             problems.append(Problem(option, f"{name}: {exc}"))
             continue
-        why = role_problem(name, train.symbols[name], value, text, efficiencies)
+        why = role_problem(name, symbols[name], value, text, efficiencies)
         if why is not None:
             problems.append(Problem(option, why))
             continue
-        out[train.symbols[name]] = value
+        out[symbols[name]] = value
     if problems:
         raise InputError(problems, train.path)
     return out

@@ -11,6 +11,7 @@ import sympy
 
 from davies_sym.cli.arguments import eval_port, held_values, plot_sweeps, values
 from davies_sym.cli.messages import message
+from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.evaluation import evaluate
@@ -27,14 +28,21 @@ from davies_sym.topology.states import train_in_state
 Progress = Callable[[str], None]
 
 
+def operating_symbols(variants: VariantSet) -> list[sympy.Symbol]:
+    """The input torque and speed where the formulas take them (drag, viscous friction)."""
+    used = set(formula_symbols(variants))
+    return [s for s in OPERATING_SYMBOLS if s in used]
+
+
 def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
     train = variants.train
-    x, y = plot_sweeps(train, args)
+    operating = operating_symbols(variants)
+    x, y = plot_sweeps(train, args, [*train.symbols, *map(str, operating)])
     port = eval_port(train, args)
     # A published value for a name the file no longer has (written as a number) is not a default.
     published = [f"{k}={v}" for k, v in train.published_design(args.state).items() if k in train.symbols]
-    given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at").items()}
+    given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at", operating).items()}
     fixed = held_values(train, given, [str(s) for s in formula_symbols(variants)], (x, y))
     if y is None:
         return png_bytes(efficiency_figure(variants, x, fixed, port))
@@ -111,7 +119,8 @@ def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress
         text = _document(train, sets, args.json, progress)
     # Everything is computed (and every value checked) before anything is written.
     chosen = sets[0][1].train  # the state's train: its own ports and symbols
-    evaluation = (evaluate(sets[0][1], values(chosen, args.eval), eval_port(chosen, args))
+    operating = operating_symbols(sets[0][1])
+    evaluation = (evaluate(sets[0][1], values(chosen, args.eval, "--eval", operating), eval_port(chosen, args))
                   if args.eval is not None else None)
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:

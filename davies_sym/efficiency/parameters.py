@@ -17,7 +17,8 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.variants import INPUT_SPEED, INPUT_TORQUE, VariantSet
+from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
+from davies_sym.efficiency.variants import VariantSet
 from davies_sym.losses.definitions import parameters_of
 from davies_sym.network.matrices import FrictionLaw
 from davies_sym.topology.couplings import GearMesh

@@ -16,14 +16,25 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from davies_sym.algebra.polynomials import RationalFunction
-from davies_sym.efficiency.variants import Variant, VariantSet, at_operating_point, substituted, zeta_forms
-from davies_sym.efficiency.virtual_power import named_mesh_power_flow
+from davies_sym.efficiency.light_load import Derivation
+from davies_sym.efficiency.operating_point import at_operating_point, substituted
+from davies_sym.efficiency.variants import Variant, VariantSet
+from davies_sym.network.analysis import Analysis
 
 
 def lossy_couplings(variants: VariantSet) -> tuple[str, ...]:
     """The couplings with a friction law, in the order of the file."""
     names = {law.coupling for law in variants.analysis.network.laws}
     return tuple(c.name for c in variants.train.couplings if c.name in names)
+
+
+def _friction_actions(analysis: Analysis, coupling: str) -> list[str]:
+    """The actions of ``coupling`` whose power is its loss: all but a port's own torque
+    (a port coupling with drag or bearing friction carries the input or output power too)."""
+    net = analysis.network
+    ports = (analysis.train.ports.input, analysis.train.ports.output)
+    port = net.port_action(coupling).name if coupling in ports else None
+    return [v.name for v in net.coupling_actions(coupling) if v.name != port]
 
 
 @dataclass(frozen=True, eq=False)
@@ -35,17 +46,14 @@ class _InputSide:
     zetas: Mapping[tuple[str, bool], RationalFunction]
 
 
-def _input_side(variants: VariantSet, port: str) -> _InputSide:
-    declared = port == variants.train.ports.input
-    analysis = variants.analysis if declared or variants.swapped is None else variants.swapped
-    if analysis is variants.analysis:
-        flows = {r.coupling: r.flow for r in variants.roles}
-    else:
-        flows = {r.coupling: named_mesh_power_flow(analysis, r.coupling) for r in variants.roles}
+def _input_side(variants: VariantSet, port: str, derivation: Derivation) -> _InputSide:
+    """-P_k / P_in with ``port`` as input, from ``derivation`` (the variant's own, or the
+    declared input's when only the meshes' friction makes the two sides alike)."""
+    analysis = derivation.analysis
     p_in = analysis.port_power_rf(port)
-    forms = {name: at_operating_point(-(analysis.power_rf(name) / p_in), analysis)
+    forms = {name: at_operating_point(-(analysis.power_rf(name, _friction_actions(analysis, name)) / p_in), analysis)
              for name in lossy_couplings(variants)}
-    return _InputSide(forms, zeta_forms(flows, variants.roles))
+    return _InputSide(forms, derivation.zetas)
 
 
 def _substituted(variants: VariantSet, side: _InputSide, variant: Variant) -> dict[str, RationalFunction]:
@@ -55,10 +63,17 @@ def _substituted(variants: VariantSet, side: _InputSide, variant: Variant) -> di
 
 def loss_fractions(variants: VariantSet, variant: Variant) -> dict[str, RationalFunction]:
     """-P_k / P_in of every lossy coupling k in ``variant``."""
-    return _substituted(variants, _input_side(variants, variant.input), variant)
+    return _substituted(variants, _input_side(variants, variant.input, variants.derivation_of(variant)), variant)
 
 
 def all_loss_fractions(variants: VariantSet) -> dict[str, dict[str, RationalFunction]]:
-    """:func:`loss_fractions` of every variant (by name), each input side solved once."""
-    sides = {port: _input_side(variants, port) for port in (variants.train.ports.input, variants.train.ports.output)}
-    return {v.name: _substituted(variants, sides[v.input], v) for v in variants.variants}
+    """:func:`loss_fractions` of every variant (by name), each derivation's side solved once."""
+    sides: dict[tuple[str, int], _InputSide] = {}
+    out = {}
+    for v in variants.variants:
+        derivation = variants.derivation_of(v)
+        key = (v.input, id(derivation))
+        if key not in sides:
+            sides[key] = _input_side(variants, v.input, derivation)
+        out[v.name] = _substituted(variants, sides[key], v)
+    return out

@@ -17,17 +17,27 @@ from __future__ import annotations
 
 import random
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import partial
 
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.light_load import Derivation, LoadCase, LoadedForces, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
+from davies_sym.efficiency.operating_point import (
+    INPUT_SPEED,
+    INPUT_TORQUE,
+    OPERATING_SYMBOLS,
+    at_operating_point,
+    substituted,
+    zeta_forms,
+)
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from davies_sym.efficiency.virtual_power import MeshPowerFlow, named_mesh_power_flow
-from davies_sym.errors import DerivationError, InputError, MissingValuesError, Problem
+from davies_sym.efficiency.virtual_power import named_mesh_power_flow
+from davies_sym.errors import DerivationError, InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
@@ -38,23 +48,6 @@ Progress = Callable[[str], None]
 
 #: Ordinary efficiency used for the partial-derivative check (Glover's external value).
 NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
-
-#: Where dependent sources (viscous, drag) make the efficiency depend on the operating
-#: point, the formulas take the input torque and speed as magnitudes (input power
-#: tau_in omega_in).  No coupling's magnitude is named so (those are T_<coupling>, t_<coupling>, ...).
-INPUT_TORQUE = sympy.Symbol("tau_in", positive=True)
-INPUT_SPEED = sympy.Symbol("omega_in", positive=True)
-OPERATING_SYMBOLS = (INPUT_TORQUE, INPUT_SPEED)
-
-
-def at_operating_point(form: RationalFunction, analysis: Analysis) -> RationalFunction:
-    """``form`` with the input port's torque and speed magnitudes written as tau_in and
-    omega_in (the input turning forwards and putting power in: Laus's primary variables,
-    eq. (53) and the efficiency after it)."""
-    torque = form.ring.rational(analysis.input_power_sign * INPUT_TORQUE)
-    form = form.substitute(analysis.input_action.symbol, torque)
-    return form.substitute(analysis.input_motion.symbol, form.ring.rational(INPUT_SPEED))
-
 
 @dataclass(frozen=True, eq=False)
 class Variant:
@@ -78,6 +71,12 @@ class Variant:
     #: Product whose sign is that of the efficiency (positive factors removed); the
     #: variant self-locks where it is <= 0.  None when provably positive.
     locking_expression: sympy.Expr | None = None
+    #: Loaded forces (tooth forces, bearing reactions) the losses reverse in this variant:
+    #: empty for the lossless directions.
+    reversed_forces: frozenset[str] = frozenset()
+    #: Each loaded force at the operating point with the sign it needs where the variant
+    #: holds (empty when every force scales with the load: meshes' own friction only).
+    loaded_forces: LoadedForces = field(default_factory=dict, repr=False)
 
     @property
     def efficiency(self) -> sympy.Expr:
@@ -89,6 +88,8 @@ class Variant:
         """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
         parts = [f"{self.input}_to_{self.output}"]
         parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
+        if self.reversed_forces:
+            parts += ["reversed", *sorted(self.reversed_forces)]
         name = "_".join(_identifier(p) for p in parts)
         # A port named by a number would start the function name with a digit.
         return name if name[0].isalpha() else f"from_{name}"
@@ -109,13 +110,24 @@ class VariantSet:
     variants: tuple[Variant, ...]
     #: The efficiency with the signed friction law, declared input (eq. (71)).
     friction_form: RationalFunction = field(repr=False)
-    #: The derivation with input and output swapped, when friction laws other than the
-    #: meshes' make it differ from the declared one (None otherwise).
-    swapped: Analysis | None = field(default=None, repr=False)
-    #: zeta of every mesh in both directions (Laus eqs. (74)-(75)) in the declared
-    #: derivation and, when there is one, in the swapped derivation.
-    zetas: Mapping[tuple[str, bool], RationalFunction] = field(default_factory=dict, repr=False)
-    swapped_zetas: Mapping[tuple[str, bool], RationalFunction] = field(default_factory=dict, repr=False)
+    #: The derivation behind the variants of each input (True: the declared one) with the
+    #: reactions of the named bearings reversed; the declared input's without reversal
+    #: always, the other input's when friction laws besides the meshes' make it differ.
+    derivations: Mapping[tuple[bool, frozenset[str]], Derivation] = field(default_factory=dict, repr=False)
+
+    @property
+    def swapped(self) -> Analysis | None:
+        """The derivation with input and output swapped, when friction laws other than the
+        meshes' make it differ from the declared one (None otherwise)."""
+        other = self.derivations.get((False, frozenset()))
+        return None if other is None else other.analysis
+
+    def derivation_of(self, variant: Variant) -> Derivation:
+        """The derivation ``variant``'s formula and forces come from (the declared one for
+        the other input when only the meshes' friction is present)."""
+        declared = variant.input == self.train.ports.input
+        bearings = variant.reversed_forces - {r.coupling for r in self.roles}
+        return self.derivations.get((declared, bearings), self.derivations[(True, frozenset())])
 
     @property
     def symbols(self) -> list[sympy.Symbol]:
@@ -142,10 +154,41 @@ class VariantSet:
                 raise MissingValuesError([Problem("--eval", f"condition {c.name} needs values for "
                                                   f"{', '.join(missing)}")], self.train.path)
             signs[c.name] = 1 if value >= 0 else -1
-        for v in self.variants:
-            if v.input == port and dict(v.signs) == signs:
-                return v
-        raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+        candidates = [v for v in self.variants if v.input == port and dict(v.signs) == signs]
+        if not candidates:
+            raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+        if len(candidates) == 1 and not candidates[0].loaded_forces:
+            return candidates[0]
+        agreeing = [v for v in candidates if self._forces_agree(v, values)]
+        if len(agreeing) == 1 or (agreeing and len({v.efficiency.subs(values) for v in agreeing}) == 1):
+            return agreeing[0]
+        base = candidates[0]
+        if not agreeing:
+            raise NotCoveredError(f"the losses reverse loaded forces at these values as no derived variant "
+                                  f"covers (input {port}): the forces of variant ({base.number}) have the signs "
+                                  f"{self._force_signs(base, values)}")
+        numbers = ", ".join(f"({v.number})" for v in agreeing)
+        raise NotCoveredError(f"the loaded forces of variants {numbers} all agree at these values, with different "
+                              "efficiencies: the friction does not decide the power flow here")
+
+    def _force_values(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[str, sympy.Expr]:
+        out = {}
+        for coupling, (force, sign) in variant.loaded_forces.items():
+            value = sympy.sympify(force.to_expr().subs(values)) * sign
+            if not value.is_number:
+                missing = sorted(map(str, value.free_symbols))
+                raise MissingValuesError([Problem("--eval", f"the force in {coupling} (which variant holds) needs "
+                                                  f"values for {', '.join(missing)}")], self.train.path)
+            out[coupling] = value
+        return out
+
+    def _forces_agree(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> bool:
+        """Whether every loaded force of ``variant`` has the sign it needs at ``values``."""
+        return all(v >= 0 for v in self._force_values(variant, values).values())
+
+    def _force_signs(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> str:
+        signs = self._force_values(variant, values)
+        return ", ".join(f"{c} {'as assumed' if v >= 0 else 'reversed'}" for c, v in signs.items())
 
     def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (exact when the values are), right variant chosen."""
@@ -156,25 +199,6 @@ class VariantSet:
             raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
                                      self.train.path)
         return value
-
-
-def zeta_forms(flows: Mapping[str, MeshPowerFlow],
-                roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
-    """zeta of every mesh for both directions, in the ring of ``flows``."""
-    out = {}
-    for role in roles:
-        flow = flows[role.coupling]
-        for first in (True, False):
-            eta = role.efficiencies[0] if first else role.efficiencies[1]
-            out[(role.coupling, first)] = flow.friction_for(eta, first)
-    return out
-
-
-def substituted(form: RationalFunction, roles: Sequence[MeshRole],
-                 zetas: Mapping[tuple[str, bool], RationalFunction], first: Mapping[str, bool]) -> RationalFunction:
-    for role in roles:
-        form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])
-    return form
 
 
 def derive_variants(train: Train, progress: Progress | None = None, samples: int = 200,
@@ -194,22 +218,30 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=extra, layout=layout)
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
-    declared = at_operating_point(analysis.efficiency_rf, analysis)
-    zetas = zeta_forms({r.coupling: r.flow for r in roles}, roles)
-    role_names = {r.coupling for r in roles}
+    derivations: dict[tuple[bool, frozenset[str]], Derivation] = {}
+
+    def derive(declared_input: bool, bearings: frozenset[str]) -> Derivation:
+        """The derivation with the declared input or the other one, and the named
+        bearings' reactions reversed (solved once each)."""
+        key = (declared_input, bearings)
+        if key not in derivations:
+            side = analysis
+            if key != (True, frozenset()):
+                ports = train.ports if declared_input else train.ports.swapped()
+                side = Analysis(train.with_ports(ports), coulomb_signs="mesh-linear", progress=progress,
+                                extra_symbols=extra, layout=layout, reversed_coulomb=bearings)
+            flows = ({r.coupling: r.flow for r in roles} if side is analysis
+                     else {r.coupling: named_mesh_power_flow(side, r.coupling) for r in roles})
+            derivations[key] = Derivation(side, at_operating_point(side.efficiency_rf, side), zeta_forms(flows, roles))
+        return derivations[key]
+
+    declared = derive(True, frozenset())
     # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
-    # too) changes with the input side: derive the other side again.
-    resolve_again = not only_mesh_laws(analysis.network.laws, role_names)
-    swapped_analysis = None
-    swapped_zetas: dict[tuple[str, bool], RationalFunction] = {}
-    if resolve_again:
-        swapped_analysis = Analysis(train.with_ports(train.ports.swapped()), coulomb_signs="mesh-linear",
-                                    progress=progress, extra_symbols=extra, layout=layout)
-        swapped_form = at_operating_point(swapped_analysis.efficiency_rf, swapped_analysis)
-        swapped_flows = {r.coupling: named_mesh_power_flow(swapped_analysis, r.coupling) for r in roles}
-        swapped_zetas = zeta_forms(swapped_flows, roles)
+    # too) changes with the input side, and at light load can reverse a loaded force:
+    # derive the other side again, and the cases the losses reach.
+    resolve_again = not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles})
     domain = ParameterDomain.of(train, analysis.network.layout)
-    others = _other_symbols(declared, etas, roles)
+    others = _other_symbols(declared.form, etas, roles)
     points = list(domain.samples(samples, seed=seed, extra=others))
     operating = random.Random(seed)
     for point in points:
@@ -221,6 +253,7 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
         key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
         regions.setdefault(key, []).append(point)
     variants: list[Variant] = []
+    light: list[tuple[str, str, dict[str, int], LoadCase]] = []
     combos = condition_signs(conditions)
     rng = random.Random(seed)
     for declared_input in (True, False):
@@ -229,17 +262,25 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
         for signs in combos:
             say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
             first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
-            if declared_input:
-                rf = substituted(declared, roles, zetas, first)
-            elif resolve_again:
-                rf = substituted(swapped_form, roles, swapped_zetas, first)
-            else:
-                rf = substituted(declared, roles, zetas, first).inverse()
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
-            variant = Variant(len(variants) + 1, port_in, port_out, signs, first, rf, bool(region))
-            variants.append(_checked(variant, region, etas, analysis, conditions, rng))
-    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared, swapped_analysis,
-                      zetas, swapped_zetas)
+            if not resolve_again:
+                rf = substituted(declared.form, roles, declared.zetas, first)
+                variant = Variant(len(variants) + 1, port_in, port_out, signs, first,
+                                  rf if declared_input else rf.inverse(), bool(region))
+                variants.append(_checked(variant, region, etas, analysis, conditions, rng))
+                continue
+            base, *reversals = reached_cases(first, partial(derive, declared_input), roles,
+                                             region, etas, seed)
+            variant = Variant(len(variants) + 1, port_in, port_out, signs, first, base.efficiency, bool(region),
+                              loaded_forces=base.forces)
+            variants.append(_checked(variant, region, etas, base.derivation.analysis, conditions, rng))
+            light += [(port_in, port_out, signs, case) for case in reversals]
+    for port_in, port_out, signs, case in light:
+        say(f"light-load variant {len(variants) + 1}: input {port_in}, {', '.join(sorted(case.reversed))} reversed")
+        variant = Variant(len(variants) + 1, port_in, port_out, signs, case.first_drives, case.efficiency, True,
+                          reversed_forces=case.reversed, loaded_forces=case.forces)
+        variants.append(_checked(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
+    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared.form, derivations)
 
 
 def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
@@ -303,5 +344,5 @@ def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Sym
                 used = variant.efficiency.free_symbols
                 locked = {k: v for k, v in values.items() if k in used}
                 break
-    return Variant(variant.number, variant.input, variant.output, variant.signs, variant.first_drives,
-                   variant.efficiency_rf, variant.feasible, derivative_check, locked, locking_expression)
+    return replace(variant, derivative_check=derivative_check, self_locking_point=locked,
+                   locking_expression=locking_expression)

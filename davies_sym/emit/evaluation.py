@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import sympy
 
-from davies_sym.efficiency.loaded_forces import reversed_meshes
+from davies_sym.efficiency.operating_point import INPUT_TORQUE
 from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import Variant, VariantSet
 from davies_sym.emit.variant_report import condition_text
@@ -71,11 +71,10 @@ def evaluate(variants: VariantSet, values: Mapping[sympy.Symbol, sympy.Expr], po
                               f"{'0' if ratio == 0 else 'infinite'}): no efficiency")
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)
-    flipped = reversed_meshes(variants, variant, values)
-    if flipped:
-        raise NotCoveredError(f"the losses reverse the tooth force of mesh {', '.join(flipped)} at these values "
-                              f"(the load is too small for the drag): variant ({variant.number}) assumes the lossless "
-                              "direction, so its driving gear is not the one the formula has")
+    if value <= 0 and INPUT_TORQUE in variant.efficiency.free_symbols:
+        raise NotCoveredError(f"the input torque does not overcome the load-independent losses (drag, viscous or "
+                              f"bearing friction) at these values with {port} as input: variant ({variant.number}) "
+                              f"gives {sympy.N(value, 6)}; the output would have to put power in")
     if not 0 < value <= 1:
         raise NotCoveredError(f"the train self-locks at these values with {port} as input: variant "
                               f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]")

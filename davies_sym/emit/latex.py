@@ -11,7 +11,7 @@ from __future__ import annotations
 import sympy
 
 from davies_sym.efficiency.variants import VariantSet
-from davies_sym.emit.variant_report import notes
+from davies_sym.emit.variant_report import load_dependent, notes, variant_forces
 
 _SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
             "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
@@ -20,6 +20,16 @@ _SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": 
 def escape(text: str) -> str:
     """Plain text safe for LaTeX."""
     return "".join(_SPECIAL.get(ch, ch) for ch in text)
+
+
+def force_latex(conditions: list[tuple[str, sympy.Expr, int]]) -> list[str]:
+    """Each loaded-force condition (:mod:`davies_sym.emit.force_conditions`) as a
+    displayed inequality after its name."""
+    out = []
+    for what, force, sign in conditions:
+        out += [rf"\noindent Holds where the {escape(what)}:", r"\begin{equation*}",
+                rf"{sympy.latex(force)} {'>' if sign > 0 else '<'} 0", r"\end{equation*}"]
+    return out
 
 
 def _sign(sign: int) -> str:
@@ -73,6 +83,9 @@ def _section(variants: VariantSet) -> list[str]:
     out.append(r"\midrule")
     for v in variants.variants:
         status = "infeasible" if not v.feasible else ("self-locks" if v.self_locking_point is not None else "")
+        if v.reversed_forces:
+            status = ", ".join(filter(None, [f"light load: {escape(', '.join(sorted(v.reversed_forces)))} reversed",
+                                             status]))
         cells = [f"({v.number})", escape(v.input), escape(v.output)]
         cells += [_sign(v.signs[c.name]) for c in variants.conditions] + [status]
         out.append(" & ".join(cells) + r" \\")
@@ -80,6 +93,9 @@ def _section(variants: VariantSet) -> list[str]:
     for v in variants.variants:
         out.append(rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
                    + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions)) + ".")
+        if load_dependent(variants):
+            # Variants of one input and turning-condition signs differ by the loaded forces' signs.
+            out += force_latex(variant_forces(variants, v))
         out += [r"\begin{equation}", rf"\eta = {sympy.latex(v.efficiency)}", rf"\tag{{{v.number}}}",
                 r"\end{equation}"]
         for n in notes(v):

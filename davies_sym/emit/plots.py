@@ -83,20 +83,18 @@ def fixed_text(values: Mapping[str, float], skip: Sequence[str]) -> str:
 
 
 def _variant_numbers(module: ModuleType, kwargs: Mapping[str, Any], input: str, shape: tuple[int, ...]) -> np.ndarray:
-    """Number of the variant that holds at each point (0 where none), from the region
-    code the module's own selection uses."""
-    with np.errstate(all="ignore"):
-        code = module._region({k: np.asarray(v, dtype=float) for k, v in kwargs.items()}, shape)
-    out = np.zeros(shape, dtype=np.int64)
-    for v in module.VARIANTS:
-        if v["input"] == input:
-            out[code == v["region"]] = v["number"]
-    return out
+    """Number of the variant that holds at each point (0 where none), as the module's own
+    selection finds it (turning conditions, then the signs of the loaded forces)."""
+    numbers = module.variant(input=input, errors="ignore", **kwargs)
+    return np.array(np.broadcast_to(numbers, shape), dtype=np.int64)
 
 
 def _describe(module: ModuleType, number: int) -> str:
     v = next(v for v in module.VARIANTS if v["number"] == number)
-    return f"({number}) " + (", ".join(v["conditions"]) or "every design")
+    parts = list(v["conditions"])
+    if v["reversed"]:
+        parts.append(f"light load, {', '.join(v['reversed'])} reversed")
+    return f"({number}) " + (", ".join(parts) or "every design")
 
 
 def shade_regions(axes: Sequence[Any], xs: np.ndarray, numbers: np.ndarray, describe: Callable[[int], str]) -> None:
@@ -156,12 +154,11 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     module = module or formula_module(variants)
     xs = sweep.values(POINTS_1D)
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
-    names = [p["name"] for p in module.PARAMETERS]
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), xs.shape)
     losses = {k: np.broadcast_to(v, xs.shape) for k, v in
               module.losses(input=input, errors="ignore", **arguments).items()}
-    numbers = _variant_numbers(module, {k: kwargs[k] for k in names if k in kwargs}, input, xs.shape)
+    numbers = _variant_numbers(module, arguments, input, xs.shape)
     figure = new_figure(7.0, 6.0)
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
     top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
@@ -188,7 +185,7 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), gx.shape)
-    numbers = _variant_numbers(module, kwargs, input, gx.shape).astype(float)
+    numbers = _variant_numbers(module, arguments, input, gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
     figure = new_figure(7.0, 5.5)
     axis = figure.subplots()

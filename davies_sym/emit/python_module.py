@@ -37,13 +37,14 @@ from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplin
 from davies_sym.efficiency.variants import Variant, VariantSet
 from davies_sym.emit import formula_code, formula_runtime
 from davies_sym.emit.code_layout import docstring, literal, module_source
+from davies_sym.emit.force_conditions import force_text
 from davies_sym.emit.formula_code import call, constant, formula_function, name_node, runtime_of, table, usable
-from davies_sym.emit.variant_report import condition_text, mesh_text
+from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 
 #: The entry points' own arguments: a train's names may not take them.
-_ENTRY_NAMES = frozenset({"input", "errors", "values", "efficiency", "losses", "speed_ratio"})
+_ENTRY_NAMES = frozenset({"input", "errors", "values", "efficiency", "losses", "speed_ratio", "variant"})
 
 
 def _runtime() -> formula_code.Runtime:
@@ -105,9 +106,11 @@ def _module_doc(variants: VariantSet, ignored: Sequence[str]) -> str:
         parts += [f"This state does not use {', '.join(ignored)}: the functions accept them (as every state of the "
                   "file does) and ignore them (IGNORED).", ""]
     parts.append("efficiency(**params) takes the parameters of PARAMETERS (scalars or numpy arrays, broadcast "
-                 "together), picks the variant element by element from the turning conditions and the input "
-                 "port, and gives NaN with a DesignWarning (errors='raise': a DesignError) where the design is "
-                 "outside the admissible parameters or self-locks.  speed_ratio and losses work the same way.")
+                 "together), picks the variant element by element from the turning conditions, the input "
+                 "port and the signs of the loaded forces, and gives NaN with a DesignWarning (errors='raise': a "
+                 "DesignError) where the design is outside the admissible parameters, the losses reverse loaded "
+                 "forces as no variant covers, or the train self-locks.  speed_ratio, losses and variant work the "
+                 "same way.")
     return "\n".join(parts)
 
 
@@ -125,7 +128,8 @@ def _tables(variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str],
                              "region": _region(variants, v), "conditions": tuple(condition_text(variants, v)),
                              "conditions_latex": latex, "meshes": tuple(mesh_text(variants, v)),
                              "formula": sympy.sstr(v.efficiency), "latex": sympy.latex(v.efficiency),
-                             "feasible": v.feasible})
+                             "feasible": v.feasible, "reversed": tuple(sorted(v.reversed_forces)),
+                             "forces": tuple(force_text(variant_forces(variants, v)))})
     data: dict[str, object] = {
         "PORTS": (train.ports.input, train.ports.output),
         "LOSSY": tuple(lossy),
@@ -159,7 +163,8 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     lossy = lossy_couplings(variants)
     functions: list[ast.FunctionDef] = []
     tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
-        "_CONDITIONS": [], "_RELATIONS": [], "_DEPENDENT": [], "_EFFICIENCY": [], "_LOSSES": [], "_RATIO": []}
+        "_CONDITIONS": [], "_RELATIONS": [], "_DEPENDENT": [], "_EFFICIENCY": [], "_LOSSES": [], "_RATIO": [],
+        "_FORCES": []}
 
     def add(table: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array",
             relation: bool = False) -> tuple[str, ...]:
@@ -183,6 +188,11 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         add("_LOSSES", v.name, f"_losses_{v.name}", f"Losses over the input power in variant ({v.number}).",
             [public(fractions[n].to_expr()) for n in lossy],
             "tuple[Array, ...]" if len(lossy) > 1 else "Array")
+        forces = [public(f.to_expr() * sign) for f, sign in v.loaded_forces.values()]
+        if forces:
+            add("_FORCES", v.name, f"_forces_{v.name}", f"Loaded forces of {', '.join(v.loaded_forces)} in variant "
+                f"({v.number}), each times the sign it needs: all >= 0 where the variant holds.", forces,
+                "tuple[Array, ...]" if len(forces) > 1 else "Array")
     needs = {}
     for name, r in dependent_of.items():
         needs[name] = add("_DEPENDENT", name, f"_dependent_{name}", f"{r} (the geometric constraint {r.constraint}).",
@@ -207,6 +217,9 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         entry("losses", "Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), "
               "the variant chosen element by element; NaN where efficiency is.", symbols, "dict[str, Array]",
               call("_losses", *arrays)),
+        entry("variant", "Number of the variant that holds with `input` as the input port (VARIANTS), element by "
+              "element: its turning conditions hold and its loaded forces have their signs; 0 where none does or "
+              "the design is not admissible.", symbols, "NDArray[np.int64]", call("_variant", *arrays)),
         entry("speed_ratio", f"Input speed over output speed with `input` as the input port ({sympy.sstr(ratio)} "
               f"with {train.ports.input} as input); NaN where the design is not admissible.", ratio_args, "Array",
               call("_speed_ratio", *arrays)),

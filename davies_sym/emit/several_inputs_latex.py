@@ -13,8 +13,8 @@ from __future__ import annotations
 import sympy
 
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, SeveralInputs, speed_symbol
-from davies_sym.emit.latex import PREAMBLE, escape
-from davies_sym.emit.several_inputs_report import drivers, force_conditions, mesh_text
+from davies_sym.emit.latex import PREAMBLE, escape, force_latex
+from davies_sym.emit.several_inputs_report import drivers, mesh_text, region_forces
 
 
 def _ports(names: tuple[str, ...]) -> str:
@@ -58,9 +58,7 @@ def several_inputs_latex(si: SeveralInputs) -> str:
                    + escape("; ".join(mesh_text(si, r))) + ".")
         if load_dependent:
             # Regions of one speed sector differ by the loaded forces' signs.
-            for what, force, sign in force_conditions(r):
-                out += [rf"\noindent Holds where the {escape(what)}:", r"\begin{equation*}",
-                        rf"{sympy.latex(force)} {'>' if sign > 0 else '<'} 0", r"\end{equation*}"]
+            out += force_latex(region_forces(r))
         torques = [rf"T_{{{escape(p)}}} &= {sympy.latex(t.to_expr())}" for p, t in r.torques.items()]
         out += [r"\begin{align*}", r" \\ ".join(torques), r"\end{align*}"]
         out += [r"\begin{equation}", rf"\eta^* = {sympy.latex(r.efficiency)}", rf"\tag{{{r.number}}}",

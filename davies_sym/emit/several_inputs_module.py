@@ -44,7 +44,7 @@ from davies_sym.emit.formula_code import (
     table,
     usable,
 )
-from davies_sym.emit.several_inputs_report import condition_text, force_text, mesh_text
+from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 
@@ -151,7 +151,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
         "REGIONS": tuple({"name": f"region_{r.number}", "number": r.number, "code": _code(si, r),
                           "conditions": tuple(condition_text(si, r)), "meshes": tuple(mesh_text(si, r)),
                           "power_in": tuple(r.inputs), "power_out": tuple(r.outputs),
-                          "reversed": tuple(sorted(r.reversed)), "forces": tuple(force_text(si, r)),
+                          "reversed": tuple(sorted(r.reversed)), "forces": tuple(region_force_text(r)),
                           "formula": sympy.sstr(public(r.efficiency)), "latex": sympy.latex(public(r.efficiency))}
                          for r in si.regions),
     }

@@ -12,6 +12,7 @@ from typing import Any
 import sympy
 
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs, speed_symbol
+from davies_sym.emit.force_conditions import force_conditions, force_text
 from davies_sym.errors import DerivationError, InputError, NotCoveredError, Problem
 from davies_sym.losses.definitions import completed
 
@@ -21,21 +22,15 @@ def condition_text(si: SeveralInputs, region: Region) -> list[str]:
     return [f"{sympy.sstr(c.form)} {'>' if region.signs[c.name] > 0 else '<'} 0" for c in si.conditions]
 
 
-def force_conditions(region: Region) -> list[tuple[str, sympy.Expr, int]]:
-    """Where the region holds beyond its speed conditions: (what the force is, the force,
-    the sign the region gives it) for each loaded force (tooth force, bearing reaction)."""
-    out = []
-    for coupling, (force, assumed) in region.loaded_forces.items():
-        what = "tooth force of" if coupling in region.first_drives else "reaction in"
-        flipped = " (reversed by the losses)" if coupling in region.reversed else ""
-        out.append((f"{what} {coupling}{flipped}", force.to_expr(), assumed))
-    return out
+def region_forces(region: Region) -> list[tuple[str, sympy.Expr, int]]:
+    """Where the region holds beyond its speed conditions: each loaded force (tooth force,
+    bearing reaction) with the sign the region gives it."""
+    return force_conditions(region.loaded_forces, region.first_drives, region.reversed)
 
 
-def force_text(si: SeveralInputs, region: Region) -> list[str]:
-    """:func:`force_conditions` as text, e.g. ``tooth force of M1: ... > 0``."""
-    return [f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0" for what, force, sign in
-            force_conditions(region)]
+def region_force_text(region: Region) -> list[str]:
+    """:func:`region_forces` as text, e.g. ``tooth force of M1: ... > 0``."""
+    return force_text(region_forces(region))
 
 
 def drivers(si: SeveralInputs, region: Region) -> list[tuple[str, str, str]]:
@@ -66,7 +61,7 @@ def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
                              for c in si.conditions],
         "regions": [{"number": r.number, "conditions": condition_text(si, r), "meshes": mesh_text(si, r),
                      "power_in": list(r.inputs), "power_out": list(r.outputs),
-                     "reversed": sorted(r.reversed), "forces": force_text(si, r),
+                     "reversed": sorted(r.reversed), "forces": region_force_text(r),
                      "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
                      "efficiency": sympy.sstr(r.efficiency), "latex": sympy.latex(r.efficiency)}
                     for r in si.regions],

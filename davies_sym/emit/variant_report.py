@@ -7,6 +7,7 @@ from typing import Any
 import sympy
 
 from davies_sym.efficiency.variants import Variant, VariantSet
+from davies_sym.emit.force_conditions import force_conditions, force_text
 
 
 def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
@@ -15,6 +16,17 @@ def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
     for c in variants.conditions:
         out.append(f"{sympy.sstr(c.simplified)} {'>' if variant.signs[c.name] > 0 else '<'} 0")
     return out
+
+
+def variant_forces(variants: VariantSet, variant: Variant) -> list[tuple[str, sympy.Expr, int]]:
+    """Where ``variant`` holds beyond its turning conditions: each loaded force with the
+    sign it needs (empty when every force scales with the load)."""
+    return force_conditions(variant.loaded_forces, {r.coupling for r in variants.roles}, variant.reversed_forces)
+
+
+def load_dependent(variants: VariantSet) -> bool:
+    """Whether some variant holds at light load only (the losses reverse a loaded force)."""
+    return any(v.reversed_forces for v in variants.variants)
 
 
 def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
@@ -81,6 +93,9 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
             "derivative_check": v.derivative_check,
             "self_locking_sampled": v.self_locking_point is not None,
             "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
+            "reversed_forces": sorted(v.reversed_forces),
+            "loaded_forces": [{"force": what, "expression": sympy.sstr(force), "sign": sign}
+                              for what, force, sign in variant_forces(variants, v)],
         })
     definitions = [{"symbol": str(d.symbol), "expression": sympy.sstr(d.expression), "latex": sympy.latex(d.expression),
                     "meaning": d.meaning, "source": d.source} for d in variants.train.definitions]
@@ -97,6 +112,9 @@ def variants_text(variants: VariantSet) -> str:
         where = "; ".join(condition_text(variants, v)) or "always"
         lines.append(f"  ({v.number}) input {v.input}, output {v.output}, where {where}:")
         lines.append(f"      eta = {sympy.sstr(v.efficiency)}")
+        if load_dependent(variants):
+            for f in force_text(variant_forces(variants, v)):
+                lines.append(f"      holds where the {f}")
         for m in mesh_text(variants, v):
             lines.append(f"      {m}")
         for n in notes(v):

@@ -22,6 +22,7 @@ from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
+from davies_sym.network.mobility import mobility_problems
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
@@ -53,18 +54,21 @@ class Analysis:
     resolves the other Coulomb laws.  ``extra_symbols`` join the polynomial ring (the
     ordinary efficiencies substituted later).  ``layout`` replaces the one derived from
     the train (to study a geometry given otherwise, e.g. a published screw table).
+    ``reversed_coulomb`` names bearings whose reaction the losses reverse (a drag larger
+    than the load): their resolved Coulomb sign is taken the other way.
     """
 
     def __init__(self, train: Train, tree: Sequence[str] | None = None,
                  action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
                  progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = (),
-                 layout: Layout | None = None):
+                 layout: Layout | None = None, reversed_coulomb: frozenset[str] = frozenset()):
         if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
             raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
         if layout is None:
             train = resolved_train(train)  # the formulas hold on the geometric constraints
         self.train = train
         self.coulomb_signs = coulomb_signs
+        self.reversed_coulomb = reversed_coulomb
         self._progress = progress or (lambda message: None)
         self._progress("building the coupling network")
         self.network = Network(train, tree, action_tree, layout)
@@ -124,32 +128,12 @@ class Analysis:
         elimination = gauss_jordan(self.rows(M_N), len(net.motions), prefer_free=[index],
                                    reduce=self._reduce)
         free = elimination.free
-        dof = len(free)
-        problems = []
-        if index not in free:
-            problems.append(self.train.problem(
-                "ports.input", f"the input coupling {self.train.ports.input!r} cannot move: the train is locked"))
-        if self.train.degrees_of_freedom is not None and dof != self.train.degrees_of_freedom:
-            problems.append(self.train.problem(
-                "degrees_of_freedom",
-                f"the train has {dof} degree(s) of freedom, the file says {self.train.degrees_of_freedom}"))
-        elif self.train.degrees_of_freedom is None and dof != len(self.train.ports.inputs):
-            # Without a stated mobility, one degree of freedom per input port is expected.
-            driven = {m.name for p in self.train.ports.inputs for m in net.coupling_motions(p)[:1]}
-            extra = [net.motions[j].name for j in free if net.motions[j].name not in driven]
-            inputs = len(self.train.ports.inputs)
-            count = "one input port drives" if inputs == 1 else f"{inputs} input ports drive"
-            text = f"the train has {dof} degrees of freedom but {count} it"
-            if extra:
-                text += f"; also free: {', '.join(extra)}"
-            if dof == 0:
-                text = "the train has no degree of freedom"
-            problems.append(self.train.problem("ports", text))
+        problems = mobility_problems(self.train, net, free, index)
         if problems:
             raise MobilityError(problems, self.train.path)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
-        return dof, {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
+        return len(free), {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
 
     @cached_property
     def motion_basis(self) -> dict[str, dict[str, RationalFunction]]:
@@ -259,10 +243,11 @@ class Analysis:
             beta = self.motion_coefficients[law.motion]
             content, factors = (alpha * beta * self._rf(self._input_pairing())).factor_list()
             sign, undecided = self.oracle.classify(content, factors)
+            flip = -1 if law.coupling in self.reversed_coulomb else 1
             if sign in (1, -1):
-                out[law.coupling] = sympy.Integer(sign)
+                out[law.coupling] = sympy.Integer(sign * flip)
             else:
-                out[law.coupling] = symbol
+                out[law.coupling] = flip * symbol
                 conditions.append(SignCondition(law.coupling, symbol, undecided))
         return out, tuple(conditions)
 

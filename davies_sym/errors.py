@@ -115,3 +115,7 @@ class CalibrationError(DaviesError):
     def __init__(self, message: str, cause: str = ""):
         self.cause = cause
         super().__init__(message)
+
+
+class MissingDependencyError(DaviesError):
+    """An optional dependency a requested output needs is not installed (exit status 2)."""

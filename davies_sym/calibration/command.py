@@ -25,6 +25,7 @@ from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.plots import figure_format
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
 from davies_sym.topology.expressions import assignments
 from davies_sym.topology.loader import load
@@ -44,7 +45,7 @@ def parser() -> argparse.ArgumentParser:
                    help="predict the efficiency at every row of other files (rows in the order of the files)")
     p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[], help="values of the parameters not fitted")
     p.add_argument("--json", action="store_true", help="one JSON object")
-    p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (PNG)")
+    p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (.png, .svg or .pdf)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 
@@ -92,6 +93,11 @@ def calibrate(derived: VariantSet | SeveralInputs, data: Measurements, names: Se
 def run(argv: Sequence[str]) -> int:
     """The ``derive calibrate`` command; returns the exit status (0, or 2 for bad input)."""
     args = parser().parse_args(argv)
+    suffix = figure_format(args.out) if args.out else ".png"
+    if suffix is None:
+        print(f"input error: -o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the "
+              "format)", file=sys.stderr)
+        return 2
     try:
         train = load(args.train)
         derived = derived_model(train)
@@ -120,6 +126,6 @@ def run(argv: Sequence[str]) -> int:
             document["mean_absolute_error"] = error
             lines.append(f"mean absolute error against the measured eta: {error:.4f}")
     if args.out:
-        write_atomic(args.out, residual_figure(result))
+        write_atomic(args.out, residual_figure(result, suffix=suffix))
     print(json.dumps(document, indent=2) if args.json else "\n".join(lines))
     return 0

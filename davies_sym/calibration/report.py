@@ -40,18 +40,15 @@ def fit_text(fit: Fit, measured_label: str = "eta") -> str:
 
 
 def residual_figure(fit: Fit, x: npt.NDArray[np.float64] | None = None, x_label: str = "row", *,
-                    measured_label: str = "eta") -> bytes:
-    """PNG bytes of the residuals (model - measured) against ``x`` (default: the row number)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    from davies_sym.emit.plots import png_bytes
+                    measured_label: str = "eta", suffix: str = ".png") -> bytes:
+    """The residuals (model - measured) against ``x`` (default: the row number), as the
+    bytes of a figure in the format of ``suffix`` (``.png``, ``.svg``, ``.pdf``)."""
+    from davies_sym.emit.plots import figure_bytes, new_figure
 
     xs = np.arange(1, fit.rows + 1, dtype=np.float64) if x is None else np.asarray(x, dtype=np.float64)
     if xs.shape != fit.residuals.shape:
         raise ValueError(f"x has {xs.size} values for {fit.rows} residuals")
-    figure = Figure(figsize=(7.0, 4.0), layout="constrained")
-    FigureCanvasAgg(figure)
+    figure = new_figure(7.0, 4.0)
     axes = figure.add_subplot()
     axes.axhline(0.0, color="black", linewidth=0.8)
     # The band of one rms either side shows which rows stand out.
@@ -64,4 +61,4 @@ def residual_figure(fit: Fit, x: npt.NDArray[np.float64] | None = None, x_label:
     axes.set_title(f"residuals of {fit.rows} rows (rms {_number(fit.rms, 3)}; dashed: ± rms)\n{fitted}",
                    fontsize=9)
     axes.grid(True, alpha=0.3)
-    return png_bytes(figure)
+    return figure_bytes(figure, suffix)

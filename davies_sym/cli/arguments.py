@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Collection, Iterable, Mapping, Sequence
+from importlib import metadata
 
 import sympy
 
-from davies_sym.emit.plots import Sweep
+from davies_sym.emit.plots import Sweep, figure_format
 from davies_sym.errors import InputError, Problem
 from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression, shortened
@@ -17,13 +18,25 @@ from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
 
 
+def _version() -> str:
+    """The installed package's version."""
+    try:
+        return metadata.version("davies_sym")
+    except metadata.PackageNotFoundError:  # pragma: no cover - run from a checkout never installed
+        return "(not installed)"
+
+
 def parser() -> argparse.ArgumentParser:
     """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
     p = argparse.ArgumentParser(
         prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
         "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
-    p.add_argument("files", nargs="+", metavar="FILE",
+    p.add_argument("files", nargs="*", metavar="FILE",
                    help="topology file (YAML); several files need --out DIR")
+    p.add_argument("--catalog", nargs="?", const="", metavar="NAME",
+                   help="alone: list the catalog of literature trains that comes with the package; with a NAME: "
+                   "derive that train in place of FILE (e.g. derive --catalog tuplin --latex)")
+    p.add_argument("--version", action="version", version=f"%(prog)s (davies_sym) {_version()}")
     form = p.add_mutually_exclusive_group()
     form.add_argument("--json", action="store_true", help="print the JSON document")
     form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants (of "
@@ -116,8 +129,18 @@ def plot_sweeps(train: Train, args: argparse.Namespace,
     figure needs its file (``-o FILE.png``)."""
     if not args.out:
         raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
+    figure_suffix(args.out, train.path)
     x = sweep(train, "--plot", args.plot, names)
     return x, (sweep(train, "--vs", args.vs, names) if args.vs else None)
+
+
+def figure_suffix(path: str, source: str | None) -> str:
+    """The figure format ``-o`` names by its suffix (``.png``, ``.svg`` or ``.pdf``)."""
+    suffix = figure_format(path)
+    if suffix is None:
+        raise InputError([Problem("-o", f"{shortened(path)}: name the figure's file .png, .svg or .pdf (the "
+                                  "suffix says the format)")], source)
+    return suffix
 
 
 def held_values(train: Train, given: Mapping[str, float], needed: Iterable[str],

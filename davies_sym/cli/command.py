@@ -11,6 +11,7 @@ from collections.abc import Callable, Sequence
 
 from davies_sym.calibration.command import run as calibration_command
 from davies_sym.cli.arguments import parser
+from davies_sym.cli.catalog import catalog_listing, chosen_files
 from davies_sym.cli.messages import message, status_json
 from davies_sym.cli.one_input import one_input_outputs, write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations, several_outputs
@@ -121,6 +122,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     if argv[:1] == ["calibrate"]:
         return calibration_command(argv[1:])
     args = parser().parse_args(argv)
+    try:
+        files = chosen_files(args)
+    except InputError as exc:
+        print(exc.report(), file=sys.stderr)
+        return 2
+    if files is None:
+        sys.stdout.write(catalog_listing())
+        return 0
+    args.files = files
 
     def progress(text: str) -> None:
         if not args.quiet:

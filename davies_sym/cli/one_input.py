@@ -9,14 +9,14 @@ from collections.abc import Callable
 
 import sympy
 
-from davies_sym.cli.arguments import eval_port, held_values, plot_sweeps, values
+from davies_sym.cli.arguments import eval_port, figure_suffix, held_values, plot_sweeps, values
 from davies_sym.cli.messages import message
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.evaluation import evaluate
 from davies_sym.emit.latex import latex_document, latex_states_document
-from davies_sym.emit.plots import efficiency_figure, png_bytes, region_figure
+from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import text_summary, train_document
 from davies_sym.emit.variant_report import variants_document, variants_text
@@ -45,8 +45,8 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at", operating).items()}
     fixed = held_values(train, given, [str(s) for s in formula_symbols(variants)], (x, y))
     if y is None:
-        return png_bytes(efficiency_figure(variants, x, fixed, port))
-    return png_bytes(region_figure(variants, x, y, fixed, port))
+        return figure_bytes(efficiency_figure(variants, x, fixed, port), figure_suffix(args.out, train.path))
+    return figure_bytes(region_figure(variants, x, y, fixed, port), figure_suffix(args.out, train.path))
 
 
 def derive_sets(train: Train, state: str | None, progress: Progress,

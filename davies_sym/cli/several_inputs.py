@@ -8,15 +8,15 @@ import argparse
 import json
 from collections.abc import Callable
 
-from davies_sym.cli.arguments import held_values, plot_sweeps
+from davies_sym.cli.arguments import figure_suffix, held_values, plot_sweeps
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
-from davies_sym.emit.plots import png_bytes
+from davies_sym.emit.plots import figure_bytes
 from davies_sym.emit.report import kinematics_document, kinematics_text
 from davies_sym.emit.several_inputs_latex import several_inputs_latex
 from davies_sym.emit.several_inputs_module import several_inputs_formulas, several_inputs_module
 from davies_sym.emit.several_inputs_plots import (
     several_efficiency_figure,
-        several_region_figure,
+    several_region_figure,
 )
 from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
 from davies_sym.errors import InputError, Problem
@@ -66,8 +66,8 @@ def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
                          train.path)
     fixed = held_values(train, {n: float(v) for n, v in given.items()}, names, (x, y))
     if y is None:
-        return png_bytes(several_efficiency_figure(si, x, fixed, module))
-    return png_bytes(several_region_figure(si, x, y, fixed, module))
+        return figure_bytes(several_efficiency_figure(si, x, fixed, module), figure_suffix(args.out, train.path))
+    return figure_bytes(several_region_figure(si, x, y, fixed, module), figure_suffix(args.out, train.path))
 
 
 def several_outputs(train: Train, args: argparse.Namespace,

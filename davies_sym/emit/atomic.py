@@ -3,7 +3,18 @@
 from __future__ import annotations
 
 import os
+import stat
 import tempfile
+
+
+def _mode_for(path: str) -> int:
+    """The permissions a new file gets (0666 less the umask, like ``open``), or those of
+    the file it replaces."""
+    if os.path.exists(path):
+        return stat.S_IMODE(os.stat(path).st_mode)
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
 
 
 def write_atomic(path: str, text: str | bytes) -> None:
@@ -11,6 +22,8 @@ def write_atomic(path: str, text: str | bytes) -> None:
     directory = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(prefix=".", suffix=".tmp", dir=directory)
     try:
+        # mkstemp creates the file readable by its owner only.
+        os.chmod(tmp, _mode_for(path))
         if isinstance(text, bytes):
             with os.fdopen(fd, "wb") as binary:
                 binary.write(text)

@@ -9,6 +9,7 @@ from typing import Any
 
 import networkx as nx
 
+from davies_sym.emit.plots import new_figure
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -20,14 +21,12 @@ def _kind(train: Train, name: str) -> str:
 
 def coupling_graph_figure(train: Train) -> Any:
     """A matplotlib figure of the coupling graph of ``train``."""
-    from matplotlib.figure import Figure
-
     graph = nx.MultiGraph()
     graph.add_nodes_from(train.link_names)
     for c in train.couplings:
         graph.add_edge(*c.links, key=c.name)
     positions = nx.spring_layout(nx.Graph(graph), seed=7, k=1.6)
-    figure = Figure(figsize=(5.5, 4.2), layout="constrained")
+    figure = new_figure(5.5, 4.2)
     axis = figure.subplots()
     axis.set_axis_off()
     pairs: dict[frozenset[str], int] = {}

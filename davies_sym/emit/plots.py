@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import io
 import itertools
+import os
 import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -31,6 +32,7 @@ from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
+from davies_sym.errors import MissingDependencyError
 
 POINTS_1D = 400
 POINTS_2D = 240
@@ -55,15 +57,36 @@ def formula_module(variants: VariantSet) -> ModuleType:
 
 def new_figure(width: float = 7.0, height: float = 5.0) -> Any:
     """A matplotlib figure with constrained layout (no pyplot state)."""
-    from matplotlib.figure import Figure
+    try:
+        from matplotlib.figure import Figure
+    except ImportError as exc:
+        raise MissingDependencyError("figures need matplotlib, an optional dependency: pip install "
+                                     "'davies_sym[plots]'") from exc
 
     return Figure(figsize=(width, height), layout="constrained")
 
 
-def png_bytes(figure: Any) -> bytes:
-    """The figure as PNG, without the software/time metadata (reproducible bytes)."""
+#: Figure formats by file suffix, each without the metadata that changes from run to run
+#: (software version, creation time), so that the same figure gives the same bytes.
+FIGURE_FORMATS = {".png": ("png", {"Software": None}), ".svg": ("svg", {"Date": None, "Creator": None}),
+                  ".pdf": ("pdf", {"CreationDate": None, "Producer": None, "Creator": None})}
+
+
+def figure_format(path: str) -> str | None:
+    """The suffix of ``path`` when it names a figure format (``.png``, ``.svg``, ``.pdf``)."""
+    suffix = os.path.splitext(path)[1].lower()
+    return suffix if suffix in FIGURE_FORMATS else None
+
+
+def figure_bytes(figure: Any, suffix: str = ".png") -> bytes:
+    """The figure in the format of ``suffix`` (reproducible bytes)."""
+    from matplotlib import rc_context
+
+    form, metadata = FIGURE_FORMATS[suffix]
     buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110, metadata={"Software": None})
+    # A fixed salt makes the SVG element ids the same from run to run.
+    with rc_context({"svg.hashsalt": "davies_sym"}):
+        figure.savefig(buffer, format=form, dpi=110, metadata=metadata)
     return buffer.getvalue()
 
 

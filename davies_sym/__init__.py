@@ -20,7 +20,8 @@ r1*(r2 - zeta_C)/(r2*(r1 + zeta_C))
 """
 
 from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variants import Variant, VariantSet, derive_variants
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.errors import (
     DaviesError,
     DerivationError,

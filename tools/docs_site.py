@@ -33,8 +33,8 @@ from davies_sym.emit.graph_drawing import coupling_graph_figure
 from davies_sym.emit.plots import (
     Sweep,
     efficiency_figure,
+    figure_bytes,
     formula_module,
-    png_bytes,
     region_figure,
     turning_surface_figure,
 )
@@ -131,7 +131,7 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
         return []
     values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
     file = f"{stem}{suffix}_{sweep.name}.png"
-    write_atomic(os.path.join(img, file), png_bytes(efficiency_figure(variants, sweep, values, port, module)))
+    write_atomic(os.path.join(img, file), figure_bytes(efficiency_figure(variants, sweep, values, port, module)))
     out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
                             f"efficiencies 0.98 where none is published), input {port}."))
     if variants.conditions:
@@ -140,7 +140,7 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
             x, y = (Sweep(n, 0.5 * nominal[n], 1.5 * nominal[n]) for n in free[:2])
             values = {k: v for k, v in nominal.items() if k in symbols and k not in (x.name, y.name)}
             file = f"{stem}{suffix}_regions.png"
-            write_atomic(os.path.join(img, file), png_bytes(region_figure(variants, x, y, values, port, module)))
+            write_atomic(os.path.join(img, file), figure_bytes(region_figure(variants, x, y, values, port, module)))
             out.append(Figure(file, f"Variant regions, turning conditions and efficiency over {x.name} and {y.name}."))
     return out
 
@@ -165,7 +165,7 @@ def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, 
             figure = turning_surface_figure(condition, Sweep("r1", 1, 100), Sweep("r5", 1, 100), Sweep("r2", 0, 100),
                                             "Humpage, mesh C: turning-condition surface (Laus Fig. 11)")
             file = f"{stem}_laus_fig11.png"
-        write_atomic(os.path.join(img, file), png_bytes(figure))
+        write_atomic(os.path.join(img, file), figure_bytes(figure))
         out.append(Figure(file, caption))
     return out
 
@@ -178,7 +178,7 @@ def catalog_pages(root: str, target: str, progress: Progress) -> list[str]:
     for path in sorted(glob.glob(os.path.join(root, "catalog", "*.yaml"))):
         stem = os.path.splitext(os.path.basename(path))[0]
         train = load(path)
-        write_atomic(os.path.join(img, f"{stem}_graph.png"), png_bytes(coupling_graph_figure(train)))
+        write_atomic(os.path.join(img, f"{stem}_graph.png"), figure_bytes(coupling_graph_figure(train)))
         if (train.degrees_of_freedom or 1) > 1:
             progress(f"catalog {stem}: kinematics only")
             page = [f"# {train.name}", "", f"Source: {train.source}.", "",

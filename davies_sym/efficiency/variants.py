@@ -15,6 +15,7 @@ as self-locking.
 
 from __future__ import annotations
 
+import numbers
 import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -24,7 +25,7 @@ import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.light_load import Derivation, LoadCase, LoadedForces, reached_cases
+from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
     INPUT_SPEED,
@@ -36,68 +37,21 @@ from davies_sym.efficiency.operating_point import (
 )
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.errors import DerivationError, InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
 from davies_sym.network.analysis import Analysis
+from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 
 Progress = Callable[[str], None]
 
 #: Ordinary efficiency used for the partial-derivative check (Glover's external value).
 NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
-
-@dataclass(frozen=True, eq=False)
-class Variant:
-    """One formula of the overall efficiency and where it holds."""
-
-    number: int
-    input: str
-    output: str
-    #: Required sign of each turning condition (condition name -> +1 or -1).
-    signs: Mapping[str, int]
-    #: Mesh -> True when its first gear drives.
-    first_drives: Mapping[str, bool]
-    efficiency_rf: RationalFunction = field(repr=False)
-    #: Whether a sampled admissible geometry lies in the region.
-    feasible: bool = True
-    #: "positive", "failed: <symbols>" or "not checked" (no sample in the region).
-    derivative_check: str = "not checked"
-    #: A sampled point of the region where the efficiency is outside (0, 1] (the train
-    #: self-locks there), if any was found.
-    self_locking_point: Point | None = None
-    #: Product whose sign is that of the efficiency (positive factors removed); the
-    #: variant self-locks where it is <= 0.  None when provably positive.
-    locking_expression: sympy.Expr | None = None
-    #: Loaded forces (tooth forces, bearing reactions) the losses reverse in this variant:
-    #: empty for the lossless directions.
-    reversed_forces: frozenset[str] = frozenset()
-    #: Each loaded force at the operating point with the sign it needs where the variant
-    #: holds (empty when every force scales with the load: meshes' own friction only).
-    loaded_forces: LoadedForces = field(default_factory=dict, repr=False)
-
-    @property
-    def efficiency(self) -> sympy.Expr:
-        """The formula, numerator and denominator factored."""
-        return self.efficiency_rf.to_expr()
-
-    @property
-    def name(self) -> str:
-        """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
-        parts = [f"{self.input}_to_{self.output}"]
-        parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
-        if self.reversed_forces:
-            parts += ["reversed", *sorted(self.reversed_forces)]
-        name = "_".join(_identifier(p) for p in parts)
-        # A port named by a number would start the function name with a digit.
-        return name if name[0].isalpha() else f"from_{name}"
-
-
-def _identifier(text: str) -> str:
-    return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in text)
-
 
 @dataclass(frozen=True, eq=False)
 class VariantSet:
@@ -114,6 +68,13 @@ class VariantSet:
     #: reactions of the named bearings reversed; the declared input's without reversal
     #: always, the other input's when friction laws besides the meshes' make it differ.
     derivations: Mapping[tuple[bool, frozenset[str]], Derivation] = field(default_factory=dict, repr=False)
+
+    def _repr_latex_(self) -> str:
+        """Every variant's formula and where it holds, for a notebook."""
+        return "\n".join(variant_latex(self.conditions, v) for v in self.variants)
+
+    def _repr_html_(self) -> str:
+        return variant_set_html(self.train.name, self.conditions, self.variants)
 
     @property
     def swapped(self) -> Analysis | None:
@@ -139,9 +100,41 @@ class VariantSet:
             out |= c.expression.free_symbols
         return sorted_symbols(out)
 
-    def variant_for(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> Variant:
-        """The variant whose conditions hold at ``values`` with ``input`` as input port."""
-        values = completed(check_values(self.train, values), self.train.definitions)
+    def _keyed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
+        """``values`` keyed by symbols: a name (``"r1"``, ``"tau_in"``) stands for its symbol,
+        a Python number is taken exactly as written (``0.99`` is 99/100), a text is read by
+        the expression grammar (``"1/3"``)."""
+        names = {**self.train.symbols, **{str(s): s for s in OPERATING_SYMBOLS}}
+        out: dict[sympy.Symbol, sympy.Expr] = {}
+        unknown = []
+        for key, value in values.items():
+            symbol = names.get(key) if isinstance(key, str) else key
+            if symbol is None:
+                unknown.append(str(key))
+                continue
+            if isinstance(value, sympy.Basic):
+                out[symbol] = sympy.sympify(value)
+            elif isinstance(value, str):
+                try:
+                    out[symbol] = parse_expression(value)  # the safe grammar, never Python
+                except ExpressionError as exc:
+                    unknown.append(f"{key} = {value[:40]!r} ({exc})")
+            elif isinstance(value, numbers.Rational):
+                out[symbol] = sympy.Rational(int(value.numerator), int(value.denominator))
+            elif isinstance(value, float):
+                out[symbol] = sympy.Rational(repr(value))
+            else:
+                unknown.append(f"{key} (value {value!r} is not a number)")
+        if unknown:
+            raise InputError([Problem("values", f"cannot use {', '.join(unknown)} (the names are: "
+                                      f"{', '.join(sorted(names))}; the values numbers or texts like '1/3')")],
+                             self.train.path)
+        return out
+
+    def variant_for(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> Variant:
+        """The variant whose conditions hold at ``values`` (keyed by symbol or name) with
+        ``input`` as input port."""
+        values = completed(check_values(self.train, self._keyed(values)), self.train.definitions)
         port = input or self.train.ports.input
         if port not in (self.train.ports.input, self.train.ports.output):
             raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
@@ -190,10 +183,12 @@ class VariantSet:
         signs = self._force_values(variant, values)
         return ", ".join(f"{c} {'as assumed' if v >= 0 else 'reversed'}" for c, v in signs.items())
 
-    def evaluate(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None = None) -> sympy.Expr:
-        """The efficiency at ``values`` (exact when the values are), right variant chosen."""
-        variant = self.variant_for(values, input)
-        value = variant.efficiency.subs(completed(check_values(self.train, values), self.train.definitions))
+    def evaluate(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> sympy.Expr:
+        """The efficiency at ``values`` (keyed by symbol or name, e.g. ``{"r1": 40}``; exact
+        when the values are), right variant chosen."""
+        keyed = self._keyed(values)
+        variant = self.variant_for(keyed, input)
+        value = variant.efficiency.subs(completed(check_values(self.train, keyed), self.train.definitions))
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
             raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],

@@ -15,7 +15,8 @@ import sympy
 
 from davies_sym.efficiency.operating_point import INPUT_TORQUE
 from davies_sym.efficiency.parameters import formula_symbols
-from davies_sym.efficiency.variants import Variant, VariantSet
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.variant_report import condition_text
 from davies_sym.errors import DesignError, InputError, NotCoveredError, Problem
 from davies_sym.losses.definitions import completed

@@ -10,11 +10,14 @@ from __future__ import annotations
 
 import sympy
 
+from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
-from davies_sym.emit.variant_report import load_dependent, notes, variant_forces
+from davies_sym.emit.variant_report import load_dependent, variant_forces
 
+# "<" and ">" print as inverted punctuation in the default text font: they need commands.
 _SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-            "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
+            "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "<": r"\textless{}",
+            ">": r"\textgreater{}"}
 
 
 def escape(text: str) -> str:
@@ -29,6 +32,23 @@ def force_latex(conditions: list[tuple[str, sympy.Expr, int]]) -> list[str]:
     for what, force, sign in conditions:
         out += [rf"\noindent Holds where the {escape(what)}:", r"\begin{equation*}",
                 rf"{sympy.latex(force)} {'>' if sign > 0 else '<'} 0", r"\end{equation*}"]
+    return out
+
+
+def _latex_notes(variant: Variant) -> list[str]:
+    """:func:`davies_sym.emit.variant_report.notes` with the expressions as mathematics
+    (no program syntax such as ``r1**2`` in the prose)."""
+    out = []
+    if not variant.feasible:
+        out.append("Infeasible: no sampled admissible geometry satisfies its conditions")
+    out.append(f"Partial derivatives in the mesh efficiencies: {escape(variant.derivative_check)}")
+    if variant.self_locking_point is not None:
+        point = ", ".join(f"{sympy.latex(k)} = {sympy.latex(v)}"
+                          for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
+        out.append(f"Self-locking: the efficiency is outside $(0, 1]$ at the sampled point ${point}$")
+    if variant.locking_expression is not None:
+        out.append(f"The efficiency has the sign of ${sympy.latex(variant.locking_expression)}$; the train "
+                   "self-locks where that is $\\le 0$")
     return out
 
 
@@ -98,8 +118,7 @@ def _section(variants: VariantSet) -> list[str]:
             out += force_latex(variant_forces(variants, v))
         out += [r"\begin{equation}", rf"\eta = {sympy.latex(v.efficiency)}", rf"\tag{{{v.number}}}",
                 r"\end{equation}"]
-        for n in notes(v):
-            out.append(rf"\noindent {escape(n)}.\\")
+        out += [rf"\noindent {n}.\\" for n in _latex_notes(v)]
     for d in variants.train.definitions:
         out += [rf"\noindent where ${sympy.latex(d.symbol)}$ is the {escape(d.meaning)} ({escape(d.source)}):",
                 r"\begin{equation*}", rf"{sympy.latex(d.symbol)} = {sympy.latex(d.expression)}", r"\end{equation*}"]

@@ -34,7 +34,8 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
-from davies_sym.efficiency.variants import Variant, VariantSet
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
 from davies_sym.emit.code_layout import docstring, literal, module_source
 from davies_sym.emit.force_conditions import force_text

@@ -45,6 +45,7 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
                             for v in net.coupling_actions(c.name)}
         couplings.append(entry)
     efficiency = restore(analysis.efficiency, analysis.network.layout.radicals)
+    ratio = restore(analysis.speed_ratio().to_expr(), analysis.network.layout.radicals)
     conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
                    "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
     return {
@@ -67,6 +68,8 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in train.dependent or ()},
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
+        "speed_ratio": {"input": train.ports.input, "output": train.ports.output, "expression": sympy.sstr(ratio),
+                        "latex": sympy.latex(ratio)},
         "efficiency_friction_form": {
             "input": train.ports.input,
             "output": train.ports.output,
@@ -92,6 +95,8 @@ def text_summary(document: dict[str, Any]) -> str:
     for c in document["geometric_constraints"]:
         given = next(solved, None)
         lines.append(f"  geometric constraint: {c}" + (f", so {given[0]} = {given[1]}" if given else ""))
+    ratio = document["speed_ratio"]
+    lines.append(f"  speed ratio ({ratio['input']} over {ratio['output']} speed) = {ratio['expression']}")
     lines.append(f"  efficiency ({eff['input']} -> {eff['output']}) = {eff['expression']}")
     for s in eff["sign_conditions"]:
         lines.append(f"    where {s['symbol']} = {s['equals']} (not decided by the ports alone)")

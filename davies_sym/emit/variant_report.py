@@ -6,7 +6,8 @@ from typing import Any
 
 import sympy
 
-from davies_sym.efficiency.variants import Variant, VariantSet
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.force_conditions import force_conditions, force_text
 
 

@@ -1,0 +1,64 @@
+"""One formula of a train's overall efficiency and where it holds: the input port, the
+sign of every turning condition (Laus Tables 5 and 6), each mesh's driving gear, and at
+light load the loaded forces the losses reverse."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import sympy
+
+from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.efficiency.light_load import LoadedForces
+from davies_sym.efficiency.parameter_domain import Point
+
+
+@dataclass(frozen=True, eq=False)
+class Variant:
+    """One formula of the overall efficiency and where it holds."""
+
+    number: int
+    input: str
+    output: str
+    #: Required sign of each turning condition (condition name -> +1 or -1).
+    signs: Mapping[str, int]
+    #: Mesh -> True when its first gear drives.
+    first_drives: Mapping[str, bool]
+    efficiency_rf: RationalFunction = field(repr=False)
+    #: Whether a sampled admissible geometry lies in the region.
+    feasible: bool = True
+    #: "positive", "failed: <symbols>" or "not checked" (no sample in the region).
+    derivative_check: str = "not checked"
+    #: A sampled point of the region where the efficiency is outside (0, 1] (the train
+    #: self-locks there), if any was found.
+    self_locking_point: Point | None = None
+    #: Product whose sign is that of the efficiency (positive factors removed); the
+    #: variant self-locks where it is <= 0.  None when provably positive.
+    locking_expression: sympy.Expr | None = None
+    #: Loaded forces (tooth forces, bearing reactions) the losses reverse in this variant:
+    #: empty for the lossless directions.
+    reversed_forces: frozenset[str] = frozenset()
+    #: Each loaded force at the operating point with the sign it needs where the variant
+    #: holds (empty when every force scales with the load: meshes' own friction only).
+    loaded_forces: LoadedForces = field(default_factory=dict, repr=False)
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        """The formula, numerator and denominator factored."""
+        return self.efficiency_rf.to_expr()
+
+    @property
+    def name(self) -> str:
+        """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
+        parts = [f"{self.input}_to_{self.output}"]
+        parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
+        if self.reversed_forces:
+            parts += ["reversed", *sorted(self.reversed_forces)]
+        name = "_".join(_identifier(p) for p in parts)
+        # A port named by a number would start the function name with a digit.
+        return name if name[0].isalpha() else f"from_{name}"
+
+
+def _identifier(text: str) -> str:
+    return "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in text)

@@ -448,10 +448,10 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     return numbers
 
 
-def _select(input: str, values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds, evaluated element by element (each
-    variant only on its own points); shape (width, *broadcast shape), NaN where none holds."""
-    numbers = _variant_numbers(input, values)
+def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
+    """The function of the variant that holds (``numbers``, from :func:`_variant_numbers`),
+    evaluated element by element (each variant only on its own points); shape (width,
+    *broadcast shape), NaN where none holds."""
     result = np.full((width, *numbers.shape), np.nan)
     with np.errstate(all="ignore"):
         for variant in VARIANTS:
@@ -509,24 +509,30 @@ def _check_errors(errors: str) -> None:
         raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
 
 
-def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
-    """``result`` with NaN where ``bad``, after a DesignWarning (or a DesignError) saying
-    why; ``stacklevel`` points the warning at the caller of the entry point."""
+def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) -> None:
+    """A DesignWarning (or a DesignError) saying why, where some point is ``bad``;
+    ``stacklevel`` points the warning at the caller of the entry point."""
     if not bad.any():
-        return result
+        return
     if errors == "raise":
         raise DesignError(message)
     if errors == "warn":
         warnings.warn(message, DesignWarning, stacklevel=stacklevel + 1)
-    return np.where(bad, np.nan, result)
 
 
-def _screened(result: Array, input: str, values: dict[str, Array], errors: str) -> Array:
+def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
+    """``result`` with NaN where ``bad``, after :func:`_refuse`."""
+    _refuse(bad, message, errors, stacklevel + 1)
+    return np.where(bad, np.nan, result) if bad.any() else result
+
+
+def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array], errors: str) -> Array:
     """NaN (with a warning, or an error) where the design is not admissible, no variant
-    holds (the losses reverse loaded forces as none covers) or the train self-locks."""
+    holds (``numbers`` 0: the losses reverse loaded forces as none covers) or the train
+    self-locks."""
     _check_errors(errors)
     outside = ~_admissible(values)
-    uncovered = (_variant_numbers(input, values) == 0) & ~outside
+    uncovered = (numbers == 0) & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
     message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
@@ -538,15 +544,17 @@ def _screened(result: Array, input: str, values: dict[str, Array], errors: str) 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    (result,) = _select(input, values, _EFFICIENCY, 1)
-    return _screened(result, input, values, errors)
+    numbers = _variant_numbers(input, values)
+    (result,) = _select(numbers, values, _EFFICIENCY, 1)
+    return _screened(result, numbers, values, errors)
 
 
 def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
-    (result,) = _select(input, values, _EFFICIENCY, 1)
-    bad = np.isnan(_screened(result, input, values, errors))
-    parts = _select(input, values, _LOSSES, len(LOSSY))
+    numbers = _variant_numbers(input, values)
+    (result,) = _select(numbers, values, _EFFICIENCY, 1)
+    bad = np.isnan(_screened(result, numbers, values, errors))
+    parts = _select(numbers, values, _LOSSES, len(LOSSY))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
@@ -571,11 +579,8 @@ def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.in
     _check_errors(errors)
     numbers = _variant_numbers(input, values)
     bad = (numbers == 0) | ~_admissible(values)
-    if bad.any() and errors != "ignore":
-        message = f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant"
-        if errors == "raise":
-            raise DesignError(message)
-        warnings.warn(message, DesignWarning, stacklevel=3)
+    _refuse(bad, f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+            errors, stacklevel=3)
     return np.where(bad, 0, numbers)
 
 

@@ -1011,6 +1011,11 @@ def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the region that holds at each point: its speed conditions hold and
     every loaded force has the sign it assumes; 0 where none holds (on a condition line,
     or the losses reverse forces as no region covers), -1 where several do."""
+    return _choice(values)[0]
+
+
+def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.bool_]]:
+    """:func:`_region_numbers`, and where the speeds lie on a condition line."""
     code, boundary = _codes(values)
     numbers = np.zeros(code.shape, dtype=np.int64)
     count = np.zeros(code.shape, dtype=np.int64)
@@ -1030,13 +1035,12 @@ def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
             numbers[mask] = region["number"]
             count += mask
     numbers[count > 1] = -1
-    return numbers
+    return numbers, boundary
 
 
-def _select(values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the region that holds, evaluated on that region's points only;
-    shape (width, *broadcast shape), NaN where no region holds."""
-    numbers = _region_numbers(values)
+def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
+    """The function of the region that holds (``numbers``), evaluated on that region's
+    points only; shape (width, *broadcast shape), NaN where no region holds."""
     result = np.full((width, *numbers.shape), np.nan)
     with np.errstate(all="ignore"):
         for region in REGIONS:
@@ -1062,15 +1066,14 @@ def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
     return bad
 
 
-def _not_covered(values: dict[str, Array]) -> tuple[NDArray[np.bool_], str]:
-    """Where the formulas do not hold, and why (counts of each reason)."""
-    numbers = _region_numbers(values)
+def _not_covered(numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array,
+                 values: dict[str, Array]) -> tuple[NDArray[np.bool_], str]:
+    """Where the formulas do not hold, and why (counts of each reason), given the regions
+    chosen, the condition lines and the efficiency."""
     outside = _outside_ranges(values)
-    _, boundary = _codes(values)
     on_line = boundary & ~outside
     nowhere = (numbers <= 0) & ~boundary & ~outside
     with np.errstate(invalid="ignore"):
-        (eta,) = _select(values, _EFFICIENCY, 1)
         locked = ~((eta > 0) & (eta <= 1 + 1e-12)) & (numbers > 0) & ~outside
     why = (f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
            f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
@@ -1079,10 +1082,14 @@ def _not_covered(values: dict[str, Array]) -> tuple[NDArray[np.bool_], str]:
     return outside | on_line | nowhere | locked, why
 
 
-def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
-    """``result`` (shape (width, *shape)) with NaN where the formulas do not hold."""
+def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) -> Array:
+    """The functions of ``table`` in the region that holds (shape (width, *shape)), NaN
+    where the formulas do not hold; the regions are chosen once."""
     _check_errors(errors)
-    bad, why = _not_covered(values)
+    numbers, boundary = _choice(values)
+    result = _select(numbers, values, table, width)
+    eta = result[0] if table is _EFFICIENCY else _select(numbers, values, _EFFICIENCY, 1)[0]
+    bad, why = _not_covered(numbers, boundary, eta, values)
     if not bad.any():
         return result
     if errors == "raise":
@@ -1094,12 +1101,12 @@ def _screened(result: Array, values: dict[str, Array], errors: str) -> Array:
 
 def _efficiency(errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    return _array(_screened(_select(values, _EFFICIENCY, 1), values, errors)[0])
+    return _array(_screened(values, _EFFICIENCY, 1, errors)[0])
 
 
 def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
     """What ``torques`` returns: the torque the outside applies at each port."""
-    parts = _screened(_select(values, _TORQUES, len(PORTS)), values, errors)
+    parts = _screened(values, _TORQUES, len(PORTS), errors)
     return {port: part for port, part in zip(PORTS, parts, strict=True)}
 
 

@@ -23,19 +23,18 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 
 import numpy as np
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.mesh_friction import is_mesh_law
-from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE, at_operating_point, substituted
+from davies_sym.efficiency.operating_point import INPUT_TORQUE, OPERATING_SYMBOLS, at_operating_point, substituted
+from davies_sym.efficiency.region_sampling import Draws, Point, needed_signs
 from davies_sym.efficiency.turning_conditions import MeshRole
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.matrices import FrictionLaw
 
-Point = dict[sympy.Symbol, sympy.Expr]
 #: A loaded force at the operating point and the sign a case needs it to have.
 LoadedForces = Mapping[str, tuple[RationalFunction, int]]
 
@@ -102,54 +101,6 @@ def loaded_forces(derivation: Derivation, roles: Sequence[MeshRole], first: Mapp
     return out
 
 
-class _Draws:
-    """The same random losses and operating points for every case of one variant: the
-    sampled geometries, each repeated ``count`` times, ordinary efficiencies in (1/2, 1),
-    the input torque over eight decades and other loss parameters over six."""
-
-    def __init__(self, points: Sequence[Point], efficiencies: Collection[sympy.Symbol], seed: int, count: int = 400):
-        self.points = [{k: v for k, v in p.items() if k not in (INPUT_TORQUE, INPUT_SPEED)} for p in points[:4]]
-        self.rows = count * len(self.points)
-        self.efficiencies = efficiencies
-        self.rng = np.random.default_rng(seed)
-        self.columns: dict[sympy.Symbol, np.ndarray] = {}
-
-    def column(self, symbol: sympy.Symbol) -> np.ndarray:
-        if symbol not in self.columns:
-            count = self.rows // len(self.points)
-            if symbol in self.points[0]:
-                values = np.repeat([float(p[symbol]) for p in self.points], count)
-            elif symbol in self.efficiencies:
-                values = self.rng.uniform(0.5, 1.0, self.rows)
-            elif symbol == INPUT_TORQUE:
-                values = 10.0 ** self.rng.uniform(-4, 4, self.rows)
-            else:
-                values = 10.0 ** self.rng.uniform(-3, 3, self.rows)
-            self.columns[symbol] = values
-        return self.columns[symbol]
-
-    def point(self, row: int, symbols: Collection[sympy.Symbol]) -> Point:
-        """Row ``row`` as exact values (rounded to six significant digits)."""
-        out: Point = {}
-        for s in symbols:
-            value = Fraction(f"{self.column(s)[row]:.6g}")
-            out[s] = sympy.Rational(value.numerator, value.denominator)
-        return out
-
-
-def _signs(forces: LoadedForces, draws: _Draws) -> tuple[np.ndarray, np.ndarray, list[sympy.Symbol]]:
-    """Per draw: whether each force has the sign the case needs (rows: draws), whether
-    every force is finite, and the symbols drawn."""
-    signed = [f.to_expr() * s for f, s in forces.values()]
-    free = sorted({x for f in signed for x in f.free_symbols}, key=str)
-    function = sympy.lambdify(free, signed, "numpy")
-    with np.errstate(all="ignore"):
-        values = [np.broadcast_to(np.asarray(v, dtype=float), (draws.rows,))
-                  for v in function(*(draws.column(s) for s in free))]
-    table = np.array(values).T
-    return table > 0, np.all(np.isfinite(table), axis=1), free
-
-
 def reached_cases(first: Mapping[str, bool], derive: Callable[[frozenset[str]], Derivation],
                   roles: Sequence[MeshRole], points: Sequence[Point], efficiencies: Collection[sympy.Symbol],
                   seed: int) -> list[LoadCase]:
@@ -157,7 +108,7 @@ def reached_cases(first: Mapping[str, bool], derive: Callable[[frozenset[str]], 
     reach at ``points`` (``derive``: the derivation with the named bearings' reactions
     reversed)."""
     bearings = {law.coupling for law in loaded_laws(derive(frozenset()).analysis, roles)} - {r.coupling for r in roles}
-    draws = _Draws(points, efficiencies, seed) if points else None
+    draws = Draws(points, efficiencies, INPUT_TORQUE, seed, drawn=OPERATING_SYMBOLS) if points else None
     out: list[LoadCase] = []
     queue: list[frozenset[str]] = [frozenset()]
     seen = set(queue)
@@ -169,7 +120,7 @@ def reached_cases(first: Mapping[str, bool], derive: Callable[[frozenset[str]], 
         efficiency = substituted(derivation.form, roles, derivation.zetas, case_first)
         samples: tuple[Point, ...] = ()
         if draws is not None and forces:
-            agree, finite, free = _signs(forces, draws)
+            agree, finite, free = needed_signs(forces, draws)
             every = np.all(agree, axis=1) & finite
             used = set(free) | set(efficiency.to_expr().free_symbols)
             samples = tuple(draws.point(int(k), used) for k in np.flatnonzero(every)[:40])

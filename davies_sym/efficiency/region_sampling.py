@@ -6,20 +6,22 @@ Reversed loaded forces: for those speeds, random losses (ordinary efficiencies i
 (1/2, 1), other loss parameters and the load torque spread over decades), and a region
 is kept where some sample has every loaded force of the sign the region assumes.  A
 region missed here is never a wrong number: where no kept region's forces agree, the
-answer is refused.
+answer is refused.  The same draws (:class:`Draws`) serve the light-load variants of a
+train with one input (:mod:`davies_sym.efficiency.light_load`).
 """
 
 from __future__ import annotations
 
 import math
 import random
-from collections.abc import Sequence
+from collections.abc import Collection, Mapping, Sequence
 from fractions import Fraction
 from itertools import pairwise
 
 import numpy as np
 import sympy
 
+from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.parameter_domain import ParameterDomain
 from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region
 from davies_sym.network.analysis import Analysis
@@ -55,28 +57,63 @@ def reached_signs(train: Train, analysis: Analysis, forms: Sequence[sympy.Expr],
     return dict(sorted(out.items(), reverse=True))
 
 
+class Draws:
+    """Random losses and loads at up to four sampled points, the same for every case asked
+    about: each point repeated ``count`` times, ordinary efficiencies in (1/2, 1), the
+    ``load`` torque over eight decades and other loss parameters over six; the symbols
+    ``drawn`` are drawn even where the points give them."""
+
+    def __init__(self, points: Sequence[Point], efficiencies: Collection[sympy.Symbol], load: sympy.Symbol,
+                 seed: int, count: int = 400, drawn: Collection[sympy.Symbol] = ()):
+        self.points = [{k: v for k, v in p.items() if k not in drawn} for p in points[:4]]
+        self.load = load
+        self.rows = count * len(self.points)
+        self.efficiencies = efficiencies
+        self.rng = np.random.default_rng(seed)
+        self.columns: dict[sympy.Symbol, np.ndarray] = {}
+
+    def column(self, symbol: sympy.Symbol) -> np.ndarray:
+        if symbol not in self.columns:
+            count = self.rows // len(self.points)
+            if symbol in self.points[0]:
+                values = np.repeat([float(p[symbol]) for p in self.points], count)
+            elif symbol in self.efficiencies:
+                values = self.rng.uniform(0.5, 1.0, self.rows)
+            elif symbol == self.load:
+                values = 10.0 ** self.rng.uniform(-4, 4, self.rows)
+            else:
+                values = 10.0 ** self.rng.uniform(-3, 3, self.rows)
+            self.columns[symbol] = values
+        return self.columns[symbol]
+
+    def point(self, row: int, symbols: Collection[sympy.Symbol]) -> Point:
+        """Row ``row`` as exact values (rounded to six significant digits)."""
+        out: Point = {}
+        for s in symbols:
+            value = Fraction(f"{self.column(s)[row]:.6g}")
+            out[s] = sympy.Rational(value.numerator, value.denominator)
+        return out
+
+
+def needed_signs(forces: Mapping[str, tuple[RationalFunction, int]],
+                 draws: Draws) -> tuple[np.ndarray, np.ndarray, list[sympy.Symbol]]:
+    """Per draw: whether each force has the sign it needs (rows: draws), whether every
+    force is finite, and the symbols drawn."""
+    signed = [f.to_expr() * s for f, s in forces.values()]
+    free = sorted({x for f in signed for x in f.free_symbols}, key=str)
+    function = sympy.lambdify(free, signed, "numpy")
+    with np.errstate(all="ignore"):
+        values = [np.broadcast_to(np.asarray(v, dtype=float), (draws.rows,))
+                  for v in function(*(draws.column(s) for s in free))]
+    table = np.array(values).T
+    return table > 0, np.all(np.isfinite(table), axis=1), free
+
+
 def holds_somewhere(region: Region, points: Sequence[Point], efficiencies: Sequence[sympy.Symbol],
                     seed: int, count: int = 400) -> bool:
     """Whether some sampled losses and load at one of ``points`` give every loaded force
     of ``region`` the sign it assumes."""
-    signed = [f.to_expr() * assumed for f, assumed in region.loaded_forces.values()]
-    if not signed:
+    if not region.loaded_forces:
         return True
-    rng = np.random.default_rng(seed)
-    for point in points[:4]:
-        fixed = [sympy.sympify(f.subs(point)) for f in signed]
-        free = sorted({s for f in fixed for s in f.free_symbols}, key=str)
-        columns = []
-        for s in free:
-            if s in efficiencies:
-                columns.append(rng.uniform(0.5, 1.0, count))
-            elif s == LOAD_TORQUE:
-                columns.append(10.0 ** rng.uniform(-4, 4, count))
-            else:
-                columns.append(10.0 ** rng.uniform(-3, 3, count))
-        function = sympy.lambdify(free, fixed, "numpy")
-        with np.errstate(all="ignore"):
-            values = [np.broadcast_to(np.asarray(v, dtype=float), (count,)) for v in function(*columns)]
-        if np.any(np.all(np.array(values) > 0, axis=0)):
-            return True
-    return False
+    agree, finite, _ = needed_signs(region.loaded_forces, Draws(points, efficiencies, LOAD_TORQUE, seed, count))
+    return bool(np.any(np.all(agree, axis=1) & finite))

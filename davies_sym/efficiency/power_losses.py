@@ -3,11 +3,12 @@
 The power through a coupling is its action screw paired with its motion screw (Laus
 eqs. (5), (27)-(29)); a lossless coupling does none, so the port powers and the powers
 of the friction elements balance: P_in + P_out + sum_k P_k = 0.  The loss of element k
-is -P_k, and with the ordinary efficiencies of a variant substituted for the friction
-coefficients (eqs. (74)-(75)) the fractions -P_k / P_in add up to 1 - eta.  The action
-null space does not depend on which port is called the input, so a variant with the
-other input uses the same solution divided by the other port's power (unless friction
-laws besides the meshes' made the swapped derivation differ).
+is -P_k, the power of its friction actions alone, and with the ordinary efficiencies of
+a variant substituted for the friction coefficients (eqs. (74)-(75)) the fractions
+-P_k / P_in add up to 1 - eta.  The action null space does not depend on which port is
+called the input, so a variant with the other input uses the same solution divided by
+the other port's power (unless friction laws besides the meshes' made the swapped
+derivation differ).
 """
 
 from __future__ import annotations
@@ -30,12 +31,10 @@ def lossy_couplings(variants: VariantSet) -> tuple[str, ...]:
 
 
 def _friction_actions(analysis: Analysis, coupling: str) -> list[str]:
-    """The actions of ``coupling`` whose power is its loss: all but a port's own torque
-    (a port coupling with drag or bearing friction carries the input or output power too)."""
-    net = analysis.network
-    ports = (analysis.train.ports.input, analysis.train.ports.output)
-    port = net.port_action(coupling).name if coupling in ports else None
-    return [v.name for v in net.coupling_actions(coupling) if v.name != port]
+    """The actions of ``coupling``'s friction elements: their power is its loss (the
+    coupling's other actions are reactions, which do no work in its motion, and at a port
+    the outside's torque)."""
+    return [law.variable for law in analysis.network.laws if law.coupling == coupling]
 
 
 @dataclass(frozen=True, eq=False)

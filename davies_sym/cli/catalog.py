@@ -12,12 +12,13 @@ from davies_sym.topology.loader import load
 
 def catalog_listing() -> str:
     """One line per catalog train: the name to give ``--catalog``, its title and source."""
-    lines = [f"catalog of literature trains ({catalog_folder()}):"]
+    folder = catalog_folder()
+    lines = [f"catalog of literature trains ({folder}):"]
     names = catalog_names()
     width = max(map(len, names), default=0)
     for name in names:
         try:
-            train = load(catalog_file(name))
+            train = load(str(folder / f"{name}.yaml"))
             about = train.name + (f" ({train.source})" if train.source else "")
         except DaviesError as exc:  # pragma: no cover - the catalog is tested to load
             about = f"does not load: {exc}"

@@ -47,11 +47,13 @@ from davies_sym.losses.definitions import completed
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
+from davies_sym.topology.symbols import exact_number
 
 Progress = Callable[[str], None]
 
 #: Ordinary efficiency used for the partial-derivative check (Glover's external value).
 NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
+
 
 @dataclass(frozen=True, eq=False)
 class VariantSet:
@@ -113,16 +115,16 @@ class VariantSet:
                 unknown.append(str(key))
                 continue
             if isinstance(value, sympy.Basic):
-                out[symbol] = sympy.sympify(value)
+                out[symbol] = value
             elif isinstance(value, str):
                 try:
                     out[symbol] = parse_expression(value)  # the safe grammar, never Python
                 except ExpressionError as exc:
                     unknown.append(f"{key} = {value[:40]!r} ({exc})")
-            elif isinstance(value, numbers.Rational):
+            elif (number := exact_number(value)) is not None:  # int, float as written
+                out[symbol] = number
+            elif isinstance(value, numbers.Rational):  # Fraction, numpy integers
                 out[symbol] = sympy.Rational(int(value.numerator), int(value.denominator))
-            elif isinstance(value, float):
-                out[symbol] = sympy.Rational(repr(value))
             else:
                 unknown.append(f"{key} (value {value!r} is not a number)")
         if unknown:
@@ -131,10 +133,17 @@ class VariantSet:
                              self.train.path)
         return out
 
+    def _completed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
+        """``values`` keyed by symbol, checked against the geometric constraints, with the
+        defined symbols (e.g. a mesh efficiency from the tooth geometry) added."""
+        return completed(check_values(self.train, self._keyed(values)), self.train.definitions)
+
     def variant_for(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> Variant:
         """The variant whose conditions hold at ``values`` (keyed by symbol or name) with
         ``input`` as input port."""
-        values = completed(check_values(self.train, self._keyed(values)), self.train.definitions)
+        return self._variant_at(self._completed(values), input)
+
+    def _variant_at(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None) -> Variant:
         port = input or self.train.ports.input
         if port not in (self.train.ports.input, self.train.ports.output):
             raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
@@ -186,9 +195,8 @@ class VariantSet:
     def evaluate(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (keyed by symbol or name, e.g. ``{"r1": 40}``; exact
         when the values are), right variant chosen."""
-        keyed = self._keyed(values)
-        variant = self.variant_for(keyed, input)
-        value = variant.efficiency.subs(completed(check_values(self.train, keyed), self.train.definitions))
+        given = self._completed(values)
+        value = self._variant_at(given, input).efficiency.subs(given)
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
             raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],

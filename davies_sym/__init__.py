@@ -2,21 +2,26 @@
 
 The package is a pipeline; each stage is a subpackage that hands the next a frozen result:
 
-- :mod:`davies_sym.topology`: the YAML language, loading, validation -> :class:`Train`
-- :mod:`davies_sym.geometry`: axes, pitch points, geometric constraints -> ``Layout``
-- :mod:`davies_sym.network`: coupling graph, screws, M_N, A_N, D_A, null spaces -> :class:`Analysis`
-- :mod:`davies_sym.efficiency`: virtual power, turning conditions, variants, losses -> :class:`VariantSet`
-- :mod:`davies_sym.emit`: text, JSON, LaTeX, formula modules, figures
-- :mod:`davies_sym.cli`: the ``derive`` command
+- `davies_sym.topology`: the YAML language, loading, validation -> `Train`
+- `davies_sym.geometry`: axes, pitch points, geometric constraints -> ``Layout``
+- `davies_sym.network`: coupling graph, screws, M_N, A_N, D_A, null spaces -> `Analysis`
+- `davies_sym.efficiency`: virtual power, turning conditions, variants, losses -> `VariantSet`
+- `davies_sym.emit`: text, JSON, LaTeX, formula modules, figures
+- `davies_sym.cli`: the ``derive`` command
 
-:mod:`davies_sym.algebra` holds the exact algebra the stages share (flint polynomials,
+`davies_sym.algebra` holds the exact algebra the stages share (flint polynomials,
 fraction-free elimination, square roots, signs, Plücker coordinates).
 
->>> import davies_sym
->>> train = davies_sym.load("catalog/simple_pair.yaml")   # doctest: +SKIP
->>> davies_sym.analyse(train).efficiency                   # doctest: +SKIP
-r1*(r2 - zeta_C)/(r2*(r1 + zeta_C))
->>> davies_sym.derive(train).evaluate(values, "A")         # doctest: +SKIP
+Example (run by the tests, from the root of a checkout):
+
+```python
+import davies_sym
+
+train = davies_sym.load("catalog/simple_pair.yaml")
+davies_sym.analyse(train).efficiency  # r1*(r2 - zeta_C)/(r2*(r1 + zeta_C)), Laus eq. (136)
+variants = davies_sym.derive(train)  # every variant with its turning conditions
+variants.evaluate({"r1": 20, "r2": 50, "eta_C": "0.98"}, "A")  # 49/50, exact
+```
 """
 
 from davies_sym.efficiency.turning_conditions import TurningCondition
@@ -34,6 +39,7 @@ from davies_sym.errors import (
     TopologySyntaxError,
 )
 from davies_sym.network.analysis import Analysis, SignCondition, analyse
+from davies_sym.topology.catalog_files import catalog_file, catalog_names
 from davies_sym.topology.loader import load, loads
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
 from davies_sym.topology.states import train_in_state
@@ -64,6 +70,8 @@ __all__ = [
     "Variant",
     "VariantSet",
     "analyse",
+    "catalog_file",
+    "catalog_names",
     "derive",
     "derive_variants",
     "load",

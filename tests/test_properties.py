@@ -341,7 +341,10 @@ def test_factor_survives_coefficients_beyond_a_c_long() -> None:
     ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: {r1: 20, r2: 50, eta_C: 1.5}",
      "expected[0].values.eta_C"),
     ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: [20, 50]", "expected[0].values"),
-], ids=["typo", "tolerance_list", "value_text", "value_payload", "efficiency_above_one", "values_list"])
+    ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    published: maybe", "expected[0].published"),
+    ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    differs: [1]", "expected[0].differs"),
+], ids=["typo", "tolerance_list", "value_text", "value_payload", "efficiency_above_one", "values_list",
+        "published_not_boolean", "differs_not_text"])
 def test_published_check_is_read_against_the_schema(tmp_path: Path, old: str, new: str, entry: str) -> None:
     assert old in SIMPLE_PAIR
     result, path = _run(tmp_path, SIMPLE_PAIR.replace(old, new))

@@ -1,23 +1,29 @@
 """Markdown pages of the documentation site generated from the library: one page per
 catalog train (coupling graph, speed ratio, turning conditions, every variant with its
-formula rendered, the published numbers with their status, figures), the command line
-reference and the Python API reference."""
+formula, the published numbers beside the derived ones, figures), the command line
+reference and the Python API reference (mkdocstrings directives).
+
+Formulas are presentation MathML (sympy's printer, symbols as the references write
+them), which browsers render natively: the site needs no script and no network.  Each
+``<math>`` carries its LaTeX as an annotation, for copying into a paper."""
 
 from __future__ import annotations
 
 import argparse
-import importlib
-import inspect
+import html
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import sympy
 
 from davies_sym.efficiency.parameters import parameter_table
+from davies_sym.efficiency.several_inputs import SeveralInputs
 from davies_sym.efficiency.variants import VariantSet
-from davies_sym.emit.variant_report import condition_text, mesh_text
+from davies_sym.emit.several_inputs_report import drivers, region_forces
+from davies_sym.emit.variant_report import mesh_text, variant_forces
 from davies_sym.errors import MissingValuesError
 from davies_sym.topology.model import Expected, Train
+from davies_sym.topology.symbol_display import latex, mathml_body
 from davies_sym.topology.symbols import exact_number
 
 
@@ -39,9 +45,16 @@ class Check:
 
     @property
     def status(self) -> str:
+        """``reproduced``, ``differs`` (with the file's explanation when it gives one),
+        ``regression`` (a value of the file's own geometry) or ``not evaluated``."""
         if self.derived is None:
             return "not evaluated"
-        return "reproduced" if abs(self.derived - self.expected.value) <= self.expected.tolerance else "differs"
+        close = abs(self.derived - self.expected.value) <= self.expected.tolerance
+        if not self.expected.published:
+            return "regression" if close else "differs"
+        if close:
+            return "reproduced"
+        return "differs, explained below" if self.expected.differs else "differs"
 
 
 def published_checks(variants: VariantSet, state: str | None) -> list[Check]:
@@ -71,21 +84,75 @@ def published_checks(variants: VariantSet, state: str | None) -> list[Check]:
     return out
 
 
-def _math(expr: sympy.Expr) -> str:
-    return f"${sympy.latex(expr)}$"
+def math(body: str, tex: str, display: bool = False) -> str:
+    """A ``<math>`` element: presentation MathML ``body`` with its LaTeX as annotation.
+
+    Characters that Markdown would read (``_``, ``*``, ``|`` in a table) are written as
+    character references, so the element reaches the page as it was printed."""
+    mode = ' display="block"' if display else ""
+    annotation = html.escape(tex, quote=False)
+    element = (f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}><semantics><mrow>{body}</mrow>'
+               f'<annotation encoding="application/x-tex">{annotation}</annotation></semantics></math>')
+    return element.replace("_", "&#95;").replace("*", "&#42;").replace("|", "&#124;")
+
+
+def _math(expr: sympy.Basic) -> str:
+    return math(mathml_body(expr), latex(expr))
+
+
+def _sign_math(expr: sympy.Expr, sign: int) -> str:
+    """``expr > 0`` or ``expr < 0`` as inline math."""
+    op = "&gt;" if sign > 0 else "&lt;"
+    return math(f"{mathml_body(expr)}<mo>{op}</mo><mn>0</mn>", f"{latex(expr)} {'>' if sign > 0 else '<'} 0")
+
+
+def _equation(name: str, number: int, expr: sympy.Expr) -> str:
+    """``name_(number) = expr`` as display math (``\\eta_{(3)} = ...``)."""
+    symbol = {"eta": "&#951;"}.get(name, name)
+    tex_name = {"eta": "\\eta"}.get(name, name)
+    lhs = f"<msub><mi>{symbol}</mi><mrow><mo>(</mo><mn>{number}</mn><mo>)</mo></mrow></msub><mo>=</mo>"
+    return math(lhs + mathml_body(expr), f"{tex_name}_{{({number})}} = {latex(expr)}", display=True)
 
 
 def _escape(text: str) -> str:
     return text.replace("|", "\\|").replace("*", "\\*").replace("_", "\\_")
 
 
+def _ratio_math(train: Train, ratio: sympy.Expr) -> str:
+    """The speed ratio ``omega_in / omega_out = ...`` as display math."""
+    a, b = train.ports.input, train.ports.output
+    lhs = (f"<mfrac><msub><mi>&#969;</mi><mi>{html.escape(a)}</mi></msub>"
+           f"<msub><mi>&#969;</mi><mi>{html.escape(b)}</mi></msub></mfrac><mo>=</mo>")
+    return math(lhs + mathml_body(ratio), f"\\frac{{\\omega_{{{a}}}}}{{\\omega_{{{b}}}}} = {latex(ratio)}",
+                display=True)
+
+
+def _published_table(checks: Sequence[Check], heading: str, port: str) -> list[str]:
+    """Published (and regression) numbers beside the derived ones; a published number the
+    file does not reproduce is followed by the file's explanation."""
+    lines = ["", f"{heading} Published numbers", "",
+             "| values | input | expected | derived | variant | status | source |",
+             "| --- | --- | --- | --- | --- | --- | --- |"]
+    for c in checks:
+        values = ", ".join(f"{k} = {v}" for k, v in c.expected.values.items())
+        derived = "—" if c.derived is None else f"{c.derived:.6g}"
+        kind = "" if c.expected.published else " (regression, not published)"
+        lines.append(f"| {_escape(values)} | {c.expected.input or port} | {c.expected.value:g} "
+                     f"(± {c.expected.tolerance:g}){kind} | {derived} | "
+                     f"{'—' if c.variant is None else f'({c.variant})'} | **{c.status}** | "
+                     f"{_escape(c.expected.source)} |")
+    for c in checks:
+        if c.expected.differs:
+            lines += ["", f"!!! note \"Why the derived value differs from {c.expected.value:g}\"",
+                      f"    {_escape(' '.join(c.expected.differs.split()))}"]
+    return lines
+
+
 def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure], state: str | None) -> list[str]:
     """Speed ratio, conditions, variants, formulas, checks and figures of one train or state."""
     train = variants.train
     ratio = variants.analysis.speed_ratio().to_expr()
-    lines = [f"{heading} Speed ratio", "",
-             f"$$\\frac{{\\omega_{{{train.ports.input}}}}}{{\\omega_{{{train.ports.output}}}}} = "
-             f"{sympy.latex(ratio)}$$", ""]
+    lines = [f"{heading} Speed ratio", "", _ratio_math(train, ratio), ""]
     lines += [f"{heading} Turning conditions", ""]
     if variants.conditions:
         lines += ["| condition | expression | decides the driving gear of |", "| --- | --- | --- |"]
@@ -95,35 +162,28 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
     else:
         lines.append("None: the driving gear of every mesh follows from the input port alone.")
     lines += ["", f"{heading} Variants", "",
-              "| variant | input → output | where | meshes | checks |", "| --- | --- | --- | --- | --- |"]
+              "| variant | input → output | where | driving gear in each mesh | checks |",
+              "| --- | --- | --- | --- | --- |"]
     for v in variants.variants:
-        where = ", ".join(f"${sympy.latex(c.simplified)} {'>' if v.signs[c.name] > 0 else '<'} 0$"
-                          for c in variants.conditions) or "every design"
+        where = [_sign_math(c.simplified, v.signs[c.name]) for c in variants.conditions]
+        where += [f"{_escape(what)}: {_sign_math(force, sign)}" for what, force, sign in variant_forces(variants, v)]
         meshes = "<br>".join(_escape(m) for m in mesh_text(variants, v))
         notes = "feasible" if v.feasible else "no admissible design"
         if v.self_locking_point is not None:
             notes += "; self-locks at some designs"
-        lines.append(f"| ({v.number}) | {v.input} → {v.output} | {where} | {meshes} | {notes} |")
+        if v.reversed_forces:
+            notes += f"; light load: {', '.join(sorted(v.reversed_forces))} reversed"
+        lines.append(f"| ({v.number}) | {v.input} → {v.output} | {'<br>'.join(where) or 'every design'} | "
+                     f"{meshes} | {notes} |")
     lines += ["", f"{heading} Formulas", ""]
     for v in variants.variants:
-        conditions = " and ".join(_escape(t) for t in condition_text(variants, v))
-        lines += [f"Variant ({v.number}), input {v.input}" + (f", where {conditions}" if conditions else "") + ":", "",
-                  f"$$\\eta_{{({v.number})}} = {sympy.latex(v.efficiency)}$$", ""]
+        lines += [f"Variant ({v.number}), input {v.input}:", "", _equation("eta", v.number, v.efficiency), ""]
     lines += [f"{heading} Parameters", "", "| name | meaning | unit | range |", "| --- | --- | --- | --- |"]
     for p in parameter_table(variants):
         lines.append(f"| `{p.name}` | {_escape(p.meaning)} | {p.unit} | {p.range_text} |")
     checks = published_checks(variants, state)
     if checks:
-        lines += ["", f"{heading} Published numbers", "",
-                  "| values | input | published | derived | variant | status | source |",
-                  "| --- | --- | --- | --- | --- | --- | --- |"]
-        for c in checks:
-            values = ", ".join(f"{k} = {v}" for k, v in c.expected.values.items())
-            derived = "—" if c.derived is None else f"{c.derived:.6g}"
-            lines.append(f"| {_escape(values)} | {c.expected.input or train.ports.input} | {c.expected.value:g} "
-                         f"(± {c.expected.tolerance:g}) | {derived} | "
-                         f"{'—' if c.variant is None else f'({c.variant})'} | **{c.status}** | "
-                         f"{_escape(c.expected.source)} |")
+        lines += _published_table(checks, heading, train.ports.input)
     if figures:
         lines += ["", f"{heading} Figures", ""]
         for f in figures:
@@ -131,9 +191,33 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
     return [*lines, ""]
 
 
-def catalog_page(train: Train, stem: str, sections: Mapping[str | None, tuple[VariantSet, Sequence[Figure]]],
-                 notes: Sequence[str] = ()) -> str:
-    """The page of one catalog file (one section per operating state, if it has states)."""
+def several_inputs_section(si: SeveralInputs, heading: str) -> list[str]:
+    """Speeds, speed conditions and every power-flow region of a train driven on several
+    shafts, with its efficiency (Mantriota and Pennestri 2003, eq. (6))."""
+    train = si.train
+    lines = [f"{heading} Speeds", "", "| port | speed in the input speeds |", "| --- | --- |"]
+    lines += [f"| {p} | {_math(v.to_expr())} |" for p, v in si.port_speeds.items()]
+    lines += ["", f"{heading} Speed conditions", "", "| condition | expression | decides |", "| --- | --- | --- |"]
+    lines += [f"| {c.name} | {_math(c.form)} | {_escape('; '.join(c.decides))} |" for c in si.conditions]
+    lines += ["", f"{heading} Power-flow regions", "",
+              "| region | power in → out | where | driving gear in each mesh |", "| --- | --- | --- | --- |"]
+    for r in si.regions:
+        where = [_sign_math(c.form, r.signs[c.name]) for c in si.conditions]
+        where += [f"{_escape(what)}: {_sign_math(force, sign)}" for what, force, sign in region_forces(r)]
+        meshes = "<br>".join(f"{m}: gear {a} drives gear {b}" for m, a, b in drivers(si, r))
+        lines.append(f"| ({r.number}) | {', '.join(r.inputs)} → {', '.join(r.outputs)} | {'<br>'.join(where)} | "
+                     f"{_escape(meshes)} |")
+    lines += ["", f"{heading} Formulas", "",
+              f"The load torque is `tau_out` at {train.ports.output}; the input speeds are "
+              f"{', '.join(f'`{s}`' for s in si.speeds)}.", ""]
+    for r in si.regions:
+        lines += [f"Region ({r.number}):", "", _equation("eta", r.number, r.efficiency), ""]
+    return lines
+
+
+def catalog_page(train: Train, stem: str, body: Sequence[str], notes: Sequence[str] = ()) -> str:
+    """The page of one catalog file: source, files, coupling graph, links and couplings,
+    then ``body`` (the derived sections)."""
     lines = [f"# {train.name}", "", f"Source: {_escape(train.source or 'not given')}.", "",
              f"Topology file: `catalog/{stem}.yaml`; generated formulas: `derivations/{stem}*.py` and "
              f"`derivations/{stem}.tex`.", "", f"![coupling graph of {stem}](img/{stem}_graph.png)", "",
@@ -143,6 +227,13 @@ def catalog_page(train: Train, stem: str, sections: Mapping[str | None, tuple[Va
     for c in train.couplings:
         lines.append(f"| {c.name} | {type(c).__name__} | {' — '.join(c.links)} |")
     lines += ["", *notes, ""] if notes else [""]
+    lines += body
+    return "\n".join(lines).rstrip("\n") + "\n"
+
+
+def states_body(train: Train, sections: Mapping[str | None, tuple[VariantSet, Sequence[Figure]]]) -> list[str]:
+    """The derived sections of a train with one input: one per operating state, if it has states."""
+    lines: list[str] = []
     for state, (variants, figures) in sections.items():
         if state is None:
             lines += state_section(variants, "##", figures, None)
@@ -154,7 +245,7 @@ def catalog_page(train: Train, stem: str, sections: Mapping[str | None, tuple[Va
                       + (f"; clutched: {', '.join('+'.join(p) for p in st.clutch)}" if st.clutch else "")
                       + (f"; free: {', '.join(st.free)}" if st.free else "") + ".", ""]
             lines += state_section(variants, "###", figures, state)
-    return "\n".join(lines).rstrip("\n") + "\n"
+    return lines
 
 
 def cli_page(parser: argparse.ArgumentParser) -> str:
@@ -178,52 +269,18 @@ def cli_page(parser: argparse.ArgumentParser) -> str:
 
 #: Modules of the public API, in reading order.
 API_MODULES = ("davies_sym", "davies_sym.topology.loader", "davies_sym.topology.model", "davies_sym.network.analysis",
-               "davies_sym.efficiency.variants", "davies_sym.efficiency.turning_conditions",
+               "davies_sym.efficiency.variants", "davies_sym.efficiency.variant",
+               "davies_sym.efficiency.turning_conditions", "davies_sym.efficiency.several_inputs",
                "davies_sym.efficiency.virtual_power", "davies_sym.efficiency.virtual_power_balance",
                "davies_sym.efficiency.power_losses", "davies_sym.efficiency.parameters",
                "davies_sym.emit.python_module", "davies_sym.emit.plots", "davies_sym.emit.graph_drawing",
-               "davies_sym.emit.latex", "davies_sym.emit.evaluation")
-
-
-def _doc(obj: object) -> str:
-    return inspect.cleandoc(inspect.getdoc(obj) or "")
-
-
-def _block(text: str) -> list[str]:
-    """A docstring as an indented text block (no Markdown surprises)."""
-    return ["```text", text, "```", ""] if text else []
+               "davies_sym.emit.latex", "davies_sym.emit.evaluation", "davies_sym.topology.symbol_display")
 
 
 def api_page() -> str:
-    """Classes and functions of :data:`API_MODULES` with signatures and docstrings."""
+    """The Python API reference: one mkdocstrings directive per module of
+    `API_MODULES` (signatures and docstrings are read from the source by griffe)."""
     lines = ["# Python API", "", "Generated from the docstrings of the package.", ""]
     for name in API_MODULES:
-        module = importlib.import_module(name)
-        lines += [f"## `{name}`", "", *_block(_doc(module))]
-        members = []
-        for attr, obj in vars(module).items():
-            if attr.startswith("_") or getattr(obj, "__module__", None) != name:
-                continue
-            if inspect.isclass(obj) or inspect.isfunction(obj):
-                members.append((attr, obj))
-        for attr, obj in members:
-            try:
-                signature = str(inspect.signature(obj))
-            except (TypeError, ValueError):
-                # inspect.signature's documented refusals: ValueError when an object has no
-                # signature it can read (one implemented in C), TypeError when it cannot
-                # take one; the page then writes the arguments as "(...)".
-                signature = "(...)"
-            kind = "class" if inspect.isclass(obj) else "def"
-            lines += [f"### `{attr}`", "", "```python", f"{kind} {attr}{signature}", "```", "", *_block(_doc(obj))]
-            if inspect.isclass(obj):
-                for method_name, method in vars(obj).items():
-                    if method_name.startswith("_") or not (inspect.isfunction(method) or isinstance(method, property)):
-                        continue
-                    target = method.fget if isinstance(method, property) else method
-                    doc = _doc(target)
-                    if doc:
-                        lines += [f"- `{attr}.{method_name}`: {_escape(doc.splitlines()[0])}"]
-                lines.append("")
+        lines += [f"::: {name}", ""]
     return "\n".join(lines).rstrip("\n") + "\n"
-

@@ -1,34 +1,29 @@
-"""Build the documentation site (``python3 tools/docs_site.py [--out site]``).
+"""Pages of the documentation site generated from the library, at build time.
 
-The hand-written pages of ``docs/`` (getting started, method, topology language) are
-staged together with pages generated from the library: the command line and Python API
-references and one page per catalog train with its coupling graph, conditions, variants,
-published checks and figures (among them Chen Fig. 4.13 for Litvin's drive and Laus
-Fig. 11 for the Humpage train).  MkDocs (material theme) then builds the site in strict
-mode: any warning (a broken link, a missing image) fails the build.
+``mkdocs build --strict`` (or ``mkdocs serve``) in the checkout runs
+``tools/docs_gen.py`` through the gen-files plugin, which calls `generate`: the
+command line reference, the Python API reference (mkdocstrings) and one page per catalog
+train with its coupling graph, conditions, variants, published checks and figures (among
+them Chen Fig. 4.13 for Litvin's drive and Laus Fig. 11 for the Humpage train).  The
+hand-written pages are ``docs/*.md``; ``mkdocs.yml`` holds the configuration.
 """
 
 from __future__ import annotations
 
-import argparse
 import glob
 import os
-import shutil
-import subprocess
-import sys
-import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from types import ModuleType
 
-from docs_pages import Figure, api_page, catalog_page, cli_page
+from docs_pages import Figure, api_page, catalog_page, cli_page, several_inputs_section, states_body
 from published_layouts import laus_humpage_layout
 
 from davies_sym.cli import parser
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.parameters import formula_symbols
+from davies_sym.efficiency.several_inputs import derive_several_inputs
 from davies_sym.efficiency.turning_conditions import mesh_roles
 from davies_sym.efficiency.variants import NOMINAL_EFFICIENCY, VariantSet, derive_variants
-from davies_sym.emit.atomic import write_atomic
 from davies_sym.emit.graph_drawing import coupling_graph_figure
 from davies_sym.emit.plots import (
     Sweep,
@@ -44,44 +39,9 @@ from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 from davies_sym.topology.symbols import exact_number
 
+#: Writes a file of the site: path relative to the docs directory, bytes.
+Write = Callable[[str, bytes], None]
 Progress = Callable[[str], None]
-
-#: The theme's end-of-life banner is not a build warning: keep it out of the output.
-BUILD_ENVIRONMENT = {**os.environ, "NO_MKDOCS_2_WARNING": "1"}
-
-MATHJAX = """window.MathJax = {
-  tex: {inlineMath: [["\\\\(", "\\\\)"]], displayMath: [["\\\\[", "\\\\]"]], processEscapes: true},
-  options: {ignoreHtmlClass: ".*|", processHtmlClass: "arithmatex"}
-};
-"""
-
-CONFIG = """site_name: davies_sym
-site_description: Closed-form mechanical efficiency of gear trains by Davies' method
-docs_dir: docs
-theme:
-  name: material
-markdown_extensions:
-  - tables
-  - admonition
-  - attr_list
-  - pymdownx.arithmatex:
-      generic: true
-extra_javascript:
-  - javascripts/mathjax.js
-  - https://cdn.jsdelivr.net/npm/mathjax@3/es5/tex-mml-chtml.js
-nav:
-  - Getting started: index.md
-  - Method: method.md
-  - Architecture: architecture.md
-  - Topology language: topology.md
-  - Command line: cli.md
-  - Exit statuses and errors: errors.md
-  - Losses and calibration: calibration.md
-  - Python API: api.md
-  - Catalog:
-    - catalog/index.md
-{catalog}
-"""
 
 #: Figures reproducing the literature, by catalog file: (kind, arguments, caption).
 LITERATURE_FIGURES: dict[str, list[tuple[str, dict[str, object], str]]] = {
@@ -107,7 +67,7 @@ def _nominal(train: Train, state: str | None) -> dict[str, float]:
 
 
 def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, state: str | None,
-                       img: str) -> list[Figure]:
+                       write: Write) -> list[Figure]:
     """Efficiency against the first geometric parameter (or the first mesh efficiency)
     around the published design, and the variant map over the symbols of the first
     turning condition."""
@@ -131,7 +91,7 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
         return []
     values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
     file = f"{stem}{suffix}_{sweep.name}.png"
-    write_atomic(os.path.join(img, file), figure_bytes(efficiency_figure(variants, sweep, values, port, module)))
+    write(f"catalog/img/{file}", figure_bytes(efficiency_figure(variants, sweep, values, port, module)))
     out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
                             f"efficiencies 0.98 where none is published), input {port}."))
     if variants.conditions:
@@ -140,13 +100,13 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
             x, y = (Sweep(n, 0.5 * nominal[n], 1.5 * nominal[n]) for n in free[:2])
             values = {k: v for k, v in nominal.items() if k in symbols and k not in (x.name, y.name)}
             file = f"{stem}{suffix}_regions.png"
-            write_atomic(os.path.join(img, file), figure_bytes(region_figure(variants, x, y, values, port, module)))
+            write(f"catalog/img/{file}", figure_bytes(region_figure(variants, x, y, values, port, module)))
             out.append(Figure(file, f"Variant regions, turning conditions and efficiency over {x.name} and {y.name}."))
     return out
 
 
 def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, stem: str,
-                        img: str) -> list[Figure]:
+                        write: Write) -> list[Figure]:
     out = []
     for kind, arguments, caption in LITERATURE_FIGURES.get(stem, []):
         if kind == "sweep":
@@ -165,104 +125,48 @@ def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, 
             figure = turning_surface_figure(condition, Sweep("r1", 1, 100), Sweep("r5", 1, 100), Sweep("r2", 0, 100),
                                             "Humpage, mesh C: turning-condition surface (Laus Fig. 11)")
             file = f"{stem}_laus_fig11.png"
-        write_atomic(os.path.join(img, file), figure_bytes(figure))
+        write(f"catalog/img/{file}", figure_bytes(figure))
         out.append(Figure(file, caption))
     return out
 
 
-def catalog_pages(root: str, target: str, progress: Progress) -> list[str]:
-    """Write ``target/catalog/<stem>.md`` (and images) for every catalog file; their stems."""
-    img = os.path.join(target, "catalog", "img")
-    os.makedirs(img, exist_ok=True)
+def catalog_pages(root: str, write: Write, progress: Progress) -> list[str]:
+    """``catalog/<stem>.md`` (and its images) for every catalog file, and the catalog
+    index; the stems."""
     stems = []
     for path in sorted(glob.glob(os.path.join(root, "catalog", "*.yaml"))):
         stem = os.path.splitext(os.path.basename(path))[0]
         train = load(path)
-        write_atomic(os.path.join(img, f"{stem}_graph.png"), figure_bytes(coupling_graph_figure(train)))
+        write(f"catalog/img/{stem}_graph.png", figure_bytes(coupling_graph_figure(train)))
         if (train.degrees_of_freedom or 1) > 1:
-            progress(f"catalog {stem}: kinematics only")
-            page = [f"# {train.name}", "", f"Source: {train.source}.", "",
-                    f"![coupling graph of {stem}](img/{stem}_graph.png)", "",
-                    f"{train.degrees_of_freedom} degrees of freedom: `derive catalog/{stem}.yaml` gives every motion "
-                    "in the primary speeds; the efficiency with several inputs is not derived yet.", ""]
-            write_atomic(os.path.join(target, "catalog", f"{stem}.md"), "\n".join(page))
-            stems.append(stem)
-            continue
-        sections: dict[str | None, tuple[VariantSet, list[Figure]]] = {}
-        states = [st.name for st in train.states] or [None]
-        for state in states:
-            progress(f"catalog {stem}" + (f", state {state}" if state else "") + ": variants and figures")
-            one = train_in_state(train, train.state(state)) if state else train
-            variants = derive_variants(one)
-            module = formula_module(variants)  # compiled once for every figure of the state
-            figures = _automatic_figures(variants, module, stem, state, img)
-            if state is None:
-                figures = _literature_figures(train, variants, module, stem, img) + figures
-            sections[state] = (variants, figures)
-        write_atomic(os.path.join(target, "catalog", f"{stem}.md"), catalog_page(train, stem, sections))
+            progress(f"catalog {stem}: power-flow regions")
+            body = several_inputs_section(derive_several_inputs(train), "##")
+        else:
+            sections: dict[str | None, tuple[VariantSet, list[Figure]]] = {}
+            for state in [st.name for st in train.states] or [None]:
+                progress(f"catalog {stem}" + (f", state {state}" if state else "") + ": variants and figures")
+                one = train_in_state(train, train.state(state)) if state else train
+                variants = derive_variants(one)
+                module = formula_module(variants)  # compiled once for every figure of the state
+                figures = _automatic_figures(variants, module, stem, state, write)
+                if state is None:
+                    figures = _literature_figures(train, variants, module, stem, write) + figures
+                sections[state] = (variants, figures)
+            body = states_body(train, sections)
+        write(f"catalog/{stem}.md", catalog_page(train, stem, body).encode())
         stems.append(stem)
     index = ["# Catalog", "", "Literature trains, each regression-checked against its published numbers.", "",
              "| train | file |", "| --- | --- |"]
     for stem in stems:
         index.append(f"| [{load(os.path.join(root, 'catalog', f'{stem}.yaml')).name}]({stem}.md) | "
                      f"`catalog/{stem}.yaml` |")
-    write_atomic(os.path.join(target, "catalog", "index.md"), "\n".join(index) + "\n")
+    write("catalog/index.md", ("\n".join(index) + "\n").encode())
     return stems
 
 
-def stage(root: str, staging: str, progress: Progress) -> str:
-    """Hand-written and generated pages and the MkDocs configuration under ``staging``;
-    the configuration's path."""
-    docs = os.path.join(staging, "docs")
-    if os.path.exists(docs):
-        shutil.rmtree(docs)
-    shutil.copytree(os.path.join(root, "docs"), docs)
-    os.makedirs(os.path.join(docs, "javascripts"), exist_ok=True)
-    write_atomic(os.path.join(docs, "javascripts", "mathjax.js"), MATHJAX)
+def generate(root: str, write: Write, progress: Progress) -> list[str]:
+    """Every generated page of the site (see the module docstring); the catalog stems."""
     progress("command line and API references")
-    write_atomic(os.path.join(docs, "cli.md"), cli_page(parser()))
-    write_atomic(os.path.join(docs, "api.md"), api_page())
-    stems = catalog_pages(root, docs, progress)
-    config = os.path.join(staging, "mkdocs.yml")
-    write_atomic(config, CONFIG.format(catalog="\n".join(f"    - catalog/{s}.md" for s in stems)))
-    return config
-
-
-def build(root: str, out: str, progress: Progress, keep: str | None = None) -> int:
-    """Stage the pages and run ``mkdocs build --strict`` into ``out``; the exit status."""
-    staging = keep or tempfile.mkdtemp(prefix="davies_sym_docs_")
-    try:
-        config = stage(root, staging, progress)
-        progress("mkdocs build --strict")
-        result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "--quiet", "-f", config,
-                                 "-d", os.path.abspath(out)], capture_output=True, text=True, check=False,
-                                env=BUILD_ENVIRONMENT)
-        if result.returncode != 0:
-            sys.stderr.write(result.stdout + result.stderr)
-        return result.returncode
-    finally:
-        if keep is None:
-            shutil.rmtree(staging, ignore_errors=True)
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python3 tools/docs_site.py",
-                                     description="Build the documentation site (MkDocs, strict mode).")
-    parser.add_argument("--out", default="site", help="directory of the built site (default: site)")
-    parser.add_argument("--keep", metavar="DIR", help="stage the Markdown pages in DIR and keep them")
-    parser.add_argument("--quiet", action="store_true", help="no progress messages")
-    args = parser.parse_args(argv)
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-    def progress(message: str) -> None:
-        if not args.quiet:
-            print(f"docs: {message}", file=sys.stderr, flush=True)
-
-    status = build(root, args.out, progress, args.keep)
-    if status == 0:
-        progress(f"site written to {args.out}/")
-    return status
-
-
-if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    write("cli.md", cli_page(parser()).encode())
+    write("api.md", api_page().encode())
+    return catalog_pages(root, write, progress)

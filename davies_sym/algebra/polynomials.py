@@ -1,8 +1,8 @@
 """Exact polynomials and rational functions on python-flint (``fmpz_mpoly``).
 
 One polynomial ring per derivation holds every symbol of the train.  Sympy
-expressions enter through :meth:`PolynomialRing.rational` and leave through
-:meth:`RationalFunction.to_expr`, which builds the product of flint's irreducible
+expressions enter through `PolynomialRing.rational` and leave through
+`RationalFunction.to_expr`, which builds the product of flint's irreducible
 factors directly, so no sympy simplification runs in the pipeline.
 """
 
@@ -122,7 +122,7 @@ class PolynomialRing:
         return self.ctx.from_dict(data), denominator
 
     def rational(self, expr: sympy.Expr) -> RationalFunction:
-        """A sympy rational expression as a :class:`RationalFunction`."""
+        """A sympy rational expression as a `RationalFunction`."""
         expr = sympy.sympify(expr)
         num, den = sympy.fraction(sympy.together(expr))
         pn, dn = self._poly(sympy.expand(num))
@@ -150,7 +150,7 @@ class PolynomialRing:
         return sympy.Mul(sympy.Integer(int(content)), *parts)
 
     def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq | None, ...]:
-        """The generators' values at ``point`` (absent symbols: None), for :meth:`evaluate`."""
+        """The generators' values at ``point`` (absent symbols: None), for `evaluate`."""
         out: list[fmpq | None] = []
         for symbol in self.symbols:
             value = point.get(symbol)
@@ -169,7 +169,7 @@ class PolynomialRing:
         return tuple(out)
 
     def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None) -> fmpq:
-        """Exact value of ``p`` at ``args`` (from :meth:`point_args`); KeyError names a
+        """Exact value of ``p`` at ``args`` (from `point_args`); KeyError names a
         symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
         if not self.symbols:
             return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)

@@ -48,7 +48,7 @@ class RadicalTable:
     def sqrt(self, value: sympy.Expr) -> sympy.Expr:
         """``sqrt(value)`` of a rational expression positive on the design, as
         ``q * s`` with ``q`` rational and ``s`` a radical symbol (or just ``q``);
-        :class:`RadicalError` when it cannot be written so."""
+        `RadicalError` when it cannot be written so."""
         num, den = sympy.fraction(self.reduce(value))
         if (num * den).free_symbols & {r.symbol for r in self.radicals}:
             raise RadicalError(f"nested square roots: sqrt({self.restore(value)})")

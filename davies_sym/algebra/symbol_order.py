@@ -1,7 +1,7 @@
 """A deterministic order of sympy symbols: by name, then by assumptions.
 
 Sets of symbols (``free_symbols``) iterate in hash order, which changes from run to run;
-every sequence of symbols whose order can reach a result is sorted by :func:`symbol_key`.
+every sequence of symbols whose order can reach a result is sorted by `symbol_key`.
 Two symbols with one name and different assumptions are different symbols to sympy;
 the key keeps them apart (and in a fixed order) where sorting by name alone would not.
 """
@@ -32,5 +32,5 @@ def symbol_key(symbol: sympy.Symbol) -> tuple[str, Assumptions]:
 
 
 def sorted_symbols(symbols: Iterable[sympy.Symbol]) -> list[sympy.Symbol]:
-    """``symbols`` sorted by :func:`symbol_key`."""
+    """``symbols`` sorted by `symbol_key`."""
     return sorted(symbols, key=symbol_key)

@@ -1,9 +1,9 @@
 """Calibration stage: named loss parameters of a model fitted to measured operating points.
 
-It owns reading the measurements (:mod:`.measurements`: a CSV file of finite numbers, every
+It owns reading the measurements (`.measurements`: a CSV file of finite numbers, every
 problem with its line and column), the least-squares fit with standard errors and the
-refusals of a fit the data cannot support (:mod:`.least_squares`, scipy), and the text and
-residual figure of a fit (:mod:`.report`).  It knows nothing about gear trains: the model
+refusals of a fit the data cannot support (`.least_squares`, scipy), and the text and
+residual figure of a fit (`.report`).  It knows nothing about gear trains: the model
 is any function of the parameter values giving one residual per measured row.
 """
 

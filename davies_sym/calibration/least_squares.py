@@ -2,7 +2,7 @@
 
 The model is a function of the parameter values giving one residual per measured row
 (model minus measured); nothing here knows what the parameters mean.  A fit the data
-cannot support is refused with a :class:`~davies_sym.errors.CalibrationError` naming the
+cannot support is refused with a `CalibrationError` naming the
 cause, never returned as numbers: fewer rows than parameters, a residual that is not
 finite, no convergence, or a parameter the data do not determine.
 

@@ -3,9 +3,9 @@
 The file is UTF-8 text (a byte-order mark is tolerated) with a header row naming the
 columns; blank lines and lines starting with ``#`` are skipped anywhere.  The columns the
 caller requires (and the optional ones the header has) must hold a finite number in every
-row; other columns are kept in :attr:`Measurements.columns` but never read.  Every problem
+row; other columns are kept in `Measurements.columns` but never read.  Every problem
 is collected with its line and column and raised once as a
-:class:`~davies_sym.errors.MeasurementError`::
+`MeasurementError`::
 
     data error: rig.csv:7: column 'T_O': 'abc' is not a number
 """
@@ -79,8 +79,8 @@ def read_measurements(path: str | os.PathLike[str], required: Sequence[str],
                       optional: Sequence[str] = ()) -> Measurements:
     """Read the CSV file ``path``; every name of ``required`` must be a column of it.
 
-    Raises :class:`~davies_sym.errors.MeasurementError` with every problem found (at most
-    :data:`MAX_PROBLEMS` of them, then a count of the rest).
+    Raises `MeasurementError` with every problem found (at most
+    `MAX_PROBLEMS` of them, then a count of the rest).
     """
     source = os.fspath(path)
     text = _read_text(source)

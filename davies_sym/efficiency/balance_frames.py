@@ -1,11 +1,11 @@
 """The members of a train as Chen's virtual-power balance sees them: axes, carriers, arms.
 
-Two geometries, one interface (:class:`Frames`) for the eight steps of
-:mod:`.virtual_power_balance`:
+Two geometries, one interface (`Frames`) for the eight steps of
+`.virtual_power_balance`:
 
-- :class:`PlanarFrames`: parallel axes (on a line or in 2-D); every member turns about
+- `PlanarFrames`: parallel axes (on a line or in 2-D); every member turns about
   its own axis at w, and a carrier-frame speed is w - w_c (Chen eq. (4.6));
-- :class:`ConicalFrames`: axes through one apex (bevel, face gears); members on the main
+- `ConicalFrames`: axes through one apex (bevel, face gears); members on the main
   axis turn at w about it, a planet spins at s about its own axis relative to the
   carrier whose bearing holds it, and the Willis equation of a mesh equates the
   carrier-frame speeds of the pitch point, ``s_p (u_p x P).t = s_q (u_q x P).t``.

@@ -5,7 +5,7 @@ ordinary-efficiency equation (Laus eqs. (74)-(75)).  So each mesh needs a
 load-dependent law (Coulomb or signed linear) whose coefficient is a symbol used
 nowhere else: a number cannot be solved for, and a symbol shared with a radius, an
 efficiency or another mesh would be replaced in the wrong places.  The friction form of
-:func:`davies_sym.analyse` has no such need and keeps accepting these trains.
+`davies_sym.analyse` has no such need and keeps accepting these trains.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ def only_mesh_laws(laws: Collection[FrictionLaw], meshes: Collection[str]) -> bo
 
 
 def check_mesh_friction(train: Train) -> None:
-    """Raise :class:`TopologyError` (every problem, located) unless each mesh of ``train``
+    """Raise `TopologyError` (every problem, located) unless each mesh of ``train``
     has a load-dependent friction law with a symbol of its own."""
     problems = [p for c in train.couplings if isinstance(c, GearMesh) for p in _problems(train, c)]
     if problems:

@@ -101,7 +101,7 @@ def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
 
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
-    """Every symbol of :func:`formula_symbols`, in its order."""
+    """Every symbol of `formula_symbols`, in its order."""
     ports = {INPUT_SPEED: Parameter(str(INPUT_SPEED), "input speed (magnitude, at the input port)", "rad/s", 0.0,
                                     math.inf),
              INPUT_TORQUE: Parameter(str(INPUT_TORQUE), "input torque (magnitude, at the input port)", "torque",

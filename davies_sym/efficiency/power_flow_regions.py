@@ -89,7 +89,7 @@ class SeveralInputs:
 
     def region_at(self, values: Mapping[sympy.Symbol, sympy.Expr]) -> Region:
         """The region that holds at ``values``: its speed conditions hold and every loaded
-        force has its assumed sign.  Raises :class:`NotCoveredError` where no region's
+        force has its assumed sign.  Raises `NotCoveredError` where no region's
         forces agree (the losses exceed what the load can carry) or two disagree."""
         signs = {}
         for c in self.conditions:

@@ -67,7 +67,7 @@ def loss_fractions(variants: VariantSet, variant: Variant) -> dict[str, Rational
 
 
 def all_loss_fractions(variants: VariantSet) -> dict[str, dict[str, RationalFunction]]:
-    """:func:`loss_fractions` of every variant (by name), each derivation's side solved once."""
+    """`loss_fractions` of every variant (by name), each derivation's side solved once."""
     sides: dict[tuple[str, int], _InputSide] = {}
     out = {}
     for v in variants.variants:

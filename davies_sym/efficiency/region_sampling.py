@@ -6,8 +6,8 @@ Reversed loaded forces: for those speeds, random losses (ordinary efficiencies i
 (1/2, 1), other loss parameters and the load torque spread over decades), and a region
 is kept where some sample has every loaded force of the sign the region assumes.  A
 region missed here is never a wrong number: where no kept region's forces agree, the
-answer is refused.  The same draws (:class:`Draws`) serve the light-load variants of a
-train with one input (:mod:`davies_sym.efficiency.light_load`).
+answer is refused.  The same draws (`Draws`) serve the light-load variants of a
+train with one input (`davies_sym.efficiency.light_load`).
 """
 
 from __future__ import annotations

@@ -10,12 +10,12 @@ mesh takes the signed law T = zeta U (Laus eqs. (63)-(64)) and dependent sources
 Which gear drives in a mesh, which way a coupling with drag or bearing friction turns
 and which ports put power in are, without losses, signs of linear forms in the input
 speeds: each is a *speed condition*, a line through the origin of the plane of input
-speeds.  A *region* (:mod:`davies_sym.efficiency.power_flow_regions`) is one choice of
+speeds.  A *region* (`davies_sym.efficiency.power_flow_regions`) is one choice of
 all signs that admissible designs reach, and of the loaded forces that losses larger
 than the load reverse; in it zeta is replaced by the ordinary efficiency of the driving
 direction (eqs. (74)-(75)) and the efficiency is Mantriota and Pennestri's eq. (6), the
 output's power over the sum of the input shafts' powers, in closed form
-(:mod:`davies_sym.efficiency.region_forms`).
+(`davies_sym.efficiency.region_forms`).
 """
 
 from __future__ import annotations

@@ -12,6 +12,7 @@ import sympy
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.light_load import LoadedForces
 from davies_sym.efficiency.parameter_domain import Point
+from davies_sym.topology.symbol_display import latex
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,6 +48,17 @@ class Variant:
     def efficiency(self) -> sympy.Expr:
         """The formula, numerator and denominator factored."""
         return self.efficiency_rf.to_expr()
+
+    def _repr_latex_(self) -> str:
+        """``$$\\eta_{(n)} = ... \\qquad (A \\to B,\\ c_1 > 0)$$`` for a notebook; the
+        conditions by name (the variant set shows their expressions)."""
+        escaped = [p.replace("_", r"\_") for p in (self.input, self.output)]  # port names are identifiers
+        where = [rf"\text{{{escaped[0]}}} \to \text{{{escaped[1]}}}"]
+        where += [f"{latex(sympy.Symbol(c))} {'>' if s > 0 else '<'} 0" for c, s in self.signs.items()]
+        if self.reversed_forces:
+            where.append(r"\text{light load: " + ", ".join(sorted(self.reversed_forces)) + " reversed}")
+        joined = r",\ ".join(where)
+        return rf"$$\eta_{{({self.number})}} = {latex(self.efficiency)} \qquad ({joined})$$"
 
     @property
     def name(self) -> str:

@@ -7,14 +7,13 @@ from __future__ import annotations
 import html
 from collections.abc import Sequence
 
-import sympy
-
 from davies_sym.efficiency.turning_conditions import TurningCondition
 from davies_sym.efficiency.variant import Variant
+from davies_sym.topology.symbol_display import latex
 
 
 def _conditions_latex(conditions: Sequence[TurningCondition], variant: Variant) -> list[str]:
-    out = [f"{sympy.latex(c.simplified)} {'>' if variant.signs[c.name] > 0 else '<'} 0" for c in conditions]
+    out = [f"{latex(c.simplified)} {'>' if variant.signs[c.name] > 0 else '<'} 0" for c in conditions]
     if variant.reversed_forces:
         out.append(r"\text{light load: " + ", ".join(sorted(variant.reversed_forces)) + " reversed}")
     return out
@@ -25,7 +24,7 @@ def variant_latex(conditions: Sequence[TurningCondition], variant: Variant) -> s
     ports = [p.replace("_", r"\_") for p in (variant.input, variant.output)]  # port names are identifiers
     where = [rf"\text{{{ports[0]}}} \to \text{{{ports[1]}}}", *_conditions_latex(conditions, variant)]
     joined = r",\ ".join(where)
-    return rf"$$\eta_{{({variant.number})}} = {sympy.latex(variant.efficiency)} \qquad ({joined})$$"
+    return rf"$$\eta_{{({variant.number})}} = {latex(variant.efficiency)} \qquad ({joined})$$"
 
 
 def variant_set_html(name: str, conditions: Sequence[TurningCondition], variants: Sequence[Variant]) -> str:
@@ -35,7 +34,7 @@ def variant_set_html(name: str, conditions: Sequence[TurningCondition], variants
     for v in variants:
         where = ", ".join(_conditions_latex(conditions, v)) or "always"
         rows.append(f"<tr><td>({v.number})</td><td>{html.escape(v.input)} &rarr; {html.escape(v.output)}</td>"
-                    f"<td>\\({html.escape(where)}\\)</td><td>\\(\\eta = {html.escape(sympy.latex(v.efficiency))}\\)"
+                    f"<td>\\({html.escape(where)}\\)</td><td>\\(\\eta = {html.escape(latex(v.efficiency))}\\)"
                     "</td></tr>")
     head = "<tr><th>variant</th><th>ports</th><th>holds where</th><th>efficiency</th></tr>"
     return f"<p><b>{html.escape(name)}</b>: {len(variants)} variants</p><table>{head}{''.join(rows)}</table>"

@@ -3,7 +3,7 @@
 For a mesh ``X: p -> q`` the carrier is a link c that holds both gear axes: seen from
 c, link p turns about the axis of its gear and link q about the axis of its own
 (Laus section 3.1, Definition 4; several carriers per train are allowed, section 3.6.5).
-With motions relative to c (:mod:`davies_sym.efficiency.absolute_motion`):
+With motions relative to c (`davies_sym.efficiency.absolute_motion`):
 
 * the lossless virtual power ``$_X^a . ^c$_p`` says which gear drives (eqs. (69)-(70),
   (86)-(88)); positive means it flows along the edge, from p to q;
@@ -114,7 +114,7 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, 
 
 
 def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
-    """:func:`mesh_power_flow` of the mesh called ``name`` in the analysis's train."""
+    """`mesh_power_flow` of the mesh called ``name`` in the analysis's train."""
     mesh = analysis.train.coupling(name)
     if not isinstance(mesh, GearMesh):
         raise DerivationError(f"coupling {name} is not a gear mesh: it has no ordinary efficiency")

@@ -24,7 +24,7 @@ parameter point.  The eight steps of Chen section 4.6:
 
 Applies to 1-DOF trains with parallel axes drawn on a line (planets on carriers whose
 partner gears are coaxial with the carrier), and to bevel and face-gear trains whose
-axes meet at one apex; :mod:`.balance_frames` gives both geometries one interface,
+axes meet at one apex; `.balance_frames` gives both geometries one interface,
 so the eight steps are written once.  Other trains get a clear error.
 """
 

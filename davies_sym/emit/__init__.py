@@ -1,7 +1,7 @@
 """Output stage: what the user reads and imports, written from the results of the stages before.
 
-Text reports (:mod:`.report`, :mod:`.variant_report`), JSON documents, LaTeX
-(:mod:`.latex`), generated formula modules for design code (:mod:`.python_module`),
-figures (:mod:`.plots`, :mod:`.graph_drawing`), the ``--eval`` answer (:mod:`.evaluation`)
-and atomic file writing (:mod:`.atomic`). Nothing here derives; it only formats.
+Text reports (`.report`, `.variant_report`), JSON documents, LaTeX
+(`.latex`), generated formula modules for design code (`.python_module`),
+figures (`.plots`, `.graph_drawing`), the ``--eval`` answer (`.evaluation`)
+and atomic file writing (`.atomic`). Nothing here derives; it only formats.
 """

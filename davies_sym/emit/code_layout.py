@@ -4,7 +4,7 @@
 generated formula module holds (assignments, returns, function definitions with a
 docstring, data literals) at the syntax tree: one element of a tuple, list, dict or
 call per line, long strings as adjacent literals.  The text is made from nodes only, so
-it is valid Python by construction, and :func:`module_source` checks that it parses back
+it is valid Python by construction, and `module_source` checks that it parses back
 to the very same tree.
 """
 
@@ -27,7 +27,7 @@ def docstring(text: str, indent: str) -> ast.Expr:
     """A docstring node whose text is ``text`` wrapped to the width at ``indent``.
 
     Non-printable characters become spaces, so the text is one paragraph per line of
-    ``text``; quotes and backslashes are written escaped by :func:`_docstring_lines`."""
+    ``text``; quotes and backslashes are written escaped by `_docstring_lines`."""
     clean = ["".join(ch if ch.isprintable() else " " for ch in line) for line in text.split("\n")]
     lines: list[str] = []
     for paragraph in clean:
@@ -173,7 +173,7 @@ def literal(value: object) -> ast.expr:
 def module_source(items: Sequence[tuple[int, str | ast.stmt]]) -> str:
     """The module of ``items``, each (blank lines before it, statement): a statement node
     laid out here, or source text copied as it is (hand-written code).  Raises
-    :class:`LayoutError` unless the text parses back to exactly these statements."""
+    `LayoutError` unless the text parses back to exactly these statements."""
     parts: list[str] = []
     statements: list[ast.stmt] = []
     for gap, item in items:

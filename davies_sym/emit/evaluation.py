@@ -2,8 +2,8 @@
 efficiency at given values, or the reason there is none.
 
 A design the formulas do not cover (a port that does not turn, a self-locking train) is
-:class:`NotCoveredError` (exit status 3); values that break a geometric constraint are
-:class:`DesignError` (exit status 2).  Nothing outside (0, 1] is returned as an efficiency.
+`NotCoveredError` (exit status 3); values that break a geometric constraint are
+`DesignError` (exit status 2).  Nothing outside (0, 1] is returned as an efficiency.
 """
 
 from __future__ import annotations

@@ -111,7 +111,7 @@ def usable(runtime: Runtime, name: str) -> bool:
 def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
             steps: list[tuple[sympy.Symbol, sympy.Expr]]) -> sympy.Expr:
     """``expr`` with long parts moved into temporaries (appended to ``steps``) until its
-    code is at most :data:`_BUDGET` characters: sums and products in groups of terms,
+    code is at most `_BUDGET` characters: sums and products in groups of terms,
     other functions argument by argument."""
     if _width(expr) <= _BUDGET or not expr.args:
         return expr

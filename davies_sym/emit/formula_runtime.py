@@ -1,6 +1,6 @@
 """The hand-written part of every generated formula module (numpy only).
 
-:mod:`davies_sym.emit.python_module` copies this file's imports, types and functions
+`davies_sym.emit.python_module` copies this file's imports, types and functions
 into each module it writes, and puts the train's own tables and formulas where the
 placeholders below stand.  Keeping this code in a real module means it is linted,
 type-checked (``mypy --strict``) and imported like the rest of the package, so a
@@ -122,7 +122,7 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds (``numbers``, from :func:`_variant_numbers`),
+    """The function of the variant that holds (``numbers``, from `_variant_numbers`),
     evaluated element by element (each variant only on its own points); shape (width,
     *broadcast shape), NaN where none holds."""
     result = np.full((width, *numbers.shape), np.nan)
@@ -194,7 +194,7 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
 
 
 def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
-    """``result`` with NaN where ``bad``, after :func:`_refuse`."""
+    """``result`` with NaN where ``bad``, after `_refuse`."""
     _refuse(bad, message, errors, stacklevel + 1)
     return np.where(bad, np.nan, result) if bad.any() else result
 

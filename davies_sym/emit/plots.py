@@ -173,7 +173,7 @@ def map_regions(axis: Any, gx: np.ndarray, gy: np.ndarray, numbers: np.ndarray, 
 def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str,
                       module: ModuleType | None = None) -> Any:
     """Efficiency and stacked losses against one parameter, variant regions marked
-    (``module``: the train's compiled :func:`formula_module`, if already at hand)."""
+    (``module``: the train's compiled `formula_module`, if already at hand)."""
     module = module or formula_module(variants)
     xs = sweep.values(POINTS_1D)
     kwargs: dict[str, Any] = {**values, sweep.name: xs}

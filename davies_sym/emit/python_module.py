@@ -14,9 +14,9 @@ The module depends on numpy only and is meant for design code (sweeps, optimiser
   formula as text and as LaTeX), the source in the module docstring.
 
 The module is built as a syntax tree: the hand-written part is
-:mod:`davies_sym.emit.formula_runtime` (copied as it is), the train's tables are
+`davies_sym.emit.formula_runtime` (copied as it is), the train's tables are
 literals and its formulas are the code printer's output split into short common
-subexpressions (sympy ``cse``), laid out by :mod:`davies_sym.emit.code_layout`, which
+subexpressions (sympy ``cse``), laid out by `davies_sym.emit.code_layout`, which
 checks that the text parses back to the same tree.  Names that become identifiers are
 checked here; every other text the user wrote is a string literal.  The same train gives
 the same bytes.

@@ -14,8 +14,8 @@ or arrays broadcast together:
 - ``PARAMETERS``, ``SPEEDS``, ``CONDITIONS`` and ``REGIONS`` (where each holds, which
   gears drive, where power goes in and out, formula as text and LaTeX).
 
-Like :mod:`davies_sym.emit.python_module` it is built as a syntax tree around a
-hand-written runtime (:mod:`davies_sym.emit.several_inputs_runtime`), and the same train
+Like `davies_sym.emit.python_module` it is built as a syntax tree around a
+hand-written runtime (`davies_sym.emit.several_inputs_runtime`), and the same train
 gives the same bytes.
 """
 

@@ -29,7 +29,7 @@ def region_forces(region: Region) -> list[tuple[str, sympy.Expr, int]]:
 
 
 def region_force_text(region: Region) -> list[str]:
-    """:func:`region_forces` as text, e.g. ``tooth force of M1: ... > 0``."""
+    """`region_forces` as text, e.g. ``tooth force of M1: ... > 0``."""
     return force_text(region_forces(region))
 
 
@@ -69,7 +69,7 @@ def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
 
 
 def several_inputs_text(document: Mapping[str, Any]) -> str:
-    """Plain text of :func:`several_inputs_document`."""
+    """Plain text of `several_inputs_document`."""
     lines = [document["name"],
              f"  inputs {', '.join(document['inputs'])} (speeds {', '.join(document['input_speeds'])}), output "
              f"{document['output']} (load torque {document['load_torque']}, resisting its motion)"]

@@ -1,7 +1,7 @@
 """The hand-written part of every generated formula module of a train driven on several
 shafts (numpy only).
 
-:mod:`davies_sym.emit.several_inputs_module` copies this file's imports, types and
+`davies_sym.emit.several_inputs_module` copies this file's imports, types and
 functions into each module it writes and puts the train's tables and formulas where the
 placeholders below stand, so this code is linted, type-checked and imported like the
 rest of the package.
@@ -113,7 +113,7 @@ def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
 
 
 def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.bool_]]:
-    """:func:`_region_numbers`, and where the speeds lie on a condition line."""
+    """`_region_numbers`, and where the speeds lie on a condition line."""
     code, boundary = _codes(values)
     numbers = np.zeros(code.shape, dtype=np.int64)
     count = np.zeros(code.shape, dtype=np.int64)

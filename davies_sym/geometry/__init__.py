@@ -1,10 +1,10 @@
-"""Geometry stage: where every axis and pitch point of a train lies -> :class:`Layout`.
+"""Geometry stage: where every axis and pitch point of a train lies -> `Layout`.
 
 It owns the positions and directions the coupling screws need, the geometric
 constraints the loops of meshes imply (Laus section 3.4.1.6: r1 - r3 = r2 - r4) and
 the square roots a tilted axis brings (Laus App. C).  Three layouts: trains drawn on
-one line (Laus Figs. 5 and 7), planar trains in 2-D (:mod:`.plane`) and trains whose
-axes meet at one apex (:mod:`.cone`, Laus Fig. 9, Chen Fig. 4.10).
+one line (Laus Figs. 5 and 7), planar trains in 2-D (`.plane`) and trains whose
+axes meet at one apex (`.cone`, Laus Fig. 9, Chen Fig. 4.10).
 """
 
 from __future__ import annotations

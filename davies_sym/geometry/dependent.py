@@ -6,7 +6,7 @@ formula must hold on the constraint, not for radii that break it.  Each constrai
 solved exactly (it is linear in the parameter chosen) for one parameter, which the
 train then gives by the others: speed ratios, efficiencies and generated modules are
 written in the independent parameters, and a value given for a dependent one is checked
-against the relation (:func:`check_values`), never used as another train.
+against the relation (`check_values`), never used as another train.
 
 The choice: the symbols of ``independent:`` in the file stay free; otherwise the
 annulus radius when the constraint makes it a sum of the others, then a radius of the
@@ -102,7 +102,7 @@ def _rank(symbol: sympy.Symbol, expr: sympy.Expr, coupling: str,
 
 def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[sympy.Symbol, sympy.Expr]:
     """``values`` without the dependent parameters, each checked against its relation:
-    a value that breaks it is refused (:class:`DesignError`) with the relation, both values
+    a value that breaks it is refused (`DesignError`) with the relation, both values
     and their difference."""
     relations = {r.symbol: r for r in resolved_train(train).dependent or ()}
     problems = []

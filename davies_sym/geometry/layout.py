@@ -1,4 +1,4 @@
-"""What every layout hands on: :class:`Layout`, the geometric constraints, and the
+"""What every layout hands on: `Layout`, the geometric constraints, and the
 helpers the line, plane and cone layouts share (axis groups, constraint bookkeeping,
 eliminating one radius per constraint)."""
 

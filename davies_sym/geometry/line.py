@@ -1,7 +1,7 @@
 """Layout of planar trains drawn on one line (Laus Figs. 5 and 7).
 
 All gear axes are parallel to z and lie in the plane x = 0; a position is a y value.
-Which links share an axis comes from the topology (:mod:`.axes`); the meshes then give
+Which links share an axis comes from the topology (`.axes`); the meshes then give
 the distances between axes: r_g + r_h for an external mesh, R - r for an internal one.
 A planet is drawn on the +y side of the gear on its carrier's axis, the pinion of an
 internal mesh between two links of one carrier on the +y side of the annulus, and of a

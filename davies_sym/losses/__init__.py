@@ -1,7 +1,7 @@
 """Loss models: closed forms that turn what a designer knows about a coupling (tooth
 geometry and a sliding friction coefficient, a journal's radius and contact law) into
 the constitutive coefficients of the network (ordinary mesh efficiencies, friction-circle
-radii), each as a :class:`~davies_sym.losses.definitions.Definition` of a symbol that
+radii), each as a `Definition` of a symbol that
 the derivation keeps and the outputs substitute (Laus App. A and App. D)."""
 
 from davies_sym.losses.definitions import Definition

@@ -1,9 +1,9 @@
 """Network stage: Davies' method proper, from a train and its layout to motions, actions and powers.
 
-It owns the coupling graph G_C with its circuit and cutset matrices (:mod:`.coupling_graph`,
-Laus section 2.1, App. E), the screws each coupling kind contributes (:mod:`.coupling_screws`,
-Laus Tables 3-4, 12-15), the minimal screw system of order d (:mod:`.screw_system`), the
+It owns the coupling graph G_C with its circuit and cutset matrices (`.coupling_graph`,
+Laus section 2.1, App. E), the screws each coupling kind contributes (`.coupling_screws`,
+Laus Tables 3-4, 12-15), the minimal screw system of order d (`.screw_system`), the
 network matrices M_N and A_N and the constitutive rows of the friction laws
-(:mod:`.matrices`, Laus eqs. (19), (22), (40), (51)-(52), (56)), and their null spaces
-with the efficiency -P_out/P_in (:mod:`.analysis`, Laus eqs. (23)-(32)) -> :class:`Analysis`.
+(`.matrices`, Laus eqs. (19), (22), (40), (51)-(52), (56)), and their null spaces
+with the efficiency -P_out/P_in (`.analysis`, Laus eqs. (23)-(32)) -> `Analysis`.
 """

@@ -21,6 +21,7 @@ from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
+from davies_sym.network.analysis_display import analysis_latex
 from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.topology.couplings import GearMesh
@@ -43,7 +44,7 @@ class SignCondition:
 
 
 class Analysis:
-    """Davies' method on one train: build with :func:`davies_sym.analyse`.
+    """Davies' method on one train: build with `davies_sym.analyse`.
 
     ``coulomb_signs='resolve'`` (default) fixes every Coulomb sign from the lossless
     solution with positive input power and keeps a sign symbol only where the sign
@@ -405,6 +406,9 @@ class Analysis:
         """The efficiency in friction coefficients, numerator and denominator factored."""
         return self.efficiency_rf.to_expr()
 
+    def _repr_latex_(self) -> str:
+        return analysis_latex(self)
+
     def motion_matrix(self) -> sympy.Matrix:
         """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""
         cols = [[c.to_expr() for c in self.coupling_twist(e)] for e in self.network.graph.edges]
@@ -419,6 +423,6 @@ class Analysis:
 def analyse(train: Train, *, tree: Sequence[str] | None = None, action_tree: Sequence[str] | None = None,
             coulomb_signs: str = "resolve", progress: Progress | None = None,
             extra_symbols: Sequence[sympy.Symbol] = (), layout: Layout | None = None) -> Analysis:
-    """Run Davies' method on ``train`` (see :class:`Analysis` for the options)."""
+    """Run Davies' method on ``train`` (see `Analysis` for the options)."""
     return Analysis(train, tree=tree, action_tree=action_tree, coulomb_signs=coulomb_signs, progress=progress,
                     extra_symbols=extra_symbols, layout=layout)

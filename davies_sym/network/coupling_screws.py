@@ -1,6 +1,6 @@
 """The screws each coupling kind contributes to the network, for a given layout.
 
-One writer per kind of :mod:`davies_sym.topology.couplings` (Laus Tables 3-4, 12-13,
+One writer per kind of `davies_sym.topology.couplings` (Laus Tables 3-4, 12-13,
 14-15): a revolute is a rotation about its axis, a mesh a rotation about the pitch line
 with the tooth force along the common tangent (pressure angle zero, Laus section 3.3.1),
 a prismatic pair a translation, and the low-level kind its screws as written.  Adding

@@ -25,7 +25,7 @@ DEFAULT_TOLERANCE = 5e-5
 
 
 def read_expected(value: Any, reader: EntryReader, couplings: Mapping[str, Coupling]) -> tuple[Expected, ...]:
-    """The ``expected`` list: one :class:`Expected` per readable check."""
+    """The ``expected`` list: one `Expected` per readable check."""
     if not isinstance(value, list):
         reader.problem("expected", f"expected a list of checks, got {describe(value)}")
         return ()
@@ -46,14 +46,18 @@ def _read_check(item: Any, path: str, reader: EntryReader, couplings: Mapping[st
     tolerance = _number(entry.get("tolerance", DEFAULT_TOLERANCE), f"{path}.tolerance", reader)
     if tolerance is not None and not tolerance > 0:
         reader.problem(f"{path}.tolerance", f"the tolerance must be positive, got {tolerance:g}")
-    texts = {key: _text(entry.get(key), f"{path}.{key}", reader) for key in ("source", "input", "state")}
+    texts = {key: _text(entry.get(key), f"{path}.{key}", reader) for key in ("source", "input", "state", "differs")}
+    published = entry.get("published", True)
+    if not isinstance(published, bool):
+        reader.problem(f"{path}.published", f"expected true or false, got {describe(published)}")
     port = texts["input"]
     if port is not None and port not in couplings:
         reader.unknown(f"{path}.input", "coupling", port)
     if len(reader.problems) > before or value is None or tolerance is None:
         return None
     return Expected(quantity="efficiency", values=values, value=value, tolerance=tolerance,
-                    source=texts["source"] or "", input=port, state=texts["state"])
+                    source=texts["source"] or "", input=port, state=texts["state"], published=published is not False,
+                    differs=texts["differs"])
 
 
 def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Coupling]) -> dict[str, str]:

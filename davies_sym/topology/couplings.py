@@ -3,7 +3,7 @@
 A coupling kind is a frozen dataclass with a ``from_entry`` constructor that reads its
 entry of the topology file and its ``FIELDS`` for the schema.  Adding a kind means a
 class here, registered in ``KINDS``, and its screws in
-:mod:`davies_sym.network.coupling_screws` (Laus Tables 3-4, 12-13).
+`davies_sym.network.coupling_screws` (Laus Tables 3-4, 12-13).
 """
 
 from __future__ import annotations

@@ -9,7 +9,7 @@ parentheses, the functions ``sqrt``, ``sin``, ``cos``, ``tan`` and the constant 
     power   := atom ['**' factor]          (the exponent a small rational constant)
     atom    := number | name | 'pi' | function '(' expr ')' | '(' expr ')'
 
-Python's own tokenizer and parser (:func:`ast.parse`) split the text; only the node
+Python's own tokenizer and parser (`ast.parse`) split the text; only the node
 kinds of this grammar are accepted and each is turned into a sympy object directly,
 so no attribute, subscript, call of anything else, lambda, string or comprehension can
 reach the interpreter.  Sizes are bounded before anything is computed: the text's
@@ -84,7 +84,7 @@ def parse_expression(text: str, symbol: Callable[[str], sympy.Symbol] | None = N
     """``text`` as an exact sympy expression; ``symbol(name)`` gives the symbol of a name.
 
     Without ``symbol``, names other than ``pi`` are refused (a plain number is wanted).
-    Decimals are exact (``0.99`` is 99/100).  Raises :class:`ExpressionError`.
+    Decimals are exact (``0.99`` is 99/100).  Raises `ExpressionError`.
     """
     if len(text) > MAX_LENGTH:
         raise ExpressionError(f"{shortened(text)} is too long for an expression (at most {MAX_LENGTH} characters)")
@@ -228,7 +228,7 @@ def _describe(node: ast.AST) -> str:
 
 def assignments(pairs: Sequence[str], option: str, source: str | None) -> dict[str, sympy.Expr]:
     """``NAME=VALUE`` pairs of the command line as exact numbers by name; every malformed
-    pair is reported at once (an :class:`~davies_sym.errors.InputError` naming ``option``)."""
+    pair is reported at once (an `InputError` naming ``option``)."""
     out: dict[str, sympy.Expr] = {}
     problems = []
     for pair in pairs:

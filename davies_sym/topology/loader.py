@@ -1,7 +1,7 @@
-"""Load a topology file (YAML, language version 1) into a validated :class:`Train`.
+"""Load a topology file (YAML, language version 1) into a validated `Train`.
 
 Validation collects every problem with its line and entry path and raises once
-(:class:`TopologyError`).  Geometry and mobility are checked later, when the network
+(`TopologyError`).  Geometry and mobility are checked later, when the network
 is built, because they need the screws.
 """
 

@@ -1,6 +1,6 @@
-"""The validated, immutable model of a train (what :func:`davies_sym.load` returns).
+"""The validated, immutable model of a train (what `davies_sym.load` returns).
 
-:class:`Gear` lives in :mod:`.gear` (couplings read gears too) and is named here as part
+`Gear` lives in `.gear` (couplings read gears too) and is named here as part
 of the model."""
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from davies_sym.losses.definitions import Definition
 from davies_sym.topology.calibration_entry import CalibrationDefaults
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear import Gear as Gear  # named here as part of the model
+from davies_sym.topology.train_display import train_html
 
 
 @dataclass(frozen=True)
@@ -79,7 +80,11 @@ class Relation:
 
 @dataclass(frozen=True)
 class Expected:
-    """A published number to reproduce: parameter values, expected value, tolerance."""
+    """A number to reproduce: parameter values, expected value, tolerance.
+
+    ``published`` is False for a regression value of the file's own geometry (not a
+    number from the literature); ``differs`` explains a published number that the file's
+    geometry does not reproduce (the check then asserts that it differs)."""
 
     quantity: str
     values: Mapping[str, str]
@@ -88,6 +93,8 @@ class Expected:
     source: str
     input: str | None = None
     state: str | None = None
+    published: bool = True
+    differs: str | None = None
 
 
 @dataclass(frozen=True)
@@ -116,7 +123,7 @@ class Train:
     #: Symbols the user declares independent (``independent:``); None: the default choice.
     independent: tuple[str, ...] | None = None
     #: Parameters solved from the geometric constraints and substituted into the gears;
-    #: None until the geometry has been solved (:func:`davies_sym.geometry.dependent.resolved_train`).
+    #: None until the geometry has been solved (`davies_sym.geometry.dependent.resolved_train`).
     dependent: tuple[Relation, ...] | None = None
     #: What ``derive calibrate`` fits by default (the ``calibrate`` entry).
     calibrate: CalibrationDefaults | None = None
@@ -126,8 +133,11 @@ class Train:
         """Symbols that loss models define in other parameters (Laus App. A, App. D)."""
         return tuple(d for c in self.couplings for d in c.definitions)
 
+    def _repr_html_(self) -> str:
+        return train_html(self)
+
     def problem(self, entry: str, message: str) -> Problem:
-        """A :class:`Problem` at ``entry`` with the line it has in the source file."""
+        """A `Problem` at ``entry`` with the line it has in the source file."""
         path = entry
         while path and path not in self.locations:
             path = path.rpartition(".")[0]

@@ -2,7 +2,7 @@
 
 One table describes every entry a train file may hold: the loader checks files against
 it and ``docs/topology.md`` is generated from it (``python3 tools/topology_doc.py``).
-Coupling kinds add their own entries (see :mod:`davies_sym.topology.couplings`).
+Coupling kinds add their own entries (see `davies_sym.topology.couplings`).
 """
 
 from __future__ import annotations
@@ -102,6 +102,12 @@ EXPECTED = (
     Field("source", "string", False, "Where the number is published (document, equation, table)."),
     Field("input", "coupling", False, "The input port of the check; default the train's input."),
     Field("state", "state", False, "The operating state of the check (trains with `states`)."),
+    Field("published", "boolean", False,
+          "`false` for a regression value of this file's own geometry, not a number from the literature; "
+          "default `true`."),
+    Field("differs", "string", False,
+          "A published number this file does not reproduce, and why (the check then asserts that the derived "
+          "value differs from it by more than the tolerance)."),
 )
 
 COUPLING_COMMON = (

@@ -81,8 +81,8 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol], r
 
     ``symbols`` collects the symbols of the train (name -> symbol); it is extended with
     any new name met in ``value``.  Text is read by the grammar of
-    :mod:`davies_sym.topology.expressions`, never evaluated as Python.  The value must be
-    one the exact algebra holds (see :func:`inexact`); square roots only where ``roots``
+    `davies_sym.topology.expressions`, never evaluated as Python.  The value must be
+    one the exact algebra holds (see `inexact`); square roots only where ``roots``
     (directions, which the layouts normalise with radical symbols anyway).
     """
     if isinstance(value, float) and not math.isfinite(value):

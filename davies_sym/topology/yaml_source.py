@@ -121,7 +121,7 @@ def _scalar(node: yaml.Node) -> Any:
 
 
 def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
-    """Parse YAML text into a :class:`SourceDocument`; syntax errors carry the line."""
+    """Parse YAML text into a `SourceDocument`; syntax errors carry the line."""
     if text.startswith("\ufeff"):
         raise TopologySyntaxError([Problem("", "the file starts with a byte-order mark (U+FEFF); save it as UTF-8 "
                                            "without a byte-order mark", 1)], name)

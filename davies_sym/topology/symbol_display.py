@@ -1,0 +1,77 @@
+"""How the train's symbols are typeset: the quantity's letter with the rest of the name
+as its subscript, as the references write them (``rp1`` is Laus's `r_{p1}`, not
+`r \\cdot p_1`; ``eta_C`` is `\\eta_C`; ``zeta_G1`` is `\\zeta_{G1}`).
+
+sympy alone typesets ``rp1`` as ``rp_{1}``, which a reader takes for a product.  Every
+output that shows mathematics (LaTeX documents, the documentation site's MathML, the
+notebook representations) uses `latex` and `display_symbol` from here, so a
+symbol looks the same everywhere.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping
+
+import sympy
+from sympy.printing.mathml import MathMLPresentationPrinter
+
+#: Greek letters a name may start with (sympy typesets these as letters).
+_GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda", "mu",
+          "nu", "xi", "omicron", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega")
+
+
+def display_name(name: str) -> str:
+    """The name with an underscore between the quantity and its subscript: ``rp1`` ->
+    ``r_p1``, ``N4`` -> ``N_4``, ``tau_in`` and ``D_P`` unchanged, ``rs`` -> ``r_s``,
+    ``eta_C_1`` -> ``eta_C,1``.
+
+    The quantity is a leading Greek word or else the first letter; a name that already
+    has an underscore, or that is that one letter or word alone, is kept."""
+    if name.count("_") > 1:
+        # eta_C_1 (Buckingham's pinion-driving efficiency of mesh C): one subscript "C,1".
+        base, *subscripts = name.split("_")
+        return f"{base}_{','.join(subscripts)}"
+    if "_" in name or not name[:1].isalpha():
+        return name
+    if name in _GREEK:
+        return name
+    for word in sorted(_GREEK, key=len, reverse=True):
+        # eta2, etaC: a Greek quantity; pin, mux: not (lower-case letter after the word).
+        if name.startswith(word) and len(name) > len(word) and not name[len(word)].islower():
+            return f"{word}_{name[len(word):]}"
+    return name if len(name) == 1 else f"{name[0]}_{name[1:]}"
+
+
+def display_symbol(symbol: sympy.Symbol) -> sympy.Symbol:
+    """The symbol under its display name (same assumptions), for printers that split
+    names at the underscore themselves (sympy's MathML printer)."""
+    return sympy.Symbol(display_name(symbol.name), **symbol.assumptions0)
+
+
+def symbol_names(symbols: Iterable[sympy.Symbol]) -> dict[sympy.Symbol, str]:
+    """``symbol_names`` argument of `sympy.latex`: each symbol's LaTeX."""
+    return {s: sympy.latex(display_symbol(s)) for s in symbols}
+
+
+def latex(expr: sympy.Basic, **settings: object) -> str:
+    """`sympy.latex` with every symbol under its display name; the order of the
+    terms stays sympy's order of the original names."""
+    names: Mapping[sympy.Symbol, str] = symbol_names(expr.free_symbols)  # type: ignore[arg-type]
+    return str(sympy.latex(expr, symbol_names=dict(names), **settings))
+
+
+def mathml_body(expr: sympy.Basic) -> str:
+    """Presentation MathML of the expression (the content of a ``<math>`` element,
+    rendered natively by browsers), symbols under their display names."""
+    renamed = expr.xreplace({s: display_symbol(s) for s in expr.free_symbols if isinstance(s, sympy.Symbol)})
+    body = str(MathMLPresentationPrinter({"mul_symbol": None}).doprint(renamed))
+    # The printer writes the relations' operators unescaped, which is not XML, and the
+    # hyphen where typesetting has the minus sign.
+    return (body.replace("<mo><</mo>", "<mo>&lt;</mo>").replace("<mo>></mo>", "<mo>&gt;</mo>")
+            .replace("<mo>-</mo>", "<mo>&#8722;</mo>"))
+
+
+def mathml(expr: sympy.Basic, display: bool = False) -> str:
+    """The ``<math>`` element of `mathml_body` (a block when ``display``)."""
+    mode = ' display="block"' if display else ""
+    return f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}>{mathml_body(expr)}</math>'

@@ -29,7 +29,7 @@ from davies_sym.efficiency.several_inputs import LOAD_TORQUE, derive_several_inp
 from davies_sym.efficiency.variants import derive_variants
 from davies_sym.topology.states import train_in_state
 
-from conftest import CATALOG, ROOT, read_text
+from conftest import CATALOG, ROOT
 
 pytestmark = pytest.mark.slow
 

@@ -33,7 +33,7 @@ def _run(path: str) -> list[object]:
         tree = ast.parse("".join(cell["source"]))
         last = tree.body[-1] if tree.body and isinstance(tree.body[-1], ast.Expr) else None
         body = tree.body[:-1] if last is not None else tree.body
-        exec(compile(ast.Module(body, []), path, "exec"), namespace)  # noqa: S102 (the project's own notebook)
+        exec(compile(ast.Module(body, []), path, "exec"), namespace)
         shown.append(eval(compile(ast.Expression(last.value), path, "eval"), namespace) if last else None)
     return shown
 

@@ -274,7 +274,8 @@ API_MODULES = ("davies_sym", "davies_sym.topology.loader", "davies_sym.topology.
                "davies_sym.efficiency.virtual_power", "davies_sym.efficiency.virtual_power_balance",
                "davies_sym.efficiency.power_losses", "davies_sym.efficiency.parameters",
                "davies_sym.emit.python_module", "davies_sym.emit.plots", "davies_sym.emit.graph_drawing",
-               "davies_sym.emit.latex", "davies_sym.emit.evaluation", "davies_sym.topology.symbol_display")
+               "davies_sym.emit.latex", "davies_sym.emit.languages", "davies_sym.emit.evaluation",
+               "davies_sym.topology.symbol_display")
 
 
 def api_page() -> str:

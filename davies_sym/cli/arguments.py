@@ -10,6 +10,8 @@ from importlib import metadata
 
 import sympy
 
+from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
+from davies_sym.emit.languages import LANGUAGES
 from davies_sym.emit.plots import Sweep, figure_format
 from davies_sym.errors import InputError, Problem
 from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
@@ -31,21 +33,34 @@ def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
         "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
-    p.add_argument("files", nargs="*", metavar="FILE",
-                   help="topology file (YAML); several files need --out DIR")
-    p.add_argument("--catalog", nargs="?", const="", metavar="NAME",
-                   help="alone: list the catalog of literature trains that comes with the package; with a NAME: "
-                   "derive that train in place of FILE (e.g. derive --catalog tuplin --latex)")
+    # ``.complete``: what shtab offers for the argument in a completion script (--completion).
+    files = p.add_argument("files", nargs="*", metavar="FILE",
+                           help="topology file (YAML); several files need --out DIR")
+    files.complete = YAML_FILES  # type: ignore[attr-defined]
+    catalog = p.add_argument("--catalog", nargs="?", const="", metavar="NAME",
+                             help="alone: list the catalog of literature trains that comes with the package; with a "
+                             "NAME: derive that train in place of FILE (e.g. derive --catalog tuplin --latex)")
+    catalog.complete = catalog_completion()  # type: ignore[attr-defined]
     p.add_argument("--version", action="version", version=f"%(prog)s (davies_sym) {_version()}")
     form = p.add_mutually_exclusive_group()
     form.add_argument("--json", action="store_true", help="print the JSON document")
     form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants (of "
                       "the power-flow regions for a train with several inputs)")
-    p.add_argument("-o", "--out", metavar="FILE|DIR",
-                   help="write the document to FILE (atomically) instead of stdout; with a directory, write "
-                   "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out derivations/)")
-    p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant (per "
-                   "power-flow region for a train with several inputs)")
+    out = p.add_argument("-o", "--out", metavar="FILE|DIR",
+                         help="write the document to FILE (atomically) instead of stdout; with a directory, write "
+                         "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out "
+                         "derivations/)")
+    out.complete = ANY_FILE  # type: ignore[attr-defined]
+    python = p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant "
+                            "(per power-flow region for a train with several inputs)")
+    python.complete = ANY_FILE  # type: ignore[attr-defined]
+    p.add_argument("--emit", choices=LANGUAGES, metavar="LANG",
+                   help=f"print (or with -o FILE write) the formulas as code in LANG ({', '.join(LANGUAGES)}): one "
+                   "function per variant (per power-flow region for a train with several inputs) and per turning "
+                   "condition, and the choice efficiency(...) that picks the one that holds; in place of the document")
+    p.add_argument("--completion", choices=SHELLS, metavar="SHELL",
+                   help=f"print a completion script for SHELL ({', '.join(SHELLS)}), e.g. "
+                   "derive --completion bash > ~/.local/share/bash-completion/completions/derive")
     p.add_argument("--eval", nargs="*", metavar="NAME=VALUE",
                    help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
                    "(exact where possible; no values when every quantity of the train is a number); with --json "
@@ -53,7 +68,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
     p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
-                   "--eval, --python and --plot need one)")
+                   "--eval, --python, --emit and --plot need one)")
     p.add_argument("--plot", metavar="NAME=START:STOP",
                    help="figure of the efficiency and the losses (the port torques for a train with several "
                    "inputs) against one parameter (PNG, -o FILE)")
@@ -170,3 +185,14 @@ def eval_port(train: Train, args: argparse.Namespace) -> str:
     if chosen is not None and chosen not in ports:
         raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
     return chosen or train.ports.input
+
+
+def check_emit(args: argparse.Namespace, source: str | None) -> None:
+    """``--emit`` writes code in place of the document: refuse what would need both."""
+    if not args.emit:
+        return
+    for option, given in (("--json", args.json), ("--latex", args.latex), ("--plot", args.plot),
+                          ("--eval", args.eval is not None)):
+        if given:
+            raise InputError([Problem("--emit", f"writes code in place of the document: not with {option} (run "
+                                      "derive twice)")], source)

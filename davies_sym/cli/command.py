@@ -12,6 +12,7 @@ from collections.abc import Callable, Sequence
 from davies_sym.calibration.command import run as calibration_command
 from davies_sym.cli.arguments import parser
 from davies_sym.cli.catalog import catalog_listing, chosen_files
+from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import message, status_json
 from davies_sym.cli.one_input import one_input_outputs, write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations, several_outputs
@@ -109,9 +110,9 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
         print("derive: several files need --out DIR (a directory)", file=sys.stderr)
         return 2
-    if args.json or args.latex or args.python or args.eval is not None or args.plot:
-        print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --eval and "
-              "--plot take one file", file=sys.stderr)
+    if args.json or args.latex or args.python or args.emit or args.eval is not None or args.plot:
+        print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --emit, --eval "
+              "and --plot take one file", file=sys.stderr)
         return 2
     return _derive_into(args.out, args.files, progress)
 
@@ -122,6 +123,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     if argv[:1] == ["calibrate"]:
         return calibration_command(argv[1:])
     args = parser().parse_args(argv)
+    if args.completion:
+        try:
+            sys.stdout.write(completion_script(parser(), args.completion))
+        except DaviesError as exc:
+            print(f"derive: --completion: {exc}", file=sys.stderr)
+            return 2
+        return 0
     try:
         files = chosen_files(args)
     except InputError as exc:

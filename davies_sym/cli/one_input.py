@@ -9,12 +9,13 @@ from collections.abc import Callable
 
 import sympy
 
-from davies_sym.cli.arguments import eval_port, figure_suffix, held_values, plot_sweeps, values
+from davies_sym.cli.arguments import check_emit, eval_port, figure_suffix, held_values, plot_sweeps, values
 from davies_sym.cli.messages import message
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.evaluation import evaluate
+from davies_sym.emit.languages import emit_code
 from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.python_module import python_module
@@ -107,12 +108,17 @@ def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress
     (of the states that derive; the others are reported in ``failures``)."""
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    check_emit(args, train.path)
     sets = derive_sets(train, args.state, progress, failures)
-    if (args.python or args.eval is not None or args.plot) and len(sets) > 1:
+    if (args.python or args.emit or args.eval is not None or args.plot) and len(sets) > 1:
         raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
                                   f"{', '.join(st.name for st in train.states)})")], train.path)
     if args.plot:
         return [(args.out, _plot(sets[0][1], args))]
+    if args.emit:
+        code = emit_code(sets[0][1], args.emit, args.state)
+        module = [(args.python, python_module(sets[0][1], file_parameters(train)))] if args.python else []
+        return [*module, (args.out, code)]
     if args.latex:
         text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
     else:

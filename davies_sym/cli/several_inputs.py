@@ -8,8 +8,9 @@ import argparse
 import json
 from collections.abc import Callable
 
-from davies_sym.cli.arguments import figure_suffix, held_values, plot_sweeps
+from davies_sym.cli.arguments import check_emit, figure_suffix, held_values, plot_sweeps
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
+from davies_sym.emit.languages import emit_code
 from davies_sym.emit.plots import figure_bytes
 from davies_sym.emit.report import kinematics_document, kinematics_text
 from davies_sym.emit.several_inputs_latex import several_inputs_latex
@@ -37,7 +38,7 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
     power goes in); and for a train with fewer input ports than freedoms, everything but
     its kinematics."""
     several = len(train.ports.inputs) > 1
-    if not several and (args.latex or args.python or args.plot or args.eval is not None):
+    if not several and (args.latex or args.python or args.emit or args.plot or args.eval is not None):
         raise InputError([Problem("ports.input", f"the train has {train.degrees_of_freedom or 'several'} degrees "
                                   "of freedom: list one input port per degree of freedom (ports: {input: [A, B], "
                                   "...}) to derive the efficiency")], train.path)
@@ -51,6 +52,7 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
                                       "to --eval instead)")], train.path)
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    check_emit(args, train.path)
 
 
 def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
@@ -80,6 +82,9 @@ def several_outputs(train: Train, args: argparse.Namespace,
     si = derive_several_inputs(train, progress=progress)
     if args.plot:
         return [(args.out, _plot(si, args))]
+    if args.emit:
+        module = [(args.python, several_inputs_module(si))] if args.python else []
+        return [*module, (args.out, emit_code(si, args.emit))]
     if args.latex:
         text = several_inputs_latex(si)
     else:

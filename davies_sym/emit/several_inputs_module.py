@@ -73,7 +73,7 @@ def _code(si: SeveralInputs, region: Region) -> int:
     return sum(1 << k for k, c in enumerate(si.conditions) if region.signs[c.name] < 0)
 
 
-def _operating(si: SeveralInputs) -> dict[sympy.Symbol, Parameter]:
+def operating_parameters(si: SeveralInputs) -> dict[sympy.Symbol, Parameter]:
     """The speeds and the load as parameters."""
     out = {s: Parameter(str(s), f"speed of input port {p} (signed, along the coupling's positive direction)",
                         "rad/s", -float("inf"), float("inf"))
@@ -141,7 +141,8 @@ def several_inputs_module(si: SeveralInputs) -> str:
         if not usable(runtime, f.name) or [g.name for g in functions].count(f.name) > 1:
             raise DerivationError(f"the generated function name {f.name!r} is not usable; rename the ports in the "
                                   "topology file")
-    parameters = parameters_of_train(train, si.analysis.network.laws, [symbols[a] for a in required], _operating(si))
+    parameters = parameters_of_train(train, si.analysis.network.laws, [symbols[a] for a in required],
+                                     operating_parameters(si))
     data: dict[str, object] = {
         "INPUTS": tuple(ports.inputs), "OUTPUT": ports.output, "PORTS": tuple(ports.every),
         "PARAMETERS": tuple({"name": p.name, "meaning": p.meaning, "unit": p.unit, "low": p.low, "high": p.high,

@@ -407,7 +407,9 @@ class Analysis:
         return self.efficiency_rf.to_expr()
 
     def _repr_latex_(self) -> str:
-        return analysis_latex(self)
+        one = self.degrees_of_freedom == 1
+        return analysis_latex(self.degrees_of_freedom, (self.train.ports.input, self.train.ports.output),
+                              self.speed_ratio().to_expr() if one else None, self.efficiency if one else None)
 
     def motion_matrix(self) -> sympy.Matrix:
         """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""

@@ -3,23 +3,19 @@ the speed ratio and the efficiency in the friction coefficients (Laus eq. (71)).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import sympy
 
 from davies_sym.topology.symbol_display import latex
 
-if TYPE_CHECKING:  # the analysis imports this module; the type only for the checker
-    from davies_sym.network.analysis import Analysis
 
-
-def analysis_latex(analysis: Analysis) -> str:
-    """``$$F_N = 1,\\ \\omega_A / \\omega_B = ...,\\ \\eta = ...$$``; for a train of
-    several degrees of freedom the mobility alone (its efficiency needs the input speeds:
-    ``derive_several_inputs``)."""
-    ports = analysis.train.ports
-    mobility = analysis.degrees_of_freedom
+def analysis_latex(mobility: int, ports: tuple[str, str], ratio: sympy.Expr | None,
+                   efficiency: sympy.Expr | None) -> str:
+    """``$$F_N = 1,\\ \\omega_A / \\omega_B = ...,\\ \\eta = ...$$`` (``ports``: input and
+    output); a train of several degrees of freedom shows its mobility alone, its
+    efficiency needs the input speeds (``derive_several_inputs``)."""
     parts = [f"F_N = {mobility}"]
-    if mobility == 1:
-        ratio = latex(analysis.speed_ratio().to_expr())
-        parts += [rf"\frac{{\omega_{{\mathrm{{{ports.input}}}}}}}{{\omega_{{\mathrm{{{ports.output}}}}}}} = {ratio}",
-                  rf"\eta = {latex(analysis.efficiency)}"]
+    if ratio is not None:
+        parts.append(rf"\frac{{\omega_{{\mathrm{{{ports[0]}}}}}}}{{\omega_{{\mathrm{{{ports[1]}}}}}}} = {latex(ratio)}")
+    if efficiency is not None:
+        parts.append(rf"\eta = {latex(efficiency)}")
     return "$$" + r",\qquad ".join(parts) + "$$"

@@ -56,7 +56,7 @@ def symbol_names(symbols: Iterable[sympy.Symbol]) -> dict[sympy.Symbol, str]:
 def latex(expr: sympy.Basic, **settings: object) -> str:
     """`sympy.latex` with every symbol under its display name; the order of the
     terms stays sympy's order of the original names."""
-    names: Mapping[sympy.Symbol, str] = symbol_names(expr.free_symbols)  # type: ignore[arg-type]
+    names: Mapping[sympy.Symbol, str] = symbol_names(expr.free_symbols)
     return str(sympy.latex(expr, symbol_names=dict(names), **settings))
 
 

@@ -1,0 +1,212 @@
+"""The program of a train driven at one port: one routine per turning condition, one per
+variant, and the choice, as the Python module (:mod:`davies_sym.emit.formula_runtime`)
+makes it.
+
+A variant is the formula of one power flow: the input port and the sign of every turning
+condition say which gear drives in each mesh (Laus 2011, Tables 5 and 6), and at light
+load the signs of its loaded forces (the losses can reverse a tooth force).  The choice
+``efficiency_from_<port>`` tries the variants of that input port in their order and takes
+the first whose conditions hold: a condition counts as negative where its value is
+``< 0`` (anything else, zero included, as positive, as the Python module's region code
+does) and every loaded force must be ``>= 0`` times its sign.  Outside the admissible
+parameters (ranges and relations), where no variant holds, and where the efficiency is
+outside (0, 1] (the train self-locks) there is no efficiency.  ``efficiency(...,
+input_port)`` picks the port's choice.
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy
+
+from davies_sym.algebra.radicals import restore
+from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameters import Parameter, admissible_relations, eliminated_symbols, parameter_table
+from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
+from davies_sym.emit.languages.routines import (
+    Check,
+    call,
+    checks_routine,
+    formula_routine,
+    fresh,
+    relation,
+)
+from davies_sym.emit.languages.text import identifier_part, origin_text, parameter_lines
+from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
+from davies_sym.errors import DerivationError
+from davies_sym.losses.definitions import parameters_of, substituted
+
+
+def bound(value: float) -> sympy.Expr:
+    """A range bound as an exact number (``oo`` for an infinite one)."""
+    if math.isinf(value):
+        return sympy.oo if value > 0 else -sympy.oo
+    return sympy.Integer(int(value)) if value.is_integer() else sympy.Float(value)
+
+
+def range_checks(parameters: tuple[Parameter, ...], names: tuple[str, ...]) -> list[Check]:
+    """``low < p`` (or ``<=``) and ``p <= high`` for each parameter in ``names``: what
+    the Python module's ``_admissible`` compares, infinite bounds included (a NaN fails
+    them)."""
+    out: list[Check] = []
+    for p in parameters:
+        if p.name in names:
+            symbol = sympy.Symbol(p.name)
+            out += [(symbol, ">=" if p.closed_low else ">", bound(p.low)), (symbol, "<=", bound(p.high))]
+    return out
+
+
+def _where(variants: VariantSet, variant: Variant) -> str:
+    conditions = condition_text(variants, variant)
+    return f"input {variant.input}, output {variant.output}" + (f", where {' and '.join(conditions)}"
+                                                                  if conditions else "")
+
+
+def one_input_program(variants: VariantSet, module: str, not_covered: str, state: str | None = None) -> Program:
+    """The program of ``variants``; ``module``: the namespace's identifier; ``not_covered``:
+    what the target language returns where there is no efficiency (``NaN``); ``state``:
+    the operating state the variants are of, for the comments."""
+    train = variants.train
+    radicals = variants.analysis.network.layout.radicals
+
+    def public(expr: sympy.Expr) -> sympy.Expr:
+        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
+        return substituted(restore(expr, radicals), train.definitions)
+
+    names = tuple(str(s) for s in sorted_symbols(parameters_of(variants.symbols, train.definitions)))
+    table = parameter_table(variants)
+    routines: list[Routine] = []
+    for c in variants.conditions:
+        routines.append(formula_routine(f"condition_{c.name}", f"turning condition {c.name} = "
+                                        f"{sympy.sstr(c.simplified)}; its sign picks the variants",
+                                        public(c.expression), names))
+    forces: dict[str, Routine] = {}
+    for v in variants.variants:
+        routines.append(formula_routine(v.name, f"efficiency of variant ({v.number}): {_where(variants, v)}",
+                                        public(v.efficiency), names))
+        if v.loaded_forces:
+            checks: list[Check] = [(public(f.to_expr() * sign), ">=", sympy.Integer(0))
+                                   for f, sign in v.loaded_forces.values()]
+            forces[v.name] = checks_routine(f"{v.name}_forces_agree", f"whether the loaded forces of "
+                                            f"{', '.join(v.loaded_forces)} have the signs variant ({v.number}) needs",
+                                            checks, names)
+    routines += forces.values()
+    relations = [r for r in admissible_relations(variants) if {str(s) for s in r.free_symbols} <= set(names)]
+    checks = [*range_checks(table, names), *((r, ">", sympy.Integer(0)) for r in relations)]
+    admissible = checks_routine("admissible", "whether every parameter is in its range and every relation holds",
+                                checks, names)
+    routines.append(admissible)
+    ports = (train.ports.input, train.ports.output)
+    choices = [_port_choice(variants, port, names, routines, forces, admissible, not_covered) for port in ports]
+    routines += choices
+    port_argument = fresh("input_port", names)
+    port = sympy.Symbol(port_argument, integer=True)
+    picked = sympy.Piecewise(*((call(choice), sympy.Eq(port, k)) for k, choice in enumerate(choices)),
+                             (NOT_COVERED, True), evaluate=False)
+    result = fresh("eta", names)
+    entry = Routine("efficiency", f"the efficiency with {port_argument} = 0: {ports[0]} the input, {ports[1]} the "
+                    f"output, = 1: {ports[1]} the input, {ports[0]} the output; "
+                    f"{not_covered} for any other value",
+                    (*(Argument(n, Kind.REAL) for n in names), Argument(port_argument, Kind.PORT)), Kind.REAL,
+                    (Step(result, Kind.REAL, picked),), sympy.Symbol(result))
+    routines.append(entry)
+    _check_unique(routines, names)
+    header = _header(variants, names, table, relations, routines, not_covered, state)
+    return Program(module, header, tuple(routines), entry.name, names, ports)
+
+
+def _port_choice(variants: VariantSet, port: str, names: tuple[str, ...], routines: list[Routine],
+                 forces: dict[str, Routine], admissible: Routine, not_covered: str) -> Routine:
+    """``efficiency_from_<port>(...)``: the first variant of ``port`` whose turning
+    conditions hold and whose loaded forces agree, screened for self-locking."""
+    taken = set(names)
+
+    def local(base: str) -> str:
+        name = fresh(base, taken)
+        taken.add(name)
+        return name
+
+    steps: list[Step] = []
+    ok = local("ok")
+    steps.append(Step(ok, Kind.BOOL, call(admissible)))
+    negative: dict[str, sympy.Symbol] = {}
+    by_name = {r.name: r for r in routines}
+    for c in variants.conditions:
+        name = local(f"negative_{c.name}")
+        negative[c.name] = sympy.Symbol(name)
+        steps.append(Step(name, Kind.BOOL, relation(call(by_name[f"condition_{c.name}"]), "<", sympy.Integer(0))))
+    mine = [v for v in variants.variants if v.input == port]
+    agrees: dict[str, sympy.Symbol] = {}
+    for v in mine:
+        if v.name in forces:
+            name = local(f"agrees_{v.number}")
+            agrees[v.name] = sympy.Symbol(name)
+            steps.append(Step(name, Kind.BOOL, call(forces[v.name])))
+    branches = []
+    for v in mine:
+        signs = [negative[c] if s < 0 else sympy.Not(negative[c]) for c, s in v.signs.items()]
+        holds = sympy.And(sympy.Symbol(ok), *signs, *([agrees[v.name]] if v.name in agrees else []))
+        branches.append((call(by_name[v.name]), holds))
+    chosen = local("chosen")
+    steps.append(Step(chosen, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
+    eta = local("eta")
+    value = sympy.Symbol(chosen)
+    steps.append(Step(eta, Kind.REAL, sympy.Piecewise(
+        (value, sympy.And(relation(value, ">", sympy.Integer(0)), relation(value, "<=", UPPER))),
+        (NOT_COVERED, True), evaluate=False)))
+    other = variants.train.ports.output if port == variants.train.ports.input else variants.train.ports.input
+    return Routine(f"efficiency_from_{identifier_part(port)}",
+                   f"the efficiency with {port} as the input port ({other} the output): the first of its variants "
+                   f"whose turning conditions hold (and loaded forces agree); {not_covered} outside the admissible "
+                   "parameters, where none holds, or where the efficiency is outside (0, 1] (self-locking)",
+                   tuple(Argument(n, Kind.REAL) for n in names), Kind.REAL, tuple(steps), sympy.Symbol(eta))
+
+
+def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:
+    """Every routine's name is its own and no parameter's (the choice takes every parameter
+    and calls every routine)."""
+    seen: set[str] = set()
+    for r in routines:
+        if r.name in seen or r.name in names:
+            raise DerivationError(f"the generated function name {r.name!r} is also the name of "
+                                  f"{'a parameter' if r.name in names else 'another function'}; rename the "
+                                  "parameter or the ports in the topology file")
+        seen.add(r.name)
+
+
+def _header(variants: VariantSet, names: tuple[str, ...], table: tuple[Parameter, ...], relations: list[sympy.Expr],
+            routines: list[Routine], not_covered: str, state: str | None) -> tuple[str, ...]:
+    """The opening comment: train, source, parameters, conditions, variants, functions."""
+    train = variants.train
+    lines = [f"Efficiency of {train.name}: every turning-condition variant (Davies' method; Laus 2011, Tables 5 "
+             "and 6).", f"Source: {train.source or 'not given'}.",
+             f"Generated by davies_sym from {origin_text(train.path, state)}; do not edit."]
+    eliminated = eliminated_symbols(variants)
+    if eliminated:
+        given = ", ".join(f"{k} = {sympy.sstr(v)}" for k, v in sorted(eliminated.items(), key=lambda kv: str(kv[0])))
+        lines.append(f"The geometric constraints give {given}; the formulas use the other radii.")
+    lines += ["", "Parameters (every function takes those it uses, in this order):"]
+    lines += parameter_lines(table, names)
+    if relations:
+        lines.append(f"Admissible designs also need {', '.join(f'{sympy.sstr(r)} > 0' for r in relations)}.")
+    lines += ["", "Turning conditions (their signs say which gear drives in each mesh):"]
+    lines += [f"  {c.name} = {sympy.sstr(c.simplified)}" for c in variants.conditions] or ["  none"]
+    lines += ["", "Variants, in the order the choice tries them (a condition counts as negative where it is < 0):"]
+    for v in variants.variants:
+        lines.append(f"  ({v.number}) {v.name}: {_where(variants, v)}")
+        lines.append(f"      meshes: {'; '.join(mesh_text(variants, v))}")
+        lines += [f"      loaded force {text} (needed for this variant)"
+                  for text in _force_lines(variants, v)]
+    lines += ["", "Functions:"]
+    lines += [f"  {r.name}({', '.join(r.argument_names)}): {r.summary}" for r in routines]
+    lines += ["", f"{not_covered} means: outside the admissible parameters, in no variant, or self-locking "
+              "(efficiency outside (0, 1])."]
+    return tuple(lines)
+
+
+def _force_lines(variants: VariantSet, variant: Variant) -> list[str]:
+    return [f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0"
+            for what, force, sign in variant_forces(variants, variant)]

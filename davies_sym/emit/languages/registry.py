@@ -1,0 +1,38 @@
+"""The target languages by their command-line names, and the one call the command line
+makes: the code of a derived train in a language."""
+
+from __future__ import annotations
+
+from davies_sym.efficiency.several_inputs import SeveralInputs
+from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.languages.c import C
+from davies_sym.emit.languages.julia import JULIA
+from davies_sym.emit.languages.modelica import MODELICA
+from davies_sym.emit.languages.octave import OCTAVE
+from davies_sym.emit.languages.one_input import one_input_program
+from davies_sym.emit.languages.program import Program
+from davies_sym.emit.languages.rust import RUST
+from davies_sym.emit.languages.several_inputs import several_inputs_program
+from davies_sym.emit.languages.target import Target
+from davies_sym.emit.languages.text import module_name
+
+TARGETS: dict[str, Target] = {t.name: t for t in (C, JULIA, OCTAVE, RUST, MODELICA)}
+LANGUAGES: tuple[str, ...] = tuple(TARGETS)
+
+
+def program_of(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> Program:
+    """The language-neutral program of a derived train (the variants of a train driven at
+    one port, or the regions of one driven at several), with what ``language`` returns
+    where there is no efficiency."""
+    target = TARGETS[language]
+    train = derived.train
+    module = module_name(train.path, state, train.name)
+    if isinstance(derived, SeveralInputs):
+        return several_inputs_program(derived, module, target.not_covered)
+    return one_input_program(derived, module, target.not_covered, state)
+
+
+def emit_code(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> str:
+    """The source text of ``derived`` in ``language`` (one of :data:`LANGUAGES`); the same
+    train gives the same bytes."""
+    return TARGETS[language].write(program_of(derived, language, state))

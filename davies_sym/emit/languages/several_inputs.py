@@ -1,0 +1,162 @@
+"""The program of a train driven at several ports: one routine per speed condition, one
+per power-flow region, and the choice, as the Python module
+(:mod:`davies_sym.emit.several_inputs_runtime`) makes it.
+
+The speed conditions are linear forms in the input speeds; a region is one choice of
+their signs (and, at light load, of the signs of its loaded forces), the several-input
+counterpart of a variant's turning conditions (Laus 2011, Tables 5 and 6; Mantriota and
+Pennestri 2003).  The choice takes the region whose conditions hold (a condition counts
+as negative where its value is ``< 0``) and whose loaded forces are all ``>= 0`` times the
+sign it assumes, when exactly one does; there is no efficiency on a condition line (a
+value exactly 0), where no region or several hold, outside the parameters' ranges, and
+where the efficiency is outside (0, 1].
+"""
+
+from __future__ import annotations
+
+import sympy
+
+from davies_sym.algebra.radicals import restore
+from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameters import parameters_of_train
+from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
+from davies_sym.emit.languages.one_input import range_checks
+from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
+from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
+from davies_sym.emit.languages.text import origin_text, parameter_lines
+from davies_sym.emit.several_inputs_module import operating_parameters
+from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
+from davies_sym.errors import DerivationError
+from davies_sym.losses.definitions import parameters_of, substituted
+
+
+def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> Program:
+    """The program of ``si``; ``module`` and ``not_covered`` as for a one-input train."""
+    train = si.train
+    radicals = si.analysis.network.layout.radicals
+
+    def public(expr: sympy.Expr) -> sympy.Expr:
+        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
+        return substituted(restore(expr, radicals), train.definitions)
+
+    # The parameters the Python module's efficiency takes (and checks the ranges of).
+    used: set[sympy.Basic] = set()
+    for c in si.conditions:
+        used |= public(c.form).free_symbols
+    for v in si.port_speeds.values():
+        used |= public(v.to_expr()).free_symbols
+    for r in si.regions:
+        used |= public(r.efficiency).free_symbols
+        for p in train.ports.every:
+            used |= public(r.torques[p].to_expr()).free_symbols
+        for f, assumed in r.loaded_forces.values():
+            used |= public(f.to_expr() * assumed).free_symbols
+    symbols = sorted_symbols({sympy.Symbol(str(s)) for s in used})
+    names = tuple(str(s) for s in symbols)
+    known = {str(s): s for s in (*si.speeds, LOAD_TORQUE, *train.symbols.values(),
+                                 *parameters_of(set(train.symbols.values()), train.definitions))}
+    table = parameters_of_train(train, si.analysis.network.laws, [known[n] for n in names], operating_parameters(si))
+    routines: list[Routine] = []
+    conditions: dict[str, Routine] = {}
+    for c in si.conditions:
+        conditions[c.name] = formula_routine(f"condition_{c.name}", f"speed condition {c.name} = "
+                                             f"{sympy.sstr(c.form)} ({'; '.join(c.decides)})", public(c.form), names)
+    routines += conditions.values()
+    regions: dict[int, Routine] = {}
+    forces: dict[int, Routine] = {}
+    for r in si.regions:
+        regions[r.number] = formula_routine(f"region_{r.number}", f"efficiency in region ({r.number}), where "
+                                            f"{' and '.join(condition_text(si, r))}: power in at "
+                                            f"{', '.join(r.inputs)}, out at {', '.join(r.outputs)}",
+                                            public(r.efficiency), names)
+        if r.loaded_forces:
+            checks: list[Check] = [(public(f.to_expr() * assumed), ">=", sympy.Integer(0))
+                                   for f, assumed in r.loaded_forces.values()]
+            forces[r.number] = checks_routine(f"region_{r.number}_forces_agree", f"whether the loaded forces of "
+                                              f"{', '.join(r.loaded_forces)} have the signs region ({r.number}) "
+                                              "assumes", checks, names)
+    routines += regions.values()
+    routines += forces.values()
+    in_ranges = checks_routine("in_ranges", "whether every parameter is in its range", range_checks(table, names),
+                               names)
+    routines.append(in_ranges)
+    routines.append(_choice(si, names, conditions, regions, forces, in_ranges, not_covered))
+    seen: set[str] = set()
+    for routine in routines:
+        if routine.name in seen or routine.name in names:
+            raise DerivationError(f"the generated function name {routine.name!r} is also the name of a parameter "
+                                  "or of another function; rename it in the topology file")
+        seen.add(routine.name)
+    ports = train.ports
+    lines = [f"Efficiency of {train.name}, driven at {', '.join(ports.inputs)}: every power-flow region "
+             "(Mantriota and Pennestri 2003, eq. (6); Davies' method).", f"Source: {train.source or 'not given'}.",
+             f"Generated by davies_sym from {origin_text(train.path, None)}; do not edit.", "",
+             f"Input speeds {', '.join(str(s) for s in si.speeds)} (signed, rad/s), load torque {LOAD_TORQUE} at "
+             f"{ports.output} (magnitude, resisting its motion).", "",
+             "Parameters (every function takes those it uses, in this order):", *parameter_lines(table, names), "",
+             "Speed conditions (lines through the origin of the input speeds):",
+             *(f"  {c.name} = {sympy.sstr(c.form)}: {'; '.join(c.decides)}" for c in si.conditions), "",
+             "Regions (the choice takes the one whose conditions hold and whose loaded forces agree, when exactly "
+             "one does):"]
+    for r in si.regions:
+        lines.append(f"  ({r.number}) region_{r.number}: {' and '.join(condition_text(si, r))}; "
+                     f"{'; '.join(mesh_text(si, r))}")
+        lines += [f"      loaded force {text}" for text in region_force_text(r)]
+    lines += ["", "Functions:", *(f"  {r.name}({', '.join(r.argument_names)}): {r.summary}" for r in routines), "",
+              f"{not_covered} means: on a speed-condition line, in no region or several, outside the parameters' "
+              "ranges, or an efficiency outside (0, 1]."]
+    return Program(module, tuple(lines), tuple(routines), "efficiency", names, ())
+
+
+def _choice(si: SeveralInputs, names: tuple[str, ...], conditions: dict[str, Routine], regions: dict[int, Routine],
+            forces: dict[int, Routine], in_ranges: Routine, not_covered: str) -> Routine:
+    """``efficiency(...)``: the region that holds, alone, screened as the Python module's
+    ``_not_covered`` does."""
+    taken = set(names)
+
+    def local(base: str) -> str:
+        name = fresh(base, taken)
+        taken.add(name)
+        return name
+
+    steps: list[Step] = []
+    ok = sympy.Symbol(local("ok"))
+    steps.append(Step(ok.name, Kind.BOOL, call(in_ranges)))
+    negative: dict[str, sympy.Symbol] = {}
+    on_line: list[sympy.Basic] = []
+    for name, routine in conditions.items():
+        value = sympy.Symbol(local(f"value_{name}"))
+        steps.append(Step(value.name, Kind.REAL, call(routine)))
+        negative[name] = sympy.Symbol(local(f"negative_{name}"))
+        steps.append(Step(negative[name].name, Kind.BOOL, relation(value, "<", sympy.Integer(0))))
+        on_line.append(relation(value, "==", sympy.Integer(0)))
+    off_lines = sympy.Symbol(local("off_lines"))
+    steps.append(Step(off_lines.name, Kind.BOOL, sympy.Not(sympy.Or(*on_line)) if on_line else sympy.true))
+    holds: dict[int, sympy.Symbol] = {}
+    for r in si.regions:
+        agree: list[sympy.Symbol] = []
+        if r.number in forces:
+            agree.append(sympy.Symbol(local(f"agrees_{r.number}")))
+            steps.append(Step(agree[0].name, Kind.BOOL, call(forces[r.number])))
+        holds[r.number] = sympy.Symbol(local(f"holds_{r.number}"))
+        steps.append(Step(holds[r.number].name, Kind.BOOL, _holds(r, negative, off_lines, agree)))
+    branches = [(call(regions[n]), sympy.And(ok, h, *(sympy.Not(o) for m, o in holds.items() if m != n)))
+                for n, h in holds.items()]
+    chosen = sympy.Symbol(local("chosen"))
+    steps.append(Step(chosen.name, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
+    eta = local("eta")
+    steps.append(Step(eta, Kind.REAL, sympy.Piecewise(
+        (chosen, sympy.And(relation(chosen, ">", sympy.Integer(0)), relation(chosen, "<=", UPPER))),
+        (NOT_COVERED, True), evaluate=False)))
+    return Routine("efficiency", "Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of "
+                   "the input shafts' powers in the region that holds; " + not_covered + " where the formulas do "
+                   "not hold", tuple(Argument(n, Kind.REAL) for n in names), Kind.REAL, tuple(steps),
+                   sympy.Symbol(eta))
+
+
+def _holds(region: Region, negative: dict[str, sympy.Symbol], off_lines: sympy.Symbol,
+           agree: list[sympy.Symbol]) -> sympy.Basic:
+    """Whether ``region`` holds: off every condition line, each condition's sign its own,
+    its loaded forces agreeing (``agree``: the step saying so, if it has any)."""
+    signs = [negative[c] if s < 0 else sympy.Not(negative[c]) for c, s in region.signs.items()]
+    return sympy.And(off_lines, *signs, *agree)

@@ -13,7 +13,6 @@ iteration), which shares no code with the package.
 from __future__ import annotations
 
 import json
-import re
 import warnings
 from fractions import Fraction as F
 from pathlib import Path
@@ -21,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
-from hand.latex import read_latex
+from hand.latex import document_equations, force_conditions, read_latex
 from hostile.helpers import run_main
 from oracle.balance import Gear, Member, Mesh
 from oracle.lossy_balance import Bearing, LossyTrain, solve
@@ -152,13 +151,13 @@ def test_eval_text_json_and_latex_agree_with_the_oracle(variants: VariantSet, ca
     variant = variants.variants[number - 1]
     assert variant.reversed_forces
     text = latex_document(variants)
-    equations = dict((int(n), body) for body, n in re.findall(r"\\eta = (.*)\n\\tag\{(\d+)\}", text))
+    equations = document_equations(text)
     symbols = [*variants.train.symbols.values(), INPUT_TORQUE, INPUT_SPEED]
     point = _exact(variants, case)
     truth = sympy.Rational(case["eta"].numerator, case["eta"].denominator)
     assert read_latex(equations[number], symbols).subs(point) == truth
     section = text.split(rf"\paragraph{{Variant ({number})}}")[1].split(r"\paragraph")[0]
-    held = re.findall(r"Holds where .*:\n\\begin\{equation\*\}\n(.*) ([<>]) 0\n", section)
+    held = force_conditions(section)
     assert len(held) == 3 and "reversed by the losses" in section
     for body, relation in held:
         force = read_latex(body, symbols).subs(point)

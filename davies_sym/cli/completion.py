@@ -43,7 +43,7 @@ def _preamble(shell: str) -> str:
 
 
 def completion_script(parser: argparse.ArgumentParser, shell: str) -> str:
-    """The completion script of ``parser`` for ``shell`` (one of :data:`SHELLS`)."""
+    """The completion script of ``parser`` for ``shell`` (one of `SHELLS`)."""
     try:
         import shtab
     except ImportError as exc:  # pragma: no cover - shtab is a dependency

@@ -1,9 +1,12 @@
 """Standalone LaTeX document of a train's efficiency variants (``derive FILE --latex``).
 
 Like Laus Tables 5 and 6: the turning conditions with the meshes they decide, a table
-of variants (input, output, sign of every condition) and every formula as a numbered
-equation.  Only ``amsmath``, ``booktabs`` and ``geometry`` are used, so any TeX
-installation compiles it with pdflatex.
+of variants (input, output, sign of every condition, driving gear of every mesh) and
+every formula as a numbered equation, broken into lines that fit the page
+(`davies_sym.emit.latex_lines`).  Symbols are typeset as the references write them
+(`davies_sym.topology.symbol_display`: ``rp1`` is `r_{p1}`).  pdflatex with
+amsmath, booktabs, geometry, tabularx and array (all in a TeX Live base and recommended
+install) compiles it.
 """
 
 from __future__ import annotations
@@ -12,7 +15,9 @@ import sympy
 
 from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.latex_lines import LINE_WIDTH, display, fits, numbered
 from davies_sym.emit.variant_report import load_dependent, variant_forces
+from davies_sym.topology.symbol_display import latex
 
 # "<" and ">" print as inverted punctuation in the default text font: they need commands.
 _SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
@@ -26,29 +31,50 @@ def escape(text: str) -> str:
 
 
 def force_latex(conditions: list[tuple[str, sympy.Expr, int]]) -> list[str]:
-    """Each loaded-force condition (:mod:`davies_sym.emit.force_conditions`) as a
-    displayed inequality after its name."""
+    """Each loaded-force condition (`davies_sym.emit.force_conditions`) as a
+    displayed inequality after its name, broken into lines when long."""
     out = []
     for what, force, sign in conditions:
-        out += [rf"\noindent Holds where the {escape(what)}:", r"\begin{equation*}",
-                rf"{sympy.latex(force)} {'>' if sign > 0 else '<'} 0", r"\end{equation*}"]
+        relation = ">" if sign > 0 else "<"
+        out += [rf"\noindent Holds where the {escape(what)}:", *display("", force, tail=f" {relation} 0")]
+    return out
+
+
+def inline_or_display(expr: sympy.Expr) -> list[str]:
+    """``expr`` as inline mathematics when it fits a line, else displayed and broken."""
+    text = latex(expr)
+    return [f"${text}$"] if fits(text, LINE_WIDTH) else display("", expr)
+
+
+def definitions_latex(definitions: list[tuple[sympy.Symbol, sympy.Expr, str, str]]) -> list[str]:
+    """Each defined symbol (symbol, expression, meaning, source) as a displayed equation
+    after its meaning, broken into lines when long."""
+    out = []
+    for symbol, expression, meaning, source in definitions:
+        out += [rf"\noindent where ${latex(symbol)}$ is the {escape(meaning)} ({escape(source)}):",
+                *display(latex(symbol), expression)]
     return out
 
 
 def _latex_notes(variant: Variant) -> list[str]:
-    """:func:`davies_sym.emit.variant_report.notes` with the expressions as mathematics
-    (no program syntax such as ``r1**2`` in the prose)."""
+    """`davies_sym.emit.variant_report.notes` with the expressions as mathematics
+    (no program syntax such as ``r1**2`` in the prose), one paragraph line each."""
     out = []
     if not variant.feasible:
-        out.append("Infeasible: no sampled admissible geometry satisfies its conditions")
-    out.append(f"Partial derivatives in the mesh efficiencies: {escape(variant.derivative_check)}")
+        out.append(r"\noindent Infeasible: no sampled admissible geometry satisfies its conditions.\\")
+    out.append(rf"\noindent Partial derivatives in the mesh efficiencies: {escape(variant.derivative_check)}.\\")
     if variant.self_locking_point is not None:
-        point = ", ".join(f"{sympy.latex(k)} = {sympy.latex(v)}"
+        point = ", ".join(f"${latex(k)} = {latex(v)}$"
                           for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
-        out.append(f"Self-locking: the efficiency is outside $(0, 1]$ at the sampled point ${point}$")
+        out.append(rf"\noindent Self-locking: the efficiency is outside $(0, 1]$ at the sampled point {point}.\\")
     if variant.locking_expression is not None:
-        out.append(f"The efficiency has the sign of ${sympy.latex(variant.locking_expression)}$; the train "
-                   "self-locks where that is $\\le 0$")
+        sign = inline_or_display(variant.locking_expression)
+        if len(sign) == 1:
+            out.append(rf"\noindent The efficiency has the sign of {sign[0]}; the train self-locks where that is "
+                       r"$\le 0$.\\")
+        else:
+            out += [r"\noindent The efficiency has the sign of", *sign,
+                    r"\noindent and the train self-locks where that is $\le 0$.\\"]
     return out
 
 
@@ -56,8 +82,13 @@ def _sign(sign: int) -> str:
     return "$> 0$" if sign > 0 else "$< 0$"
 
 
-PREAMBLE = [r"\documentclass[11pt]{article}", r"\usepackage{amsmath}", r"\usepackage{booktabs}",
-             r"\usepackage[margin=2cm]{geometry}", r"\allowdisplaybreaks", r"\begin{document}"]
+#: Packages of TeX Live base and recommended only; ``L`` is a ragged-right ``tabularx`` column.
+PREAMBLE = [r"\documentclass[11pt]{article}",
+            "% Compile with pdflatex; needs amsmath, booktabs, geometry, tabularx and array "
+            "(TeX Live base and recommended).",
+            r"\usepackage{amsmath}", r"\usepackage{booktabs}", r"\usepackage{array}", r"\usepackage{tabularx}",
+            r"\usepackage[a4paper,margin=2cm]{geometry}", r"\allowdisplaybreaks",
+            r"\newcolumntype{L}{>{\raggedright\arraybackslash}X}", r"\begin{document}"]
 
 
 def latex_document(variants: VariantSet) -> str:
@@ -71,6 +102,72 @@ def latex_states_document(sets: list[VariantSet]) -> str:
     return "\n".join([*PREAMBLE, *body[:-1], r"\end{document}", ""])
 
 
+def drivers_latex(variants: VariantSet, variant: Variant) -> str:
+    """The driving gear of every mesh in ``variant``: ``C: 1$\\to$3`` (gear 1 drives gear
+    3), ``idle`` for a mesh that carries no power."""
+    out = []
+    for role in variants.roles:
+        if role.idle:
+            out.append(f"{escape(role.coupling)}: idle")
+            continue
+        first = variant.first_drives[role.coupling]
+        driver, driven = role.flow.gears if first else role.flow.gears[::-1]
+        out.append(rf"{escape(role.coupling)}:~{escape(driver)}$\to${escape(driven)}")
+    return ", ".join(out)
+
+
+def _status(variant: Variant) -> str:
+    status = "infeasible" if not variant.feasible else ("self-locks" if variant.self_locking_point is not None else "")
+    if variant.reversed_forces:
+        reversed_text = f"light load: {escape(', '.join(sorted(variant.reversed_forces)))} reversed"
+        status = ", ".join(filter(None, [reversed_text, status]))
+    return status
+
+
+#: Rows per ``tabularx``: a table is one box that cannot break across pages, so a long
+#: one is written as several of at most this many rows (each wrapped row up to four lines).
+TABLE_ROWS = 8
+
+
+def table(columns: str, header: list[str], rows: list[list[str]]) -> list[str]:
+    """A full-width ``tabularx`` (``L``: a ragged-right column that wraps) of ``rows``
+    under ``header``, in pieces of `TABLE_ROWS` rows that each repeat the header,
+    so that a page break can fall between them."""
+    out: list[str] = []
+    for start in range(0, max(len(rows), 1), TABLE_ROWS):
+        out += [r"\par\noindent", rf"\begin{{tabularx}}{{\linewidth}}{{{columns}}}", r"\toprule",
+                " & ".join(header) + r" \\", r"\midrule"]
+        out += [" & ".join(cells) + r" \\" for cells in rows[start:start + TABLE_ROWS]]
+        out += [r"\bottomrule", r"\end{tabularx}"]
+    return out
+
+
+def _conditions_table(variants: VariantSet) -> list[str]:
+    """The turning conditions with the meshes each decides."""
+    rows = []
+    for c in variants.conditions:
+        decided = [f"{escape(r.coupling)} when {'$>0$' if r.orientation > 0 else '$<0$'}"
+                   for r in variants.roles if r.condition == c.name]
+        rows.append([f"${c.name}$", f"${latex(c.simplified)}$", ", ".join(decided)])
+    return [r"\subsection*{Turning conditions}",
+            *table("lLL", ["Condition", "Expression", "Meshes (first gear drives, declared input)"], rows)]
+
+
+def variants_table(variants: VariantSet) -> list[str]:
+    """Input, output, condition signs, driving gears (and status where any) per variant."""
+    statuses = [_status(v) for v in variants.variants]
+    extra = any(statuses)
+    columns = "lll" + "c" * len(variants.conditions) + "L" + ("L" if extra else "")
+    header = ["Variant", "Input", "Output", *(f"${c.name}$" for c in variants.conditions),
+              r"Mesh: driving gear $\to$ driven gear", *(["Status"] if extra else [])]
+    rows = []
+    for v, status in zip(variants.variants, statuses, strict=True):
+        cells = [f"({v.number})", escape(v.input), escape(v.output)]
+        cells += [_sign(v.signs[c.name]) for c in variants.conditions] + [drivers_latex(variants, v)]
+        rows.append(cells + ([status] if extra else []))
+    return [r"\subsection*{Variants}", *table(columns, header, rows)]
+
+
 def _section(variants: VariantSet) -> list[str]:
     """Title, conditions, variants table and formulas of one train."""
     train = variants.train
@@ -81,45 +178,24 @@ def _section(variants: VariantSet) -> list[str]:
                rf"reference link {escape(train.reference)}. Ordinary efficiencies are those of each mesh "
                r"with its carrier held; swapping input and output reverses every mesh.")
     if variants.conditions:
-        out += [r"\subsection*{Turning conditions}", r"\begin{center}", r"\begin{tabular}{lll}", r"\toprule",
-                r"Condition & Expression & Meshes (first gear drives, declared input) \\", r"\midrule"]
-        for c in variants.conditions:
-            decided = [f"{escape(r.coupling)} when {'$>0$' if r.orientation > 0 else '$<0$'}"
-                       for r in variants.roles if r.condition == c.name]
-            out.append(rf"${c.name}$ & ${sympy.latex(c.simplified)}$ & {', '.join(decided)} \\")
-        out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
+        out += _conditions_table(variants)
     fixed = [r for r in variants.roles if r.condition is None and not r.idle]
     idle = [escape(r.coupling) for r in variants.roles if r.idle]
     if idle:
-        out.append(rf"\noindent Meshes that carry no power (their set locked or unloaded; no loss): {', '.join(idle)}.")
+        out.append(rf"\par\noindent Meshes that carry no power (their set locked or unloaded; no loss): "
+                   rf"{', '.join(idle)}.")
     if fixed:
         text = "; ".join(f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} "
                          "drives" for r in fixed)
-        out.append(rf"\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
-    out += [r"\subsection*{Variants}", r"\begin{center}",
-            r"\begin{tabular}{l" + "c" * (2 + len(variants.conditions)) + "l}", r"\toprule"]
-    header = ["Variant", "Input", "Output"] + [f"${c.name}$" for c in variants.conditions] + ["Status"]
-    out.append(" & ".join(header) + r" \\")
-    out.append(r"\midrule")
-    for v in variants.variants:
-        status = "infeasible" if not v.feasible else ("self-locks" if v.self_locking_point is not None else "")
-        if v.reversed_forces:
-            status = ", ".join(filter(None, [f"light load: {escape(', '.join(sorted(v.reversed_forces)))} reversed",
-                                             status]))
-        cells = [f"({v.number})", escape(v.input), escape(v.output)]
-        cells += [_sign(v.signs[c.name]) for c in variants.conditions] + [status]
-        out.append(" & ".join(cells) + r" \\")
-    out += [r"\bottomrule", r"\end{tabular}", r"\end{center}"]
+        out.append(rf"\par\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
+    out += variants_table(variants)
     for v in variants.variants:
         out.append(rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
                    + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions)) + ".")
         if load_dependent(variants):
             # Variants of one input and turning-condition signs differ by the loaded forces' signs.
             out += force_latex(variant_forces(variants, v))
-        out += [r"\begin{equation}", rf"\eta = {sympy.latex(v.efficiency)}", rf"\tag{{{v.number}}}",
-                r"\end{equation}"]
-        out += [rf"\noindent {n}.\\" for n in _latex_notes(v)]
-    for d in variants.train.definitions:
-        out += [rf"\noindent where ${sympy.latex(d.symbol)}$ is the {escape(d.meaning)} ({escape(d.source)}):",
-                r"\begin{equation*}", rf"{sympy.latex(d.symbol)} = {sympy.latex(d.expression)}", r"\end{equation*}"]
+        out += numbered(r"\eta", v.efficiency, v.number)
+        out += _latex_notes(v)
+    out += definitions_latex([(d.symbol, d.expression, d.meaning, d.source) for d in train.definitions])
     return out

@@ -43,6 +43,7 @@ from davies_sym.emit.formula_code import call, constant, formula_function, name_
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
+from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own arguments: a train's names may not take them.
 _ENTRY_NAMES = frozenset({"input", "errors", "values", "efficiency", "losses", "speed_ratio", "variant"})
@@ -123,12 +124,12 @@ def _tables(variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str],
                         "closed_low": p.closed_low} for p in parameter_table(variants))
     variant_rows = []
     for v in variants.variants:
-        latex = tuple(f"{sympy.latex(c.simplified)} {'>' if v.signs[c.name] > 0 else '<'} 0"
+        latex = tuple(f"{display_latex(c.simplified)} {'>' if v.signs[c.name] > 0 else '<'} 0"
                       for c in variants.conditions)
         variant_rows.append({"name": v.name, "number": v.number, "input": v.input, "output": v.output,
                              "region": _region(variants, v), "conditions": tuple(condition_text(variants, v)),
                              "conditions_latex": latex, "meshes": tuple(mesh_text(variants, v)),
-                             "formula": sympy.sstr(v.efficiency), "latex": sympy.latex(v.efficiency),
+                             "formula": sympy.sstr(v.efficiency), "latex": display_latex(v.efficiency),
                              "feasible": v.feasible, "reversed": tuple(sorted(v.reversed_forces)),
                              "forces": tuple(force_text(variant_forces(variants, v)))})
     data: dict[str, object] = {
@@ -138,7 +139,7 @@ def _tables(variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str],
         "IGNORED": tuple(ignored),
         "RELATIONS": tuple(f"{sympy.sstr(r)} > 0" for r in relations),
         "DEPENDENT": {str(r.symbol): str(r) for r in train.dependent or ()},
-        "CONDITIONS": {c.name: (sympy.sstr(c.simplified), sympy.latex(c.simplified)) for c in variants.conditions},
+        "CONDITIONS": {c.name: (sympy.sstr(c.simplified), display_latex(c.simplified)) for c in variants.conditions},
         "VARIANTS": tuple(variant_rows),
     }
     return [_constant(name, literal(value)) for name, value in data.items()]

@@ -10,6 +10,7 @@ import sympy
 from davies_sym.algebra.radicals import restore
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.symbol_display import latex as display_latex
 from davies_sym.topology.symbols import make_symbol
 
 FRICTION_CONVENTION = (
@@ -69,12 +70,12 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
         "speed_ratio": {"input": train.ports.input, "output": train.ports.output, "expression": sympy.sstr(ratio),
-                        "latex": sympy.latex(ratio)},
+                        "latex": display_latex(ratio)},
         "efficiency_friction_form": {
             "input": train.ports.input,
             "output": train.ports.output,
             "expression": sympy.sstr(efficiency),
-            "latex": sympy.latex(efficiency),
+            "latex": display_latex(efficiency),
             "sign_conditions": conditions,
             "friction_convention": FRICTION_CONVENTION,
         },

@@ -47,6 +47,7 @@ from davies_sym.emit.formula_code import (
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
 from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
+from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own names and arguments: a train's names may not take them.
 _ENTRY_NAMES = frozenset({"errors", "values", "efficiency", "torques", "speeds", "region"})
@@ -148,12 +149,12 @@ def several_inputs_module(si: SeveralInputs) -> str:
         "PARAMETERS": tuple({"name": p.name, "meaning": p.meaning, "unit": p.unit, "low": p.low, "high": p.high,
                              "closed_low": p.closed_low} for p in parameters),
         "SPEEDS": {p: sympy.sstr(public(v.to_expr())) for p, v in si.port_speeds.items()},
-        "CONDITIONS": {c.name: (sympy.sstr(c.form), sympy.latex(c.form)) for c in si.conditions},
+        "CONDITIONS": {c.name: (sympy.sstr(c.form), display_latex(c.form)) for c in si.conditions},
         "REGIONS": tuple({"name": f"region_{r.number}", "number": r.number, "code": _code(si, r),
                           "conditions": tuple(condition_text(si, r)), "meshes": tuple(mesh_text(si, r)),
                           "power_in": tuple(r.inputs), "power_out": tuple(r.outputs),
                           "reversed": tuple(sorted(r.reversed)), "forces": tuple(region_force_text(r)),
-                          "formula": sympy.sstr(public(r.efficiency)), "latex": sympy.latex(public(r.efficiency))}
+                          "formula": sympy.sstr(public(r.efficiency)), "latex": display_latex(public(r.efficiency))}
                          for r in si.regions),
     }
     values = (name_node("errors"), name_node("values"))

@@ -15,6 +15,7 @@ from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInp
 from davies_sym.emit.force_conditions import force_conditions, force_text
 from davies_sym.errors import DerivationError, InputError, NotCoveredError, Problem
 from davies_sym.losses.definitions import completed
+from davies_sym.topology.symbol_display import latex as display_latex
 
 
 def condition_text(si: SeveralInputs, region: Region) -> list[str]:
@@ -63,7 +64,7 @@ def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
                      "power_in": list(r.inputs), "power_out": list(r.outputs),
                      "reversed": sorted(r.reversed), "forces": region_force_text(r),
                      "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
-                     "efficiency": sympy.sstr(r.efficiency), "latex": sympy.latex(r.efficiency)}
+                     "efficiency": sympy.sstr(r.efficiency), "latex": display_latex(r.efficiency)}
                     for r in si.regions],
     }
 

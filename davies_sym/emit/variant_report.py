@@ -9,6 +9,7 @@ import sympy
 from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.force_conditions import force_conditions, force_text
+from davies_sym.topology.symbol_display import latex as display_latex
 
 
 def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
@@ -64,7 +65,7 @@ def notes(variant: Variant) -> list[str]:
 def variants_document(variants: VariantSet) -> dict[str, Any]:
     """The ``turning_conditions``, ``meshes`` and ``variants`` entries of the JSON document."""
     conditions = [{"name": c.name, "expression": sympy.sstr(c.expression), "simplified": sympy.sstr(c.simplified),
-                   "latex": sympy.latex(c.simplified)} for c in variants.conditions]
+                   "latex": display_latex(c.simplified)} for c in variants.conditions]
     meshes = []
     for r in variants.roles:
         meshes.append({
@@ -89,7 +90,7 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
                            for c in variants.conditions],
             "meshes": mesh_text(variants, v),
             "efficiency": sympy.sstr(v.efficiency),
-            "latex": sympy.latex(v.efficiency),
+            "latex": display_latex(v.efficiency),
             "feasible": v.feasible,
             "derivative_check": v.derivative_check,
             "self_locking_sampled": v.self_locking_point is not None,
@@ -98,7 +99,7 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
             "loaded_forces": [{"force": what, "expression": sympy.sstr(force), "sign": sign}
                               for what, force, sign in variant_forces(variants, v)],
         })
-    definitions = [{"symbol": str(d.symbol), "expression": sympy.sstr(d.expression), "latex": sympy.latex(d.expression),
+    definitions = [{"symbol": str(d.symbol), "expression": sympy.sstr(d.expression), "latex": display_latex(d.expression),
                     "meaning": d.meaning, "source": d.source} for d in variants.train.definitions]
     return {"turning_conditions": conditions, "meshes": meshes, "variants": items, "definitions": definitions}
 

@@ -2,11 +2,11 @@
 
 A train's variants (Laus 2011, Tables 5 and 6: the input port and the signs of the
 turning conditions say which gear drives in each mesh) or power-flow regions are first
-described once, language-neutral (:mod:`.program`: routines of named arguments, local
-steps and a result, all sympy expressions), by :mod:`.one_input` and
-:mod:`.several_inputs`; then each language module (:mod:`.c`, :mod:`.julia`,
-:mod:`.octave`, :mod:`.rust`, :mod:`.modelica`) prints the expressions with sympy's code
-printer for it (:mod:`.printers`; Modelica's own in :mod:`.modelica_printer`) and writes
+described once, language-neutral (`.program`: routines of named arguments, local
+steps and a result, all sympy expressions), by `.one_input` and
+`.several_inputs`; then each language module (`.c`, `.julia`,
+`.octave`, `.rust`, `.modelica`) prints the expressions with sympy's code
+printer for it (`.printers`; Modelica's own in `.modelica_printer`) and writes
 the frame: the opening comment, function heads, declarations.  The choice function picks
 the variant exactly as the generated Python module does.
 """

@@ -43,7 +43,7 @@ def comment_text(line: str) -> str:
 
 
 def comment_lines(lines: Iterable[str], width: int = 100) -> list[str]:
-    """``lines`` as comment text (see :func:`comment_text`) wrapped to ``width``; a wrapped
+    """``lines`` as comment text (see `comment_text`) wrapped to ``width``; a wrapped
     line's continuation is indented four spaces more than the line."""
     out: list[str] = []
     for line in lines:

@@ -1,5 +1,5 @@
 """The program of a train driven at one port: one routine per turning condition, one per
-variant, and the choice, as the Python module (:mod:`davies_sym.emit.formula_runtime`)
+variant, and the choice, as the Python module (`davies_sym.emit.formula_runtime`)
 makes it.
 
 A variant is the formula of one power flow: the input port and the sign of every turning

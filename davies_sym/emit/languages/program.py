@@ -1,7 +1,7 @@
 """What a generated code file holds, said once for every target language.
 
-A :class:`Program` is a list of :class:`Routine` s, each a function of named arguments
-that computes a few :class:`Step` s (local values) and returns one expression.  The
+A `Program` is a list of `Routine` s, each a function of named arguments
+that computes a few `Step` s (local values) and returns one expression.  The
 values are sympy expressions in plain symbols (no assumptions, so that a range check
 such as ``r1 > 0`` stays a check instead of becoming ``True``): arithmetic, relations and
 their conjunctions, calls of other routines of the program (undefined sympy functions)

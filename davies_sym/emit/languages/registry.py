@@ -33,6 +33,6 @@ def program_of(derived: VariantSet | SeveralInputs, language: str, state: str | 
 
 
 def emit_code(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> str:
-    """The source text of ``derived`` in ``language`` (one of :data:`LANGUAGES`); the same
+    """The source text of ``derived`` in ``language`` (one of `LANGUAGES`); the same
     train gives the same bytes."""
     return TARGETS[language].write(program_of(derived, language, state))

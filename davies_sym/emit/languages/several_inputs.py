@@ -1,6 +1,6 @@
 """The program of a train driven at several ports: one routine per speed condition, one
 per power-flow region, and the choice, as the Python module
-(:mod:`davies_sym.emit.several_inputs_runtime`) makes it.
+(`davies_sym.emit.several_inputs_runtime`) makes it.
 
 The speed conditions are linear forms in the input speeds; a region is one choice of
 their signs (and, at light load, of the signs of its loaded forces), the several-input

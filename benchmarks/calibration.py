@@ -36,14 +36,21 @@ def main() -> None:
     data = read_measurements(TABLES[0], [*COLUMNS, "eta"])
     others = [read_measurements(path, COLUMNS, ["eta"]) for path in TABLES[1:]]
     model, result = calibrate(derived_model(train), data)
-    print(f"fit: {', '.join(f'{n} = {v:.6g}' for n, v in result.parameters.items())} "
-          f"({result.evaluations} model evaluations)")
+    print(
+        f"fit: {', '.join(f'{n} = {v:.6g}' for n, v in result.parameters.items())} "
+        f"({result.evaluations} model evaluations)"
+    )
     print(f"derive the regions and fit Table I: {best(lambda: calibrate(derived_model(train), data)):.3f} s")
-    print(f"predict Tables II-V ({sum(len(o) for o in others)} rows): "
-          f"{best(lambda: [model.predict(o, result.parameters) for o in others]):.4f} s")
+    print(
+        f"predict Tables II-V ({sum(len(o) for o in others)} rows): "
+        f"{best(lambda: [model.predict(o, result.parameters) for o in others]):.4f} s"
+    )
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "davies_sym.cli", "calibrate", TRAIN, TABLES[0], "--predict", *TABLES[1:],
-                    "--json"], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", "calibrate", TRAIN, TABLES[0], "--predict", *TABLES[1:], "--json"],
+        check=True,
+        stdout=subprocess.DEVNULL,
+    )
     print(f"derive calibrate ... --predict (fresh process): {time.perf_counter() - start:.2f} s")
 
 

@@ -20,8 +20,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 def measure(path: str, out: str) -> tuple[float, float, int]:
     """(seconds, peak resident MiB, exit status) of `derive PATH --out OUT`."""
     start = time.perf_counter()
-    child = subprocess.Popen([sys.executable, "-m", "davies_sym.cli", path, "--out", out, "--quiet"],
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    child = subprocess.Popen(
+        [sys.executable, "-m", "davies_sym.cli", path, "--out", out, "--quiet"],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     _, status, usage = os.wait4(child.pid, 0)
     elapsed = time.perf_counter() - start
     return elapsed, usage.ru_maxrss / 1024, os.waitstatus_to_exitcode(status)

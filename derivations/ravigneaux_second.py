@@ -132,7 +132,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
 IGNORED: Final[tuple[str, ...]] = ('rps',)
 RELATIONS: Final[tuple[str, ...]] = ('rr/2 - rs2/2 > 0',)
 DEPENDENT: Final[dict[str, str]] = {'rpl': 'rpl = rr/2 - rs2/2'}
-CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rr + rs1', '- rr + rs_{1}')}
+CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rr + rs1', '- r_{r} + r_{s1}')}
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_D_c1_pos',
@@ -141,7 +141,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'D',
         'region': 0,
         'conditions': ('-rr + rs1 > 0',),
-        'conditions_latex': ('- rr + rs_{1} > 0',),
+        'conditions_latex': ('- r_{r} + r_{s1} > 0',),
         'meshes': (
             'G1: gear S1 drives gear PS (eta_1), carrier c',
             'G2: gear PS drives gear PL (eta_2), carrier c',
@@ -150,8 +150,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': 'eta_4*(rr + rs2)*(eta_1*eta_2*rs2 + eta_3*rs1)/((rs1 + rs2)*(eta_3*eta_4*rr + rs2))',
         'latex': (
-            '\\frac{\\eta_{4} \\left(rr + rs_{2}\\right) \\left(\\eta_{1} \\eta_{2} rs_{2} + \\eta_{3} '
-            'rs_{1}\\right)}{\\left(rs_{1} + rs_{2}\\right) \\left(\\eta_{3} \\eta_{4} rr + rs_{2}\\right)}'
+            '\\frac{\\eta_{4} \\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} r_{s2} + \\eta_{3} '
+            'r_{s1}\\right)}{\\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} \\eta_{4} r_{r} + r_{s2}\\right)}'
         ),
         'feasible': False,
         'reversed': (),
@@ -164,7 +164,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'D',
         'region': 1,
         'conditions': ('-rr + rs1 < 0',),
-        'conditions_latex': ('- rr + rs_{1} < 0',),
+        'conditions_latex': ('- r_{r} + r_{s1} < 0',),
         'meshes': (
             'G1: gear S1 drives gear PS (eta_1), carrier c',
             'G2: gear PS drives gear PL (eta_2), carrier c',
@@ -173,8 +173,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': 'eta_4*(rr + rs2)*(eta_1*eta_2*eta_3*rs2 + rs1)/((rs1 + rs2)*(eta_3*rs2 + eta_4*rr))',
         'latex': (
-            '\\frac{\\eta_{4} \\left(rr + rs_{2}\\right) \\left(\\eta_{1} \\eta_{2} \\eta_{3} rs_{2} + '
-            'rs_{1}\\right)}{\\left(rs_{1} + rs_{2}\\right) \\left(\\eta_{3} rs_{2} + \\eta_{4} rr\\right)}'
+            '\\frac{\\eta_{4} \\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} \\eta_{3} r_{s2} + '
+            'r_{s1}\\right)}{\\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} r_{s2} + \\eta_{4} r_{r}\\right)}'
         ),
         'feasible': True,
         'reversed': (),
@@ -187,7 +187,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'A',
         'region': 0,
         'conditions': ('-rr + rs1 > 0',),
-        'conditions_latex': ('- rr + rs_{1} > 0',),
+        'conditions_latex': ('- r_{r} + r_{s1} > 0',),
         'meshes': (
             'G1: gear PS drives gear S1 (eta_1), carrier c',
             'G2: gear PL drives gear PS (eta_2), carrier c',
@@ -196,8 +196,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': 'eta_1*eta_2*(rs1 + rs2)*(eta_3*eta_4*rs2 + rr)/((rr + rs2)*(eta_1*eta_2*rs1 + eta_3*rs2))',
         'latex': (
-            '\\frac{\\eta_{1} \\eta_{2} \\left(rs_{1} + rs_{2}\\right) \\left(\\eta_{3} \\eta_{4} rs_{2} + '
-            'rr\\right)}{\\left(rr + rs_{2}\\right) \\left(\\eta_{1} \\eta_{2} rs_{1} + \\eta_{3} rs_{2}\\right)}'
+            '\\frac{\\eta_{1} \\eta_{2} \\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} \\eta_{4} r_{s2} + '
+            'r_{r}\\right)}{\\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} r_{s1} + \\eta_{3} r_{s2}\\right)}'
         ),
         'feasible': False,
         'reversed': (),
@@ -210,7 +210,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'A',
         'region': 1,
         'conditions': ('-rr + rs1 < 0',),
-        'conditions_latex': ('- rr + rs_{1} < 0',),
+        'conditions_latex': ('- r_{r} + r_{s1} < 0',),
         'meshes': (
             'G1: gear PS drives gear S1 (eta_1), carrier c',
             'G2: gear PL drives gear PS (eta_2), carrier c',
@@ -219,8 +219,9 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': 'eta_1*eta_2*(rs1 + rs2)*(eta_3*rr + eta_4*rs2)/((rr + rs2)*(eta_1*eta_2*eta_3*rs1 + rs2))',
         'latex': (
-            '\\frac{\\eta_{1} \\eta_{2} \\left(rs_{1} + rs_{2}\\right) \\left(\\eta_{3} rr + \\eta_{4} '
-            'rs_{2}\\right)}{\\left(rr + rs_{2}\\right) \\left(\\eta_{1} \\eta_{2} \\eta_{3} rs_{1} + rs_{2}\\right)}'
+            '\\frac{\\eta_{1} \\eta_{2} \\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} r_{r} + \\eta_{4} '
+            'r_{s2}\\right)}{\\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} \\eta_{3} r_{s1} + '
+            'r_{s2}\\right)}'
         ),
         'feasible': True,
         'reversed': (),
@@ -533,20 +534,26 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
             if mask.any() and variant["name"] in _FORCES:
                 function, names = _FORCES[variant["name"]]
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
+                }
                 forces = function(**chosen)
                 # A force that depends on none of the arrays comes back as a scalar.
                 size = (int(np.count_nonzero(mask)),)
-                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
-                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                agree = np.all(
+                    [
+                        np.broadcast_to(np.asarray(f) >= 0, size)
+                        for f in (forces if isinstance(forces, tuple) else (forces,))
+                    ],
+                    axis=0,
+                )
                 mask[mask] = agree
             numbers[mask] = variant["number"]
     return numbers
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds (``numbers``, from :func:`_variant_numbers`),
+    """The function of the variant that holds (``numbers``, from `_variant_numbers`),
     evaluated element by element (each variant only on its own points); shape (width,
     *broadcast shape), NaN where none holds."""
     result = np.full((width, *numbers.shape), np.nan)
@@ -561,8 +568,9 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, ...] = part
             else:
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
+                }
                 parts = function(**chosen)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
@@ -581,8 +589,10 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             k = np.flatnonzero(bad)[0]
             actual = np.ravel(_array(value))[k]
             expected = np.ravel(implied)[k]
-            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
-                              f"the difference is {actual - expected}")
+            raise DesignError(
+                f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                f"the difference is {actual - expected}"
+            )
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -618,7 +628,7 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
 
 
 def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
-    """``result`` with NaN where ``bad``, after :func:`_refuse`."""
+    """``result`` with NaN where ``bad``, after `_refuse`."""
     _refuse(bad, message, errors, stacklevel + 1)
     return np.where(bad, np.nan, result) if bad.any() else result
 
@@ -632,10 +642,12 @@ def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array
     uncovered = (numbers == 0) & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
-               f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
-               "(efficiency outside (0, 1]): NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
+        f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
+        "(efficiency outside (0, 1]): NaN there"
+    )
     return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
 
 
@@ -665,8 +677,10 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
         ratio = _array(function(**{n: values[n] for n in names}))
         ratio = ratio if input == PORTS[0] else _array(1 / ratio)
     outside = ~_admissible(values) | ~np.isfinite(ratio)
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"
+    )
     return _nan_where(outside, ratio, message, errors, stacklevel=3)
 
 
@@ -676,8 +690,12 @@ def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.in
     _check_errors(errors)
     numbers = _variant_numbers(input, values)
     bad = (numbers == 0) | ~_admissible(values)
-    _refuse(bad, f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
-            errors, stacklevel=3)
+    _refuse(
+        bad,
+        f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+        errors,
+        stacklevel=3,
+    )
     return np.where(bad, 0, numbers)
 
 

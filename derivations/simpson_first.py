@@ -146,8 +146,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': '(eta_C*eta_D*eta_E*eta_F*rr2 + eta_C*eta_D*rs + rr1)/(rr1 + rr2 + rs)',
         'latex': (
-            '\\frac{\\eta_{C} \\eta_{D} \\eta_{E} \\eta_{F} rr_{2} + \\eta_{C} \\eta_{D} rs + rr_{1}}{rr_{1} + rr_{2} '
-            '+ rs}'
+            '\\frac{\\eta_{C} \\eta_{D} \\eta_{E} \\eta_{F} r_{r2} + \\eta_{C} \\eta_{D} r_{s} + r_{r1}}{r_{r1} + '
+            'r_{r2} + r_{s}}'
         ),
         'feasible': True,
         'reversed': (),
@@ -169,8 +169,8 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'formula': 'eta_C*eta_D*eta_E*eta_F*(rr1 + rr2 + rs)/(eta_C*eta_D*eta_E*eta_F*rr1 + eta_E*eta_F*rs + rr2)',
         'latex': (
-            '\\frac{\\eta_{C} \\eta_{D} \\eta_{E} \\eta_{F} \\left(rr_{1} + rr_{2} + rs\\right)}{\\eta_{C} \\eta_{D} '
-            '\\eta_{E} \\eta_{F} rr_{1} + \\eta_{E} \\eta_{F} rs + rr_{2}}'
+            '\\frac{\\eta_{C} \\eta_{D} \\eta_{E} \\eta_{F} \\left(r_{r1} + r_{r2} + r_{s}\\right)}{\\eta_{C} '
+            '\\eta_{D} \\eta_{E} \\eta_{F} r_{r1} + \\eta_{E} \\eta_{F} r_{s} + r_{r2}}'
         ),
         'feasible': True,
         'reversed': (),
@@ -376,20 +376,26 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
             if mask.any() and variant["name"] in _FORCES:
                 function, names = _FORCES[variant["name"]]
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
+                }
                 forces = function(**chosen)
                 # A force that depends on none of the arrays comes back as a scalar.
                 size = (int(np.count_nonzero(mask)),)
-                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
-                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                agree = np.all(
+                    [
+                        np.broadcast_to(np.asarray(f) >= 0, size)
+                        for f in (forces if isinstance(forces, tuple) else (forces,))
+                    ],
+                    axis=0,
+                )
                 mask[mask] = agree
             numbers[mask] = variant["number"]
     return numbers
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds (``numbers``, from :func:`_variant_numbers`),
+    """The function of the variant that holds (``numbers``, from `_variant_numbers`),
     evaluated element by element (each variant only on its own points); shape (width,
     *broadcast shape), NaN where none holds."""
     result = np.full((width, *numbers.shape), np.nan)
@@ -404,8 +410,9 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, ...] = part
             else:
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
+                }
                 parts = function(**chosen)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
@@ -424,8 +431,10 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             k = np.flatnonzero(bad)[0]
             actual = np.ravel(_array(value))[k]
             expected = np.ravel(implied)[k]
-            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
-                              f"the difference is {actual - expected}")
+            raise DesignError(
+                f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                f"the difference is {actual - expected}"
+            )
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -461,7 +470,7 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
 
 
 def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
-    """``result`` with NaN where ``bad``, after :func:`_refuse`."""
+    """``result`` with NaN where ``bad``, after `_refuse`."""
     _refuse(bad, message, errors, stacklevel + 1)
     return np.where(bad, np.nan, result) if bad.any() else result
 
@@ -475,10 +484,12 @@ def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array
     uncovered = (numbers == 0) & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
-               f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
-               "(efficiency outside (0, 1]): NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
+        f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
+        "(efficiency outside (0, 1]): NaN there"
+    )
     return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
 
 
@@ -508,8 +519,10 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
         ratio = _array(function(**{n: values[n] for n in names}))
         ratio = ratio if input == PORTS[0] else _array(1 / ratio)
     outside = ~_admissible(values) | ~np.isfinite(ratio)
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"
+    )
     return _nan_where(outside, ratio, message, errors, stacklevel=3)
 
 
@@ -519,8 +532,12 @@ def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.in
     _check_errors(errors)
     numbers = _variant_numbers(input, values)
     bad = (numbers == 0) | ~_admissible(values)
-    _refuse(bad, f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
-            errors, stacklevel=3)
+    _refuse(
+        bad,
+        f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+        errors,
+        stacklevel=3,
+    )
     return np.where(bad, 0, numbers)
 
 

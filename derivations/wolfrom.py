@@ -121,7 +121,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
 IGNORED: Final[tuple[str, ...]] = ()
 RELATIONS: Final[tuple[str, ...]] = ()
 DEPENDENT: Final[dict[str, str]] = {'rr1': 'rr1 = 2*rp1 + rs', 'rr2': 'rr2 = rp1 + rp2 + rs'}
-CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rp1 + rp2', '- rp_{1} + rp_{2}')}
+CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rp1 + rp2', '- r_{p1} + r_{p2}')}
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_B_c1_pos',
@@ -130,7 +130,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'B',
         'region': 0,
         'conditions': ('-rp1 + rp2 > 0',),
-        'conditions_latex': ('- rp_{1} + rp_{2} > 0',),
+        'conditions_latex': ('- r_{p1} + r_{p2} > 0',),
         'meshes': (
             'C: gear S drives gear P1 (eta_C), carrier c',
             'D: gear R1 drives gear P1 (eta_D), carrier c',
@@ -141,9 +141,9 @@ VARIANTS: Final[tuple[Variant, ...]] = (
             '2*eta_D*eta_E*rp1*rs - 4*rp1*rp2 - 2*rp2*rs)'
         ),
         'latex': (
-            '\\frac{\\eta_{E} \\left(rp_{1} - rp_{2}\\right) \\left(2 \\eta_{C} rp_{1} + \\eta_{C} rs + \\eta_{D} '
-            'rs\\right)}{2 \\eta_{D} \\eta_{E} rp_{1}^{2} + 2 \\eta_{D} \\eta_{E} rp_{1} rp_{2} + 2 \\eta_{D} '
-            '\\eta_{E} rp_{1} rs - 4 rp_{1} rp_{2} - 2 rp_{2} rs}'
+            '\\frac{\\eta_{E} \\left(r_{p1} - r_{p2}\\right) \\left(2 \\eta_{C} r_{p1} + \\eta_{C} r_{s} + \\eta_{D} '
+            'r_{s}\\right)}{2 \\eta_{D} \\eta_{E} r_{p1}^{2} + 2 \\eta_{D} \\eta_{E} r_{p1} r_{p2} + 2 \\eta_{D} '
+            '\\eta_{E} r_{p1} r_{s} - 4 r_{p1} r_{p2} - 2 r_{p2} r_{s}}'
         ),
         'feasible': True,
         'reversed': (),
@@ -156,7 +156,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'B',
         'region': 1,
         'conditions': ('-rp1 + rp2 < 0',),
-        'conditions_latex': ('- rp_{1} + rp_{2} < 0',),
+        'conditions_latex': ('- r_{p1} + r_{p2} < 0',),
         'meshes': (
             'C: gear S drives gear P1 (eta_C), carrier c',
             'D: gear P1 drives gear R1 (eta_D), carrier c',
@@ -167,9 +167,9 @@ VARIANTS: Final[tuple[Variant, ...]] = (
             '2*rp1**2 - 2*rp1*rp2 - 2*rp1*rs)'
         ),
         'latex': (
-            '- \\frac{\\left(rp_{1} - rp_{2}\\right) \\left(2 \\eta_{C} \\eta_{D} rp_{1} + \\eta_{C} \\eta_{D} rs + '
-            'rs\\right)}{4 \\eta_{D} \\eta_{E} rp_{1} rp_{2} + 2 \\eta_{D} \\eta_{E} rp_{2} rs - 2 rp_{1}^{2} - 2 '
-            'rp_{1} rp_{2} - 2 rp_{1} rs}'
+            '- \\frac{\\left(r_{p1} - r_{p2}\\right) \\left(2 \\eta_{C} \\eta_{D} r_{p1} + \\eta_{C} \\eta_{D} r_{s} + '
+            'r_{s}\\right)}{4 \\eta_{D} \\eta_{E} r_{p1} r_{p2} + 2 \\eta_{D} \\eta_{E} r_{p2} r_{s} - 2 r_{p1}^{2} - '
+            '2 r_{p1} r_{p2} - 2 r_{p1} r_{s}}'
         ),
         'feasible': True,
         'reversed': (),
@@ -182,7 +182,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'A',
         'region': 0,
         'conditions': ('-rp1 + rp2 > 0',),
-        'conditions_latex': ('- rp_{1} + rp_{2} > 0',),
+        'conditions_latex': ('- r_{p1} + r_{p2} > 0',),
         'meshes': (
             'C: gear P1 drives gear S (eta_C), carrier c',
             'D: gear P1 drives gear R1 (eta_D), carrier c',
@@ -193,9 +193,9 @@ VARIANTS: Final[tuple[Variant, ...]] = (
             '+ 2*eta_D*rp1 + eta_D*rs))'
         ),
         'latex': (
-            '- \\frac{2 \\eta_{C} \\left(2 \\eta_{D} \\eta_{E} rp_{1} rp_{2} + \\eta_{D} \\eta_{E} rp_{2} rs - '
-            'rp_{1}^{2} - rp_{1} rp_{2} - rp_{1} rs\\right)}{\\left(rp_{1} - rp_{2}\\right) \\left(\\eta_{C} rs + 2 '
-            '\\eta_{D} rp_{1} + \\eta_{D} rs\\right)}'
+            '- \\frac{2 \\eta_{C} \\left(2 \\eta_{D} \\eta_{E} r_{p1} r_{p2} + \\eta_{D} \\eta_{E} r_{p2} r_{s} - '
+            'r_{p1}^{2} - r_{p1} r_{p2} - r_{p1} r_{s}\\right)}{\\left(r_{p1} - r_{p2}\\right) \\left(\\eta_{C} r_{s} '
+            '+ 2 \\eta_{D} r_{p1} + \\eta_{D} r_{s}\\right)}'
         ),
         'feasible': True,
         'reversed': (),
@@ -208,7 +208,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'output': 'A',
         'region': 1,
         'conditions': ('-rp1 + rp2 < 0',),
-        'conditions_latex': ('- rp_{1} + rp_{2} < 0',),
+        'conditions_latex': ('- r_{p1} + r_{p2} < 0',),
         'meshes': (
             'C: gear P1 drives gear S (eta_C), carrier c',
             'D: gear R1 drives gear P1 (eta_D), carrier c',
@@ -219,9 +219,9 @@ VARIANTS: Final[tuple[Variant, ...]] = (
             '- rp2)*(eta_C*eta_D*rs + 2*rp1 + rs))'
         ),
         'latex': (
-            '\\frac{2 \\eta_{C} \\left(\\eta_{D} \\eta_{E} rp_{1}^{2} + \\eta_{D} \\eta_{E} rp_{1} rp_{2} + \\eta_{D} '
-            '\\eta_{E} rp_{1} rs - 2 rp_{1} rp_{2} - rp_{2} rs\\right)}{\\eta_{E} \\left(rp_{1} - rp_{2}\\right) '
-            '\\left(\\eta_{C} \\eta_{D} rs + 2 rp_{1} + rs\\right)}'
+            '\\frac{2 \\eta_{C} \\left(\\eta_{D} \\eta_{E} r_{p1}^{2} + \\eta_{D} \\eta_{E} r_{p1} r_{p2} + \\eta_{D} '
+            '\\eta_{E} r_{p1} r_{s} - 2 r_{p1} r_{p2} - r_{p2} r_{s}\\right)}{\\eta_{E} \\left(r_{p1} - r_{p2}\\right) '
+            '\\left(\\eta_{C} \\eta_{D} r_{s} + 2 r_{p1} + r_{s}\\right)}'
         ),
         'feasible': True,
         'reversed': (),
@@ -535,20 +535,26 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
             if mask.any() and variant["name"] in _FORCES:
                 function, names = _FORCES[variant["name"]]
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
+                }
                 forces = function(**chosen)
                 # A force that depends on none of the arrays comes back as a scalar.
                 size = (int(np.count_nonzero(mask)),)
-                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
-                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                agree = np.all(
+                    [
+                        np.broadcast_to(np.asarray(f) >= 0, size)
+                        for f in (forces if isinstance(forces, tuple) else (forces,))
+                    ],
+                    axis=0,
+                )
                 mask[mask] = agree
             numbers[mask] = variant["number"]
     return numbers
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
-    """The function of the variant that holds (``numbers``, from :func:`_variant_numbers`),
+    """The function of the variant that holds (``numbers``, from `_variant_numbers`),
     evaluated element by element (each variant only on its own points); shape (width,
     *broadcast shape), NaN where none holds."""
     result = np.full((width, *numbers.shape), np.nan)
@@ -563,8 +569,9 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, ...] = part
             else:
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
+                }
                 parts = function(**chosen)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, mask] = part
@@ -583,8 +590,10 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             k = np.flatnonzero(bad)[0]
             actual = np.ravel(_array(value))[k]
             expected = np.ravel(implied)[k]
-            raise DesignError(f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
-                              f"the difference is {actual - expected}")
+            raise DesignError(
+                f"{name} = {actual} breaks the relation {DEPENDENT[name]}, which gives {expected}; "
+                f"the difference is {actual - expected}"
+            )
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -620,7 +629,7 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
 
 
 def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
-    """``result`` with NaN where ``bad``, after :func:`_refuse`."""
+    """``result`` with NaN where ``bad``, after `_refuse`."""
     _refuse(bad, message, errors, stacklevel + 1)
     return np.where(bad, np.nan, result) if bad.any() else result
 
@@ -634,10 +643,12 @@ def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array
     uncovered = (numbers == 0) & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
-               f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
-               "(efficiency outside (0, 1]): NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
+        f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
+        "(efficiency outside (0, 1]): NaN there"
+    )
     return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
 
 
@@ -667,8 +678,10 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
         ratio = _array(function(**{n: values[n] for n in names}))
         ratio = ratio if input == PORTS[0] else _array(1 / ratio)
     outside = ~_admissible(values) | ~np.isfinite(ratio)
-    message = (f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-               "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there")
+    message = (
+        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"
+    )
     return _nan_where(outside, ratio, message, errors, stacklevel=3)
 
 
@@ -678,8 +691,12 @@ def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.in
     _check_errors(errors)
     numbers = _variant_numbers(input, values)
     bad = (numbers == 0) | ~_admissible(values)
-    _refuse(bad, f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
-            errors, stacklevel=3)
+    _refuse(
+        bad,
+        f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+        errors,
+        stacklevel=3,
+    )
     return np.where(bad, 0, numbers)
 
 

@@ -25,8 +25,15 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 #: number of examples so that tests/test_properties.py stays under a minute on two cores;
 #: ``davies-slow`` gives the tests marked slow more examples (a few minutes).  No example
 #: database: a run leaves no files behind and every run draws the same examples.
-settings.register_profile("davies", derandomize=True, database=None, deadline=None, max_examples=40,
-                          print_blob=True, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile(
+    "davies",
+    derandomize=True,
+    database=None,
+    deadline=None,
+    max_examples=40,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow],
+)
 settings.register_profile("davies-slow", parent=settings.get_profile("davies"), max_examples=100)
 settings.load_profile("davies")
 

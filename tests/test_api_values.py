@@ -23,19 +23,27 @@ def test_names_numbers_and_texts_give_the_exact_value_of_symbols(tuplin: davies_
     """Names with ints, floats (taken as written), Fractions and texts equal the value at
     symbol keys with exact rationals."""
     symbols = tuplin.train.symbols
-    exact = {symbols["r1"]: 40, symbols["r2"]: 60, symbols["r3"]: 15, symbols["eta_C"]: sympy.Rational(99, 100),
-             symbols["eta_D"]: sympy.Rational(97, 100)}
+    exact = {
+        symbols["r1"]: 40,
+        symbols["r2"]: 60,
+        symbols["r3"]: 15,
+        symbols["eta_C"]: sympy.Rational(99, 100),
+        symbols["eta_D"]: sympy.Rational(97, 100),
+    }
     want = tuplin.evaluate(exact)
     assert want.is_Rational
     assert tuplin.evaluate({"r1": 40, "r2": 60, "r3": 15, "eta_C": 0.99, "eta_D": 0.97}) == want
     assert tuplin.evaluate({"r1": "40", "r2": 60, "r3": Fraction(15), "eta_C": "99/100", "eta_D": "0.97"}) == want
 
 
-@pytest.mark.parametrize(("values", "said"), [
-    ({"r1": 40, "nosuch": 1}, "nosuch"),
-    ({"r1": "__import__('os')"}, "r1"),
-    ({"r1": [40]}, "not a number"),
-])
+@pytest.mark.parametrize(
+    ("values", "said"),
+    [
+        ({"r1": 40, "nosuch": 1}, "nosuch"),
+        ({"r1": "__import__('os')"}, "r1"),
+        ({"r1": [40]}, "not a number"),
+    ],
+)
 def test_bad_names_and_values_are_input_errors(tuplin: davies_sym.VariantSet, values: dict, said: str) -> None:
     with pytest.raises(InputError, match=said):
         tuplin.evaluate(values)

@@ -16,8 +16,19 @@ import pytest
 PACKAGE = Path(__file__).resolve().parent.parent / "davies_sym"
 
 #: The stages in pipeline order; a module may import its own stage and the ones before.
-STAGES = ("errors", "algebra", "losses", "topology", "geometry", "network", "efficiency", "emit", "calibration", "cli",
-          "__init__")
+STAGES = (
+    "errors",
+    "algebra",
+    "losses",
+    "topology",
+    "geometry",
+    "network",
+    "efficiency",
+    "emit",
+    "calibration",
+    "cli",
+    "__init__",
+)
 
 
 def _module_name(path: Path) -> str:
@@ -72,13 +83,17 @@ def test_no_import_circle() -> None:
             # `from package import module` imports the module; otherwise the named module.
             for name in names or ("",):
                 submodule = f"{target}.{name}"
-                graph.add_edge(module, submodule if (PACKAGE.parent / (submodule.replace(".", "/") + ".py")).exists()
-                               else target)
+                graph.add_edge(
+                    module, submodule if (PACKAGE.parent / (submodule.replace(".", "/") + ".py")).exists() else target
+                )
     cycles = list(nx.simple_cycles(graph))
     # A package's __init__ importing its own modules is how a package exposes them,
     # not a circle through the code.
-    cycles = [c for c in cycles if not any(m.count(".") < 2 and c[(i + 1) % len(c)].startswith(m + ".")
-                                           for i, m in enumerate(c))]
+    cycles = [
+        c
+        for c in cycles
+        if not any(m.count(".") < 2 and c[(i + 1) % len(c)].startswith(m + ".") for i, m in enumerate(c))
+    ]
     assert not cycles, f"import circles: {cycles}"
 
 
@@ -112,7 +127,18 @@ def test_modules_stay_small(path: Path) -> None:
 def test_public_api_is_listed() -> None:
     import davies_sym
 
-    assert set(davies_sym.__all__) >= {"load", "loads", "analyse", "derive", "Train", "Analysis", "VariantSet",
-                                       "DaviesError", "InputError", "TopologyError", "GeometryError"}
+    assert set(davies_sym.__all__) >= {
+        "load",
+        "loads",
+        "analyse",
+        "derive",
+        "Train",
+        "Analysis",
+        "VariantSet",
+        "DaviesError",
+        "InputError",
+        "TopologyError",
+        "GeometryError",
+    }
     for name in davies_sym.__all__:
         assert hasattr(davies_sym, name), name

@@ -36,8 +36,13 @@ def _saturating(torque: FloatArray, e: float, drag: float) -> FloatArray:
 
 
 def _saturating_fit(torque: FloatArray, eta: FloatArray) -> Fit:
-    return fit(lambda p: _saturating(torque, p["e"], p["D"]) - eta, ["e", "D"], {"e": 0.9, "D": 1.0},
-               lower={"e": 0.0, "D": 0.0}, upper={"e": 1.0})
+    return fit(
+        lambda p: _saturating(torque, p["e"], p["D"]) - eta,
+        ["e", "D"],
+        {"e": 0.9, "D": 1.0},
+        lower={"e": 0.0, "D": 0.0},
+        upper={"e": 1.0},
+    )
 
 
 def test_linear_model_recovered_with_the_textbook_standard_errors() -> None:
@@ -129,8 +134,12 @@ def _refusal(*args: object, **kwargs: object) -> CalibrationError:
 
 def test_refuses_a_parameter_the_residuals_do_not_change_with() -> None:
     x, y = _linear_data()
-    error = _refusal(lambda p: p["a"] + p["b"] * x + 0.0 * p["D_K"] - y, ["a", "b", "D_K"],
-                     {"a": 0.0, "b": 0.0, "D_K": 1.0}, source="rig.csv")
+    error = _refusal(
+        lambda p: p["a"] + p["b"] * x + 0.0 * p["D_K"] - y,
+        ["a", "b", "D_K"],
+        {"a": 0.0, "b": 0.0, "D_K": 1.0},
+        source="rig.csv",
+    )
     assert str(error) == "rig.csv: the data do not determine D_K: the residuals do not change with it"
     assert error.cause == "undetermined"
 
@@ -138,16 +147,22 @@ def test_refuses_a_parameter_the_residuals_do_not_change_with() -> None:
 def test_refuses_parameters_determined_only_in_combination() -> None:
     x, y = _linear_data()
     error = _refusal(lambda p: p["a"] + p["k"] * p["m"] * x - y, ["a", "k", "m"], {"a": 0.0, "k": 1.0, "m": 1.0})
-    assert str(error).startswith("the data do not determine k and m separately: the residuals change only with a "
-                                 "combination of them (condition number of J^T J ")
+    assert str(error).startswith(
+        "the data do not determine k and m separately: the residuals change only with a "
+        "combination of them (condition number of J^T J "
+    )
     # Two columns that are the same at every row (the operating points never vary x).
     error = _refusal(lambda p: p["a"] + p["b"] * np.ones(ROWS) - y, ["a", "b"], {"a": 0.0, "b": 0.0})
     assert "do not determine a and b separately" in str(error) and error.cause == "undetermined"
 
 
 def test_refuses_fewer_rows_than_parameters() -> None:
-    error = _refusal(lambda p: np.array([p["a"] + p["b"] + p["c"] - 1.0, p["a"] - 2.0]), ["a", "b", "c"],
-                     {"a": 0.0, "b": 0.0, "c": 0.0}, source="rig.csv")
+    error = _refusal(
+        lambda p: np.array([p["a"] + p["b"] + p["c"] - 1.0, p["a"] - 2.0]),
+        ["a", "b", "c"],
+        {"a": 0.0, "b": 0.0, "c": 0.0},
+        source="rig.csv",
+    )
     assert str(error) == "rig.csv: 2 rows cannot determine 3 parameters (a, b, c): give at least 3 rows"
     assert error.cause == "rows"
 
@@ -156,8 +171,9 @@ def test_refuses_a_residual_that_is_not_finite_at_the_start() -> None:
     torque, eta = np.array([2.0, 1.0, 4.0]), np.array([0.5, 0.5, 0.5])
     with np.errstate(divide="ignore", invalid="ignore"):
         error = _refusal(lambda p: _saturating(torque, p["e"], p["D"]) - eta, ["e", "D"], {"e": 0.9, "D": -1.0})
-    assert str(error) == ("the residual of row 2 is inf at the start values (e = 0.9, D = -1): the model is not "
-                          "defined there")
+    assert str(error) == (
+        "the residual of row 2 is inf at the start values (e = 0.9, D = -1): the model is not defined there"
+    )
     assert error.cause == "non-finite"
 
 
@@ -173,23 +189,34 @@ def test_refuses_a_residual_that_becomes_nan_during_the_fit() -> None:
 def test_refuses_a_fit_that_does_not_converge() -> None:
     torque = np.linspace(2.0, 60.0, ROWS)
     eta = _saturating(torque, 0.97, 2.5)
-    error = _refusal(lambda p: _saturating(torque, p["e"], p["D"]) - eta, ["e", "D"], {"e": 0.5, "D": 20.0},
-                     source="rig.csv", max_evaluations=2)
+    error = _refusal(
+        lambda p: _saturating(torque, p["e"], p["D"]) - eta,
+        ["e", "D"],
+        {"e": 0.5, "D": 20.0},
+        source="rig.csv",
+        max_evaluations=2,
+    )
     message = str(error)
-    assert message.startswith("rig.csv: the fit did not converge (The maximum number of function evaluations is "
-                              "exceeded) after ")
+    assert message.startswith(
+        "rig.csv: the fit did not converge (The maximum number of function evaluations is exceeded) after "
+    )
     assert "evaluations; it reached e = " in message and error.cause == "convergence"
 
 
-@pytest.mark.parametrize(("kwargs", "message"), [
-    ({"start": {"a": 1.0}}, "no start value for b"),
-    ({"start": {"a": 1.0, "b": 1.0, "q": 2.0}}, "start names q, not among the parameters (a, b)"),
-    ({"lower": {"a": 2.0}}, "the start value a = 1 is outside its bounds (2 to inf)"),
-    ({"lower": {"b": 1.0}, "upper": {"b": 1.0}}, "the bounds of b leave no interval (1 to 1); to hold a parameter "
-                                                 "fixed, leave it out of the fit"),
-    ({"start": {"a": math.nan, "b": 1.0}}, "the start value of a is nan"),
-    ({"max_evaluations": 0}, "max_evaluations must be at least 1, got 0"),
-])
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"start": {"a": 1.0}}, "no start value for b"),
+        ({"start": {"a": 1.0, "b": 1.0, "q": 2.0}}, "start names q, not among the parameters (a, b)"),
+        ({"lower": {"a": 2.0}}, "the start value a = 1 is outside its bounds (2 to inf)"),
+        (
+            {"lower": {"b": 1.0}, "upper": {"b": 1.0}},
+            "the bounds of b leave no interval (1 to 1); to hold a parameter fixed, leave it out of the fit",
+        ),
+        ({"start": {"a": math.nan, "b": 1.0}}, "the start value of a is nan"),
+        ({"max_evaluations": 0}, "max_evaluations must be at least 1, got 0"),
+    ],
+)
 def test_refuses_bad_arguments(kwargs: dict[str, object], message: str) -> None:
     x, y = _linear_data()
     arguments: dict[str, object] = {"start": {"a": 1.0, "b": 1.0}, **kwargs}

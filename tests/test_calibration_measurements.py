@@ -48,8 +48,10 @@ def test_reads_columns_lines_and_values(here: Path) -> None:
 
 
 def test_bom_comments_blank_lines_crlf_and_extra_columns(here: Path) -> None:
-    text = ("\ufeff# rig 3, 2024-05-02\r\n\r\n  T , note, eta ,extra\r\n# warm-up done\r\n"
-            "10, \"cold, first\" ,0.95,x\r\n\r\n,,,\r\n20,ok,0.96,\r\n")
+    text = (
+        "\ufeff# rig 3, 2024-05-02\r\n\r\n  T , note, eta ,extra\r\n# warm-up done\r\n"
+        '10, "cold, first" ,0.95,x\r\n\r\n,,,\r\n20,ok,0.96,\r\n'
+    )
     data = read_measurements(_write(here, text), ["T", "eta"])
     assert data.columns == ("T", "note", "eta", "extra")
     assert data.lines == (5, 8)
@@ -80,14 +82,16 @@ def test_file_missing_or_a_folder(here: Path) -> None:
 
 def test_not_utf8_names_the_line(here: Path) -> None:
     path = _write(here, b"T,eta\n1,0.9\n\xff,0.8\n")
-    assert _message(path) == ("data error: rig.csv:3: not UTF-8 text (byte 0xff at offset 12); "
-                              "save the file as UTF-8 CSV")
+    assert _message(path) == (
+        "data error: rig.csv:3: not UTF-8 text (byte 0xff at offset 12); save the file as UTF-8 CSV"
+    )
 
 
 @pytest.mark.parametrize("text", ["", "  \n\n", "\ufeff"])
 def test_empty_file(here: Path, text: str) -> None:
-    assert _message(_write(here, text)) == ("data error: rig.csv: the file is empty (expected a header row naming "
-                                            "the columns, then one row per point)")
+    assert _message(_write(here, text)) == (
+        "data error: rig.csv: the file is empty (expected a header row naming the columns, then one row per point)"
+    )
 
 
 def test_no_header(here: Path) -> None:
@@ -111,8 +115,10 @@ def test_missing_and_duplicated_columns_all_reported(here: Path) -> None:
 
 def test_a_file_without_a_header_row(here: Path) -> None:
     path = _write(here, "# T, eta\n1,0.9\n2,0.8\n")
-    assert _message(path) == ("data error: rig.csv:2: header: the first row holds numbers, not column names: begin "
-                              "the file with a header row naming the columns (T, eta)")
+    assert _message(path) == (
+        "data error: rig.csv:2: header: the first row holds numbers, not column names: begin "
+        "the file with a header row naming the columns (T, eta)"
+    )
 
 
 def test_rows_with_too_few_or_too_many_fields(here: Path) -> None:
@@ -133,8 +139,9 @@ def test_empty_cells_in_required_and_optional_columns(here: Path) -> None:
 
 
 def test_values_that_are_not_finite_numbers(here: Path) -> None:
-    path = _write(here, "T_O,eta\n1,0.9\n# a comment moves the lines on\n2,0.9\nabc,nan\ninf,-Infinity\n"
-                        f"{'9' * 60}x,1e999\n")
+    path = _write(
+        here, f"T_O,eta\n1,0.9\n# a comment moves the lines on\n2,0.9\nabc,nan\ninf,-Infinity\n{'9' * 60}x,1e999\n"
+    )
     assert _message(path, ("T_O", "eta")).splitlines() == [
         "data error: rig.csv:5: column 'T_O': 'abc' is not a number",
         "data error: rig.csv:5: column 'eta': 'nan' is not a finite number",
@@ -167,8 +174,13 @@ def test_the_error_is_an_input_error_with_every_problem(here: Path) -> None:
     assert caught.value.source == "rig.csv"
 
 
-@given(st.lists(st.tuples(st.floats(allow_nan=False, allow_infinity=False),
-                          st.floats(allow_nan=False, allow_infinity=False)), min_size=1, max_size=20))
+@given(
+    st.lists(
+        st.tuples(st.floats(allow_nan=False, allow_infinity=False), st.floats(allow_nan=False, allow_infinity=False)),
+        min_size=1,
+        max_size=20,
+    )
+)
 @settings(suppress_health_check=[HealthCheck.function_scoped_fixture])  # one file, rewritten per example
 def test_finite_numbers_come_back_exactly(tmp_path: Path, rows: list[tuple[float, float]]) -> None:
     path = tmp_path / "round_trip.csv"

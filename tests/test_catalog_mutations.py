@@ -111,8 +111,14 @@ def _cases(full: bool) -> list[Any]:
             for kind in VALUES:
                 default = _default(train, len(path), position, kind)
                 if default or full:
-                    cases.append(pytest.param(train, ("value", path, kind), id=f"{train}:{_id(data, path)}:{kind}",
-                                              marks=[] if default else [pytest.mark.slow]))
+                    cases.append(
+                        pytest.param(
+                            train,
+                            ("value", path, kind),
+                            id=f"{train}:{_id(data, path)}:{kind}",
+                            marks=[] if default else [pytest.mark.slow],
+                        )
+                    )
         for table in NAMED_TABLES:
             entries = data.get(table)
             names = list(entries) if isinstance(entries, dict) else list(entries or [])
@@ -120,9 +126,14 @@ def _cases(full: bool) -> list[Any]:
                 for new in RENAMES:
                     default = train == "simple_pair" and new in (NON_ASCII, "lambda", "E", "I", "N")
                     if default or full:
-                        cases.append(pytest.param(train, ("rename", (table, name), new),
-                                                  id=f"{train}:rename:{table}.{name}->{new}",
-                                                  marks=[] if default else [pytest.mark.slow]))
+                        cases.append(
+                            pytest.param(
+                                train,
+                                ("rename", (table, name), new),
+                                id=f"{train}:rename:{table}.{name}->{new}",
+                                marks=[] if default else [pytest.mark.slow],
+                            )
+                        )
     return cases
 
 

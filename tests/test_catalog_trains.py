@@ -47,8 +47,12 @@ def test_simpson_ratios_in_every_state():
     rs, rr1, rr2 = S("rs"), S("rr1"), S("rr2")
     rp1, rp2 = S("rp1"), S("rp2")
     on_constraints = {rr1: rs + 2 * rp1, rr2: rs + 2 * rp2}
-    textbook = {"first": (rr1 + rr2 + rs) / rr1, "second": 1 + rs / rr1, "third": sympy.Integer(1),
-                "reverse": -rr2 / rs}
+    textbook = {
+        "first": (rr1 + rr2 + rs) / rr1,
+        "second": 1 + rs / rr1,
+        "third": sympy.Integer(1),
+        "reverse": -rr2 / rs,
+    }
     for state in train.states:
         a = davies_sym.analyse(train_in_state(train, state))
         assert equal(a.speed_ratio().to_expr(), textbook[state.name], on_constraints), state.name
@@ -56,8 +60,9 @@ def test_simpson_ratios_in_every_state():
 
 def test_third_gear_is_direct_with_no_loss():
     """A clutch locks the front set: no mesh turns in its carrier, the efficiency is 1."""
-    train = train_in_state(davies_sym.load(catalog_path("simpson")), davies_sym.load(
-        catalog_path("simpson")).state("third"))
+    train = train_in_state(
+        davies_sym.load(catalog_path("simpson")), davies_sym.load(catalog_path("simpson")).state("third")
+    )
     vs = derive_variants(train)
     assert all(v.efficiency == 1 for v in vs.variants)
 
@@ -80,8 +85,12 @@ def test_sr20_cli_prints_the_kinematics_and_regions():
     import subprocess
     import sys
 
-    result = subprocess.run([sys.executable, "-m", "davies_sym.cli", catalog_path("sr20_differential")],
-                            capture_output=True, text=True, check=False)
+    result = subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", catalog_path("sr20_differential")],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert result.returncode == 0, result.stderr
     assert "speed of O: omega_O = omega_A/2 + omega_K/2" in result.stdout and "inputs A, K" in result.stdout
 

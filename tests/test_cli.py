@@ -37,8 +37,9 @@ MALFORMED_CASES = {
 
 
 def run(*args: str, cwd: str | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "davies_sym.cli", *args], capture_output=True,
-                          text=True, cwd=cwd, check=False)
+    return subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", *args], capture_output=True, text=True, cwd=cwd, check=False
+    )
 
 
 def test_every_malformed_file_has_a_case():

@@ -14,14 +14,29 @@ from hypothesis import strategies as st
 from davies_sym.emit.code_layout import WIDTH, LayoutError, docstring, literal, module_source
 
 TEXT = st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=400)
-HOSTILE = st.sampled_from(['"""', "'''", "\\", "\n", "\r", "\x00", "\\N{BULLET}", "{x}", "# noqa", "\u2028",
-                           "__import__('os').system('false')", "a\\\n"])
+HOSTILE = st.sampled_from(
+    [
+        '"""',
+        "'''",
+        "\\",
+        "\n",
+        "\r",
+        "\x00",
+        "\\N{BULLET}",
+        "{x}",
+        "# noqa",
+        "\u2028",
+        "__import__('os').system('false')",
+        "a\\\n",
+    ]
+)
 STRINGS = st.one_of(TEXT, st.lists(st.one_of(TEXT, HOSTILE), max_size=8).map("".join))
-NUMBERS = st.one_of(st.integers(-10**30, 10**30), st.floats(allow_nan=False), st.booleans(), st.none())
-DATA = st.recursive(st.one_of(STRINGS, NUMBERS),
-                    lambda inner: st.one_of(st.lists(inner, max_size=5).map(tuple),
-                                            st.dictionaries(STRINGS, inner, max_size=4)),
-                    max_leaves=20)
+NUMBERS = st.one_of(st.integers(-(10**30), 10**30), st.floats(allow_nan=False), st.booleans(), st.none())
+DATA = st.recursive(
+    st.one_of(STRINGS, NUMBERS),
+    lambda inner: st.one_of(st.lists(inner, max_size=5).map(tuple), st.dictionaries(STRINGS, inner, max_size=4)),
+    max_leaves=20,
+)
 
 
 def _run(source: str) -> dict[str, object]:
@@ -41,7 +56,7 @@ def test_any_data_and_docstring_round_trip(value, doc):
         assert len(line) <= WIDTH or " " not in line.strip() or line.endswith("# noqa: E501"), line
 
 
-@pytest.mark.parametrize("text", ['a """ b', "ends with a quote\"", "back\\slash", "new\nline", "\x00nul"])
+@pytest.mark.parametrize("text", ['a """ b', 'ends with a quote"', "back\\slash", "new\nline", "\x00nul"])
 def test_docstrings_keep_their_text(text):
     function = ast.parse("def f() -> None:\n    pass").body[0]
     assert isinstance(function, ast.FunctionDef)

@@ -48,9 +48,24 @@ def site(tmp_path_factory) -> Path:
     with open(shared / "docs_site.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         if not (out / "ok").exists():
-            result = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-f",
-                                     os.path.join(ROOT, "mkdocs.yml"), "-d", str(out / "site")],
-                                    capture_output=True, text=True, check=False, env=BUILD_ENVIRONMENT, cwd=ROOT)
+            result = subprocess.run(
+                [
+                    sys.executable,
+                    "-m",
+                    "mkdocs",
+                    "build",
+                    "--strict",
+                    "-f",
+                    os.path.join(ROOT, "mkdocs.yml"),
+                    "-d",
+                    str(out / "site"),
+                ],
+                capture_output=True,
+                text=True,
+                check=False,
+                env=BUILD_ENVIRONMENT,
+                cwd=ROOT,
+            )
             (out / "log").parent.mkdir(parents=True, exist_ok=True)
             (out / "log").write_text(result.stdout + result.stderr)
             if result.returncode == 0:
@@ -180,8 +195,9 @@ def test_package_docstring_example_runs():
                 exec(compile(ast.Module([statement], []), "docstring", "exec"), namespace)
     finally:
         os.chdir(cwd)
-    r1, r2, zeta = (davies_sym.load(os.path.join(CATALOG, "simple_pair.yaml")).symbols[n] for n in ("r1", "r2",
-                                                                                                   "zeta_C"))
+    r1, r2, zeta = (
+        davies_sym.load(os.path.join(CATALOG, "simple_pair.yaml")).symbols[n] for n in ("r1", "r2", "zeta_C")
+    )
     assert "# r1*(r2 - zeta_C)/(r2*(r1 + zeta_C))" in code.group(1) and "# 49/50" in code.group(1)
     assert sympy.simplify(values[0] - r1 * (r2 - zeta) / (r2 * (r1 + zeta))) == 0
     assert values[-1] == sympy.Rational(49, 50)
@@ -202,8 +218,14 @@ def _browser():
         pytest.skip("chromium and chromedriver are not installed (.ci/run installs them)")
     options = webdriver.ChromeOptions()
     options.binary_location = chromium
-    for argument in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-                     "--proxy-server=127.0.0.1:9", "--window-size=1280,1000"):
+    for argument in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--proxy-server=127.0.0.1:9",
+        "--window-size=1280,1000",
+    ):
         options.add_argument(argument)
     options.set_capability("goog:loggingPrefs", {"performance": "ALL", "browser": "ALL"})
     os.environ.setdefault("SE_OFFLINE", "true")  # Selenium Manager must not look for drivers online
@@ -273,6 +295,6 @@ def test_every_page_loads_offline_with_math_and_live_links(site, browser):
             if not href.startswith("file://"):
                 assert href.startswith(("http://", "https://", "mailto:")), (page, href)
                 continue
-            target = Path(href[len("file://"):].split("#", 1)[0].split("?", 1)[0])
+            target = Path(href[len("file://") :].split("#", 1)[0].split("?", 1)[0])
             assert target.is_file(), (page, href)
     assert fraction_pages >= 10

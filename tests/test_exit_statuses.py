@@ -75,8 +75,9 @@ def test_eval_without_values_when_every_quantity_is_a_number(tmp_path):
 
 
 def test_bad_values_are_exit_2_and_json_says_why():
-    result = run_main([catalog_path("tuplin"), "--quiet", "--json", "--eval", "r1=-40", "r2=60", "r3=15",
-                       "eta_C=0.99", "eta_D=0.99"])
+    result = run_main(
+        [catalog_path("tuplin"), "--quiet", "--json", "--eval", "r1=-40", "r2=60", "r3=15", "eta_C=0.99", "eta_D=0.99"]
+    )
     assert result.returncode == 2, result.describe()
     answer = json.loads(result.stdout)
     assert answer == {"status": "bad input", "exit_status": 2, "reason": result.stderr.strip()}
@@ -84,8 +85,9 @@ def test_bad_values_are_exit_2_and_json_says_why():
 
 
 def test_an_efficiency_above_one_is_bad_input():
-    result = run_main([catalog_path("tuplin"), "--quiet", "--eval", "r1=40", "r2=60", "r3=15", "eta_C=1.5",
-                       "eta_D=0.99"])
+    result = run_main(
+        [catalog_path("tuplin"), "--quiet", "--eval", "r1=40", "r2=60", "r3=15", "eta_C=1.5", "eta_D=0.99"]
+    )
     assert result.returncode == 2, result.describe()
     assert "eta_C = 1.5 is not an efficiency" in result.stderr
 
@@ -95,23 +97,51 @@ def test_self_locking_is_exit_3_with_a_reason_as_the_last_line():
     (the numerator of variant (3)); with eta = 0.7: 0.49 * 40 * (-35) + 900 = 214 > 0 is
     still positive, but the efficiency 214 / (-500) is negative: the output would have
     to drive."""
-    result = run_main([catalog_path("tuplin"), "--quiet", "--input", "B", "--eval", "r1=40", "r2=60", "r3=15",
-                       "eta_C=0.7", "eta_D=0.7"])
+    result = run_main(
+        [
+            catalog_path("tuplin"),
+            "--quiet",
+            "--input",
+            "B",
+            "--eval",
+            "r1=40",
+            "r2=60",
+            "r3=15",
+            "eta_C=0.7",
+            "eta_D=0.7",
+        ]
+    )
     assert result.returncode == 3, result.describe()
     last = result.stdout.splitlines()[-1]
     assert "self-locks" in last and "B as input" in last
     with pytest.raises(ValueError):
         float(last)
-    answer = json.loads(run_main([catalog_path("tuplin"), "--quiet", "--json", "--input", "B", "--eval",
-                                  "r1=40", "r2=60", "r3=15", "eta_C=0.7", "eta_D=0.7"]).stdout)
+    answer = json.loads(
+        run_main(
+            [
+                catalog_path("tuplin"),
+                "--quiet",
+                "--json",
+                "--input",
+                "B",
+                "--eval",
+                "r1=40",
+                "r2=60",
+                "r3=15",
+                "eta_C=0.7",
+                "eta_D=0.7",
+            ]
+        ).stdout
+    )
     assert answer["status"] == "not covered" and answer["exit_status"] == 3 and "self-locks" in answer["reason"]
 
 
 def test_a_port_that_does_not_turn_is_exit_3():
     """Tuplin with r1 = r2: the two annuli have the same ratio to their planets, the
     output annulus stands still (Willis: r1 - r2 = 0 in the denominator of the ratio)."""
-    result = run_main([catalog_path("tuplin"), "--quiet", "--eval", "r1=60", "r2=60", "r3=15", "eta_C=0.9",
-                       "eta_D=0.9"])
+    result = run_main(
+        [catalog_path("tuplin"), "--quiet", "--eval", "r1=60", "r2=60", "r3=15", "eta_C=0.9", "eta_D=0.9"]
+    )
     assert result.returncode == 3, result.describe()
     assert "port B does not turn" in result.stdout.splitlines()[-1]
 
@@ -132,8 +162,22 @@ def test_idle_meshes_are_reported_as_carrying_no_power():
     third = run_main([catalog_path("simpson"), "--quiet", "--json", "--state", "third"])
     meshes = json.loads(third.stdout)["states"]["third"]["meshes"]
     assert [m["carries_power"] for m in meshes] == [False] * 4
-    value = run_main([catalog_path("simpson"), "--quiet", "--state", "third", "--eval", "eta_C=0.9", "eta_D=0.9",
-                      "eta_E=0.9", "eta_F=0.9", "rs=20", "rr1=50", "rr2=50"])
+    value = run_main(
+        [
+            catalog_path("simpson"),
+            "--quiet",
+            "--state",
+            "third",
+            "--eval",
+            "eta_C=0.9",
+            "eta_D=0.9",
+            "eta_E=0.9",
+            "eta_F=0.9",
+            "rs=20",
+            "rr1=50",
+            "rr2=50",
+        ]
+    )
     assert value.returncode == 0, value.describe()
     assert value.stdout.splitlines()[-1] == "1.0"
 

@@ -121,10 +121,23 @@ def test_module_efficiency_equals_the_exact_variant(name):
 #: no turning condition (planetary_simple, Simpson, simple pair and Buckingham's pair); the Ravigneaux second
 #: gear has one (rs1 - rr) that an admissible design never changes (the annulus is larger
 #: than its sun), so one region only.
-TURNING_CONDITIONS = {"buckingham_pair": 0, "humpage": 1, "litvin_face_drive": 1, "planetary_simple": 0,
-                      "ravigneaux[first]": 0, "ravigneaux[second]": 1, "ravigneaux[third]": 0,
-                      "ravigneaux[reverse]": 0, "simple_pair": 0, "simpson[first]": 0, "simpson[second]": 0,
-                      "simpson[third]": 0, "simpson[reverse]": 0, "tuplin": 1, "wolfrom": 1}
+TURNING_CONDITIONS = {
+    "buckingham_pair": 0,
+    "humpage": 1,
+    "litvin_face_drive": 1,
+    "planetary_simple": 0,
+    "ravigneaux[first]": 0,
+    "ravigneaux[second]": 1,
+    "ravigneaux[third]": 0,
+    "ravigneaux[reverse]": 0,
+    "simple_pair": 0,
+    "simpson[first]": 0,
+    "simpson[second]": 0,
+    "simpson[third]": 0,
+    "simpson[reverse]": 0,
+    "tuplin": 1,
+    "wolfrom": 1,
+}
 #: The trains whose admissible designs reach two condition regions.
 TWO_REGIONS = ("humpage", "litvin_face_drive", "tuplin", "wolfrom")
 
@@ -134,8 +147,11 @@ def test_turning_conditions_per_catalog_state_are_pinned():
     got = {name: len(variant_set(name).conditions) for name in NAMES}
     assert got == TURNING_CONDITIONS
     for name in NAMES:
-        regions = {tuple(v.signs.values()) for v in variant_set(name).variants
-                   if v.feasible and v.input == TRAINS[name].ports.input}
+        regions = {
+            tuple(v.signs.values())
+            for v in variant_set(name).variants
+            if v.feasible and v.input == TRAINS[name].ports.input
+        }
         assert len(regions) == (2 if name in TWO_REGIONS else 1), name
 
 
@@ -185,8 +201,9 @@ def test_module_agrees_with_derive_eval(name):
     for point in [p for p in design_points(vs, 6, seed=13) if admissible(vs, p)][:1]:
         pairs = [f"{s}={point[s]}" for s in point]
         for port in (vs.train.ports.input, vs.train.ports.output):
-            result = run_main([os.path.join(ROOT, "catalog", f"{train}.yaml"), "--quiet", *state, "--input", port,
-                               "--eval", *pairs])
+            result = run_main(
+                [os.path.join(ROOT, "catalog", f"{train}.yaml"), "--quiet", *state, "--input", port, "--eval", *pairs]
+            )
             kwargs = {str(s): float(v) for s, v in point.items()}
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", module.DesignWarning)
@@ -245,12 +262,18 @@ def test_self_locking_and_inadmissible_designs_give_nan_with_a_warning_or_an_err
     # Variant B_to_A_c1_pos; it locks where eta^2 r1 (r1 - r2 - r3) + r2 r3 <= 0: eta^2 <= 900/1400.
     locked = {**design, eta_c: sympy.Rational(7, 10), eta_d: sympy.Rational(7, 10)}
     assert vs.evaluate(locked, "B") <= 0
-    kwargs = {"r1": [40.0, 40.0, 40.0], "r2": 60.0, "r3": [15.0, 15.0, 45.0], "eta_C": [0.99, 0.7, 0.99],
-              "eta_D": [0.99, 0.7, 0.99]}
+    kwargs = {
+        "r1": [40.0, 40.0, 40.0],
+        "r2": 60.0,
+        "r3": [15.0, 15.0, 45.0],
+        "eta_C": [0.99, 0.7, 0.99],
+        "eta_D": [0.99, 0.7, 0.99],
+    }
     with pytest.warns(module.DesignWarning, match="1 design point.* outside .* 1 where the train self-locks"):
         got = module.efficiency(input="B", **kwargs)
-    assert got[0] == pytest.approx(float(vs.evaluate({**design, eta_c: sympy.Rational(99, 100),
-                                                      eta_d: sympy.Rational(99, 100)}, "B")), rel=1e-12)
+    assert got[0] == pytest.approx(
+        float(vs.evaluate({**design, eta_c: sympy.Rational(99, 100), eta_d: sympy.Rational(99, 100)}, "B")), rel=1e-12
+    )
     assert np.isnan(got[1]) and np.isnan(got[2])
     with pytest.raises(module.DesignError, match="self-locks"):
         module.efficiency(input="B", errors="raise", **kwargs)
@@ -280,12 +303,18 @@ def test_parameters_and_variants_tables():
     for row, v in zip(module.VARIANTS, vs.variants, strict=True):
         assert row["name"] == v.name and sympy.sympify(row["formula"], locals=dict(vs.train.symbols)) == v.efficiency
         from hand.latex import read_latex, same_rational_function  # the LaTeX read back, not printed again
+
         assert same_rational_function(read_latex(row["latex"], vs.train.symbols.values()), v.efficiency), row["latex"]
     assert "Laus 2011, Fig. 7" in module.__doc__ and "r4 = -r1 + r2 + r3" in module.__doc__
 
 
 def test_generated_modules_pass_mypy_strict():
     """mypy --strict on every generated module (type hints are part of the output)."""
-    result = subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental", "derivations"],
-                            cwd=ROOT, capture_output=True, text=True, check=False)
+    result = subprocess.run(
+        [sys.executable, "-m", "mypy", "--strict", "--no-incremental", "derivations"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert result.returncode == 0, result.stdout + result.stderr

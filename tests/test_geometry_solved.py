@@ -56,12 +56,19 @@ def _sets(train: davies_sym.Train) -> dict[str, davies_sym.VariantSet]:
 def _points(vs: davies_sym.VariantSet, count: int) -> list[dict[sympy.Symbol, sympy.Expr]]:
     domain = ParameterDomain.of(vs.train, vs.analysis.network.layout)
     etas = [s for s in vs.symbols if str(s).startswith("eta")]
-    return [{**p, **{e: R(90 + k, 100) for k, e in enumerate(etas)}}
-            for p in domain.samples(count, seed=3, extra=etas)]
+    return [{**p, **{e: R(90 + k, 100) for k, e in enumerate(etas)}} for p in domain.samples(count, seed=3, extra=etas)]
 
 
-CATALOG_ONE_DOF = ["simple_pair", "tuplin", "planetary_simple", "wolfrom", "simpson", "ravigneaux",
-                   "litvin_face_drive", "humpage"]
+CATALOG_ONE_DOF = [
+    "simple_pair",
+    "tuplin",
+    "planetary_simple",
+    "wolfrom",
+    "simpson",
+    "ravigneaux",
+    "litvin_face_drive",
+    "humpage",
+]
 
 
 @pytest.mark.slow
@@ -88,8 +95,10 @@ def test_tuplin_reversed_meshes_give_laus_eq_76() -> None:
     written with every mesh's gears and every bearing's links in the other order."""
     text = _permuted(Path(catalog_path("tuplin")).read_text(), 7)
     vs = davies_sym.derive(davies_sym.loads(text, "tuplin.yaml"))
-    values = {vs.train.symbols[k]: R(v) for k, v in
-              {"r1": 40, "r2": 60, "r3": 15, "r4": 35, "eta_C": "99/100", "eta_D": "99/100"}.items()}
+    values = {
+        vs.train.symbols[k]: R(v)
+        for k, v in {"r1": 40, "r2": 60, "r3": 15, "r4": 35, "eta_C": "99/100", "eta_D": "99/100"}.items()
+    }
     assert abs(float(vs.evaluate(values, "A")) - 0.9462) < 5e-5
     assert abs(float(vs.evaluate(values, "B")) - 0.9443) < 5e-5
 
@@ -138,8 +147,12 @@ def test_simpson_needs_neither_at_nor_axis() -> None:
     assert " at: " not in SIMPSON_WITHOUT_HINTS and " axis: " not in SIMPSON_WITHOUT_HINTS
     train = davies_sym.loads(SIMPSON_WITHOUT_HINTS, "simpson.yaml")
     rs, rr1, rr2 = (train.symbols[n] for n in ("rs", "rr1", "rr2"))
-    expected = {"first": (rr1 + rr2 + rs) / rr1, "second": 1 + rs / rr1, "third": sympy.Integer(1),
-                "reverse": -rr2 / rs}
+    expected = {
+        "first": (rr1 + rr2 + rs) / rr1,
+        "second": 1 + rs / rr1,
+        "third": sympy.Integer(1),
+        "reverse": -rr2 / rs,
+    }
     for st in train.states:
         ratio = davies_sym.analyse(davies_sym.train_in_state(train, st)).speed_ratio().to_expr()
         assert sympy.simplify(ratio - expected[st.name]) == 0, st.name
@@ -176,8 +189,10 @@ def test_braking_or_clutching_a_gearless_carrier() -> None:
     assert sets["reduction"].analysis.speed_ratio().to_expr() == 3
     assert sets["locked"].analysis.speed_ratio().to_expr() == 1
     assert sets["fixed_carrier"].analysis.speed_ratio().to_expr() == -2
-    eta = {sets["fixed_carrier"].train.symbols["eta_M1"]: R(97, 100),
-           sets["fixed_carrier"].train.symbols["eta_M2"]: R(99, 100)}
+    eta = {
+        sets["fixed_carrier"].train.symbols["eta_M1"]: R(97, 100),
+        sets["fixed_carrier"].train.symbols["eta_M2"]: R(99, 100),
+    }
     assert sets["fixed_carrier"].evaluate(eta, "A") == R(97, 100) * R(99, 100)
     locked = sets["locked"]
     assert locked.evaluate({s: R(9, 10) for s in locked.symbols}, "A") == 1
@@ -197,8 +212,10 @@ def test_dependent_radius_is_checked_not_used(tmp_path: Path, capsys: pytest.Cap
     err = capsys.readouterr().err
     assert "r4 = -r1 + r2 + r3" in err and "gives 35" in err and "difference is 1" in err
     vs = davies_sym.derive(davies_sym.load(tuplin))
-    values = {vs.train.symbols[k]: R(v) for k, v in
-              {"r1": 40, "r2": 60, "r3": 15, "r4": 36, "eta_C": "99/100", "eta_D": "99/100"}.items()}
+    values = {
+        vs.train.symbols[k]: R(v)
+        for k, v in {"r1": 40, "r2": 60, "r3": 15, "r4": 36, "eta_C": "99/100", "eta_D": "99/100"}.items()
+    }
     with pytest.raises(davies_sym.DesignError, match="breaks the relation"):
         vs.evaluate(values, "A")
     module = tmp_path / "tuplin_module.py"
@@ -207,7 +224,8 @@ def test_dependent_radius_is_checked_not_used(tmp_path: Path, capsys: pytest.Cap
     exec(compile(module.read_text(), str(module), "exec"), namespace)  # the module this test generated
     efficiency = namespace["efficiency"]
     assert efficiency(r1=40, r2=60, r3=15, r4=35, eta_C=0.99, eta_D=0.99) == efficiency(  # type: ignore[operator]
-        r1=40, r2=60, r3=15, eta_C=0.99, eta_D=0.99)
+        r1=40, r2=60, r3=15, eta_C=0.99, eta_D=0.99
+    )
     with pytest.raises(Exception, match=r"r4 = 36.0 breaks the relation r4 = -r1 \+ r2 \+ r3"):
         efficiency(r1=40, r2=60, r3=15, r4=36, eta_C=0.99, eta_D=0.99)  # type: ignore[operator]
 

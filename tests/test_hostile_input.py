@@ -62,13 +62,13 @@ def write(tmp_path: Path, name: str, content: str | bytes) -> Path:
     return path
 
 
-
 @pytest.fixture(autouse=True)
 def _extended_cases_on_request(request: pytest.FixtureRequest) -> None:
     skip_slow_unless_full(request)
 
 
 # --- YAML attacks -------------------------------------------------------------------------------------------
+
 
 def _alias_bomb() -> str:
     lines = ['a0: &a0 ["lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol", "lol"]']
@@ -84,24 +84,38 @@ def _fifty_megabytes() -> bytes:
 
 # name -> (content, line of the problem where one is meaningful or None, needs a fresh process)
 YAML_ATTACKS: dict[str, tuple[object, int | None, bool]] = {
-    "python_object_apply_tag": (simple_pair_with(
-        RADIUS_LINE, '  1: {link: 1, radius: !!python/object/apply:os.system ["touch {m}"]}'), 11, False),
-    "python_name_tag": (simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: !!python/name:os.system }"), 11,
-                        False),
+    "python_object_apply_tag": (
+        simple_pair_with(RADIUS_LINE, '  1: {link: 1, radius: !!python/object/apply:os.system ["touch {m}"]}'),
+        11,
+        False,
+    ),
+    "python_name_tag": (simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: !!python/name:os.system }"), 11, False),
     "unknown_local_tag": (simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: !gear r1}"), 11, False),
     "merge_key": (simple_pair_with("  2: {link: 2, radius: r2}", "  2: {<<: {link: 2}, radius: r2}"), 12, False),
-    "merge_key_with_anchor": (simple_pair_with(
-        "  1: {link: 1, radius: r1}\n  2: {link: 2, radius: r2}",
-        "  1: &g {link: 1, radius: r1}\n  2:\n    <<: *g\n    link: 2"), 13, False),
+    "merge_key_with_anchor": (
+        simple_pair_with(
+            "  1: {link: 1, radius: r1}\n  2: {link: 2, radius: r2}",
+            "  1: &g {link: 1, radius: r1}\n  2:\n    <<: *g\n    link: 2",
+        ),
+        13,
+        False,
+    ),
     "alias_bomb": (_alias_bomb(), None, True),
     "deep_nesting": (SIMPLE_PAIR + "notes: " + "[" * 10000 + "]" * 10000 + "\n", 27, True),
     "fifty_megabytes": (_fifty_megabytes(), None, True),
-    "two_megabyte_entry": (simple_pair_with("name: Simple gear pair", "name: " + "x" * (2 * 1024 * 1024)), None,
-                           True),
-    "two_megabyte_number": (simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: " + "7" * (2 * 1024 * 1024)
-                                             + "}"), None, True),
-    "not_utf8": (simple_pair_with("name: Simple gear pair", "name: Simple gear pair caf\udce9")
-                 .encode("utf-8", errors="surrogateescape"), None, False),
+    "two_megabyte_entry": (simple_pair_with("name: Simple gear pair", "name: " + "x" * (2 * 1024 * 1024)), None, True),
+    "two_megabyte_number": (
+        simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: " + "7" * (2 * 1024 * 1024) + "}"),
+        None,
+        True,
+    ),
+    "not_utf8": (
+        simple_pair_with("name: Simple gear pair", "name: Simple gear pair caf\udce9").encode(
+            "utf-8", errors="surrogateescape"
+        ),
+        None,
+        False,
+    ),
     "byte_order_mark": (b"\xef\xbb\xbf" + SIMPLE_PAIR.encode(), None, False),
     "utf16": (SIMPLE_PAIR.encode("utf-16"), None, False),
     "empty": (b"", None, False),
@@ -111,11 +125,15 @@ YAML_ATTACKS: dict[str, tuple[object, int | None, bool]] = {
     "null_document": ("~\n", None, False),
     "two_documents": (SIMPLE_PAIR + "---\n" + SIMPLE_PAIR, 27, False),
     "duplicate_top_level_key": (simple_pair_with("source:", "name: Another name\nsource:"), 4, False),
-    "duplicate_gear": (simple_pair_with("  2: {link: 2, radius: r2}", "  2: {link: 2, radius: r2}\n"
-                                        "  2: {link: 2, radius: r3}"), 13, False),
+    "duplicate_gear": (
+        simple_pair_with("  2: {link: 2, radius: r2}", "  2: {link: 2, radius: r2}\n  2: {link: 2, radius: r3}"),
+        13,
+        False,
+    ),
     "duplicate_key_in_entry": (simple_pair_with(RADIUS_LINE, "  1: {link: 1, radius: r1, radius: r9}"), 11, False),
     "control_character": (simple_pair_with("name: Simple gear pair", "name: Simple \x07 gear pair"), 3, False),
 }
+
 
 @pytest.mark.parametrize("attack", list(YAML_ATTACKS))
 def test_yaml_attack_gives_one_short_clear_refusal(tmp_path, attack):
@@ -130,14 +148,31 @@ def test_yaml_attack_gives_one_short_clear_refusal(tmp_path, attack):
     assert result.elapsed < FEW_SECONDS, f"took {result.elapsed:.1f} s:\n{result.describe()}"
     assert_refused(result, path, line=line is not None, max_lines=None)
     if line is not None:
-        assert re.search(re.escape(str(path)) + f":{line}:", result.stderr), \
+        assert re.search(re.escape(str(path)) + f":{line}:", result.stderr), (
             f"the message does not give line {line}:\n{result.describe()}"
+        )
 
 
 # --- bad numbers --------------------------------------------------------------------------------------------
 
-BAD_RADII = ["-40", "0", "oo", "-oo", "zoo", "nan", "inf", ".nan", ".inf", "-.inf", "1e400", "1.0e+400", "1/0",
-             "-r1", "0*r1", "r1 - r1"]
+BAD_RADII = [
+    "-40",
+    "0",
+    "oo",
+    "-oo",
+    "zoo",
+    "nan",
+    "inf",
+    ".nan",
+    ".inf",
+    "-.inf",
+    "1e400",
+    "1.0e+400",
+    "1/0",
+    "-r1",
+    "0*r1",
+    "r1 - r1",
+]
 
 
 @pytest.mark.parametrize("radius", BAD_RADII)
@@ -148,18 +183,31 @@ def test_impossible_radius_is_refused_with_the_entry(tmp_path, radius):
     assert ":11:" in result.stderr, result.describe()
 
 
-@pytest.mark.parametrize(("entry", "old", "new"), [
-    ("gears.1.module", RADIUS_LINE, "  1: {link: 1, teeth: 20, module: -2}"),
-    ("gears.1.module", RADIUS_LINE, "  1: {link: 1, teeth: 20, module: .nan}"),
-    ("gears.1.teeth", RADIUS_LINE, "  1: {link: 1, teeth: 0, module: 2}"),
-    ("couplings.C.friction.coulomb", "friction: {coulomb: zeta_C}", "friction: {coulomb: -1}"),
-    ("couplings.C.friction.coulomb", "friction: {coulomb: zeta_C}", "friction: {coulomb: .inf}"),
-    ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: 0"),
-    ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: -0.5"),
-    ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: .nan"),
-    ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: [0.98, 1.5]"),
-], ids=["module_negative", "module_nan", "teeth_zero", "coulomb_negative", "coulomb_inf", "efficiency_zero",
-        "efficiency_negative", "efficiency_nan", "efficiency_pair_above_one"])
+@pytest.mark.parametrize(
+    ("entry", "old", "new"),
+    [
+        ("gears.1.module", RADIUS_LINE, "  1: {link: 1, teeth: 20, module: -2}"),
+        ("gears.1.module", RADIUS_LINE, "  1: {link: 1, teeth: 20, module: .nan}"),
+        ("gears.1.teeth", RADIUS_LINE, "  1: {link: 1, teeth: 0, module: 2}"),
+        ("couplings.C.friction.coulomb", "friction: {coulomb: zeta_C}", "friction: {coulomb: -1}"),
+        ("couplings.C.friction.coulomb", "friction: {coulomb: zeta_C}", "friction: {coulomb: .inf}"),
+        ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: 0"),
+        ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: -0.5"),
+        ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: .nan"),
+        ("couplings.C.efficiency", "friction: {coulomb: zeta_C}", "efficiency: [0.98, 1.5]"),
+    ],
+    ids=[
+        "module_negative",
+        "module_nan",
+        "teeth_zero",
+        "coulomb_negative",
+        "coulomb_inf",
+        "efficiency_zero",
+        "efficiency_negative",
+        "efficiency_nan",
+        "efficiency_pair_above_one",
+    ],
+)
 def test_impossible_coefficient_is_refused_with_the_entry(tmp_path, entry, old, new):
     path = write(tmp_path, "pair.yaml", simple_pair_with(old, new))
     assert_refused(run_main([str(path), "--quiet"]), path, (entry,))
@@ -173,8 +221,23 @@ def test_annulus_smaller_than_its_planet_is_refused(tmp_path):
     assert_refused(result, path, ("gears.1", "gears.3", "couplings.C"), max_lines=None)
 
 
-@pytest.mark.parametrize("value", ["eta_C=1.5", "eta_C=0", "eta_C=-0.5", "eta_C=nan", "r1=-3", "r1=0", "r1=nan",
-                                   "r1=oo", "r1=inf", "r1=zoo", "r1=1/0", "r1=-oo"])
+@pytest.mark.parametrize(
+    "value",
+    [
+        "eta_C=1.5",
+        "eta_C=0",
+        "eta_C=-0.5",
+        "eta_C=nan",
+        "r1=-3",
+        "r1=0",
+        "r1=nan",
+        "r1=oo",
+        "r1=inf",
+        "r1=zoo",
+        "r1=1/0",
+        "r1=-oo",
+    ],
+)
 def test_impossible_eval_value_is_refused_with_the_name(tmp_path, value):
     path = write(tmp_path, "pair.yaml", SIMPLE_PAIR)
     name = value.partition("=")[0]
@@ -186,6 +249,7 @@ def test_impossible_eval_value_is_refused_with_the_name(tmp_path, value):
 
 
 # --- output safety ------------------------------------------------------------------------------------------
+
 
 def _input(tmp_path: Path, name: str = "pair.yaml") -> tuple[Path, bytes]:
     path = write(tmp_path, name, SIMPLE_PAIR)
@@ -240,9 +304,13 @@ def test_output_into_a_read_only_folder_is_a_clear_refusal(tmp_path, option):
 def test_output_onto_the_input_is_refused_and_the_input_keeps_its_bytes(tmp_path, monkeypatch, option, how):
     path, before = _input(tmp_path)
     monkeypatch.chdir(tmp_path)
-    target = {"same_path": str(path), "relative": "pair.yaml", "dot_segments": str(tmp_path / "." / "x" / ".." /
-                                                                                   "pair.yaml"),
-              "symlink": str(tmp_path / "link.yaml"), "hard_link": str(tmp_path / "hard.yaml")}[how]
+    target = {
+        "same_path": str(path),
+        "relative": "pair.yaml",
+        "dot_segments": str(tmp_path / "." / "x" / ".." / "pair.yaml"),
+        "symlink": str(tmp_path / "link.yaml"),
+        "hard_link": str(tmp_path / "hard.yaml"),
+    }[how]
     (tmp_path / "x").mkdir()
     if how == "symlink":
         os.symlink(path, target)
@@ -279,14 +347,18 @@ def test_out_dir_with_two_inputs_of_one_name_does_not_overwrite_an_input(tmp_pat
 KNOWN_MODULE = "# written by the user before the run\nKNOWN = 1\n"
 
 
-@pytest.mark.parametrize("bad", [["--eval", "nosuch=3", "r1=20", "r2=50", "eta_C=0.98"],
-                                 ["--eval", "r1=abc", "r2=50", "eta_C=0.98"],
-                                 ["--eval", "r1=-3", "r2=50", "eta_C=0.98"],
-                                 ["--eval", "r1=20", "r2=50"],
-                                 ["--eval", "r1", "r2=50", "eta_C=0.98"],
-                                 ["--eval", "r1=20", "r2=50", "eta_C=0.98", "--input", "Z"]],
-                         ids=["unknown_name", "not_a_number", "negative_radius", "missing_value", "no_equals",
-                              "bad_port"])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        ["--eval", "nosuch=3", "r1=20", "r2=50", "eta_C=0.98"],
+        ["--eval", "r1=abc", "r2=50", "eta_C=0.98"],
+        ["--eval", "r1=-3", "r2=50", "eta_C=0.98"],
+        ["--eval", "r1=20", "r2=50"],
+        ["--eval", "r1", "r2=50", "eta_C=0.98"],
+        ["--eval", "r1=20", "r2=50", "eta_C=0.98", "--input", "Z"],
+    ],
+    ids=["unknown_name", "not_a_number", "negative_radius", "missing_value", "no_equals", "bad_port"],
+)
 def test_refused_eval_leaves_an_existing_module_untouched(tmp_path, bad):
     path, _ = _input(tmp_path)
     module = write(tmp_path, "m.py", KNOWN_MODULE)
@@ -318,8 +390,11 @@ FLOAT = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^[-+]?(nan|inf|oo|z
 
 def _numbers(text: str) -> list[float]:
     """Every stdout line that is a bare number."""
-    return [float(line.strip().replace("zoo", "nan").replace("oo", "inf"))
-            for line in text.splitlines() if FLOAT.match(line.strip())]
+    return [
+        float(line.strip().replace("zoo", "nan").replace("oo", "inf"))
+        for line in text.splitlines()
+        if FLOAT.match(line.strip())
+    ]
 
 
 @pytest.mark.parametrize("ports", [["--input", "B"], ["--output", "A"]], ids=["input_B", "output_A"])
@@ -339,8 +414,7 @@ def test_self_locking_design_exits_3_with_a_reason(tmp_path, ports):
 
 def test_admissible_design_exits_0_with_the_efficiency_last(tmp_path):
     path = write(tmp_path, "tuplin.yaml", TUPLIN)
-    result = run_main([str(path), "--quiet", "--eval", "r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99",
-                       "eta_D=0.99"])
+    result = run_main([str(path), "--quiet", "--eval", "r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99", "eta_D=0.99"])
     assert result.returncode == 0, result.describe()
     value = float(result.stdout.splitlines()[-1])
     assert value == pytest.approx(0.9462, abs=5e-5)

@@ -69,8 +69,10 @@ def test_cone_geometry_is_consistent():
         point = {n: tuple(_real(layout, x).subs(values) for x in layout.coupling_points[n]) for n in "CDE"}
         axis = {g: tuple(_real(layout, x).subs(values) for x in layout.gear_axes[g]) for g in "12345"}
         for mesh, gears in (("C", "12"), ("D", "52"), ("E", "43")):
-            assert all(sympy.radsimp(a - sympy.sympify(c).subs(values)) == 0
-                       for a, c in zip(point[mesh], laus[mesh], strict=True))
+            assert all(
+                sympy.radsimp(a - sympy.sympify(c).subs(values)) == 0
+                for a, c in zip(point[mesh], laus[mesh], strict=True)
+            )
             for g in gears:
                 p, u = sympy.Matrix(point[mesh]), sympy.Matrix(axis[g])
                 assert sympy.radsimp(p.cross(u).norm() ** 2 - values[SYM[f"r{g}"]] ** 2) == 0, (mesh, g)
@@ -144,8 +146,11 @@ def test_consistent_speed_ratio(consistent):
 
 #: Which ordinary efficiency a mesh has when the central gear k drives the planet (True)
 #: or the planet drives gear k (False); the catalog names them eta_<driver><driven>.
-MESH_OF_GEAR = {"1": {True: "eta_12", False: "eta_21"}, "5": {True: "eta_52", False: "eta_25"},
-                "4": {True: "eta_43", False: "eta_34"}}
+MESH_OF_GEAR = {
+    "1": {True: "eta_12", False: "eta_21"},
+    "5": {True: "eta_52", False: "eta_25"},
+    "4": {True: "eta_43", False: "eta_34"},
+}
 
 
 def carrier_frame_efficiency(z: dict, etas: dict[str, Fraction], port: str) -> tuple[Fraction, dict[str, bool], bool]:
@@ -183,10 +188,17 @@ def closed_form(z: dict, e: dict[str, Fraction], port: str) -> Fraction:
     and gear 4 drives 3 with A as input; every flow reversed with B)."""
     r1, r2, r3, r4, r5 = (Fraction(z[f"r{k}"]) for k in range(1, 6))
     if port == "A":
-        return ((r1 + e["eta_12"] * e["eta_25"] * r5) * (r2 * r4 - r3 * r5)
-                / ((r1 + r5) * (r2 * r4 - e["eta_25"] * e["eta_43"] * r3 * r5)))
-    return (e["eta_21"] * (r1 + r5) * (e["eta_34"] * e["eta_52"] * r2 * r4 - r3 * r5)
-            / (e["eta_34"] * (r2 * r4 - r3 * r5) * (r5 + e["eta_21"] * e["eta_52"] * r1)))
+        return (
+            (r1 + e["eta_12"] * e["eta_25"] * r5)
+            * (r2 * r4 - r3 * r5)
+            / ((r1 + r5) * (r2 * r4 - e["eta_25"] * e["eta_43"] * r3 * r5))
+        )
+    return (
+        e["eta_21"]
+        * (r1 + r5)
+        * (e["eta_34"] * e["eta_52"] * r2 * r4 - r3 * r5)
+        / (e["eta_34"] * (r2 * r4 - r3 * r5) * (r5 + e["eta_21"] * e["eta_52"] * r1))
+    )
 
 
 def _rational(value: Fraction) -> sympy.Rational:
@@ -241,8 +253,16 @@ def test_consistent_both_routes(consistent, port):
     drivers the balance gives -13461/36875 (the engine's value too) and the flows with
     friction no longer have those directions."""
     rng = random.Random(11)
-    points = [NELSON_CIPRA] + [{r1: rng.randint(10, 30), r2: rng.randint(40, 60), r3: rng.randint(10, 40),
-                                r4: rng.randint(20, 50), r5: rng.randint(60, 90)} for _ in range(3)]
+    points = [NELSON_CIPRA] + [
+        {
+            r1: rng.randint(10, 30),
+            r2: rng.randint(40, 60),
+            r3: rng.randint(10, 40),
+            r4: rng.randint(20, 50),
+            r5: rng.randint(60, 90),
+        }
+        for _ in range(3)
+    ]
     for point in points:
         values = {**point, **{e: sympy.Rational(rng.randint(90, 99), 100) for e in ALL_098}}
         if point is NELSON_CIPRA:
@@ -268,8 +288,14 @@ def test_consistent_both_routes(consistent, port):
         assert drives == {"1": False, "4": False, "5": True}
         assert hand == Fraction(29192, 67439)
     assert consistent.evaluate({**NELSON_CIPRA, **ALL_098}, port) == _rational(hand)
-    nelson_cipra = {"eta_12": Fraction(9725, 10000), "eta_25": Fraction(9983, 10000), "eta_43": Fraction(9958, 10000),
-                    "eta_21": Fraction(97, 100), "eta_52": Fraction(99, 100), "eta_34": Fraction(96, 100)}
+    nelson_cipra = {
+        "eta_12": Fraction(9725, 10000),
+        "eta_25": Fraction(9983, 10000),
+        "eta_43": Fraction(9958, 10000),
+        "eta_21": Fraction(97, 100),
+        "eta_52": Fraction(99, 100),
+        "eta_34": Fraction(96, 100),
+    }
     hand, _, kept = carrier_frame_efficiency(z, nelson_cipra, port)
     assert kept
     assert hand == closed_form(z, nelson_cipra, port)

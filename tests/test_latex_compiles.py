@@ -132,8 +132,14 @@ def own_document() -> Document:
 def compile_log(text: str, directory: Path) -> str:
     """pdflatex's log of ``text``; the run must succeed."""
     (directory / "doc.tex").write_text(text, encoding="utf-8")
-    result = subprocess.run([PDFLATEX or "pdflatex", "-interaction=nonstopmode", "-halt-on-error", "doc.tex"],
-                            cwd=directory, capture_output=True, text=True, timeout=300, check=False)
+    result = subprocess.run(
+        [PDFLATEX or "pdflatex", "-interaction=nonstopmode", "-halt-on-error", "doc.tex"],
+        cwd=directory,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
     log = (directory / "doc.log").read_text(encoding="latin-1")
     assert result.returncode == 0, log[-3000:]
     return log
@@ -142,8 +148,11 @@ def compile_log(text: str, directory: Path) -> str:
 def layout_problems(log: str) -> list[str]:
     """Overfull boxes past the tolerance, overfull vertical boxes, undefined commands and
     errors in a pdflatex log."""
-    problems = [m.group(0) for m in re.finditer(r"Overfull \\hbox \((\d+(?:\.\d+)?)pt too wide\)[^\n]*", log)
-                if float(m.group(1)) > TOLERANCE_PT]
+    problems = [
+        m.group(0)
+        for m in re.finditer(r"Overfull \\hbox \((\d+(?:\.\d+)?)pt too wide\)[^\n]*", log)
+        if float(m.group(1)) > TOLERANCE_PT
+    ]
     problems += re.findall(r"Overfull \\vbox[^\n]*", log)
     problems += re.findall(r"Undefined control sequence[^\n]*", log)
     problems += re.findall(r"^! [^\n]*", log, flags=re.MULTILINE)
@@ -183,8 +192,9 @@ def check_read_back(document: Document) -> int:
         for r in si.regions:
             assert equal_at_random_points(read_latex(equations[r.number], symbols), r.efficiency), r.number
             section = document.text.split(rf"\paragraph{{Region ({r.number})}}")[1].split(r"\paragraph")[0]
-            _check_forces(force_conditions(section), region_forces(r) if any(x.reversed for x in si.regions)
-                          else [], symbols)
+            _check_forces(
+                force_conditions(section), region_forces(r) if any(x.reversed for x in si.regions) else [], symbols
+            )
             read += 1
         return read
     for text, (symbols, vs) in zip(sections(document), document.sections, strict=True):
@@ -200,8 +210,9 @@ def check_read_back(document: Document) -> int:
     return read
 
 
-def _check_forces(shown: list[tuple[str, str]], expected: list[tuple[str, sympy.Expr, int]],
-                  symbols: list[sympy.Symbol]) -> None:
+def _check_forces(
+    shown: list[tuple[str, str]], expected: list[tuple[str, sympy.Expr, int]], symbols: list[sympy.Symbol]
+) -> None:
     assert len(shown) == len(expected)
     for (body, relation), (_, force, sign) in zip(shown, expected, strict=True):
         assert relation == (">" if sign > 0 else "<")
@@ -211,8 +222,12 @@ def _check_forces(shown: list[tuple[str, str]], expected: list[tuple[str, sympy.
 def _check_definitions(text: str, vs: VariantSet, symbols: list[sympy.Symbol]) -> None:
     """Each definition (``where X is the ...``), read back, equals its expression in
     floating point at random points (they may hold logarithms and sines)."""
-    blocks = re.findall(r"where \$([^$]+)\$ is the [^\n]*:\n(\\begin\{equation\*\}\n.*?\n\\end\{equation\*\}|"
-                        r"\\begin\{align\*\}\n.*?\n\\end\{align\*\})", text, flags=re.DOTALL)
+    blocks = re.findall(
+        r"where \$([^$]+)\$ is the [^\n]*:\n(\\begin\{equation\*\}\n.*?\n\\end\{equation\*\}|"
+        r"\\begin\{align\*\}\n.*?\n\\end\{align\*\})",
+        text,
+        flags=re.DOTALL,
+    )
     assert len(blocks) == len(vs.train.definitions)
     rng = random.Random(7)
     for (name, block), d in zip(blocks, vs.train.definitions, strict=True):
@@ -235,14 +250,22 @@ def test_reader_takes_display_names_and_broken_lines() -> None:
     reopen on the next line refused."""
     rp1, rs, eta = sympy.symbols("rp1 rs eta_C", positive=True)
     assert [display_latex(n) for n in ("rp1", "N4", "eta_C", "eta_12", "eta_C_1_2", "mu", "r", "tau_in", "pin")] == [
-        "r_{p1}", "N_{4}", r"\eta_{C}", r"\eta_{12}", r"\eta_{C,1,2}", r"\mu", "r", r"\tau_{in}", "p_{in}"]
+        "r_{p1}",
+        "N_{4}",
+        r"\eta_{C}",
+        r"\eta_{12}",
+        r"\eta_{C,1,2}",
+        r"\mu",
+        "r",
+        r"\tau_{in}",
+        "p_{in}",
+    ]
     symbols = [rp1, rs, eta]
     assert read_latex(r"\eta_{C} r_{p1} + r_{s}", symbols) == eta * rp1 + rs
     assert read_latex(r"\eta_{C} rp_{1} + rs", symbols) == eta * rp1 + rs  # sympy's spelling still read
     broken = r"\eta_{C} \left(r_{p1} \right. \\ &\quad \left. + r_{s}\right) \\ &\quad \cdot r_{s}"
     assert read_latex(broken, symbols) == eta * (rp1 + rs) * rs
-    assert read_latex(r"\left(r_{p1} + r_{s}\right)^{-1} \log\left(r_{s}\right)", symbols) == sympy.log(rs) / (
-        rp1 + rs)
+    assert read_latex(r"\left(r_{p1} + r_{s}\right)^{-1} \log\left(r_{s}\right)", symbols) == sympy.log(rs) / (rp1 + rs)
     for wrong in (broken.replace(r"\left. ", ""), broken.replace(r"\right. ", ""), r"r_{p1} \right. r_{s}"):
         with pytest.raises(LatexError):
             read_latex(wrong, symbols)
@@ -290,8 +313,10 @@ def _display_names_only(document: Document) -> None:
         for v in vs.variants:
             shown |= v.efficiency.free_symbols
     assert shown
-    math = " ".join(re.findall(r"\\begin\{(?:equation\*?|align\*)\}(.*?)\\end", document.text, flags=re.DOTALL)
-                    + re.findall(r"\$([^$]*)\$", document.text))
+    math = " ".join(
+        re.findall(r"\\begin\{(?:equation\*?|align\*)\}(.*?)\\end", document.text, flags=re.DOTALL)
+        + re.findall(r"\$([^$]*)\$", document.text)
+    )
     for s in shown:
         assert display_latex(s.name) in math, s
         if sympy.latex(s) != display_latex(s.name):
@@ -309,8 +334,11 @@ def test_simpson_shows_display_names_and_no_program_syntax() -> None:
 def test_simpson_names_its_planet_radius_r_p1() -> None:
     """With the planet radii among the parameters (``independent: [rs, rp1, rp2]``),
     Simpson's formulas show Laus's r_{p1}, never sympy's rp_{1}, and read back."""
-    text = re.sub(r"(?m)^independent: .*$", "independent: [rs, rp1, rp2]",
-                  Path(catalog_path("simpson")).read_text(encoding="utf-8"))
+    text = re.sub(
+        r"(?m)^independent: .*$",
+        "independent: [rs, rp1, rp2]",
+        Path(catalog_path("simpson")).read_text(encoding="utf-8"),
+    )
     document = _document(davies_sym.loads(text, "simpson_planets.yaml"))
     assert "r_{p1}" in document.text and "rp_{1}" not in document.text
     _display_names_only(document)
@@ -394,15 +422,25 @@ def test_wide_variants_table_fits(tmp_path: Path) -> None:
     long gear names and a status on every row, in a table of its own; and the real
     tests/data/dependent_conditions.yaml train (two conditions, four meshes)."""
     conditions = [SimpleNamespace(name=f"c{k}") for k in range(1, 5)]
-    roles = [SimpleNamespace(coupling=f"M{k}", idle=k == 4, flow=SimpleNamespace(gears=(f"Sun{k}", f"Planet{k}")))
-             for k in range(1, 5)]
+    roles = [
+        SimpleNamespace(coupling=f"M{k}", idle=k == 4, flow=SimpleNamespace(gears=(f"Sun{k}", f"Planet{k}")))
+        for k in range(1, 5)
+    ]
     rows = []
     for n in range(16):
         signs = {c.name: 1 if n >> k & 1 else -1 for k, c in enumerate(conditions)}
-        rows.append(SimpleNamespace(number=n + 1, input="A", output="B", signs=signs, feasible=n % 3 != 0,
-                                    first_drives={r.coupling: n % 2 == 0 for r in roles},
-                                    self_locking_point={} if n % 2 else None,
-                                    reversed_forces=frozenset({"M1", "M2"}) if n % 4 == 0 else frozenset()))
+        rows.append(
+            SimpleNamespace(
+                number=n + 1,
+                input="A",
+                output="B",
+                signs=signs,
+                feasible=n % 3 != 0,
+                first_drives={r.coupling: n % 2 == 0 for r in roles},
+                self_locking_point={} if n % 2 else None,
+                reversed_forces=frozenset({"M1", "M2"}) if n % 4 == 0 else frozenset(),
+            )
+        )
     wide = SimpleNamespace(conditions=conditions, roles=roles, variants=rows)
     text = "\n".join([*PREAMBLE, *variants_table(wide), r"\end{document}", ""])  # type: ignore[arg-type]
     assert "Planet3" in text and "M4: idle" in text

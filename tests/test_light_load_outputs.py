@@ -87,8 +87,9 @@ def _fixed() -> dict[str, F]:
 
 def _exact(variants: VariantSet, case: dict[str, F]) -> dict[sympy.Symbol, sympy.Expr]:
     symbols = variants.train.symbols
-    point: dict[sympy.Symbol, sympy.Expr] = {symbols[k]: sympy.Rational(v.numerator, v.denominator)
-                                             for k, v in _fixed().items()}
+    point: dict[sympy.Symbol, sympy.Expr] = {
+        symbols[k]: sympy.Rational(v.numerator, v.denominator) for k, v in _fixed().items()
+    }
     point[INPUT_TORQUE] = sympy.Rational(case["tau_in"].numerator, case["tau_in"].denominator)
     point[INPUT_SPEED] = sympy.Rational(case["omega_in"].numerator, case["omega_in"].denominator)
     return point
@@ -110,8 +111,10 @@ def test_generated_module_equals_the_oracle_at_every_load(variants: VariantSet, 
     (rtol 1e-12), the light-load rows taken by reversed variants, no warning; the losses
     add up to 1 - efficiency in every row (power balance P_in + P_out + losses = 0)."""
     module = compiled_module(python_module(variants), "light")
-    arrays = {"tau_in": np.array([float(c["tau_in"]) for c in cases]),
-              "omega_in": np.array([float(c["omega_in"]) for c in cases])}
+    arrays = {
+        "tau_in": np.array([float(c["tau_in"]) for c in cases]),
+        "omega_in": np.array([float(c["omega_in"]) for c in cases]),
+    }
     fixed = {k: float(v) for k, v in _fixed().items()}
     # Without viscous friction the formulas do not take the speed.
     arrays = {k: v for k, v in arrays.items() if k in {p["name"] for p in module.PARAMETERS}}

@@ -84,8 +84,11 @@ def test_tooth_geometry_from_the_addenda_agrees_with_buckingham() -> None:
 
 def test_tooth_efficiency_tends_to_one_and_falls_with_friction() -> None:
     variants = derive_variants(davies_sym.loads(Path(catalog_path("buckingham_pair")).read_text(), "b.yaml"))
-    etas = [float(variants.evaluate(_values(variants, mu=mu), input=port))
-            for port in ("A", "B") for mu in ("1e-9", "0.01", "0.05", "0.1")]
+    etas = [
+        float(variants.evaluate(_values(variants, mu=mu), input=port))
+        for port in ("A", "B")
+        for mu in ("1e-9", "0.01", "0.05", "0.1")
+    ]
     for side in (etas[:4], etas[4:]):
         assert abs(side[0] - 1) < 1e-8
         assert side == sorted(side, reverse=True)
@@ -180,8 +183,11 @@ def test_every_variant_falls_as_the_loss_grows(law: str, side: str) -> None:
     for port in ("A", "B"):
         etas = []
         for b in ("1e-12", "0.01", "0.1", "0.5"):
-            values = _values(variants, r1=20, r2=50, eta_C="0.98", b=b) if "b" in law else \
-                _values(variants, r1=20, r2=50, eta_C="0.98", D=b)
+            values = (
+                _values(variants, r1=20, r2=50, eta_C="0.98", b=b)
+                if "b" in law
+                else _values(variants, r1=20, r2=50, eta_C="0.98", D=b)
+            )
             values |= {INPUT_TORQUE: sympy.Integer(40), INPUT_SPEED: sympy.Integer(3)}
             etas.append(float(variants.evaluate(values, input=port)))
         assert abs(etas[0] - 0.98) < 1e-9
@@ -219,8 +225,12 @@ def test_ports_named_in_and_out_do_not_meet_the_operating_point_symbols() -> Non
     """Couplings called `in` and `out` have the magnitudes T_in, t_in, T_out: the input
     torque and speed of the formulas are tau_in and omega_in, so such a train derives, and
     its drag variant is the hand formula eta = eta_C - D r1 / (r2 tau_in) (drag on the output)."""
-    text = PAIR.format(a="", b=", friction: {drag: D}").replace("A:", "in:").replace("B:", "out:").replace(
-        "{input: A, output: B}", "{input: in, output: out}")
+    text = (
+        PAIR.format(a="", b=", friction: {drag: D}")
+        .replace("A:", "in:")
+        .replace("B:", "out:")
+        .replace("{input: A, output: B}", "{input: in, output: out}")
+    )
     variants = derive_variants(davies_sym.loads(text, "in_out.yaml"))
     values = _values(variants, r1=20, r2=50, eta_C="0.98", D="0.5")
     values |= {INPUT_TORQUE: sympy.Integer(10), INPUT_SPEED: sympy.Integer(7)}

@@ -66,8 +66,17 @@ def _engine(template: str, members: tuple[str, ...], losses: dict[str, dict[str,
     return derive_variants(davies_sym.loads(text, "train.yaml"))
 
 
-def _check(variants, oracle_train: LossyTrain, values: dict[str, F], losses: dict[str, dict[str, F]],
-           port: str, oracle_in: str, oracle_out: str, speed: F, load: F) -> None:
+def _check(
+    variants,
+    oracle_train: LossyTrain,
+    values: dict[str, F],
+    losses: dict[str, dict[str, F]],
+    port: str,
+    oracle_in: str,
+    oracle_out: str,
+    speed: F,
+    load: F,
+) -> None:
     result = solve(oracle_train, {oracle_in: speed}, oracle_out, load)
     symbols = variants.train.symbols
     point = {symbols[k]: sympy.Rational(v.numerator, v.denominator) for k, v in values.items()}
@@ -98,8 +107,15 @@ def test_pair_with_bearing_losses(losses: dict[str, dict[str, F]], reverse: bool
     r1, r2, eta = F(20), F(50), F(49, 50)
     members = (Member("0"), Member("g1"), Member("g2", None, (F(0), r1 + r2)))
     bearings = tuple(Bearing(m, **laws) for m, laws in losses.items())
-    oracle = LossyTrain("pair", members, (Gear("1", "g1", r1), Gear("2", "g2", r2)), (Mesh("C", ("1", "2"), eta),),
-                        "0", {"in": "g1", "out": "g2"}, bearings)
+    oracle = LossyTrain(
+        "pair",
+        members,
+        (Gear("1", "g1", r1), Gear("2", "g2", r2)),
+        (Mesh("C", ("1", "2"), eta),),
+        "0",
+        {"in": "g1", "out": "g2"},
+        bearings,
+    )
     variants = _engine(PAIR, ("g1", "g2"), losses)
     values = {"r1": r1, "r2": r2, "eta_C": eta}
     ports = ("B", "out", "in") if reverse else ("A", "in", "out")
@@ -115,11 +131,11 @@ PLANETARY_CASES = [
 ]
 
 
-@pytest.mark.parametrize("losses", PLANETARY_CASES,
-                         ids=lambda c: "-".join(f"{m}:{'+'.join(v)}" for m, v in c.items()))
+@pytest.mark.parametrize("losses", PLANETARY_CASES, ids=lambda c: "-".join(f"{m}:{'+'.join(v)}" for m, v in c.items()))
 @pytest.mark.parametrize("reverse", [False, True], ids=["sun_in", "carrier_in"])
-def test_planetary_with_mesh_efficiencies_and_planet_bearing_friction(losses: dict[str, dict[str, F]],
-                                                                      reverse: bool) -> None:
+def test_planetary_with_mesh_efficiencies_and_planet_bearing_friction(
+    losses: dict[str, dict[str, F]], reverse: bool
+) -> None:
     """The issue's case: a planetary with ordinary mesh efficiencies and friction in the
     planet bearing (loaded by the sum of the two tooth forces), sun or carrier driving."""
     rs, rp, eta1, eta2 = F(3), F(2), F(97, 100), F(98, 100)
@@ -146,11 +162,11 @@ LIGHT_LOAD_CASES = [
 ]
 
 
-@pytest.mark.parametrize("losses", LIGHT_LOAD_CASES,
-                         ids=lambda c: "-".join(f"{m}:{'+'.join(v)}" for m, v in c.items()))
+@pytest.mark.parametrize("losses", LIGHT_LOAD_CASES, ids=lambda c: "-".join(f"{m}:{'+'.join(v)}" for m, v in c.items()))
 @pytest.mark.parametrize("reverse", [False, True], ids=["sun_in", "carrier_in"])
-def test_light_loads_that_reverse_loaded_forces_take_their_own_variant(losses: dict[str, dict[str, F]],
-                                                                      reverse: bool) -> None:
+def test_light_loads_that_reverse_loaded_forces_take_their_own_variant(
+    losses: dict[str, dict[str, F]], reverse: bool
+) -> None:
     """Drag in the planet bearing against a light load: below a load of about 19 (sun
     input, drag 5) the drag reverses the ring mesh's tooth force, the oracle's ring mesh
     changes its driving gear (and with Coulomb friction a bearing reaction can turn too).
@@ -165,8 +181,10 @@ def test_light_loads_that_reverse_loaded_forces_take_their_own_variant(losses: d
     oracle = LossyTrain("planetary", members, gears, meshes, "0", {"in": "s", "out": "c"}, bearings)
     variants = _engine(PLANETARY, ("s", "c", "p"), losses)
     symbols = variants.train.symbols
-    point = {symbols[k]: sympy.Rational(v.numerator, v.denominator)
-             for k, v in {"rs": rs, "rp": rp, "eta_SP": eta1, "eta_RP": eta2}.items()}
+    point = {
+        symbols[k]: sympy.Rational(v.numerator, v.denominator)
+        for k, v in {"rs": rs, "rp": rp, "eta_SP": eta1, "eta_RP": eta2}.items()
+    }
     for member, laws in losses.items():
         for kind, v in laws.items():
             name = {"rho": "rho", "viscous": "b", "drag": "D"}[kind]
@@ -178,8 +196,10 @@ def test_light_loads_that_reverse_loaded_forces_take_their_own_variant(losses: d
             # The carrier turns 5 times slower than the sun: its load is 5 times larger.
             result = solve(oracle, {oracle_in: speed}, oracle_out, -load / 5 if reverse else -load)
             torque = abs(result.torques[oracle_in])
-            values = point | {INPUT_TORQUE: sympy.Rational(torque.numerator, torque.denominator),
-                              INPUT_SPEED: sympy.Rational(speed.numerator, speed.denominator)}
+            values = point | {
+                INPUT_TORQUE: sympy.Rational(torque.numerator, torque.denominator),
+                INPUT_SPEED: sympy.Rational(speed.numerator, speed.denominator),
+            }
             truth = sympy.Rational(result.efficiency.numerator, result.efficiency.denominator)
             answer = evaluate(variants, values, port)
             assert answer.efficiency == truth, (load, speed)

@@ -46,8 +46,9 @@ def pair(eta: F = ETA, *bearings: Bearing, reverse: bool = False) -> LossyTrain:
     """Gear 1 (r1) on g1 at y = 0, gear 2 (r2) on g2 at y = r1 + r2, both on the housing."""
     members = (Member("0"), Member("g1"), Member("g2", None, (F(0), R1 + R2)))
     mesh = Mesh("C", ("2", "1") if reverse else ("1", "2"), eta)
-    return LossyTrain("pair", members, (Gear("1", "g1", R1), Gear("2", "g2", R2)), (mesh,), "0",
-                      {"in": "g1", "out": "g2"}, bearings)
+    return LossyTrain(
+        "pair", members, (Gear("1", "g1", R1), Gear("2", "g2", R2)), (mesh,), "0", {"in": "g1", "out": "g2"}, bearings
+    )
 
 
 @pytest.mark.parametrize("reverse", [False, True])
@@ -127,8 +128,15 @@ def planetary(eta1: F, eta2: F, rho: F, rs: F = F(3), rp: F = F(2), ring_first: 
 
 
 @pytest.mark.parametrize("ring_first", [True, False])
-@pytest.mark.parametrize(("eta1", "eta2", "rho"), [(F(97, 100), F(98, 100), F(0)), (F(97, 100), F(98, 100), F(1, 5)),
-                                                   (F(1), F(1), F(1, 10)), (F(9, 10), F(8, 10), F(1, 3))])
+@pytest.mark.parametrize(
+    ("eta1", "eta2", "rho"),
+    [
+        (F(97, 100), F(98, 100), F(0)),
+        (F(97, 100), F(98, 100), F(1, 5)),
+        (F(1), F(1), F(1, 10)),
+        (F(9, 10), F(8, 10), F(1, 3)),
+    ],
+)
 def test_planetary_with_planet_bearing_friction(ring_first: bool, eta1: F, eta2: F, rho: F) -> None:
     """Sun input (w_s > 0), ring fixed, carrier output.  Kinematics: w_c = w_s rs / (2e), e = rs + rp,
     rr = rs + 2 rp; in the carrier frame the planet turns backwards (w_p - w_c < 0).
@@ -229,8 +237,11 @@ def test_sr20_at_csv_row_and_coulomb() -> None:
     assert lossy.eta < meshes.eta < 1
 
 
-@pytest.mark.parametrize("train", [pair(F(1), Bearing("g1"), Bearing("g2")), planetary(F(1), F(1), F(0)),
-                                   sr20(1, 1, drag=0, viscous=0, rho=0)], ids=["pair", "planetary", "sr20"])
+@pytest.mark.parametrize(
+    "train",
+    [pair(F(1), Bearing("g1"), Bearing("g2")), planetary(F(1), F(1), F(0)), sr20(1, 1, drag=0, viscous=0, rho=0)],
+    ids=["pair", "planetary", "sr20"],
+)
 def test_lossless_limit(train: LossyTrain) -> None:
     """All losses zero: eta = 1 and nothing is dissipated."""
     inputs = {"A": 309, "K": 51} if "A" in train.ports else {"in": 100}

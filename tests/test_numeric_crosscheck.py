@@ -41,13 +41,19 @@ def numeric_efficiency(a: davies_sym.Analysis, values: dict[sympy.Symbol, float]
     return -port_power(a.train.ports.output) / port_power(a.train.ports.input)
 
 
-@pytest.mark.parametrize("train", [
-    davies_sym.load(catalog_path("simple_pair")),
-    davies_sym.load(catalog_path("tuplin")),
-    variant("tuplin", {"coulomb: zeta_C": "linear: zeta_C", "coulomb: zeta_D": "linear: zeta_D"}),
-    variant("simple_pair", {"A: {type: revolute, links: [0, 1]}":
-                            "A: {type: revolute, links: [0, 1], friction: {coulomb: zeta_A}}"}),
-], ids=["simple_pair", "tuplin_coulomb", "tuplin_linear", "simple_pair_bearing"])
+@pytest.mark.parametrize(
+    "train",
+    [
+        davies_sym.load(catalog_path("simple_pair")),
+        davies_sym.load(catalog_path("tuplin")),
+        variant("tuplin", {"coulomb: zeta_C": "linear: zeta_C", "coulomb: zeta_D": "linear: zeta_D"}),
+        variant(
+            "simple_pair",
+            {"A: {type: revolute, links: [0, 1]}": "A: {type: revolute, links: [0, 1], friction: {coulomb: zeta_A}}"},
+        ),
+    ],
+    ids=["simple_pair", "tuplin_coulomb", "tuplin_linear", "simple_pair_bearing"],
+)
 def test_symbolic_equals_numeric(train, rng):
     a = davies_sym.analyse(train)
     eta = a.efficiency

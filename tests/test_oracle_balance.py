@@ -12,26 +12,45 @@ from oracle.random_trains import FAMILIES, generate
 
 def pair(r1: F, r2: F, eta: F, internal: bool = False) -> TrainSpec:
     d = r2 - r1 if internal else r1 + r2
-    return TrainSpec("pair", (Member("0"), Member("a"), Member("b", None, (F(0), d))),
-                     (Gear("G1", "a", r1), Gear("G2", "b", r2, internal)), (Mesh("C", ("G1", "G2"), eta),),
-                     "0", {"A": "a", "B": "b"}, "A", "B")
+    return TrainSpec(
+        "pair",
+        (Member("0"), Member("a"), Member("b", None, (F(0), d))),
+        (Gear("G1", "a", r1), Gear("G2", "b", r2, internal)),
+        (Mesh("C", ("G1", "G2"), eta),),
+        "0",
+        {"A": "a", "B": "b"},
+        "A",
+        "B",
+    )
 
 
 def planetary(rs: F, rp: F, eta_sp: F, eta_rp: F) -> TrainSpec:
     """Ring fixed (on the housing), sun input A, carrier output B."""
     rr = rs + 2 * rp
-    return TrainSpec("planetary", (Member("0"), Member("s"), Member("p", "c", (F(0), rs + rp)), Member("c")),
-                     (Gear("S", "s", rs), Gear("P", "p", rp), Gear("R", "0", rr, True)),
-                     (Mesh("C", ("S", "P"), eta_sp), Mesh("D", ("R", "P"), eta_rp)),
-                     "0", {"A": "s", "B": "c"}, "A", "B")
+    return TrainSpec(
+        "planetary",
+        (Member("0"), Member("s"), Member("p", "c", (F(0), rs + rp)), Member("c")),
+        (Gear("S", "s", rs), Gear("P", "p", rp), Gear("R", "0", rr, True)),
+        (Mesh("C", ("S", "P"), eta_sp), Mesh("D", ("R", "P"), eta_rp)),
+        "0",
+        {"A": "s", "B": "c"},
+        "A",
+        "B",
+    )
 
 
 def tuplin(r1: F, r2: F, r3: F, r4: F, eta: F) -> TrainSpec:
     """Laus 2011 Fig. 7: annulus 1 fixed, carrier 5 (port A), annulus 2 (port B)."""
-    return TrainSpec("tuplin", (Member("1"), Member("2"), Member("3/4", "5", (F(0), r1 - r3)), Member("5")),
-                     (Gear("1", "1", r1, True), Gear("2", "2", r2, True), Gear("3", "3/4", r3),
-                      Gear("4", "3/4", r4)),
-                     (Mesh("C", ("1", "3"), eta), Mesh("D", ("2", "4"), eta)), "1", {"A": "5", "B": "2"}, "A", "B")
+    return TrainSpec(
+        "tuplin",
+        (Member("1"), Member("2"), Member("3/4", "5", (F(0), r1 - r3)), Member("5")),
+        (Gear("1", "1", r1, True), Gear("2", "2", r2, True), Gear("3", "3/4", r3), Gear("4", "3/4", r4)),
+        (Mesh("C", ("1", "3"), eta), Mesh("D", ("2", "4"), eta)),
+        "1",
+        {"A": "5", "B": "2"},
+        "A",
+        "B",
+    )
 
 
 @pytest.mark.parametrize("internal", [False, True])
@@ -105,8 +124,9 @@ def test_wolfrom_ratio_textbook() -> None:
             continue
         r = {g.name: g.radius for g in t.gears}
         spec = t.oracle()
-        assert solve(spec, "A", "run", lossless=True).speed_ratio == \
-            (1 + r["R1"] / r["S"]) / (1 - r["R1"] * r["P2"] / (r["P1"] * r["R2"]))
+        assert solve(spec, "A", "run", lossless=True).speed_ratio == (1 + r["R1"] / r["S"]) / (
+            1 - r["R1"] * r["P2"] / (r["P1"] * r["R2"])
+        )
         n += 1
     assert n > 3
 
@@ -118,8 +138,12 @@ def test_simpson_ratios_textbook() -> None:
     r = {g.name: g.radius for g in t.gears}
     spec = t.oracle()
     ratio = {s: solve(spec, i, s, lossless=True).speed_ratio for s, i, _ in t.cases()[::2]}
-    assert ratio == {"first": (r["R1"] + r["R2"] + r["S"]) / r["R1"], "second": 1 + r["S"] / r["R1"],
-                     "third": 1, "reverse": -r["R2"] / r["S"]}
+    assert ratio == {
+        "first": (r["R1"] + r["R2"] + r["S"]) / r["R1"],
+        "second": 1 + r["S"] / r["R1"],
+        "third": 1,
+        "reverse": -r["R2"] / r["S"],
+    }
     assert solve(spec, "A", "third").efficiency == 1
 
 
@@ -141,10 +165,9 @@ def test_power_balance_and_lossless_limit(family: str) -> None:
             assert 0 < r.efficiency <= 1
             ideal = solve(with_efficiencies(spec, F(1)), port, state)
             assert ideal.efficiency == 1
-            gaps = [1 - solve(with_efficiencies(spec, 1 - F(1, 10 ** k)), port, state).efficiency
-                    for k in (2, 4, 6)]
+            gaps = [1 - solve(with_efficiencies(spec, 1 - F(1, 10**k)), port, state).efficiency for k in (2, 4, 6)]
             assert gaps[0] >= gaps[1] >= gaps[2] >= 0
-            assert gaps[2] < F(1, 10 ** 4)
+            assert gaps[2] < F(1, 10**4)
 
 
 def test_states_merge_members() -> None:

@@ -60,8 +60,9 @@ from davies_sym.topology.states import train_in_state
 ROOT = Path(__file__).resolve().parent.parent
 CATALOG = ROOT / "catalog"
 CC = shutil.which("cc") or "/usr/bin/cc"
-RUSTC = shutil.which("rustc") or next((p for p in (os.path.expanduser("~/.cargo/bin/rustc"),
-                                                   "/root/.cargo/bin/rustc") if os.path.exists(p)), None)
+RUSTC = shutil.which("rustc") or next(
+    (p for p in (os.path.expanduser("~/.cargo/bin/rustc"), "/root/.cargo/bin/rustc") if os.path.exists(p)), None
+)
 RTOL = 1e-12
 
 #: A train of our own: a planetary set with the sun held, the ring the input and the
@@ -85,8 +86,16 @@ couplings:
 ports: {input: A, output: B}
 """
 #: A design of OWN_TRAIN to sample around (the catalog trains have their published ones).
-OWN_DESIGN = {"rs": 20.0, "rp": 10.0, "eta_SP": 0.98, "eta_RP": 0.98, "rho_p": 0.5, "D_p": 0.3, "D_c": 0.3,
-              "tau_in": 5.0}
+OWN_DESIGN = {
+    "rs": 20.0,
+    "rp": 10.0,
+    "eta_SP": 0.98,
+    "eta_RP": 0.98,
+    "rho_p": 0.5,
+    "D_p": 0.3,
+    "D_c": 0.3,
+    "tau_in": 5.0,
+}
 
 #: name -> (catalog file or None for OWN_TRAIN, state)
 CASES: dict[str, tuple[str | None, str | None]] = {
@@ -138,12 +147,12 @@ def _import(path: Path, name: str) -> ModuleType:
 
 def _required(function: Callable[..., Any]) -> tuple[str, ...]:
     """The parameters a generated Python entry point needs (no default)."""
-    return tuple(n for n, p in inspect.signature(function).parameters.items()
-                 if p.default is inspect.Parameter.empty)
+    return tuple(n for n, p in inspect.signature(function).parameters.items() if p.default is inspect.Parameter.empty)
 
 
-def _candidates(module: ModuleType, names: tuple[str, ...], published: dict[str, float],
-                rng: np.random.Generator) -> dict[str, np.ndarray]:
+def _candidates(
+    module: ModuleType, names: tuple[str, ...], published: dict[str, float], rng: np.random.Generator
+) -> dict[str, np.ndarray]:
     """Random designs: around the published one where there is one, else over wide
     ranges; efficiencies low enough to self-lock sometimes, lengths far enough from the
     published ones to flip the turning conditions."""
@@ -207,10 +216,22 @@ def _build(name: str, root: Path) -> Case:
         picked = _pick(numbers, rng)
         points = {n: v[picked] for n, v in pool.items()}
         expected = module.efficiency(errors="ignore", **points)
-        return Case(name, train, derived, state, module, names, (), points, np.zeros(len(picked), dtype=int),
-                    np.asarray(expected, dtype=float), len(set(numbers.tolist())))
-    derived = derive_variants(train_in_state(train, next(s for s in train.states if s.name == state))
-                              if state else train)
+        return Case(
+            name,
+            train,
+            derived,
+            state,
+            module,
+            names,
+            (),
+            points,
+            np.zeros(len(picked), dtype=int),
+            np.asarray(expected, dtype=float),
+            len(set(numbers.tolist())),
+        )
+    derived = derive_variants(
+        train_in_state(train, next(s for s in train.states if s.name == state)) if state else train
+    )
     path.write_text(python_module(derived, file_parameters(train)))
     module = _import(path, f"formulas_{name}")
     names = tuple(n for n in _required(module.efficiency) if n not in ("input", "errors"))
@@ -250,8 +271,10 @@ def _agree(actual: np.ndarray, expected: np.ndarray, atol: float = 0.0) -> tuple
     absolute one <= ``atol``); return the number of finite values compared and the largest
     relative difference."""
     nan_a, nan_e = np.isnan(actual), np.isnan(expected)
-    assert np.array_equal(nan_a, nan_e), (f"NaN at {np.flatnonzero(nan_a != nan_e)[:10]}: got "
-                                          f"{actual[nan_a != nan_e][:5]}, expected {expected[nan_a != nan_e][:5]}")
+    assert np.array_equal(nan_a, nan_e), (
+        f"NaN at {np.flatnonzero(nan_a != nan_e)[:10]}: got "
+        f"{actual[nan_a != nan_e][:5]}, expected {expected[nan_a != nan_e][:5]}"
+    )
     finite = ~nan_e
     if not finite.any():
         return 0, 0.0
@@ -305,8 +328,13 @@ def _compare_compiled(case: Case, library: ctypes.CDLL, program: Program, prefix
     formulas = 0
     for routine in program.routines:
         python = getattr(case.module, routine.name, None)
-        if not routine.exported or routine.returns is not Kind.REAL or routine.name == program.entry \
-                or python is None or routine.name.startswith("efficiency_from_"):
+        if (
+            not routine.exported
+            or routine.returns is not Kind.REAL
+            or routine.name == program.entry
+            or python is None
+            or routine.name.startswith("efficiency_from_")
+        ):
             continue
         function = getattr(library, prefix + routine.name)
         values = {a: case.points[a] for a in routine.argument_names}
@@ -316,8 +344,13 @@ def _compare_compiled(case: Case, library: ctypes.CDLL, program: Program, prefix
         # The raw formulas agree wherever they are defined (NaN where numpy's is).
         _agree(actual, expected, RAW_ATOL)
         formulas += 1
-    return {"points": n, "finite": compared, "max_rel_diff": f"{worst:.2e}", "functions": formulas,
-            "classes": case.classes}
+    return {
+        "points": n,
+        "finite": compared,
+        "max_rel_diff": f"{worst:.2e}",
+        "functions": formulas,
+        "classes": case.classes,
+    }
 
 
 @pytest.mark.slow
@@ -329,8 +362,25 @@ def test_c_matches_the_python_module(built: Callable[[str], Case], name: str, tm
     source = tmp_path / f"{name}.c"
     source.write_text(emit_code(case.derived, "c", case.state))
     started = time.perf_counter()
-    subprocess.run([CC, "-O1", "-std=c99", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC", str(source), "-o",
-                    str(tmp_path / "lib.so"), "-lm"], check=True, capture_output=True, text=True)
+    subprocess.run(
+        [
+            CC,
+            "-O1",
+            "-std=c99",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-shared",
+            "-fPIC",
+            str(source),
+            "-o",
+            str(tmp_path / "lib.so"),
+            "-lm",
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     seconds = time.perf_counter() - started
     numbers = _compare_compiled(case, _library(tmp_path / "lib.so", program, "c"), program, "")
     _report(f"C {name}", compile_s=f"{seconds:.2f}", **numbers)
@@ -345,8 +395,12 @@ def _rust_wrapper(program: Program, generated: Path) -> str:
             continue
         args = ", ".join(f"{a.name}: {types[a.kind]}" for a in routine.arguments)
         call = ", ".join(routine.argument_names)
-        lines += ["#[no_mangle]", f'pub extern "C" fn x_{routine.name}({args}) -> {types[routine.returns]} {{',
-                  f"    generated::{routine.name}({call})", "}"]
+        lines += [
+            "#[no_mangle]",
+            f'pub extern "C" fn x_{routine.name}({args}) -> {types[routine.returns]} {{',
+            f"    generated::{routine.name}({call})",
+            "}",
+        ]
     return "#![allow(non_snake_case)]\n" + "\n".join(lines) + "\n"
 
 
@@ -362,8 +416,23 @@ def test_rust_matches_the_python_module(built: Callable[[str], Case], name: str,
     wrapper = tmp_path / "wrapper.rs"
     wrapper.write_text(_rust_wrapper(program, generated))
     started = time.perf_counter()
-    result = subprocess.run([RUSTC, "--edition", "2021", "--crate-type", "cdylib", "-C", "opt-level=1", "-o",
-                             str(tmp_path / "lib.so"), str(wrapper)], capture_output=True, text=True, check=False)
+    result = subprocess.run(
+        [
+            RUSTC,
+            "--edition",
+            "2021",
+            "--crate-type",
+            "cdylib",
+            "-C",
+            "opt-level=1",
+            "-o",
+            str(tmp_path / "lib.so"),
+            str(wrapper),
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     seconds = time.perf_counter() - started
     assert result.returncode == 0, result.stderr
     assert "warning" not in result.stderr, result.stderr  # the generated module compiles cleanly
@@ -383,9 +452,35 @@ class ModelicaFunction:
 
 
 _TOKEN = re.compile(r"\s*(\d+\.\d*(?:[eE][+-]?\d+)?|\d+(?:[eE][+-]?\d+)?|[A-Za-z_]\w*|<=|>=|<>|==|[-+*/^(),<>])")
-_NODES = (ast.Expression, ast.BoolOp, ast.And, ast.Or, ast.UnaryOp, ast.Not, ast.USub, ast.UAdd, ast.BinOp, ast.Add,
-          ast.Sub, ast.Mult, ast.Div, ast.Pow, ast.Compare, ast.Lt, ast.LtE, ast.Gt, ast.GtE, ast.Eq, ast.NotEq,
-          ast.Call, ast.Name, ast.Load, ast.Constant, ast.Lambda, ast.arguments)
+_NODES = (
+    ast.Expression,
+    ast.BoolOp,
+    ast.And,
+    ast.Or,
+    ast.UnaryOp,
+    ast.Not,
+    ast.USub,
+    ast.UAdd,
+    ast.BinOp,
+    ast.Add,
+    ast.Sub,
+    ast.Mult,
+    ast.Div,
+    ast.Pow,
+    ast.Compare,
+    ast.Lt,
+    ast.LtE,
+    ast.Gt,
+    ast.GtE,
+    ast.Eq,
+    ast.NotEq,
+    ast.Call,
+    ast.Name,
+    ast.Load,
+    ast.Constant,
+    ast.Lambda,
+    ast.arguments,
+)
 
 
 def _tokens(text: str) -> Iterator[str]:
@@ -393,7 +488,7 @@ def _tokens(text: str) -> Iterator[str]:
     text = text.rstrip()
     while position < len(text):
         match = _TOKEN.match(text, position)
-        assert match, f"cannot read {text[position:position + 30]!r}"
+        assert match, f"cannot read {text[position : position + 30]!r}"
         yield match.group(1)
         position = match.end()
 
@@ -402,8 +497,18 @@ def _python_expression(text: str, callable_names: set[str]) -> ast.Expression:
     """A Modelica expression as a Python one: ``^`` is ``**``, ``<>`` is ``!=``,
     ``(if c then a elseif d then b else e)`` is ``_ite(c, lambda: a, d, lambda: b, lambda: e)``;
     only names, numbers, operators and calls of ``callable_names`` may appear."""
-    words = {"^": "**", "<>": "!=", "true": "True", "false": "False", "then": ", lambda:", "elseif": ",",
-             "else": ", lambda:", "and": "and", "or": "or", "not": "not"}
+    words = {
+        "^": "**",
+        "<>": "!=",
+        "true": "True",
+        "false": "False",
+        "then": ", lambda:",
+        "elseif": ",",
+        "else": ", lambda:",
+        "and": "and",
+        "or": "or",
+        "not": "not",
+    }
     out: list[str] = []
     for token in _tokens(text):
         if token == "if":
@@ -515,14 +620,21 @@ def test_modelica_package_reads_back(built: Callable[[str], Case], name: str) ->
     # Every variant (region) function and condition against the Python module.
     for routine in program.routines:
         python = getattr(case.module, routine.name, None)
-        if routine.returns is not Kind.REAL or python is None or routine.name == program.entry \
-                or routine.name.startswith("efficiency_from_"):
+        if (
+            routine.returns is not Kind.REAL
+            or python is None
+            or routine.name == program.entry
+            or routine.name.startswith("efficiency_from_")
+        ):
             continue
         for k in picked[:40]:
             values = {a: np.float64(case.points[a][k]) for a in routine.argument_names}
             with np.errstate(all="ignore"):
-                _agree(np.array([run[routine.name](*values.values())], dtype=float),
-                       np.array([np.asarray(python(**values), dtype=float)]).reshape(1), RAW_ATOL)
+                _agree(
+                    np.array([run[routine.name](*values.values())], dtype=float),
+                    np.array([np.asarray(python(**values), dtype=float)]).reshape(1),
+                    RAW_ATOL,
+                )
     _report(f"Modelica {name}", points=count, functions=len(functions))
 
 
@@ -644,9 +756,13 @@ def test_the_command_writes_the_same_bytes_as_the_library(built: Callable[[str],
 def test_the_same_train_gives_the_same_bytes_in_a_fresh_process(tmp_path: Path) -> None:
     outputs = []
     for seed in ("1", "2"):
-        result = subprocess.run([sys.executable, "-m", "davies_sym.cli", str(CATALOG / "tuplin.yaml"), "--emit",
-                                 "modelica", "--quiet"], capture_output=True, text=True, check=True,
-                                env={**os.environ, "PYTHONHASHSEED": seed})
+        result = subprocess.run(
+            [sys.executable, "-m", "davies_sym.cli", str(CATALOG / "tuplin.yaml"), "--emit", "modelica", "--quiet"],
+            capture_output=True,
+            text=True,
+            check=True,
+            env={**os.environ, "PYTHONHASHSEED": seed},
+        )
         outputs.append(result.stdout)
     assert outputs[0] == outputs[1] and outputs[0].startswith("// Efficiency of")
 
@@ -670,8 +786,9 @@ def test_emit_refuses_a_document_option(other: list[str]) -> None:
 
 
 def test_emit_refuses_several_files_and_an_unknown_language(tmp_path: Path) -> None:
-    status, _, err = _run(str(CATALOG / "tuplin.yaml"), str(CATALOG / "wolfrom.yaml"), "--emit", "c", "--out",
-                          str(tmp_path))
+    status, _, err = _run(
+        str(CATALOG / "tuplin.yaml"), str(CATALOG / "wolfrom.yaml"), "--emit", "c", "--out", str(tmp_path)
+    )
     assert status == 2 and "--emit" in err
     with pytest.raises(SystemExit) as exit_info:
         _run(str(CATALOG / "tuplin.yaml"), "--emit", "fortran")
@@ -679,8 +796,10 @@ def test_emit_refuses_several_files_and_an_unknown_language(tmp_path: Path) -> N
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("language", "word"), [("c", "double"), ("julia", "end"), ("octave", "end"),
-                                                ("rust", "fn"), ("modelica", "algorithm")])
+@pytest.mark.parametrize(
+    ("language", "word"),
+    [("c", "double"), ("julia", "end"), ("octave", "end"), ("rust", "fn"), ("modelica", "algorithm")],
+)
 def test_a_keyword_symbol_is_refused_by_name(language: str, word: str, tmp_path: Path) -> None:
     text = (CATALOG / "planetary_simple.yaml").read_text().replace("rA", word)
     path = tmp_path / "keyword.yaml"
@@ -716,10 +835,11 @@ def test_bash_completion_is_valid_and_knows_the_options(tmp_path: Path) -> None:
 
     def complete(*words: str) -> list[str]:
         line = " ".join(["derive", *words])
-        program = (f"source {path}; COMP_WORDS=(derive {' '.join(words)}); COMP_CWORD={len(words)}; "
-                   f"COMP_LINE='{line}'; COMP_POINT={len(line)}; _shtab_derive; printf '%s\\n' \"${{COMPREPLY[@]}}\"")
-        result = subprocess.run(["bash", "-c", program], capture_output=True, text=True, check=False,
-                                cwd=tmp_path)
+        program = (
+            f"source {path}; COMP_WORDS=(derive {' '.join(words)}); COMP_CWORD={len(words)}; "
+            f"COMP_LINE='{line}'; COMP_POINT={len(line)}; _shtab_derive; printf '%s\\n' \"${{COMPREPLY[@]}}\""
+        )
+        result = subprocess.run(["bash", "-c", program], capture_output=True, text=True, check=False, cwd=tmp_path)
         return result.stdout.split()
 
     assert "--emit" in complete("--em")

@@ -26,8 +26,7 @@ TUPLIN_VALUES = ["r1=40", "r2=60", "r3=15", "r4=35", "eta_C=0.99", "eta_D=0.99"]
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "davies_sym.cli", *args], capture_output=True, text=True,
-                          check=False)
+    return subprocess.run([sys.executable, "-m", "davies_sym.cli", *args], capture_output=True, text=True, check=False)
 
 
 def test_latex_document_structure_and_formulas_parse_back(tmp_path):
@@ -67,7 +66,11 @@ def test_json_variants():
     assert {m["coupling"]: m["carrier"] for m in doc["meshes"]} == {"C": "5", "D": "5"}
     variants = doc["variants"]
     assert [(v["input"], v["output"], v["conditions"][0]["sign"]) for v in variants] == [
-        ("A", "B", 1), ("A", "B", -1), ("B", "A", 1), ("B", "A", -1)]
+        ("A", "B", 1),
+        ("A", "B", -1),
+        ("B", "A", 1),
+        ("B", "A", -1),
+    ]
     symbols = davies_sym.load(catalog_path("tuplin")).symbols
     vs = derive_variants(davies_sym.load(catalog_path("tuplin")))
     for item, v in zip(variants, vs.variants, strict=True):
@@ -85,8 +88,12 @@ def test_latex_read_back_catches_a_wrong_formula():
     expected = eta_c * (r1 - r2) ** 2 / (r1 + r2)
     text = r"\frac{\eta_{C} \left(r_{1} - r_{2}\right)^{2}}{r_{1} + r_{2}}"
     assert same_rational_function(read_latex(text, symbols.values()), expected)
-    for wrong in (text.replace("-", "+"), text.replace("r_{2}}", "r_{3}}"), text.replace("^{2}", "^{3}"),
-                  text.replace(r"\eta_{C}", r"\eta_{D}")):
+    for wrong in (
+        text.replace("-", "+"),
+        text.replace("r_{2}}", "r_{3}}"),
+        text.replace("^{2}", "^{3}"),
+        text.replace(r"\eta_{C}", r"\eta_{D}"),
+    ):
         assert not same_rational_function(read_latex(wrong, symbols.values()), expected), wrong
     for broken in (text[:-1], text[:-12], text.replace(r"\right", ""), text.replace("r_{1}", "r_{9}"), "r1 + r2"):
         with pytest.raises(LatexError):
@@ -104,12 +111,15 @@ def test_eval_prints_the_efficiency_last():
     assert same.stdout.strip().splitlines()[-1] == b.stdout.strip().splitlines()[-1]
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (["--eval", "r9=1"], "unknown symbol 'r9'"),
-    (["--eval", "r1=40"], "missing values for"),
-    (["--eval", "r1=abc"], "'abc' is not a number"),
-    ([*["--eval", *TUPLIN_VALUES], "--input", "Z"], "'Z' is not a port"),
-])
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--eval", "r9=1"], "unknown symbol 'r9'"),
+        (["--eval", "r1=40"], "missing values for"),
+        (["--eval", "r1=abc"], "'abc' is not a number"),
+        ([*["--eval", *TUPLIN_VALUES], "--input", "Z"], "'Z' is not a port"),
+    ],
+)
 def test_eval_errors_are_clear(args, message):
     result = run(catalog_path("tuplin"), *args)
     assert result.returncode == 2 and message in result.stderr
@@ -145,9 +155,13 @@ def test_python_module_picks_the_variant_element_by_element(tmp_path):
     for port in ("A", "B"):
         got = module.efficiency(input=port, r1=r1, r2=r2, r3=r3, eta_C=0.99, eta_D=0.98)
         for i in range(len(r1)):
-            values = {S("r1"): sympy.Rational(r1[i]), S("r2"): sympy.Rational(r2[i]),
-                      S("r3"): sympy.Rational(r3[i]), S("eta_C", "efficiency"): sympy.Rational(99, 100),
-                      S("eta_D", "efficiency"): sympy.Rational(98, 100)}
+            values = {
+                S("r1"): sympy.Rational(r1[i]),
+                S("r2"): sympy.Rational(r2[i]),
+                S("r3"): sympy.Rational(r3[i]),
+                S("eta_C", "efficiency"): sympy.Rational(99, 100),
+                S("eta_D", "efficiency"): sympy.Rational(98, 100),
+            }
             assert got[i] == pytest.approx(float(vs.evaluate(values, port)), rel=1e-12)
     with pytest.raises(ValueError, match="input must be one of"):
         module.efficiency(input="Z", r1=1.0, r2=2.0, r3=0.5, eta_C=0.9, eta_D=0.9)
@@ -210,8 +224,13 @@ def test_derivations_are_current(tmp_path):
 def test_code_and_generated_code_pass_the_lint():
     """ruff (configuration in pyproject.toml) on the package, tests, benchmarks and the
     generated modules."""
-    result = subprocess.run([sys.executable, "-m", "ruff", "check", "davies_sym", "tests", "benchmarks",
-                             "derivations"], cwd=ROOT, capture_output=True, text=True, check=False)
+    result = subprocess.run(
+        [sys.executable, "-m", "ruff", "check", "davies_sym", "tests", "benchmarks", "derivations"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert result.returncode == 0, result.stdout + result.stderr
 
 
@@ -228,13 +247,29 @@ def test_plot_writes_a_png_and_names_bad_arguments(tmp_path):
     """--plot with the file's published design as the fixed values; --vs for the region map."""
     one, two = tmp_path / "one.png", tmp_path / "two.png"
     assert run(catalog_path("litvin_face_drive"), "--plot", "N4=60:99", "-o", str(one), "--quiet").returncode == 0
-    assert run(catalog_path("tuplin"), "--plot", "r1=20:100", "--vs", "r2=20:100", "--at", "r3=15", "-o", str(two),
-               "--quiet").returncode == 0
+    assert (
+        run(
+            catalog_path("tuplin"),
+            "--plot",
+            "r1=20:100",
+            "--vs",
+            "r2=20:100",
+            "--at",
+            "r3=15",
+            "-o",
+            str(two),
+            "--quiet",
+        ).returncode
+        == 0
+    )
     for path in (one, two):
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    for args, message in ((["--plot", "N9=1:2"], "unknown symbol 'N9'"), (["--plot", "N4=9:2"], "is empty"),
-                          (["--plot", "N4=60"], "expected NAME=START:STOP"),
-                          (["--plot", "N4=60:99", "--at", "N1=x"], "not a number")):
+    for args, message in (
+        (["--plot", "N9=1:2"], "unknown symbol 'N9'"),
+        (["--plot", "N4=9:2"], "is empty"),
+        (["--plot", "N4=60"], "expected NAME=START:STOP"),
+        (["--plot", "N4=60:99", "--at", "N1=x"], "not a number"),
+    ):
         result = run(catalog_path("litvin_face_drive"), *args, "-o", str(tmp_path / "x.png"), "--quiet")
         assert result.returncode == 2 and message in result.stderr and "Traceback" not in result.stderr
     missing = run(catalog_path("litvin_face_drive"), "--plot", "N4=60:99", "--quiet")

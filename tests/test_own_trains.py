@@ -98,9 +98,13 @@ def test_planetary_matches_the_classic_formula():
 def test_invariants_on_every_train():
     """B Q^T = 0, powers sum to zero (Tellegen), eta -> 1 without friction and
     d eta / d zeta < 0 at a nominal point."""
-    trains = [davies_sym.loads(IDLER, "idler"), davies_sym.loads(PLANETARY, "planetary"),
-              davies_sym.load(catalog_path("simple_pair")), davies_sym.load(catalog_path("tuplin")),
-              davies_sym.loads(RACK, "rack")]
+    trains = [
+        davies_sym.loads(IDLER, "idler"),
+        davies_sym.loads(PLANETARY, "planetary"),
+        davies_sym.load(catalog_path("simple_pair")),
+        davies_sym.load(catalog_path("tuplin")),
+        davies_sym.loads(RACK, "rack"),
+    ]
     for train in trains:
         a = davies_sym.analyse(train)
         net = a.network
@@ -110,8 +114,11 @@ def test_invariants_on_every_train():
         assert total.is_zero(), train.name
         zetas = [s for s in a.efficiency.free_symbols if s.name.startswith("zeta")]
         assert equal(a.efficiency.subs({z: 0 for z in zetas}), 1), train.name
-        nominal = {s: sympy.Rational(10 + 7 * i, 1) for i, s in enumerate(sorted(a.ring.symbols, key=str))
-                   if s.name.startswith("r")}
+        nominal = {
+            s: sympy.Rational(10 + 7 * i, 1)
+            for i, s in enumerate(sorted(a.ring.symbols, key=str))
+            if s.name.startswith("r")
+        }
         if "rr" in {s.name for s in nominal}:
             nominal[S("rr")] = nominal[S("rs")] + 2 * nominal[S("rp")]
         if "r4" in {s.name for s in nominal}:
@@ -126,14 +133,19 @@ def test_invariants_on_every_train():
 def test_relabelling_links_and_reordering_couplings_changes_nothing():
     text = read_text(catalog_path("tuplin"))
     renamed = text
-    for old, new in (("3/4", "planet"), ("link: 1,", "link: housing,"), ("[1, 5]", "[housing, 5]"),
-                     ("[1, 2]", "[housing, 2]"), ("reference: 1", "reference: housing"),
-                     ("  1: {desc", "  housing: {desc")):
+    for old, new in (
+        ("3/4", "planet"),
+        ("link: 1,", "link: housing,"),
+        ("[1, 5]", "[housing, 5]"),
+        ("[1, 2]", "[housing, 2]"),
+        ("reference: 1", "reference: housing"),
+        ("  1: {desc", "  housing: {desc"),
+    ):
         renamed = renamed.replace(old, new)
     lines = renamed.splitlines()
     start = lines.index("couplings:")
-    block = lines[start + 1:start + 6]
-    reordered = "\n".join(lines[:start + 1] + block[::-1] + lines[start + 6:]) + "\n"
+    block = lines[start + 1 : start + 6]
+    reordered = "\n".join(lines[: start + 1] + block[::-1] + lines[start + 6 :]) + "\n"
     base = davies_sym.analyse(davies_sym.load(catalog_path("tuplin"))).efficiency
     other = davies_sym.analyse(davies_sym.loads(reordered, "renamed"))
     assert other.train.reference == "housing"

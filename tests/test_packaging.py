@@ -25,8 +25,11 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("wheel")
-    subprocess.run([sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-q", "-w", str(out)], check=True,
-                   capture_output=True)
+    subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", str(ROOT), "--no-deps", "-q", "-w", str(out)],
+        check=True,
+        capture_output=True,
+    )
     (found,) = out.glob("davies_sym-*.whl")
     return found
 
@@ -55,14 +58,28 @@ def test_installed_wheel_runs_a_catalog_train_from_any_folder(wheel: Path, tmp_p
     ``derive --catalog buckingham_pair --eval mu=0.0272`` prints Laus's eq. (136) number
     0.9936745104 (App. A.4, Buckingham's pair)."""
     target = tmp_path / "site"
-    subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target", str(target), str(wheel)],
-                   check=True, capture_output=True)
+    subprocess.run(
+        [sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target", str(target), str(wheel)],
+        check=True,
+        capture_output=True,
+    )
     env = {**os.environ, "PYTHONPATH": str(target)}
-    where = subprocess.run([sys.executable, "-c", "import davies_sym; print(davies_sym.__file__)"], env=env,
-                           cwd=tmp_path, capture_output=True, text=True, check=True)
+    where = subprocess.run(
+        [sys.executable, "-c", "import davies_sym; print(davies_sym.__file__)"],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert where.stdout.startswith(str(target))
-    result = subprocess.run([sys.executable, "-m", "davies_sym.cli", "--catalog", "buckingham_pair", "--eval",
-                             "mu=0.0272", "--quiet"], env=env, cwd=tmp_path, capture_output=True, text=True)
+    result = subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", "--catalog", "buckingham_pair", "--eval", "mu=0.0272", "--quiet"],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode == 0, result.stderr
     assert abs(float(result.stdout.splitlines()[-1]) - 0.9936745104) < 5e-11
 
@@ -97,8 +114,20 @@ def test_catalog_train_by_name_equals_its_file() -> None:
 def test_figure_format_follows_the_suffix(tmp_path: Path, suffix: str, magic: bytes) -> None:
     """-o fig.svg writes SVG, fig.pdf PDF, fig.png PNG, the same bytes on a second run."""
     figure = tmp_path / f"eta{suffix}"
-    args = ["--catalog", "tuplin", "--plot", "r1=20:100", "--at", "r2=60", "r3=15", "eta_C=0.99", "eta_D=0.99",
-            "-o", str(figure), "--quiet"]
+    args = [
+        "--catalog",
+        "tuplin",
+        "--plot",
+        "r1=20:100",
+        "--at",
+        "r2=60",
+        "r3=15",
+        "eta_C=0.99",
+        "eta_D=0.99",
+        "-o",
+        str(figure),
+        "--quiet",
+    ]
     assert run_main(args).returncode == 0
     first = figure.read_bytes()
     assert first.startswith(magic)
@@ -106,8 +135,22 @@ def test_figure_format_follows_the_suffix(tmp_path: Path, suffix: str, magic: by
 
 
 def test_unknown_figure_suffix_is_refused(tmp_path: Path) -> None:
-    result = run_main(["--catalog", "tuplin", "--plot", "r1=20:100", "--at", "r2=60", "r3=15", "eta_C=0.99",
-                       "eta_D=0.99", "-o", str(tmp_path / "eta.jpg"), "--quiet"])
+    result = run_main(
+        [
+            "--catalog",
+            "tuplin",
+            "--plot",
+            "r1=20:100",
+            "--at",
+            "r2=60",
+            "r3=15",
+            "eta_C=0.99",
+            "eta_D=0.99",
+            "-o",
+            str(tmp_path / "eta.jpg"),
+            "--quiet",
+        ]
+    )
     assert result.returncode == 2 and "-o" in result.stderr and ".svg" in result.stderr
     assert not (tmp_path / "eta.jpg").exists()
 
@@ -115,14 +158,32 @@ def test_unknown_figure_suffix_is_refused(tmp_path: Path) -> None:
 def test_figures_without_matplotlib_say_which_extra_to_install(tmp_path: Path) -> None:
     """matplotlib is optional: without it --plot is exit 2 naming the extra, and the
     formulas still derive."""
-    code = ("import sys; sys.modules['matplotlib'] = None; from davies_sym.cli import main; "
-            "sys.exit(main(sys.argv[1:]))")
-    plot = subprocess.run([sys.executable, "-c", code, "--catalog", "tuplin", "--plot", "r1=20:100", "--at", "r2=60",
-                           "r3=15", "eta_C=0.99", "eta_D=0.99", "-o", str(tmp_path / "eta.png"), "--quiet"],
-                          capture_output=True, text=True)
+    code = "import sys; sys.modules['matplotlib'] = None; from davies_sym.cli import main; sys.exit(main(sys.argv[1:]))"
+    plot = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            code,
+            "--catalog",
+            "tuplin",
+            "--plot",
+            "r1=20:100",
+            "--at",
+            "r2=60",
+            "r3=15",
+            "eta_C=0.99",
+            "eta_D=0.99",
+            "-o",
+            str(tmp_path / "eta.png"),
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert plot.returncode == 2 and "davies_sym[plots]" in plot.stderr and "Traceback" not in plot.stderr
-    derived = subprocess.run([sys.executable, "-c", code, "--catalog", "tuplin", "--quiet"], capture_output=True,
-                             text=True)
+    derived = subprocess.run(
+        [sys.executable, "-c", code, "--catalog", "tuplin", "--quiet"], capture_output=True, text=True
+    )
     assert derived.returncode == 0 and "eta =" in derived.stdout
 
 

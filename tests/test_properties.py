@@ -43,12 +43,51 @@ COSTLY = {"humpage": 20, "simpson": 10, "ravigneaux": 50}
 NAMED_TABLES = ("links", "gears", "couplings", "states")
 
 #: Names that Python, sympy or the generated modules give a meaning to.
-SHADOWING = ("lambda", "class", "None", "True", "E", "I", "pi", "N", "S", "oo", "zoo", "nan", "inf", "sqrt",
-             "__import__", "np", "input")
+SHADOWING = (
+    "lambda",
+    "class",
+    "None",
+    "True",
+    "E",
+    "I",
+    "pi",
+    "N",
+    "S",
+    "oo",
+    "zoo",
+    "nan",
+    "inf",
+    "sqrt",
+    "__import__",
+    "np",
+    "input",
+)
 NON_ASCII = ("Ωμέγα", "é", "名前", "r¹", "ζ")
 #: Values a hand-edited file gets wrong: numbers out of range, text where a number belongs, ...
-ODD_VALUES = (None, True, [1, 2], {"a": 1}, 7, 0, -5, 10**400, -(10**400), 1e308, -1e-300, float("inf"),
-              float("nan"), "", "xyz", "1e400", "-r1", "r1 - r1", "1/0", "sqrt(2)*r1", "-oo", "0.0")
+ODD_VALUES = (
+    None,
+    True,
+    [1, 2],
+    {"a": 1},
+    7,
+    0,
+    -5,
+    10**400,
+    -(10**400),
+    1e308,
+    -1e-300,
+    float("inf"),
+    float("nan"),
+    "",
+    "xyz",
+    "1e400",
+    "-r1",
+    "r1 - r1",
+    "1/0",
+    "sqrt(2)*r1",
+    "-oo",
+    "0.0",
+)
 #: Mutations with one cause, so one line when refused: an unknown key, a key given twice.
 ONE_CAUSE = ("unknown_key", "duplicate_key")
 #: Keys no entry has (one a near-miss of a real key).
@@ -59,6 +98,7 @@ LINE_SHAPE = r"^(?:[A-Za-z ]+ error: )?{file}:(\d+): (\S.*?): \S"
 
 
 # --- mutated catalog files ----------------------------------------------------------------------------------
+
 
 def _paths(data: Any, prefix: tuple[Any, ...] = ()) -> Iterator[tuple[Any, ...]]:
     """The path of every mapping key and list item, depth first."""
@@ -121,7 +161,7 @@ def _key_lines(text: str) -> list[int]:
 def _duplicated_line(text: str, index: int) -> str:
     """``text`` with its key line ``index`` written twice (a key given twice)."""
     lines = text.splitlines(keepends=True)
-    return "".join([*lines[:index + 1], lines[index], *lines[index + 1:]])
+    return "".join([*lines[: index + 1], lines[index], *lines[index + 1 :]])
 
 
 def _scalars(data: Any) -> list[Any]:
@@ -142,23 +182,39 @@ def _leaves(data: Any) -> Iterator[Any]:
 
 def _values(data: Any) -> st.SearchStrategy[Any]:
     names = st.sampled_from(SHADOWING + NON_ASCII)
-    numbers = st.one_of(st.integers(-100, 1000), st.integers(min_value=-(10**500), max_value=10**500), st.floats(),
-                        st.fractions(min_value=-10, max_value=100).map(str))
-    return st.one_of(st.sampled_from(ODD_VALUES), names, st.sampled_from(_scalars(data)), numbers,
-                     st.text(max_size=12), st.lists(st.integers(-3, 3), max_size=3))
+    numbers = st.one_of(
+        st.integers(-100, 1000),
+        st.integers(min_value=-(10**500), max_value=10**500),
+        st.floats(),
+        st.fractions(min_value=-10, max_value=100).map(str),
+    )
+    return st.one_of(
+        st.sampled_from(ODD_VALUES),
+        names,
+        st.sampled_from(_scalars(data)),
+        numbers,
+        st.text(max_size=12),
+        st.lists(st.integers(-3, 3), max_size=3),
+    )
 
 
 def _new_names() -> st.SearchStrategy[str]:
-    return st.one_of(st.sampled_from(SHADOWING + NON_ASCII),
-                     st.text(alphabet="abcXYZ019_/.+- ", min_size=1, max_size=8))
+    return st.one_of(
+        st.sampled_from(SHADOWING + NON_ASCII), st.text(alphabet="abcXYZ019_/.+- ", min_size=1, max_size=8)
+    )
 
 
 @st.composite
 def mutations(draw: st.DrawFn, data: Any) -> Mutation:
     kind = draw(st.sampled_from(("set", "set", "delete", "unknown_key", "duplicate_key", "rename")))
     if kind == "rename":
-        entries = [(t, n) for t in NAMED_TABLES if isinstance(data.get(t), (dict, list)) for n in data[t]
-                   if not isinstance(n, (dict, list))]
+        entries = [
+            (t, n)
+            for t in NAMED_TABLES
+            if isinstance(data.get(t), (dict, list))
+            for n in data[t]
+            if not isinstance(n, (dict, list))
+        ]
         return Mutation(kind, draw(st.sampled_from(entries)), draw(_new_names()))
     if kind == "unknown_key":
         return Mutation(kind, draw(st.sampled_from(list(_mappings(data)))), draw(st.sampled_from(UNKNOWN_KEYS)))
@@ -252,8 +308,11 @@ def _check_oracle(families: tuple[str, ...], profile: settings, examples: int) -
     def check(case: tuple[Any, Any]) -> None:
         train, sp = case
         event(f"family {train.family}")
-        bad = [f"{o.case}: {o.kind} {o.detail} engine {o.engine} oracle {o.oracle}"
-               for o in compare(train, sp) if o.kind not in (OK, LOCKING)]
+        bad = [
+            f"{o.case}: {o.kind} {o.detail} engine {o.engine} oracle {o.oracle}"
+            for o in compare(train, sp)
+            if o.kind not in (OK, LOCKING)
+        ]
         assert not bad, "\n".join(bad) + f"\n--- the file ---\n{sp.yaml}"
         with tempfile.TemporaryDirectory() as folder:
             path = Path(folder) / "train.yaml"
@@ -287,14 +346,19 @@ def _run(tmp_path: Path, text: str) -> tuple[Result, Path]:
     return run_main([str(path), "--quiet"]), path
 
 
-@pytest.mark.parametrize(("friction", "entry"), [
-    ("friction: {coulomb: 7}", "couplings.C.friction.coulomb"),
-    ("friction: {coulomb: r1}", "couplings.C.friction.coulomb"),
-    ("friction: none", "couplings.C.friction"),
-    ("friction: {viscous: b}", "couplings.C.friction"),
-], ids=["number", "a_radius", "none", "viscous_only"])
-def test_mesh_friction_the_variants_cannot_use_is_refused_with_its_entry(tmp_path: Path, friction: str,
-                                                                         entry: str) -> None:
+@pytest.mark.parametrize(
+    ("friction", "entry"),
+    [
+        ("friction: {coulomb: 7}", "couplings.C.friction.coulomb"),
+        ("friction: {coulomb: r1}", "couplings.C.friction.coulomb"),
+        ("friction: none", "couplings.C.friction"),
+        ("friction: {viscous: b}", "couplings.C.friction"),
+    ],
+    ids=["number", "a_radius", "none", "viscous_only"],
+)
+def test_mesh_friction_the_variants_cannot_use_is_refused_with_its_entry(
+    tmp_path: Path, friction: str, entry: str
+) -> None:
     """Each mesh's friction coefficient is solved from its ordinary efficiency: a number, a
     symbol used elsewhere or no load-dependent law was a traceback or a message without a line."""
     result, path = _run(tmp_path, SIMPLE_PAIR.replace(MESH_FRICTION, friction))
@@ -332,19 +396,37 @@ def test_factor_survives_coefficients_beyond_a_c_long() -> None:
     assert sorted((str(f), e) for f, e in factors) == sorted([(str(x + 2**70 * y), 1), (str(x + y + 3), 2)])
 
 
-@pytest.mark.parametrize(("old", "new", "entry"), [
-    ("    tolerance: 1.0e-12", "    tolerence: 1.0e-12", "expected[0].tolerence"),
-    ("    tolerance: 1.0e-12", "    tolerance: [1]", "expected[0].tolerance"),
-    ("    value: 0.98", "    value: abc", "expected[0].value"),
-    ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: {r1: \"__import__('os')\", r2: 50, eta_C: 0.98}",
-     "expected[0].values.r1"),
-    ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: {r1: 20, r2: 50, eta_C: 1.5}",
-     "expected[0].values.eta_C"),
-    ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: [20, 50]", "expected[0].values"),
-    ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    published: maybe", "expected[0].published"),
-    ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    differs: [1]", "expected[0].differs"),
-], ids=["typo", "tolerance_list", "value_text", "value_payload", "efficiency_above_one", "values_list",
-        "published_not_boolean", "differs_not_text"])
+@pytest.mark.parametrize(
+    ("old", "new", "entry"),
+    [
+        ("    tolerance: 1.0e-12", "    tolerence: 1.0e-12", "expected[0].tolerence"),
+        ("    tolerance: 1.0e-12", "    tolerance: [1]", "expected[0].tolerance"),
+        ("    value: 0.98", "    value: abc", "expected[0].value"),
+        (
+            "    values: {r1: 20, r2: 50, eta_C: 0.98}",
+            "    values: {r1: \"__import__('os')\", r2: 50, eta_C: 0.98}",
+            "expected[0].values.r1",
+        ),
+        (
+            "    values: {r1: 20, r2: 50, eta_C: 0.98}",
+            "    values: {r1: 20, r2: 50, eta_C: 1.5}",
+            "expected[0].values.eta_C",
+        ),
+        ("    values: {r1: 20, r2: 50, eta_C: 0.98}", "    values: [20, 50]", "expected[0].values"),
+        ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    published: maybe", "expected[0].published"),
+        ("    tolerance: 1.0e-12", "    tolerance: 1.0e-12\n    differs: [1]", "expected[0].differs"),
+    ],
+    ids=[
+        "typo",
+        "tolerance_list",
+        "value_text",
+        "value_payload",
+        "efficiency_above_one",
+        "values_list",
+        "published_not_boolean",
+        "differs_not_text",
+    ],
+)
 def test_published_check_is_read_against_the_schema(tmp_path: Path, old: str, new: str, entry: str) -> None:
     assert old in SIMPLE_PAIR
     result, path = _run(tmp_path, SIMPLE_PAIR.replace(old, new))

@@ -37,8 +37,12 @@ def failures(family: str, name: str, seeds: tuple[int, ...]) -> list[str]:
         sp = spelling(train, name)
         for o in compare(train, sp):
             if o.kind not in (OK, LOCKING):
-                values = "" if o.engine is None else f": engine {o.engine} ({float(o.engine):.10g}), " \
+                values = (
+                    ""
+                    if o.engine is None
+                    else f": engine {o.engine} ({float(o.engine):.10g}), "
                     f"oracle {o.oracle} ({float(o.oracle) if o.oracle is not None else None})"
+                )
                 out.append(f"{o.case}: {o.kind} {o.detail}{values}")
     return out
 

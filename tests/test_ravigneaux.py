@@ -55,10 +55,13 @@ def test_long_and_short_planets_are_off_the_centre_line():
     centre distances 41, 32 and 48 (16-tooth planets), exactly."""
     layout = train_layout(TRAIN)
     (constraint,) = layout.constraints  # ring = large sun + two long-planet radii
-    assert equal(constraint.expression, rs2 + 2 * SYM["rpl"] - rr) or equal(constraint.expression,
-                                                                            rr - rs2 - 2 * SYM["rpl"])
-    centre = {g: sympy.Matrix([restore(sympy.sympify(x), layout.radicals).subs(ZF) for x in layout.gear_centres[g][:2]])
-              for g in ("S1", "PS", "PL")}
+    assert equal(constraint.expression, rs2 + 2 * SYM["rpl"] - rr) or equal(
+        constraint.expression, rr - rs2 - 2 * SYM["rpl"]
+    )
+    centre = {
+        g: sympy.Matrix([restore(sympy.sympify(x), layout.radicals).subs(ZF) for x in layout.gear_centres[g][:2]])
+        for g in ("S1", "PS", "PL")
+    }
     assert sympy.radsimp((centre["PS"] - centre["S1"]).norm()) == 41
     assert sympy.radsimp((centre["PL"] - centre["PS"]).norm()) == 32
     assert sympy.radsimp((centre["PL"] - centre["S1"]).norm()) == 48
@@ -97,14 +100,34 @@ def zf_second_gear_oracle(eta: Fraction, side: int = 1) -> TrainSpec:
     x, y = side * root(247, Fraction(165, 82)), Fraction(2961, 82)
     return TrainSpec(
         "ZF 3HP12 Ravigneaux",
-        (Member("0"), Member("s1"), Member("s2"), Member("c"), Member("r"),
-         Member("ps", "c", (Fraction(0), Fraction(41))), Member("pl", "c", (x, y))),
-        (Gear("S1", "s1", Fraction(25)), Gear("S2", "s2", Fraction(32)), Gear("PS", "ps", Fraction(16)),
-         Gear("PL", "pl", Fraction(16)), Gear("R", "r", Fraction(64), internal=True)),
-        (Mesh("G1", ("S1", "PS"), eta), Mesh("G2", ("PS", "PL"), eta), Mesh("G3", ("S2", "PL"), eta),
-         Mesh("G4", ("R", "PL"), eta)),
-        "0", {"A": "s1", "B": "s2", "C": "c", "D": "r"}, "A", "D",
-        (State("second", "A", "D", brake=("s2",)),))
+        (
+            Member("0"),
+            Member("s1"),
+            Member("s2"),
+            Member("c"),
+            Member("r"),
+            Member("ps", "c", (Fraction(0), Fraction(41))),
+            Member("pl", "c", (x, y)),
+        ),
+        (
+            Gear("S1", "s1", Fraction(25)),
+            Gear("S2", "s2", Fraction(32)),
+            Gear("PS", "ps", Fraction(16)),
+            Gear("PL", "pl", Fraction(16)),
+            Gear("R", "r", Fraction(64), internal=True),
+        ),
+        (
+            Mesh("G1", ("S1", "PS"), eta),
+            Mesh("G2", ("PS", "PL"), eta),
+            Mesh("G3", ("S2", "PL"), eta),
+            Mesh("G4", ("R", "PL"), eta),
+        ),
+        "0",
+        {"A": "s1", "B": "s2", "C": "c", "D": "r"},
+        "A",
+        "D",
+        (State("second", "A", "D", brake=("s2",)),),
+    )
 
 
 def test_second_gear_efficiency_both_routes(monkeypatch):

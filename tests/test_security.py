@@ -109,7 +109,6 @@ def marker_of(tmp_path: Path) -> Path:
     return tmp_path / f"MARKER-{uuid.uuid4().hex[:8]}"
 
 
-
 @pytest.fixture(autouse=True)
 def _extended_cases_on_request(request: pytest.FixtureRequest) -> None:
     skip_slow_unless_full(request)
@@ -125,6 +124,7 @@ def _gear1(**entry: Any) -> Setter:
     def put(d: dict[str, Any], p: str) -> dict[str, Any]:
         d["gears"][1] = {"link": 1, **{k: (p if v is None else v) for k, v in entry.items()}}
         return d
+
     return put
 
 
@@ -135,6 +135,7 @@ def _set(*keys: Any, wrap: Callable[[str], Any] = lambda p: p) -> Setter:
             target = target[k]
         target[keys[-1]] = wrap(p)
         return d
+
     return put
 
 
@@ -142,6 +143,7 @@ def _mesh_efficiency(value: Callable[[str], Any]) -> Setter:
     def put(d: dict[str, Any], p: str) -> dict[str, Any]:
         d["couplings"]["C"] = {"type": "mesh", "gears": [1, 2], "efficiency": value(p)}
         return d
+
     return put
 
 
@@ -151,6 +153,7 @@ def _rename_coupling(old: str, port: str | None = None) -> Setter:
         if port:
             d["ports"][port] = p
         return d
+
     return put
 
 
@@ -188,22 +191,41 @@ FIELDS: dict[str, tuple[str, Setter, tuple[str, ...], tuple[str, ...]]] = {
     "teeth": ("simple_pair", _gear1(teeth=None, module=2), ("gears.1.teeth",), ()),
     "efficiency": ("simple_pair", _mesh_efficiency(lambda p: p), ("couplings.C.efficiency",), ()),
     "efficiency_pair": ("simple_pair", _mesh_efficiency(lambda p: [0.98, p]), ("couplings.C.efficiency",), ()),
-    "friction_coulomb": ("simple_pair", _set("couplings", "C", "friction", "coulomb"),
-                         ("couplings.C.friction.coulomb",), ()),
-    "friction_linear": ("simple_pair", _set("couplings", "C", "friction", wrap=lambda p: {"linear": p}),
-                        ("couplings.C.friction.linear",), ()),
-    "friction_viscous": ("simple_pair", _set("couplings", "A", "friction", wrap=lambda p: {"viscous": p}),
-                         ("couplings.A.friction.viscous",), ()),
+    "friction_coulomb": (
+        "simple_pair",
+        _set("couplings", "C", "friction", "coulomb"),
+        ("couplings.C.friction.coulomb",),
+        (),
+    ),
+    "friction_linear": (
+        "simple_pair",
+        _set("couplings", "C", "friction", wrap=lambda p: {"linear": p}),
+        ("couplings.C.friction.linear",),
+        (),
+    ),
+    "friction_viscous": (
+        "simple_pair",
+        _set("couplings", "A", "friction", wrap=lambda p: {"viscous": p}),
+        ("couplings.A.friction.viscous",),
+        (),
+    ),
     "at": ("planetary_simple", _set("couplings", "O", "at"), ("couplings.O.at",), ()),
     "axis_text": ("litvin_face_drive", _set("gears", "2", "axis"), ("gears.2.axis",), ()),
-    "axis_vector": ("litvin_face_drive", _set("gears", "2", "axis", wrap=lambda p: [0, p, 0]), ("gears.2.axis",),
-                    ()),
+    "axis_vector": ("litvin_face_drive", _set("gears", "2", "axis", wrap=lambda p: [0, p, 0]), ("gears.2.axis",), ()),
     "placement_vector": ("simple_pair", _set("placement", wrap=lambda p: [1, p]), ("placement",), ()),
     "placement_angle": ("simple_pair", _set("placement"), ("placement",), ()),
-    "prismatic_direction": ("planetary_simple", _set("couplings", "K", "direction", wrap=lambda p: [p, 0, 0]),
-                            ("couplings.K.direction",), ()),
-    "screw_coordinate": ("data:tuplin_screws", _set("couplings", "C", "motions", "t_C", "u"),
-                         ("couplings.C.motions",), ()),
+    "prismatic_direction": (
+        "planetary_simple",
+        _set("couplings", "K", "direction", wrap=lambda p: [p, 0, 0]),
+        ("couplings.K.direction",),
+        (),
+    ),
+    "screw_coordinate": (
+        "data:tuplin_screws",
+        _set("couplings", "C", "motions", "t_C", "u"),
+        ("couplings.C.motions",),
+        (),
+    ),
     "screw_magnitude_name": ("data:tuplin_screws", _screw_magnitude, ("couplings.C.motions",), ()),
     "mesh_name": ("simple_pair", _rename_coupling("C"), ("couplings",), ()),
     "port_name": ("simple_pair", _rename_coupling("A", "input"), ("couplings", "ports"), ()),
@@ -228,8 +250,15 @@ def _attack_file(tmp_path: Path, field: str, payload: str) -> tuple[Path, tuple[
     return path, entries, args
 
 
-def _check(result: Result, path: Path | None, entries: tuple[str, ...], marker: Path, *,
-           line: bool = True, max_lines: int | None = 1) -> None:
+def _check(
+    result: Result,
+    path: Path | None,
+    entries: tuple[str, ...],
+    marker: Path,
+    *,
+    line: bool = True,
+    max_lines: int | None = 1,
+) -> None:
     assert_not_executed(marker, result=result)
     assert PRINTED_MARKER not in result.stdout + result.stderr, f"PAYLOAD EXECUTED (printed):\n{result.describe()}"
     assert_refused(result, path, entries, line=line, max_lines=max_lines)
@@ -273,8 +302,14 @@ def test_every_payload_as_a_radius_in_a_fresh_process(tmp_path, attack):
 
 
 @pytest.mark.parametrize("expression", list(NOT_GRAMMAR.values()), ids=list(NOT_GRAMMAR))
-@pytest.mark.parametrize("field", ["radius", pytest.param("efficiency", marks=pytest.mark.slow),
-                                   pytest.param("friction_coulomb", marks=pytest.mark.slow)])
+@pytest.mark.parametrize(
+    "field",
+    [
+        "radius",
+        pytest.param("efficiency", marks=pytest.mark.slow),
+        pytest.param("friction_coulomb", marks=pytest.mark.slow),
+    ],
+)
 def test_expression_outside_the_grammar_is_refused(tmp_path, field, expression):
     marker = marker_of(tmp_path)
     path, entries, extra = _attack_file(tmp_path, field, expression)
@@ -330,8 +365,16 @@ def _cli_args(option: str, payload: str, fig: Path) -> tuple[list[str], tuple[st
     raise AssertionError(option)
 
 
-CLI_OPTIONS = ["--eval value", "--eval name", "--at value", "--plot start", "--plot stop", "--vs bounds", "--input",
-               "--state"]
+CLI_OPTIONS = [
+    "--eval value",
+    "--eval name",
+    "--at value",
+    "--plot start",
+    "--plot stop",
+    "--vs bounds",
+    "--input",
+    "--state",
+]
 
 
 def _cli_cases() -> list[Any]:
@@ -395,8 +438,12 @@ def _named(data: dict[str, Any], role: str, name: str) -> dict[str, Any]:
     raise AssertionError(role)
 
 
-ROLE_ENTRIES = {"input_port": ("couplings", "ports"), "output_port": ("couplings", "ports"), "mesh": ("couplings",),
-                "link": ("links", "gears.2.link", "couplings.B")}
+ROLE_ENTRIES = {
+    "input_port": ("couplings", "ports"),
+    "output_port": ("couplings", "ports"),
+    "mesh": ("couplings",),
+    "link": ("links", "gears.2.link", "couplings.B"),
+}
 
 
 def _value_for(parameter: str) -> float:
@@ -432,8 +479,11 @@ def test_names_in_a_generated_module_are_refused_or_inert(tmp_path, monkeypatch,
     try:
         spec.loader.exec_module(module)
         assert_not_executed(marker)
-        accepted = [n for n, p in inspect.signature(module.efficiency).parameters.items()
-                    if p.kind is inspect.Parameter.KEYWORD_ONLY and n not in ("input", "errors")]
+        accepted = [
+            n
+            for n, p in inspect.signature(module.efficiency).parameters.items()
+            if p.kind is inspect.Parameter.KEYWORD_ONLY and n not in ("input", "errors")
+        ]
         value = float(module.efficiency(**{n: _value_for(n) for n in accepted}))
     finally:
         sys.modules.pop(spec.name, None)
@@ -444,9 +494,17 @@ def test_names_in_a_generated_module_are_refused_or_inert(tmp_path, monkeypatch,
 
 # --- state names and --out DIR ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("state", ["/../../escaped", pytest.param("../escaped", marks=pytest.mark.slow),
-                                   pytest.param("a/b", marks=pytest.mark.slow), "/tmp/escaped-abs",
-                                   pytest.param("x\x00y", marks=pytest.mark.slow)])
+
+@pytest.mark.parametrize(
+    "state",
+    [
+        "/../../escaped",
+        pytest.param("../escaped", marks=pytest.mark.slow),
+        pytest.param("a/b", marks=pytest.mark.slow),
+        "/tmp/escaped-abs",
+        pytest.param("x\x00y", marks=pytest.mark.slow),
+    ],
+)
 def test_state_name_never_writes_outside_the_output_folder(tmp_path, state):
     """``--out DIR`` names a module ``<train>_<state>.py``: a state name with a path in it is
     refused (exit 2, the state named) and nothing is written outside DIR."""

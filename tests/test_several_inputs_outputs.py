@@ -30,13 +30,18 @@ CATALOG_PER_METRE = 27625
 
 #: The SR20 with every kind of loss: mesh efficiencies per mesh, planet-bearing Coulomb
 #: friction and drag, viscous friction and drag on the input shaft d1.
-LOSSY = Path(catalog_path("sr20_differential")).read_text(encoding="utf-8").replace(
-    "friction: {drag: D_P}", "friction: {coulomb: rho_P, drag: D_P}").replace(
-    "  A: {type: revolute, links: [0, d1], at: 0}",
-    "  A: {type: revolute, links: [0, d1], at: 0, friction: {drag: D_A, viscous: b_A}}").replace(
-    'efficiency: eta_M}\n  M2', 'efficiency: eta_1}\n  M2').replace(
-    '["4", "3"], efficiency: eta_M}', '["4", "3"], efficiency: eta_2}').replace(
-    "  fit: [eta_M, D_P]\n  start: {eta_M: 0.95, D_P: 0.1}", "  fit: [eta_1, D_P]")
+LOSSY = (
+    Path(catalog_path("sr20_differential"))
+    .read_text(encoding="utf-8")
+    .replace("friction: {drag: D_P}", "friction: {coulomb: rho_P, drag: D_P}")
+    .replace(
+        "  A: {type: revolute, links: [0, d1], at: 0}",
+        "  A: {type: revolute, links: [0, d1], at: 0, friction: {drag: D_A, viscous: b_A}}",
+    )
+    .replace("efficiency: eta_M}\n  M2", "efficiency: eta_1}\n  M2")
+    .replace('["4", "3"], efficiency: eta_M}', '["4", "3"], efficiency: eta_2}')
+    .replace("  fit: [eta_M, D_P]\n  start: {eta_M: 0.95, D_P: 0.1}", "  fit: [eta_1, D_P]")
+)
 
 
 @pytest.fixture(scope="module")
@@ -67,13 +72,24 @@ def _cases(seed: int, count: int) -> list[dict[str, F]]:
         # Half the points at light load against large drags, where the drag reverses a tooth
         # force and the mesh's driving gear swaps.
         light = len(out) % 2 == 1
-        case = {"omega_A": w_a, "omega_K": w_k,
-                "tau_out": F(rng.randint(1, 100), 100) if light else F(rng.randint(20, 80)),
-                "eta_1": F(rng.randint(90, 99), 100), "eta_2": F(rng.randint(90, 99), 100),
-                "rho_P": F(rng.randint(0, 30), 1000), "D_P": F(rng.randint(0, 500 if light else 20), 100),
-                "D_A": F(rng.randint(0, 20), 100), "b_A": F(rng.randint(0, 5), 10000)}
-        train = sr20(eta_1=case["eta_1"], eta_2=case["eta_2"], drag={"p": case["D_P"], "d1": case["D_A"]},
-                     viscous={"d1": case["b_A"]}, rho={"p": case["rho_P"] / CATALOG_PER_METRE})
+        case = {
+            "omega_A": w_a,
+            "omega_K": w_k,
+            "tau_out": F(rng.randint(1, 100), 100) if light else F(rng.randint(20, 80)),
+            "eta_1": F(rng.randint(90, 99), 100),
+            "eta_2": F(rng.randint(90, 99), 100),
+            "rho_P": F(rng.randint(0, 30), 1000),
+            "D_P": F(rng.randint(0, 500 if light else 20), 100),
+            "D_A": F(rng.randint(0, 20), 100),
+            "b_A": F(rng.randint(0, 5), 10000),
+        }
+        train = sr20(
+            eta_1=case["eta_1"],
+            eta_2=case["eta_2"],
+            drag={"p": case["D_P"], "d1": case["D_A"]},
+            viscous={"d1": case["b_A"]},
+            rho={"p": case["rho_P"] / CATALOG_PER_METRE},
+        )
         load = -case["tau_out"] if w_a + w_k > 0 else case["tau_out"]
         try:
             truth = sr20_at_row({"w_A": w_a, "w_K": w_k, "T_O": load}, train=train)
@@ -96,8 +112,9 @@ def test_module_equals_the_oracle_element_by_element(module) -> None:
     np.testing.assert_allclose(eta, [float(c["eta"]) for c in cases], rtol=1e-10)
     np.testing.assert_allclose(torques["A"], [float(c["T_A"]) for c in cases], rtol=1e-10, atol=1e-12)
     np.testing.assert_allclose(torques["K"], [float(c["T_K"]) for c in cases], rtol=1e-10, atol=1e-12)
-    np.testing.assert_allclose(torques["O"], [float(-c["tau_out"] if c["omega_A"] + c["omega_K"] > 0
-                                                    else c["tau_out"]) for c in cases])
+    np.testing.assert_allclose(
+        torques["O"], [float(-c["tau_out"] if c["omega_A"] + c["omega_K"] > 0 else c["tau_out"]) for c in cases]
+    )
     numbers = module.region(**arrays)
     reversing = {r["number"] for r in module.REGIONS if r["reversed"]}
     assert len({r["code"] for r in module.REGIONS if r["number"] in set(numbers)}) == 8
@@ -127,13 +144,23 @@ def test_module_refuses_where_the_formulas_do_not_hold(module) -> None:
 
 
 def test_module_is_deterministic_and_lists_its_regions(lossy, module) -> None:
-    assert several_inputs_module(lossy) == several_inputs_module(derive_several_inputs(
-        davies_sym.loads(LOSSY, "sr20_lossy.yaml")))
+    assert several_inputs_module(lossy) == several_inputs_module(
+        derive_several_inputs(davies_sym.loads(LOSSY, "sr20_lossy.yaml"))
+    )
     assert module.INPUTS == ("A", "K") and module.OUTPUT == "O"
     assert [r["number"] for r in module.REGIONS] == list(range(1, len(lossy.regions) + 1))
     assert len({r["code"] for r in module.REGIONS}) == 8
-    assert {p["name"] for p in module.PARAMETERS} == {"omega_A", "omega_K", "tau_out", "eta_1", "eta_2", "rho_P",
-                                                       "D_P", "D_A", "b_A"}
+    assert {p["name"] for p in module.PARAMETERS} == {
+        "omega_A",
+        "omega_K",
+        "tau_out",
+        "eta_1",
+        "eta_2",
+        "rho_P",
+        "D_P",
+        "D_A",
+        "b_A",
+    }
 
 
 def test_latex_document_formulas_equal_the_oracle(lossy) -> None:
@@ -151,8 +178,7 @@ def test_latex_document_formulas_equal_the_oracle(lossy) -> None:
     symbols = [*lossy.train.symbols.values(), *lossy.speeds, sympy.Symbol("tau_out", positive=True)]
     seen = set()
     for case in _cases(5, 120):
-        point = {s: sympy.Rational(case[str(s)].numerator, case[str(s)].denominator) for s in symbols
-                 if str(s) in case}
+        point = {s: sympy.Rational(case[str(s)].numerator, case[str(s)].denominator) for s in symbols if str(s) in case}
         number = lossy.region_at(point).number
         if number in seen:
             continue
@@ -188,20 +214,29 @@ def test_cli_latex_python_plot_and_out_dir(tmp_path: Path) -> None:
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     out = tmp_path / "derivations"
     assert run_main([train, catalog_path("simple_pair"), "--out", str(out), "--quiet"]).returncode == 0
-    assert sorted(p.name for p in out.iterdir()) == ["simple_pair.py", "simple_pair.tex", "sr20_differential.py",
-                                                     "sr20_differential.tex"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "simple_pair.py",
+        "simple_pair.tex",
+        "sr20_differential.py",
+        "sr20_differential.tex",
+    ]
 
 
-@pytest.mark.parametrize(("args", "message"), [
-    (["--plot", "omega_A=-40:40", "--at", "tau_out=5", "eta_M=0.9", "-o", "x.png"], "missing values for D_P"),
-    (["--plot", "omega_A=-40:40", "--at", "tau_out=5", "eta_M=0.9", "D_P=0", "omega_K=1", "mu=2", "-o", "x.png"],
-     "unknown symbol mu"),
-    (["--plot", "w_A=-40:40", "-o", "x.png"], "unknown symbol 'w_A'"),
-    (["--plot", "omega_A=-40:40", "--at", "tau_out=5"], "-o FILE.png"),
-    (["--eval", "omega_A=1", "--input", "A"], "has no single input"),
-    (["--state", "low"], "one degree of freedom only"),
-    (["--at", "tau_out=5"], "only with --plot"),
-])
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--plot", "omega_A=-40:40", "--at", "tau_out=5", "eta_M=0.9", "-o", "x.png"], "missing values for D_P"),
+        (
+            ["--plot", "omega_A=-40:40", "--at", "tau_out=5", "eta_M=0.9", "D_P=0", "omega_K=1", "mu=2", "-o", "x.png"],
+            "unknown symbol mu",
+        ),
+        (["--plot", "w_A=-40:40", "-o", "x.png"], "unknown symbol 'w_A'"),
+        (["--plot", "omega_A=-40:40", "--at", "tau_out=5"], "-o FILE.png"),
+        (["--eval", "omega_A=1", "--input", "A"], "has no single input"),
+        (["--state", "low"], "one degree of freedom only"),
+        (["--at", "tau_out=5"], "only with --plot"),
+    ],
+)
 def test_cli_refuses_bad_options_with_a_located_message(tmp_path: Path, args: list[str], message: str) -> None:
     args = [str(tmp_path / a) if a.endswith(".png") else a for a in args]
     result = run_main([catalog_path("sr20_differential"), *args, "--quiet"])

@@ -31,7 +31,8 @@ def test_unit_and_network_action_matrices_eqs17_20():
     assert net.unit_action_matrix() == sympy.Matrix([[1, 0, 1, -r1 - r2, 1, -r1], [0, 1, 0, 1, 0, 1]])
     assert net.action_cutset_matrix() == sympy.Matrix([[1, 1, 0, 0, -1, -1], [0, 0, 1, 1, 1, 1]])
     assert net.network_action_matrix() == sympy.Matrix(
-        [[1, 0, 0, 0, -1, r1], [0, 1, 0, 0, 0, -1], [0, 0, 1, -r1 - r2, 1, -r1], [0, 0, 0, 1, 0, 1]])
+        [[1, 0, 0, 0, -1, r1], [0, 1, 0, 0, 0, -1], [0, 0, 1, -r1 - r2, 1, -r1], [0, 0, 0, 1, 0, 1]]
+    )
 
 
 def test_augmented_matrix_and_null_space_eqs22_23():
@@ -90,10 +91,15 @@ def test_reverse_efficiency_eq34_and_zeta_eq35():
 
 
 def bearing_analysis():
-    return davies_sym.analyse(variant("simple_pair", {
-        "A: {type: revolute, links: [0, 1]}": "A: {type: revolute, links: [0, 1], friction: {coulomb: zeta_A}}",
-        "B: {type: revolute, links: [0, 2]}": "B: {type: revolute, links: [0, 2], friction: {coulomb: zeta_B}}",
-    }))
+    return davies_sym.analyse(
+        variant(
+            "simple_pair",
+            {
+                "A: {type: revolute, links: [0, 1]}": "A: {type: revolute, links: [0, 1], friction: {coulomb: zeta_A}}",
+                "B: {type: revolute, links: [0, 2]}": "B: {type: revolute, links: [0, 2], friction: {coulomb: zeta_B}}",
+            },
+        )
+    )
 
 
 def test_bearing_losses_eqs40_42():
@@ -105,13 +111,19 @@ def test_bearing_losses_eqs40_42():
     a = bearing_analysis()
     assert [v.name for v in a.network.actions] == ["T_A", "Tstar_A", "U_A", "T_B", "Tstar_B", "U_B", "T_C", "U_C"]
     D = a.augmented_action_matrix
-    assert D[4:, :] == sympy.Matrix([[0, 1, -zA, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1, -zB, 0, 0],
-                                     [0, 0, 0, 0, 0, 0, 1, zC]])
+    assert D[4:, :] == sympy.Matrix([[0, 1, -zA, 0, 0, 0, 0, 0], [0, 0, 0, 0, 1, -zB, 0, 0], [0, 0, 0, 0, 0, 0, 1, zC]])
     den = r1 + zA + zC
     expected = [1, -zA / den, -1 / den, (r2 - zB - zC) / den, zB / den, 1 / den, zC / den, -1 / den]
     assert all(equal(x, y) for x, y in zip(a.null_space(), expected, strict=True))
-    rows = {"Tstar_A": (-zA, 0), "U_A": (0, -1), "T_B": (r2 - zB - zC, 0), "Tstar_B": (zB, 0),
-            "U_B": (-r1 - r2, 1), "T_C": (zC, 0), "U_C": (r1, -1)}
+    rows = {
+        "Tstar_A": (-zA, 0),
+        "U_A": (0, -1),
+        "T_B": (r2 - zB - zC, 0),
+        "Tstar_B": (zB, 0),
+        "U_B": (-r1 - r2, 1),
+        "T_C": (zC, 0),
+        "U_C": (r1, -1),
+    }
     for name, (T, U) in rows.items():
         wrench = a.action_wrench([name])
         assert equal(wrench[0].to_expr(), T * TA / den) and equal(wrench[1].to_expr(), U * TA / den), name
@@ -143,15 +155,31 @@ def test_viscous_losses_after_eq53():
     one by the power balance (each viscous element dissipates b t^2).
     """
     bA, bB, bC = (S(n, "viscous") for n in ("b_A", "b_B", "b_C"))
-    a = davies_sym.analyse(variant("simple_pair", {
-        "A: {type: revolute, links: [0, 1]}": "A: {type: revolute, links: [0, 1], friction: {viscous: b_A}}",
-        "B: {type: revolute, links: [0, 2]}": "B: {type: revolute, links: [0, 2], friction: {viscous: b_B}}",
-        "friction: {coulomb: zeta_C}": "friction: {coulomb: zeta_C, viscous: b_C}",
-    }))
+    a = davies_sym.analyse(
+        variant(
+            "simple_pair",
+            {
+                "A: {type: revolute, links: [0, 1]}": "A: {type: revolute, links: [0, 1], friction: {viscous: b_A}}",
+                "B: {type: revolute, links: [0, 2]}": "B: {type: revolute, links: [0, 2], friction: {viscous: b_B}}",
+                "friction: {coulomb: zeta_C}": "friction: {coulomb: zeta_C, viscous: b_C}",
+            },
+        )
+    )
     assert [v.name for v in a.network.actions] == [
-        "T_A", "Tddag_A", "U_A", "T_B", "Tddag_B", "U_B", "T_C", "Tddag_C", "U_C"]
-    assert all(equal(x, y) for x, y in zip(a.dependent_sources, [-bA * tA, bB * r1 / r2 * tA,
-                                                                   bC * (r1 + r2) / r2 * tA], strict=True))
+        "T_A",
+        "Tddag_A",
+        "U_A",
+        "T_B",
+        "Tddag_B",
+        "U_B",
+        "T_C",
+        "Tddag_C",
+        "U_C",
+    ]
+    assert all(
+        equal(x, y)
+        for x, y in zip(a.dependent_sources, [-bA * tA, bB * r1 / r2 * tA, bC * (r1 + r2) / r2 * tA], strict=True)
+    )
     printed_a = bA * (r2 - zC) * r1 * r2 - bB * (r1 + zC) * r1**2 - bC * r1 * (r1 + r2) ** 2
     printed = (TA * ((r2 - zC) * r1 * r2) - printed_a * tA) / (TA * r2**2 * (r1 + zC))
     assert equal(a.efficiency.subs({bB: -bB, bC: -bC}), printed)

@@ -65,8 +65,18 @@ def test_columns_and_row_counts(table: int) -> None:
 
 def test_first_rows_as_printed() -> None:
     """Table I, row 1: T_o 5.08, T_d2* -2.43, T_d1 -3.58, dT_d1* 0.926, 180/309/51 rpm, 0.7433, 0.7731."""
-    assert read(1)[1][0] == {"w_A": 309, "w_K": 51, "w_O": 180, "T_A": 3.58, "T_K": 1.50, "T_O": -5.08,
-                             "eta": 0.7731, "paper_T_K": 2.43, "paper_dT_A": 0.926, "paper_eta": 0.7433}
+    assert read(1)[1][0] == {
+        "w_A": 309,
+        "w_K": 51,
+        "w_O": 180,
+        "T_A": 3.58,
+        "T_K": 1.50,
+        "T_O": -5.08,
+        "eta": 0.7731,
+        "paper_T_K": 2.43,
+        "paper_dT_A": 0.926,
+        "paper_eta": 0.7433,
+    }
 
 
 @pytest.mark.parametrize(("table", "row", "r"), all_rows())

@@ -60,7 +60,13 @@ print(json.dumps([train_document(v.analysis), variants_document(v)], default=str
 def test_derivation_does_not_depend_on_the_hash_seed(name: str) -> None:
     outputs = set()
     for seed in ("1", "2", "3"):
-        result = subprocess.run([sys.executable, "-c", _DOCUMENT, catalog_path(name)], cwd=ROOT, check=True,
-                                capture_output=True, text=True, env={**os.environ, "PYTHONHASHSEED": seed})
+        result = subprocess.run(
+            [sys.executable, "-c", _DOCUMENT, catalog_path(name)],
+            cwd=ROOT,
+            check=True,
+            capture_output=True,
+            text=True,
+            env={**os.environ, "PYTHONHASHSEED": seed},
+        )
         outputs.add(result.stdout)
     assert len(outputs) == 1

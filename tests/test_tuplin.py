@@ -42,29 +42,41 @@ def test_unit_motion_matrix_circuits_and_network_matrix_eqs54_57():
     assert net.unit_motion_matrix() == sympy.Matrix([[1, 1, 1, 1, 1], [0, 0, r1, r2, r1 - r3]])
     assert net.circuit_matrix() == sympy.Matrix([[0, 1, -1, 1, 0], [-1, 0, 1, 0, 1]])
     assert net.network_motion_matrix() == sympy.Matrix(
-        [[0, 1, -1, 1, 0], [0, 0, -r1, r2, 0], [-1, 0, 1, 0, 1], [0, 0, r1, 0, r1 - r3]])
+        [[0, 1, -1, 1, 0], [0, 0, -r1, r2, 0], [-1, 0, 1, 0, 1], [0, 0, r1, 0, r1 - r3]]
+    )
 
 
 def test_motion_null_space_eq58_and_motion_matrix_eq59():
     a = davies_sym.analyse(train())
     expected = [1, (r1 - r2) * (r1 - r3) / (r2 * r3), 1 - r1 / r3, -r1 * (r1 - r3) / (r2 * r3), r1 / r3]
     assert all(equal(x, y) for x, y in zip(a.motion_null_space(), expected, strict=True))
-    M59 = sympy.Matrix([[r2 * r3, (r1 - r2) * (r1 - r3), -r2 * (r1 - r3), -r1 * (r1 - r3), r1 * r2],
-                        [0, 0, -r1 * r2 * (r1 - r3), -r1 * r2 * (r1 - r3), r1 * r2 * (r1 - r3)]]) * tA / (r2 * r3)
+    M59 = (
+        sympy.Matrix(
+            [
+                [r2 * r3, (r1 - r2) * (r1 - r3), -r2 * (r1 - r3), -r1 * (r1 - r3), r1 * r2],
+                [0, 0, -r1 * r2 * (r1 - r3), -r1 * r2 * (r1 - r3), r1 * r2 * (r1 - r3)],
+            ]
+        )
+        * tA
+        / (r2 * r3)
+    )
     assert all(equal(x, y) for x, y in zip(a.motion_matrix(), M59, strict=True))
 
 
 def test_lossless_actions_eqs60_62():
     """Laus eqs. (60)-(61) and (62) (the latter uses r1 - r3 = r2 - r4)."""
-    a = davies_sym.analyse(variant("tuplin", {"friction: {coulomb: zeta_C}": "friction: none",
-                                              "friction: {coulomb: zeta_D}": "friction: none"}))
+    a = davies_sym.analyse(
+        variant(
+            "tuplin", {"friction: {coulomb: zeta_C}": "friction: none", "friction: {coulomb: zeta_D}": "friction: none"}
+        )
+    )
     net = a.network
     assert net.unit_action_matrix() == sympy.Matrix([[1, 0, 1, 0, -r1, -r2, r3 - r1], [0, 1, 0, 1, 1, 1, 1]])
-    assert net.action_cutset_matrix() == sympy.Matrix([[1, 1, 0, 0, 0, 0, 1], [0, 0, 1, 1, 0, -1, 0],
-                                                        [0, 0, 0, 0, 1, 1, -1]])
+    assert net.action_cutset_matrix() == sympy.Matrix(
+        [[1, 1, 0, 0, 0, 0, 1], [0, 0, 1, 1, 0, -1, 0], [0, 0, 0, 0, 1, 1, -1]]
+    )
     k = r2 * r3 - r1 * r4
-    A62 = sympy.Matrix([[k, -r2 * r3, r1 * r4, -r2 * r3, r1 * r4 - r2 * r3],
-                        [r2 - r1, r3, -r4, r3, r1 - r2]]) * TA / k
+    A62 = sympy.Matrix([[k, -r2 * r3, r1 * r4, -r2 * r3, r1 * r4 - r2 * r3], [r2 - r1, r3, -r4, r3, r1 - r2]]) * TA / k
     assert all(equal(x, y, PLANAR) for x, y in zip(a.action_matrix(), A62, strict=True))
 
 
@@ -77,8 +89,7 @@ def test_lossy_actions_eq65_and_efficiency_eq71():
     """
     a = davies_sym.analyse(linear_law())
     den = zC - zD - r1 + r2
-    row = [r1 - r3, (zD - r2) * (zC - r3) / den, -(zC - r1) * (zD - r4) / den,
-           (zD - r2) * (zC - r3) / den, r3 - r1]
+    row = [r1 - r3, (zD - r2) * (zC - r3) / den, -(zC - r1) * (zD - r4) / den, (zD - r2) * (zC - r3) / den, r3 - r1]
     A = a.action_matrix()
     assert all(equal(A[0, j], row[j] * TA / (r1 - r3), PLANAR) for j in range(5))
     eta71 = (r2 - r1) * (zD - r2) * (zC - r3) / (r2 * r3 * (zC - zD - r1 + r2))

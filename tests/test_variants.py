@@ -86,7 +86,8 @@ def tooth_train(na: int, nb: int, nc: int, nd: int) -> davies_sym.Train:
     pinion C meshes annulus D (mesh D); modules chosen so the centre distances match
     (Chen footnote 2, Laus section 3.4.1.6)."""
     m1, m2 = nd - nc, nb - na
-    return davies_sym.loads(f"""
+    return davies_sym.loads(
+        f"""
 name: Tuplin train, Chen Table 4.1 ({na}/{nb}/{nc}/{nd})
 links: [1, 2, 3/4, 5]
 reference: 1
@@ -102,11 +103,14 @@ couplings:
   D: {{type: mesh, gears: [2, 4]}}
   E: {{type: revolute, links: [3/4, 5]}}
 ports: {{input: A, output: B}}
-""", "chen-table-4.1")
+""",
+        "chen-table-4.1",
+    )
 
 
-@pytest.mark.parametrize(("teeth", "published"), [
-    ((16, 34, 15, 32), 0.223), ((48, 102, 45, 96), 0.462), ((96, 119, 90, 112), 0.824)])
+@pytest.mark.parametrize(
+    ("teeth", "published"), [((16, 34, 15, 32), 0.223), ((48, 102, 45, 96), 0.462), ((96, 119, 90, 112), 0.824)]
+)
 def test_chen_table_4_1(teeth, published):
     """Chen 2006 Table 4.1 ('This work' column): lambda = (1/N_pinion - 1/N_gear)/5,
     eta = 1 - lambda per mesh, carrier input."""
@@ -208,7 +212,8 @@ def test_two_efficiency_symbols_per_mesh():
     """`efficiency: [eta_12, eta_21]`: eta_12 when gear 1 drives (A input), eta_21 when
     gear 2 drives (B input), Laus eqs. (32) and (34)."""
     text = read_text(catalog_path("simple_pair")).replace(
-        "friction: {coulomb: zeta_C}}", "friction: {coulomb: zeta_C}, efficiency: [eta_12, eta_21]}")
+        "friction: {coulomb: zeta_C}}", "friction: {coulomb: zeta_C}, efficiency: [eta_12, eta_21]}"
+    )
     vs = derive_variants(davies_sym.loads(text, "pair-two-etas"))
     e12, e21 = S("eta_12", "efficiency"), S("eta_21", "efficiency")
     assert [(v.input, v.efficiency) for v in vs.variants] == [("A", e12), ("B", e21)]

@@ -17,8 +17,14 @@ import tempfile
 import tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CORE_TESTS = ["tests/test_tuplin.py", "tests/test_simple_pair.py", "tests/test_variants.py",
-              "tests/test_api_values.py", "tests/test_several_inputs.py", "tests/test_losses_against_oracle.py"]
+CORE_TESTS = [
+    "tests/test_tuplin.py",
+    "tests/test_simple_pair.py",
+    "tests/test_variants.py",
+    "tests/test_api_values.py",
+    "tests/test_several_inputs.py",
+    "tests/test_losses_against_oracle.py",
+]
 
 
 def floors() -> list[str]:
@@ -36,17 +42,33 @@ def floors() -> list[str]:
 
 
 def main(argv: list[str]) -> int:
-    rest = argv[argv.index("--") + 1:] if "--" in argv else CORE_TESTS
+    rest = argv[argv.index("--") + 1 :] if "--" in argv else CORE_TESTS
     venv = argv[0] if argv and argv[0] != "--" else tempfile.mkdtemp(prefix="davies_sym_floors_")
     python = os.path.join(venv, "bin", "python")
     subprocess.run([sys.executable, "-m", "venv", venv], check=True)
     pins = floors()
     print("floors:", " ".join(pins), flush=True)
-    subprocess.run([python, "-m", "pip", "install", "-q", "--only-binary", ":all:", *pins, "pytest", "pytest-xdist",
-                    "hypothesis", "lark"], check=True)
+    subprocess.run(
+        [
+            python,
+            "-m",
+            "pip",
+            "install",
+            "-q",
+            "--only-binary",
+            ":all:",
+            *pins,
+            "pytest",
+            "pytest-xdist",
+            "hypothesis",
+            "lark",
+        ],
+        check=True,
+    )
     env = {**os.environ, "PYTHONPATH": ROOT}
-    return subprocess.run([python, "-m", "pytest", "-q", "-n", "auto", "-p", "no:cacheprovider", *rest], cwd=ROOT,
-                          env=env, check=False).returncode
+    return subprocess.run(
+        [python, "-m", "pytest", "-q", "-n", "auto", "-p", "no:cacheprovider", *rest], cwd=ROOT, env=env, check=False
+    ).returncode
 
 
 if __name__ == "__main__":

@@ -91,8 +91,10 @@ def math(body: str, tex: str, display: bool = False) -> str:
     character references, so the element reaches the page as it was printed."""
     mode = ' display="block"' if display else ""
     annotation = html.escape(tex, quote=False)
-    element = (f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}><semantics><mrow>{body}</mrow>'
-               f'<annotation encoding="application/x-tex">{annotation}</annotation></semantics></math>')
+    element = (
+        f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}><semantics><mrow>{body}</mrow>'
+        f'<annotation encoding="application/x-tex">{annotation}</annotation></semantics></math>'
+    )
     return element.replace("_", "&#95;").replace("*", "&#42;").replace("|", "&#124;")
 
 
@@ -121,30 +123,42 @@ def _escape(text: str) -> str:
 def _ratio_math(train: Train, ratio: sympy.Expr) -> str:
     """The speed ratio ``omega_in / omega_out = ...`` as display math."""
     a, b = train.ports.input, train.ports.output
-    lhs = (f"<mfrac><msub><mi>&#969;</mi><mi>{html.escape(a)}</mi></msub>"
-           f"<msub><mi>&#969;</mi><mi>{html.escape(b)}</mi></msub></mfrac><mo>=</mo>")
-    return math(lhs + mathml_body(ratio), f"\\frac{{\\omega_{{{a}}}}}{{\\omega_{{{b}}}}} = {latex(ratio)}",
-                display=True)
+    lhs = (
+        f"<mfrac><msub><mi>&#969;</mi><mi>{html.escape(a)}</mi></msub>"
+        f"<msub><mi>&#969;</mi><mi>{html.escape(b)}</mi></msub></mfrac><mo>=</mo>"
+    )
+    return math(
+        lhs + mathml_body(ratio), f"\\frac{{\\omega_{{{a}}}}}{{\\omega_{{{b}}}}} = {latex(ratio)}", display=True
+    )
 
 
 def _published_table(checks: Sequence[Check], heading: str, port: str) -> list[str]:
     """Published (and regression) numbers beside the derived ones; a published number the
     file does not reproduce is followed by the file's explanation."""
-    lines = ["", f"{heading} Published numbers", "",
-             "| values | input | expected | derived | variant | status | source |",
-             "| --- | --- | --- | --- | --- | --- | --- |"]
+    lines = [
+        "",
+        f"{heading} Published numbers",
+        "",
+        "| values | input | expected | derived | variant | status | source |",
+        "| --- | --- | --- | --- | --- | --- | --- |",
+    ]
     for c in checks:
         values = ", ".join(f"{k} = {v}" for k, v in c.expected.values.items())
         derived = "—" if c.derived is None else f"{c.derived:.6g}"
         kind = "" if c.expected.published else " (regression, not published)"
-        lines.append(f"| {_escape(values)} | {c.expected.input or port} | {c.expected.value:g} "
-                     f"(± {c.expected.tolerance:g}){kind} | {derived} | "
-                     f"{'—' if c.variant is None else f'({c.variant})'} | **{c.status}** | "
-                     f"{_escape(c.expected.source)} |")
+        lines.append(
+            f"| {_escape(values)} | {c.expected.input or port} | {c.expected.value:g} "
+            f"(± {c.expected.tolerance:g}){kind} | {derived} | "
+            f"{'—' if c.variant is None else f'({c.variant})'} | **{c.status}** | "
+            f"{_escape(c.expected.source)} |"
+        )
     for c in checks:
         if c.expected.differs:
-            lines += ["", f"!!! note \"Why the derived value differs from {c.expected.value:g}\"",
-                      f"    {_escape(' '.join(c.expected.differs.split()))}"]
+            lines += [
+                "",
+                f'!!! note "Why the derived value differs from {c.expected.value:g}"',
+                f"    {_escape(' '.join(c.expected.differs.split()))}",
+            ]
     return lines
 
 
@@ -161,9 +175,13 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
             lines.append(f"| {c.name} | {_math(c.simplified)} | mesh {meshes} |")
     else:
         lines.append("None: the driving gear of every mesh follows from the input port alone.")
-    lines += ["", f"{heading} Variants", "",
-              "| variant | input → output | where | driving gear in each mesh | checks |",
-              "| --- | --- | --- | --- | --- |"]
+    lines += [
+        "",
+        f"{heading} Variants",
+        "",
+        "| variant | input → output | where | driving gear in each mesh | checks |",
+        "| --- | --- | --- | --- | --- |",
+    ]
     for v in variants.variants:
         where = [_sign_math(c.simplified, v.signs[c.name]) for c in variants.conditions]
         where += [f"{_escape(what)}: {_sign_math(force, sign)}" for what, force, sign in variant_forces(variants, v)]
@@ -173,8 +191,9 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
             notes += "; self-locks at some designs"
         if v.reversed_forces:
             notes += f"; light load: {', '.join(sorted(v.reversed_forces))} reversed"
-        lines.append(f"| ({v.number}) | {v.input} → {v.output} | {'<br>'.join(where) or 'every design'} | "
-                     f"{meshes} | {notes} |")
+        lines.append(
+            f"| ({v.number}) | {v.input} → {v.output} | {'<br>'.join(where) or 'every design'} | {meshes} | {notes} |"
+        )
     lines += ["", f"{heading} Formulas", ""]
     for v in variants.variants:
         lines += [f"Variant ({v.number}), input {v.input}:", "", _equation("eta", v.number, v.efficiency), ""]
@@ -199,17 +218,29 @@ def several_inputs_section(si: SeveralInputs, heading: str) -> list[str]:
     lines += [f"| {p} | {_math(v.to_expr())} |" for p, v in si.port_speeds.items()]
     lines += ["", f"{heading} Speed conditions", "", "| condition | expression | decides |", "| --- | --- | --- |"]
     lines += [f"| {c.name} | {_math(c.form)} | {_escape('; '.join(c.decides))} |" for c in si.conditions]
-    lines += ["", f"{heading} Power-flow regions", "",
-              "| region | power in → out | where | driving gear in each mesh |", "| --- | --- | --- | --- |"]
+    lines += [
+        "",
+        f"{heading} Power-flow regions",
+        "",
+        "| region | power in → out | where | driving gear in each mesh |",
+        "| --- | --- | --- | --- |",
+    ]
     for r in si.regions:
         where = [_sign_math(c.form, r.signs[c.name]) for c in si.conditions]
         where += [f"{_escape(what)}: {_sign_math(force, sign)}" for what, force, sign in region_forces(r)]
         meshes = "<br>".join(f"{m}: gear {a} drives gear {b}" for m, a, b in drivers(si, r))
-        lines.append(f"| ({r.number}) | {', '.join(r.inputs)} → {', '.join(r.outputs)} | {'<br>'.join(where)} | "
-                     f"{_escape(meshes)} |")
-    lines += ["", f"{heading} Formulas", "",
-              f"The load torque is `tau_out` at {train.ports.output}; the input speeds are "
-              f"{', '.join(f'`{s}`' for s in si.speeds)}.", ""]
+        lines.append(
+            f"| ({r.number}) | {', '.join(r.inputs)} → {', '.join(r.outputs)} | {'<br>'.join(where)} | "
+            f"{_escape(meshes)} |"
+        )
+    lines += [
+        "",
+        f"{heading} Formulas",
+        "",
+        f"The load torque is `tau_out` at {train.ports.output}; the input speeds are "
+        f"{', '.join(f'`{s}`' for s in si.speeds)}.",
+        "",
+    ]
     for r in si.regions:
         lines += [f"Region ({r.number}):", "", _equation("eta", r.number, r.efficiency), ""]
     return lines
@@ -218,10 +249,19 @@ def several_inputs_section(si: SeveralInputs, heading: str) -> list[str]:
 def catalog_page(train: Train, stem: str, body: Sequence[str], notes: Sequence[str] = ()) -> str:
     """The page of one catalog file: source, files, coupling graph, links and couplings,
     then ``body`` (the derived sections)."""
-    lines = [f"# {train.name}", "", f"Source: {_escape(train.source or 'not given')}.", "",
-             f"Topology file: `catalog/{stem}.yaml`; generated formulas: `derivations/{stem}*.py` and "
-             f"`derivations/{stem}.tex`.", "", f"![coupling graph of {stem}](img/{stem}_graph.png)", "",
-             "| link | description |", "| --- | --- |"]
+    lines = [
+        f"# {train.name}",
+        "",
+        f"Source: {_escape(train.source or 'not given')}.",
+        "",
+        f"Topology file: `catalog/{stem}.yaml`; generated formulas: `derivations/{stem}*.py` and "
+        f"`derivations/{stem}.tex`.",
+        "",
+        f"![coupling graph of {stem}](img/{stem}_graph.png)",
+        "",
+        "| link | description |",
+        "| --- | --- |",
+    ]
     lines += [f"| {link.name} | {_escape(link.description)} |" for link in train.links]
     lines += ["", "| coupling | kind | between |", "| --- | --- | --- |"]
     for c in train.couplings:
@@ -239,11 +279,16 @@ def states_body(train: Train, sections: Mapping[str | None, tuple[VariantSet, Se
             lines += state_section(variants, "##", figures, None)
         else:
             st = train.state(state)
-            lines += [f"## State {state}" + (f": {st.description}" if st.description else ""), "",
-                      f"Input {st.input}, output {st.output}"
-                      + (f"; braked: {', '.join(st.brake)}" if st.brake else "")
-                      + (f"; clutched: {', '.join('+'.join(p) for p in st.clutch)}" if st.clutch else "")
-                      + (f"; free: {', '.join(st.free)}" if st.free else "") + ".", ""]
+            lines += [
+                f"## State {state}" + (f": {st.description}" if st.description else ""),
+                "",
+                f"Input {st.input}, output {st.output}"
+                + (f"; braked: {', '.join(st.brake)}" if st.brake else "")
+                + (f"; clutched: {', '.join('+'.join(p) for p in st.clutch)}" if st.clutch else "")
+                + (f"; free: {', '.join(st.free)}" if st.free else "")
+                + ".",
+                "",
+            ]
             lines += state_section(variants, "###", figures, state)
     return lines
 
@@ -251,31 +296,56 @@ def states_body(train: Train, sections: Mapping[str | None, tuple[VariantSet, Se
 def cli_page(parser: argparse.ArgumentParser) -> str:
     """The command line reference: the help of ``derive`` and examples."""
     parser.prog = "derive"
-    return "\n".join([
-        "# Command line", "", "```text", parser.format_help().rstrip(), "```", "", "## Examples", "",
-        "```bash",
-        "derive catalog/tuplin.yaml                       # summary: conditions and every variant",
-        "derive catalog/tuplin.yaml --latex -o tuplin.tex # LaTeX: Table 5 form, one equation per variant",
-        "derive catalog/tuplin.yaml --python tuplin_eff.py  # formula module for design code",
-        "derive catalog/tuplin.yaml --eval r1=40 r2=60 r3=15 eta_C=0.99 eta_D=0.99",
-        "derive catalog/litvin_face_drive.yaml --plot N4=60:99 -o litvin.png",
-        "derive catalog/tuplin.yaml --plot r1=20:100 --vs r2=20:100 --at r3=15 -o regions.png",
-        "derive catalog/simpson.yaml --state first --eval ...",
-        "derive catalog/*.yaml --out derivations/        # every catalog train",
-        "```", "",
-        "Progress messages go to standard error (when it is a terminal); `--quiet` silences them. "
-        "Errors name the file, the entry and what is wrong, and exit with status 2.", ""])
+    return "\n".join(
+        [
+            "# Command line",
+            "",
+            "```text",
+            parser.format_help().rstrip(),
+            "```",
+            "",
+            "## Examples",
+            "",
+            "```bash",
+            "derive catalog/tuplin.yaml                       # summary: conditions and every variant",
+            "derive catalog/tuplin.yaml --latex -o tuplin.tex # LaTeX: Table 5 form, one equation per variant",
+            "derive catalog/tuplin.yaml --python tuplin_eff.py  # formula module for design code",
+            "derive catalog/tuplin.yaml --eval r1=40 r2=60 r3=15 eta_C=0.99 eta_D=0.99",
+            "derive catalog/litvin_face_drive.yaml --plot N4=60:99 -o litvin.png",
+            "derive catalog/tuplin.yaml --plot r1=20:100 --vs r2=20:100 --at r3=15 -o regions.png",
+            "derive catalog/simpson.yaml --state first --eval ...",
+            "derive catalog/*.yaml --out derivations/        # every catalog train",
+            "```",
+            "",
+            "Progress messages go to standard error (when it is a terminal); `--quiet` silences them. "
+            "Errors name the file, the entry and what is wrong, and exit with status 2.",
+            "",
+        ]
+    )
 
 
 #: Modules of the public API, in reading order.
-API_MODULES = ("davies_sym", "davies_sym.topology.loader", "davies_sym.topology.model", "davies_sym.network.analysis",
-               "davies_sym.efficiency.variants", "davies_sym.efficiency.variant",
-               "davies_sym.efficiency.turning_conditions", "davies_sym.efficiency.several_inputs",
-               "davies_sym.efficiency.virtual_power", "davies_sym.efficiency.virtual_power_balance",
-               "davies_sym.efficiency.power_losses", "davies_sym.efficiency.parameters",
-               "davies_sym.emit.python_module", "davies_sym.emit.plots", "davies_sym.emit.graph_drawing",
-               "davies_sym.emit.latex", "davies_sym.emit.languages", "davies_sym.emit.evaluation",
-               "davies_sym.topology.symbol_display")
+API_MODULES = (
+    "davies_sym",
+    "davies_sym.topology.loader",
+    "davies_sym.topology.model",
+    "davies_sym.network.analysis",
+    "davies_sym.efficiency.variants",
+    "davies_sym.efficiency.variant",
+    "davies_sym.efficiency.turning_conditions",
+    "davies_sym.efficiency.several_inputs",
+    "davies_sym.efficiency.virtual_power",
+    "davies_sym.efficiency.virtual_power_balance",
+    "davies_sym.efficiency.power_losses",
+    "davies_sym.efficiency.parameters",
+    "davies_sym.emit.python_module",
+    "davies_sym.emit.plots",
+    "davies_sym.emit.graph_drawing",
+    "davies_sym.emit.latex",
+    "davies_sym.emit.languages",
+    "davies_sym.emit.evaluation",
+    "davies_sym.topology.symbol_display",
+)
 
 
 def api_page() -> str:

@@ -45,14 +45,24 @@ Progress = Callable[[str], None]
 
 #: Figures reproducing the literature, by catalog file: (kind, arguments, caption).
 LITERATURE_FIGURES: dict[str, list[tuple[str, dict[str, object], str]]] = {
-    "litvin_face_drive": [("sweep", {"x": Sweep("N4", 60, 99)},
-                           "Efficiency against N4 with N1 = 100, N2 = N3 = 17, 98 % per mesh, as in Chen 2006 "
-                           "Fig. 4.13 (77.5 % at N4 = 88); below, the loss in each mesh.")],
-    "humpage": [("laus_surface", {},
-                 "Turning-condition surface of mesh C in the radii space (r1, r5, r2), Laus 2011 Fig. 11: Table 6's "
-                 "((r5 - 3 r1) r2^2 + r1 (r5 - r1)^2)(r5 - r1) = 0, derived by the engine on Laus's printed planet "
-                 "axis (eq. (80)). With the consistent cone geometry of the catalog file gear 1 always drives in "
-                 "mesh C, and the one turning condition is r2 r4 - r3 r5.")],
+    "litvin_face_drive": [
+        (
+            "sweep",
+            {"x": Sweep("N4", 60, 99)},
+            "Efficiency against N4 with N1 = 100, N2 = N3 = 17, 98 % per mesh, as in Chen 2006 "
+            "Fig. 4.13 (77.5 % at N4 = 88); below, the loss in each mesh.",
+        )
+    ],
+    "humpage": [
+        (
+            "laus_surface",
+            {},
+            "Turning-condition surface of mesh C in the radii space (r1, r5, r2), Laus 2011 Fig. 11: Table 6's "
+            "((r5 - 3 r1) r2^2 + r1 (r5 - r1)^2)(r5 - r1) = 0, derived by the engine on Laus's printed planet "
+            "axis (eq. (80)). With the consistent cone geometry of the catalog file gear 1 always drives in "
+            "mesh C, and the one turning condition is r2 r4 - r3 r5.",
+        )
+    ],
 }
 
 
@@ -66,8 +76,9 @@ def _nominal(train: Train, state: str | None) -> dict[str, float]:
     return out
 
 
-def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, state: str | None,
-                       write: Write) -> list[Figure]:
+def _automatic_figures(
+    variants: VariantSet, module: ModuleType, stem: str, state: str | None, write: Write
+) -> list[Figure]:
     """Efficiency against the first geometric parameter (or the first mesh efficiency)
     around the published design, and the variant map over the symbols of the first
     turning condition."""
@@ -92,8 +103,13 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
     values = {k: v for k, v in nominal.items() if k in symbols and k != sweep.name}
     file = f"{stem}{suffix}_{sweep.name}.png"
     write(f"catalog/img/{file}", figure_bytes(efficiency_figure(variants, sweep, values, port, module)))
-    out.append(Figure(file, f"Efficiency and losses against {sweep.name} around the published design (mesh "
-                            f"efficiencies 0.98 where none is published), input {port}."))
+    out.append(
+        Figure(
+            file,
+            f"Efficiency and losses against {sweep.name} around the published design (mesh "
+            f"efficiencies 0.98 where none is published), input {port}.",
+        )
+    )
     if variants.conditions:
         free = sorted(str(s) for s in variants.conditions[0].simplified.free_symbols)
         if len(free) >= 2:
@@ -105,8 +121,9 @@ def _automatic_figures(variants: VariantSet, module: ModuleType, stem: str, stat
     return out
 
 
-def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, stem: str,
-                        write: Write) -> list[Figure]:
+def _literature_figures(
+    train: Train, variants: VariantSet, module: ModuleType, stem: str, write: Write
+) -> list[Figure]:
     out = []
     for kind, arguments, caption in LITERATURE_FIGURES.get(stem, []):
         if kind == "sweep":
@@ -117,13 +134,22 @@ def _literature_figures(train: Train, variants: VariantSet, module: ModuleType, 
             figure = efficiency_figure(variants, sweep, values, train.ports.input, module)
             file = f"{stem}_literature_{sweep.name}.png"
         else:
-            analysis = Analysis(train, coulomb_signs="mesh-linear", extra_symbols=efficiency_symbols(train),
-                                layout=laus_humpage_layout(train))
+            analysis = Analysis(
+                train,
+                coulomb_signs="mesh-linear",
+                extra_symbols=efficiency_symbols(train),
+                layout=laus_humpage_layout(train),
+            )
             roles, conditions = mesh_roles(analysis)
             name = next(r.condition for r in roles if r.coupling == "C")
             condition = next(c.simplified for c in conditions if c.name == name)
-            figure = turning_surface_figure(condition, Sweep("r1", 1, 100), Sweep("r5", 1, 100), Sweep("r2", 0, 100),
-                                            "Humpage, mesh C: turning-condition surface (Laus Fig. 11)")
+            figure = turning_surface_figure(
+                condition,
+                Sweep("r1", 1, 100),
+                Sweep("r5", 1, 100),
+                Sweep("r2", 0, 100),
+                "Humpage, mesh C: turning-condition surface (Laus Fig. 11)",
+            )
             file = f"{stem}_laus_fig11.png"
         write(f"catalog/img/{file}", figure_bytes(figure))
         out.append(Figure(file, caption))
@@ -155,11 +181,18 @@ def catalog_pages(root: str, write: Write, progress: Progress) -> list[str]:
             body = states_body(train, sections)
         write(f"catalog/{stem}.md", catalog_page(train, stem, body).encode())
         stems.append(stem)
-    index = ["# Catalog", "", "Literature trains, each regression-checked against its published numbers.", "",
-             "| train | file |", "| --- | --- |"]
+    index = [
+        "# Catalog",
+        "",
+        "Literature trains, each regression-checked against its published numbers.",
+        "",
+        "| train | file |",
+        "| --- | --- |",
+    ]
     for stem in stems:
-        index.append(f"| [{load(os.path.join(root, 'catalog', f'{stem}.yaml')).name}]({stem}.md) | "
-                     f"`catalog/{stem}.yaml` |")
+        index.append(
+            f"| [{load(os.path.join(root, 'catalog', f'{stem}.yaml')).name}]({stem}.md) | `catalog/{stem}.yaml` |"
+        )
     write("catalog/index.md", ("\n".join(index) + "\n").encode())
     return stems
 

@@ -18,5 +18,8 @@ def laus_humpage_layout(train: Train) -> Layout:
     r1, r2, r5 = (train.symbols[n] for n in ("r1", "r2", "r5"))
     s = layout.radicals[0].symbol
     printed = vector([0, -(r5 - r1) / (2 * r2), s / (2 * r2)])
-    return dataclasses.replace(layout, coupling_axes={**layout.coupling_axes, "G": printed},
-                               gear_axes={**layout.gear_axes, "2": printed, "3": printed})
+    return dataclasses.replace(
+        layout,
+        coupling_axes={**layout.coupling_axes, "G": printed},
+        gear_axes={**layout.gear_axes, "2": printed, "3": printed},
+    )

@@ -89,26 +89,49 @@ states the expression whose sign it is. `friction: none` makes a coupling lossle
 
 
 def render() -> str:
-    parts = [INTRO, "## Top-level keys\n", fields_table(TOP_LEVEL), "\n## Links (mapping form)\n",
-             fields_table(LINK), "\n## Gears\n", fields_table(GEAR), "\n## Ports\n", fields_table(PORTS),
-             "\n## Couplings\n"]
+    parts = [
+        INTRO,
+        "## Top-level keys\n",
+        fields_table(TOP_LEVEL),
+        "\n## Links (mapping form)\n",
+        fields_table(LINK),
+        "\n## Gears\n",
+        fields_table(GEAR),
+        "\n## Ports\n",
+        fields_table(PORTS),
+        "\n## Couplings\n",
+    ]
     for name, kind in KINDS.items():
         parts += [f"\n### `type: {name}`\n", kind.DOC + "\n", fields_table(coupling_fields(kind))]
-    parts += ["\n## Friction\n", "`friction: none`, or a mapping of laws to coefficients:\n",
-              fields_table(FRICTION)]
-    parts += ["\n### Journal bearing\n", "`friction: {bearing: {...}}` on a revolute (Laus App. D): the Coulomb law "
-              "whose friction-circle radius `zeta_<coupling>` the formulas keep, with its definition stated beside "
-              "them.\n", fields_table(BEARING)]
-    parts += ["\n### Tooth contact\n", "`efficiency: {...}` on an external spur mesh: both ordinary efficiencies from "
-              "the tooth geometry and the flank friction coefficient (Laus App. A, eqs. (134)-(136)); the formulas "
-              "keep `eta_<coupling>_<driver>_<driven>` and state their definitions, `--eval`, the plots and the "
-              "formula modules take the parameters (`derive catalog/buckingham_pair.yaml --eval mu=0.0272`).\n",
-              fields_table(TOOTH_CONTACT)]
-    parts += ["\n## States\n", "Operating states of a multi-speed set (`states: {name: entry}`). "
-              "`derive` derives every state; `--state NAME` picks one for `--eval`, `--latex` and "
-              "`--python`.\n", fields_table(STATE)]
-    parts += ["\n## Published checks\n", "`expected:` lists published numbers the catalog tests reproduce, each "
-              "checked on load like every other entry.\n", fields_table(EXPECTED)]
+    parts += ["\n## Friction\n", "`friction: none`, or a mapping of laws to coefficients:\n", fields_table(FRICTION)]
+    parts += [
+        "\n### Journal bearing\n",
+        "`friction: {bearing: {...}}` on a revolute (Laus App. D): the Coulomb law "
+        "whose friction-circle radius `zeta_<coupling>` the formulas keep, with its definition stated beside "
+        "them.\n",
+        fields_table(BEARING),
+    ]
+    parts += [
+        "\n### Tooth contact\n",
+        "`efficiency: {...}` on an external spur mesh: both ordinary efficiencies from "
+        "the tooth geometry and the flank friction coefficient (Laus App. A, eqs. (134)-(136)); the formulas "
+        "keep `eta_<coupling>_<driver>_<driven>` and state their definitions, `--eval`, the plots and the "
+        "formula modules take the parameters (`derive catalog/buckingham_pair.yaml --eval mu=0.0272`).\n",
+        fields_table(TOOTH_CONTACT),
+    ]
+    parts += [
+        "\n## States\n",
+        "Operating states of a multi-speed set (`states: {name: entry}`). "
+        "`derive` derives every state; `--state NAME` picks one for `--eval`, `--latex` and "
+        "`--python`.\n",
+        fields_table(STATE),
+    ]
+    parts += [
+        "\n## Published checks\n",
+        "`expected:` lists published numbers the catalog tests reproduce, each "
+        "checked on load like every other entry.\n",
+        fields_table(EXPECTED),
+    ]
     return "\n".join(parts) + "\n"
 
 

@@ -84,8 +84,13 @@ class Elimination:
         return out
 
 
-def gauss_jordan(rows: Iterable[Row], ncols: int, prefer_free: Iterable[int] = (),
-                 progress: Callable[[int, int], None] | None = None, reduce: Reduce | None = None) -> Elimination:
+def gauss_jordan(
+    rows: Iterable[Row],
+    ncols: int,
+    prefer_free: Iterable[int] = (),
+    progress: Callable[[int, int], None] | None = None,
+    reduce: Reduce | None = None,
+) -> Elimination:
     """Fraction-free Gauss-Jordan elimination of sparse polynomial ``rows``; ``reduce``
     (the ring's radical relations) keeps entries canonical, so zero tests are exact."""
     if reduce is not None:

@@ -30,8 +30,7 @@ def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
     except OverflowError:
         ctx = p.context()
         gens = sympy.symbols([f"x{i}" for i in range(len(ctx.names()))])
-        poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens,
-                                    domain="ZZ")
+        poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens, domain="ZZ")
         whole, parts = poly.factor_list()
         return int(whole), [(ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts]
     return int(content), [(f, int(e)) for f, e in factors]
@@ -50,8 +49,10 @@ class PolynomialRing:
                 # first (hash order for a set).  The cause is upstream: a symbol made
                 # outside the train's symbol table.
                 first, second = sorted((known, s), key=symbol_key)
-                raise DerivationError(f"symbol {s.name} exists with two sets of assumptions: "
-                                      f"({describe_assumptions(first)}) and ({describe_assumptions(second)})")
+                raise DerivationError(
+                    f"symbol {s.name} exists with two sets of assumptions: "
+                    f"({describe_assumptions(first)}) and ({describe_assumptions(second)})"
+                )
         self.symbols: tuple[sympy.Symbol, ...] = tuple(unique[n] for n in sorted(unique))
         names = tuple(s.name for s in self.symbols) or ("_one",)
         self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
@@ -72,7 +73,7 @@ class PolynomialRing:
             parts: dict[int, dict[tuple[int, ...], int]] = {}
             for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
                 k = monom[index]
-                stripped = (*monom[:index], k % 2, *monom[index + 1:])
+                stripped = (*monom[:index], k % 2, *monom[index + 1 :])
                 parts.setdefault(k // 2, {})[stripped] = int(coeff)
             total = self.zero
             for half, data in parts.items():
@@ -136,9 +137,13 @@ class PolynomialRing:
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
         # One Mul per term and one Add in all: repeated ``*=`` re-flattens every product.
-        terms = [sympy.Mul(sympy.Integer(int(coeff)),
-                           *(sym ** int(exp) for sym, exp in zip(self._exprs, monom, strict=False) if exp))
-                 for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True)]
+        terms = [
+            sympy.Mul(
+                sympy.Integer(int(coeff)),
+                *(sym ** int(exp) for sym, exp in zip(self._exprs, monom, strict=False) if exp),
+            )
+            for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True)
+        ]
         return sympy.Add(*terms)
 
     def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:
@@ -282,7 +287,7 @@ class RationalFunction:
                         break
                 coefficient = derivative.subs({name: 0})
                 if not coefficient.is_zero():
-                    total += (coefficient / factorial) * n ** k * d ** (degree - k)
+                    total += (coefficient / factorial) * n**k * d ** (degree - k)
             return total
 
         return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))

@@ -78,8 +78,9 @@ def _slack_substitution(fact: sympy.Expr) -> dict[sympy.Symbol, sympy.Expr] | No
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
-    def __init__(self, facts: Iterable[sympy.Expr] = (),
-                 substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()):
+    def __init__(
+        self, facts: Iterable[sympy.Expr] = (), substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()
+    ):
         self.facts = tuple(without_positive_factors(_numerator_times_denominator(f)) for f in facts)
         #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
         self.substitutions = tuple(dict(s) for s in substitutions)
@@ -111,8 +112,12 @@ class SignOracle:
                 return sign
         return None
 
-    def classify(self, content_sign: int, factors: Iterable[tuple[sympy.Expr, int]],
-                 known: Mapping[sympy.Expr, int] | None = None) -> tuple[int | None, sympy.Expr]:
+    def classify(
+        self,
+        content_sign: int,
+        factors: Iterable[tuple[sympy.Expr, int]],
+        known: Mapping[sympy.Expr, int] | None = None,
+    ) -> tuple[int | None, sympy.Expr]:
         """Sign of ``content_sign * prod(f**e)`` and the product of the undecided odd-power
         factors times the sign of the rest (so that both have the same sign).  ``known``
         gives the signs of some expressions in a region (a variant's turning conditions);
@@ -128,7 +133,7 @@ class SignOracle:
             elif s == 0:
                 return 0, sympy.Integer(0)
             else:
-                total *= s ** power
+                total *= s**power
         return (total if not kept else None), total * sympy.Mul(*kept)
 
     def _factors(self, expr: sympy.Expr) -> tuple[int, list[tuple[sympy.Expr, int]]]:

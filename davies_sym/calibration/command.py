@@ -36,13 +36,20 @@ START_EFFICIENCY, START_COEFFICIENT = 0.95, 0.1
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="derive calibrate", description="Fit loss parameters of a train to "
-                                "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).")
+    p = argparse.ArgumentParser(
+        prog="derive calibrate",
+        description="Fit loss parameters of a train to "
+        "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).",
+    )
     p.add_argument("train", metavar="TRAIN.yaml")
     p.add_argument("data", metavar="DATA.csv")
     p.add_argument("--fit", nargs="+", metavar="NAME", help="parameters to fit (default: the file's calibrate: fit)")
-    p.add_argument("--predict", nargs="+", metavar="OTHER.csv",
-                   help="predict the efficiency at every row of other files (rows in the order of the files)")
+    p.add_argument(
+        "--predict",
+        nargs="+",
+        metavar="OTHER.csv",
+        help="predict the efficiency at every row of other files (rows in the order of the files)",
+    )
     p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[], help="values of the parameters not fitted")
     p.add_argument("--json", action="store_true", help="one JSON object")
     p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (.png, .svg or .pdf)")
@@ -57,14 +64,21 @@ def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
 def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[str] | None) -> tuple[str, ...]:
     if names is None:
         if train.calibrate is None:
-            raise InputError([Problem("--fit", "name the parameters to fit (the file has no calibrate: fit)")],
-                             train.path)
+            raise InputError(
+                [Problem("--fit", "name the parameters to fit (the file has no calibrate: fit)")], train.path
+            )
         names = train.calibrate.fit
     known = fittable_parameters(derived)
     unknown = [n for n in names if n not in known]
     if unknown:
-        raise InputError([Problem("--fit", f"{', '.join(unknown)} is not a parameter of the formulas (they take: "
-                                  f"{', '.join(known)})")], train.path)
+        raise InputError(
+            [
+                Problem(
+                    "--fit", f"{', '.join(unknown)} is not a parameter of the formulas (they take: {', '.join(known)})"
+                )
+            ],
+            train.path,
+        )
     return tuple(names)
 
 
@@ -74,8 +88,12 @@ def derived_model(train: Train) -> VariantSet | SeveralInputs:
     return derive_several_inputs(train) if len(train.ports.inputs) > 1 else derive_variants(train)
 
 
-def calibrate(derived: VariantSet | SeveralInputs, data: Measurements, names: Sequence[str] | None = None,
-              fixed: dict[str, float] | None = None) -> tuple[TrainModel, Fit]:
+def calibrate(
+    derived: VariantSet | SeveralInputs,
+    data: Measurements,
+    names: Sequence[str] | None = None,
+    fixed: dict[str, float] | None = None,
+) -> tuple[TrainModel, Fit]:
     """The fitted model of a derived train on ``data`` (the rows' ``eta``)."""
     train = derived.train
     fitted = _fitted(train, derived, names)
@@ -86,8 +104,9 @@ def calibrate(derived: VariantSet | SeveralInputs, data: Measurements, names: Se
     upper = {n: 1.0 if n in efficiencies else np.inf for n in fitted}
     lower = {n: 1e-9 if n in efficiencies else 0.0 for n in fitted}
     measured = data.column("eta")
-    return model, fit(lambda values: model.predict(data, values) - measured, fitted, start, lower, upper,
-                      source=data.path)
+    return model, fit(
+        lambda values: model.predict(data, values) - measured, fitted, start, lower, upper, source=data.path
+    )
 
 
 def run(argv: Sequence[str]) -> int:
@@ -95,8 +114,10 @@ def run(argv: Sequence[str]) -> int:
     args = parser().parse_args(argv)
     suffix = figure_format(args.out) if args.out else ".png"
     if suffix is None:
-        print(f"input error: -o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the "
-              "format)", file=sys.stderr)
+        print(
+            f"input error: -o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the format)",
+            file=sys.stderr,
+        )
         return 2
     try:
         train = load(args.train)
@@ -109,8 +130,9 @@ def run(argv: Sequence[str]) -> int:
         print(f"derive calibrate: {exc}", file=sys.stderr)
         return 2
     except DaviesError as exc:
-        print(exc.report() if isinstance(exc, InputError) else f"derive calibrate: {args.train}: {exc}",
-              file=sys.stderr)
+        print(
+            exc.report() if isinstance(exc, InputError) else f"derive calibrate: {args.train}: {exc}", file=sys.stderr
+        )
         return 2
     document = {"status": "ok", "train": train.path, "data": data.path, **result.as_dict()}
     lines = [fit_text(result)]

@@ -69,8 +69,10 @@ class Fit:
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready data (a standard error that is not finite becomes null; ``note`` says why)."""
         return {
-            "parameters": {name: {"value": value, "standard_error": error if math.isfinite(error) else None}
-                           for name, value, error in zip(self.names, self.values, self.standard_errors, strict=True)},
+            "parameters": {
+                name: {"value": value, "standard_error": error if math.isfinite(error) else None}
+                for name, value, error in zip(self.names, self.values, self.standard_errors, strict=True)
+            },
             "residuals": [float(r) for r in self.residuals],
             "rms": self.rms,
             "rows": self.rows,
@@ -87,9 +89,16 @@ class _NotFinite(Exception):
         self.point, self.row, self.value = dict(point), row, value
 
 
-def fit(residuals: Residuals, names: Sequence[str], start: Mapping[str, float],
-        lower: Mapping[str, float] | None = None, upper: Mapping[str, float] | None = None, *,
-        source: str | None = None, max_evaluations: int | None = None) -> Fit:
+def fit(
+    residuals: Residuals,
+    names: Sequence[str],
+    start: Mapping[str, float],
+    lower: Mapping[str, float] | None = None,
+    upper: Mapping[str, float] | None = None,
+    *,
+    source: str | None = None,
+    max_evaluations: int | None = None,
+) -> Fit:
     """Fit ``names`` so that ``residuals(values)`` (model minus measured per row) is least in squares.
 
     ``start`` gives every parameter's start value; ``lower`` and ``upper`` bound any of
@@ -106,8 +115,9 @@ def fit(residuals: Residuals, names: Sequence[str], start: Mapping[str, float],
         count[0] += 1
         r = np.asarray(residuals(point), dtype=np.float64)
         if r.ndim != 1:
-            raise CalibrationError(f"{prefix}the residuals must be one number per row, got shape {r.shape}",
-                                   "arguments")
+            raise CalibrationError(
+                f"{prefix}the residuals must be one number per row, got shape {r.shape}", "arguments"
+            )
         bad = np.flatnonzero(~np.isfinite(r))
         if bad.size:
             raise _NotFinite(point, int(bad[0]), float(r[bad[0]]))
@@ -116,42 +126,88 @@ def fit(residuals: Residuals, names: Sequence[str], start: Mapping[str, float],
     try:
         rows = model(x0).size
     except _NotFinite as exc:
-        raise CalibrationError(f"{prefix}the residual of row {exc.row + 1} is {exc.value} at the start values "
-                               f"({_values(exc.point)}): the model is not defined there", "non-finite") from None
+        raise CalibrationError(
+            f"{prefix}the residual of row {exc.row + 1} is {exc.value} at the start values "
+            f"({_values(exc.point)}): the model is not defined there",
+            "non-finite",
+        ) from None
     if rows < len(names):
-        raise CalibrationError(f"{prefix}{rows} row{'s' if rows != 1 else ''} cannot determine {len(names)} "
-                               f"parameters ({', '.join(names)}): give at least {len(names)} rows", "rows")
+        raise CalibrationError(
+            f"{prefix}{rows} row{'s' if rows != 1 else ''} cannot determine {len(names)} "
+            f"parameters ({', '.join(names)}): give at least {len(names)} rows",
+            "rows",
+        )
     bounded = bool(np.isfinite(low).any() or np.isfinite(high).any())
     try:
-        result = least_squares(model, x0, jac="3-point", bounds=(low, high), method="trf", x_scale="jac",
-                               ftol=TOLERANCE, xtol=TOLERANCE, gtol=TOLERANCE, max_nfev=max_evaluations)
+        result = least_squares(
+            model,
+            x0,
+            jac="3-point",
+            bounds=(low, high),
+            method="trf",
+            x_scale="jac",
+            ftol=TOLERANCE,
+            xtol=TOLERANCE,
+            gtol=TOLERANCE,
+            max_nfev=max_evaluations,
+        )
     except _NotFinite as exc:
         hint = "; bound the parameters (lower, upper) to where the model is defined" if not bounded else ""
-        raise CalibrationError(f"{prefix}the residual of row {exc.row + 1} became {exc.value} during the fit, "
-                               f"at {_values(exc.point)}{hint}", "non-finite") from None
+        raise CalibrationError(
+            f"{prefix}the residual of row {exc.row + 1} became {exc.value} during the fit, "
+            f"at {_values(exc.point)}{hint}",
+            "non-finite",
+        ) from None
     values = tuple(float(v) for v in result.x)
     reached = dict(zip(names, values, strict=True))
     jacobian = np.asarray(result.jac, dtype=np.float64)
     _check_determined(jacobian, names, prefix)
     if result.status <= 0:
-        raise CalibrationError(f"{prefix}the fit did not converge ({result.message.rstrip('.')}) after "
-                               f"{result.nfev} evaluations; it reached {_values(reached)}",
-                               "convergence")
+        raise CalibrationError(
+            f"{prefix}the fit did not converge ({result.message.rstrip('.')}) after "
+            f"{result.nfev} evaluations; it reached {_values(reached)}",
+            "convergence",
+        )
     r = np.asarray(result.fun, dtype=np.float64)
     r.setflags(write=False)
     covariance, note = _covariance(jacobian, r, len(names))
     at_bound = [n for n, active in zip(names, result.active_mask, strict=True) if active]
     if at_bound:
-        note = " ".join(filter(None, [note, f"{', '.join(at_bound)} at {'its' if len(at_bound) == 1 else 'their'} "
-                                            "bound: the standard errors assume an interior solution."]))
+        note = " ".join(
+            filter(
+                None,
+                [
+                    note,
+                    f"{', '.join(at_bound)} at {'its' if len(at_bound) == 1 else 'their'} "
+                    "bound: the standard errors assume an interior solution.",
+                ],
+            )
+        )
     errors = tuple(float(math.sqrt(v)) if v >= 0 else math.nan for v in np.diag(covariance))
-    return Fit(names, values, errors, r, float(np.sqrt(np.mean(r * r))), rows, int(result.nfev),
-               bool(result.success), str(result.message), covariance, count[0], note)
+    return Fit(
+        names,
+        values,
+        errors,
+        r,
+        float(np.sqrt(np.mean(r * r))),
+        rows,
+        int(result.nfev),
+        bool(result.success),
+        str(result.message),
+        covariance,
+        count[0],
+        note,
+    )
 
 
-def _arguments(names: tuple[str, ...], start: Mapping[str, float], lower: Mapping[str, float],
-               upper: Mapping[str, float], max_evaluations: int | None,
-               prefix: str) -> tuple[FloatArray, FloatArray, FloatArray]:
+def _arguments(
+    names: tuple[str, ...],
+    start: Mapping[str, float],
+    lower: Mapping[str, float],
+    upper: Mapping[str, float],
+    max_evaluations: int | None,
+    prefix: str,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Start values and bounds as arrays in the order of ``names``, checked."""
     problems: list[str] = []
     if not names:
@@ -176,8 +232,10 @@ def _arguments(names: tuple[str, ...], start: Mapping[str, float], lower: Mappin
         if not math.isfinite(x):
             problems.append(f"the start value of {n} is {x}")
         elif not lo < hi:
-            problems.append(f"the bounds of {n} leave no interval ({lo:g} to {hi:g}); to hold a parameter "
-                            "fixed, leave it out of the fit")
+            problems.append(
+                f"the bounds of {n} leave no interval ({lo:g} to {hi:g}); to hold a parameter "
+                "fixed, leave it out of the fit"
+            )
         elif not lo <= x <= hi:
             problems.append(f"the start value {n} = {x:g} is outside its bounds ({lo:g} to {hi:g})")
     if problems:
@@ -191,17 +249,22 @@ def _check_determined(jacobian: FloatArray, names: tuple[str, ...], prefix: str)
     flat = [n for n, norm in zip(names, norms, strict=True) if not norm > 0]
     if flat:
         them = "it" if len(flat) == 1 else "them"
-        raise CalibrationError(f"{prefix}the data do not determine {', '.join(flat)}: the residuals do not change "
-                               f"with {them}", "undetermined")
+        raise CalibrationError(
+            f"{prefix}the data do not determine {', '.join(flat)}: the residuals do not change with {them}",
+            "undetermined",
+        )
     # Columns scaled to unit length: the condition then says nothing about units.
     _, singular, right = np.linalg.svd(jacobian / norms, full_matrices=False)
     condition = math.inf if singular[-1] == 0 else float((singular[0] / singular[-1]) ** 2)
     if condition > MAX_CONDITION:
         direction = np.abs(right[-1])
         involved = [n for n, weight in zip(names, direction, strict=True) if weight > 0.1 * direction.max()]
-        raise CalibrationError(f"{prefix}the data do not determine {' and '.join(involved)} separately: the "
-                               f"residuals change only with a combination of them (condition number of J^T J "
-                               f"{condition:.2g})", "undetermined")
+        raise CalibrationError(
+            f"{prefix}the data do not determine {' and '.join(involved)} separately: the "
+            f"residuals change only with a combination of them (condition number of J^T J "
+            f"{condition:.2g})",
+            "undetermined",
+        )
 
 
 def _covariance(jacobian: FloatArray, r: FloatArray, parameters: int) -> tuple[FloatArray, str]:
@@ -213,8 +276,10 @@ def _covariance(jacobian: FloatArray, r: FloatArray, parameters: int) -> tuple[F
     inverse = (right.T / singular**2) @ right / np.outer(norms, norms)
     if rows == parameters:
         covariance = np.full_like(inverse, np.inf)
-        note = (f"as many rows as parameters ({rows}): no degrees of freedom are left to estimate the "
-                "scatter, so the standard errors are unknown (inf).")
+        note = (
+            f"as many rows as parameters ({rows}): no degrees of freedom are left to estimate the "
+            "scatter, so the standard errors are unknown (inf)."
+        )
     else:
         covariance, note = float(r @ r) / (rows - parameters) * inverse, ""
     covariance.setflags(write=False)

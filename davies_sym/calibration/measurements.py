@@ -67,16 +67,18 @@ class Measurements:
         """The rows ``indices`` (0-based positions, or a boolean mask), in that order."""
         chosen = np.arange(len(self.lines))[np.asarray(indices)]
         values = {name: _frozen(array[chosen]) for name, array in self.values.items()}
-        return Measurements(self.path, self.columns, types.MappingProxyType(values),
-                            tuple(self.lines[i] for i in chosen.tolist()))
+        return Measurements(
+            self.path, self.columns, types.MappingProxyType(values), tuple(self.lines[i] for i in chosen.tolist())
+        )
 
     def location(self, row: int) -> str:
         """``path:line`` of data row ``row`` (0-based), for messages."""
         return f"{self.path}:{self.lines[row]}"
 
 
-def read_measurements(path: str | os.PathLike[str], required: Sequence[str],
-                      optional: Sequence[str] = ()) -> Measurements:
+def read_measurements(
+    path: str | os.PathLike[str], required: Sequence[str], optional: Sequence[str] = ()
+) -> Measurements:
     """Read the CSV file ``path``; every name of ``required`` must be a column of it.
 
     Raises `MeasurementError` with every problem found (at most
@@ -100,9 +102,11 @@ def _read_text(source: str) -> str:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = raw[: exc.start].count(b"\n") + 1
-        byte = raw[exc.start: exc.start + 1].hex()
-        raise MeasurementError([Problem("", f"not UTF-8 text (byte 0x{byte} at offset {exc.start}); "
-                                            "save the file as UTF-8 CSV", line)], source) from None
+        byte = raw[exc.start : exc.start + 1].hex()
+        raise MeasurementError(
+            [Problem("", f"not UTF-8 text (byte 0x{byte} at offset {exc.start}); save the file as UTF-8 CSV", line)],
+            source,
+        ) from None
 
 
 def _frozen(array: FloatArray) -> FloatArray:
@@ -166,13 +170,20 @@ class _Table:
         for name, where in positions.items():
             if len(where) > 1:
                 numbers = [str(i + 1) for i in where]
-                self.problem("header", f"column {name!r} appears {len(where)} times (columns "
-                                       f"{', '.join(numbers[:-1])} and {numbers[-1]})", line)
+                self.problem(
+                    "header",
+                    f"column {name!r} appears {len(where)} times (columns {', '.join(numbers[:-1])} and {numbers[-1]})",
+                    line,
+                )
         present = ", ".join(repr(n) for n in self.columns if n) or "none"
         missing = [name for name in required if name not in positions]
         if missing and all(_is_number(n) for n in self.columns):
-            self.problem("header", "the first row holds numbers, not column names: begin the file with a header "
-                                   f"row naming the columns ({', '.join(required)})", line)
+            self.problem(
+                "header",
+                "the first row holds numbers, not column names: begin the file with a header "
+                f"row naming the columns ({', '.join(required)})",
+                line,
+            )
             missing = []
         for name in missing:
             self.problem("header", f"required column {name!r} is missing (columns present: {present})", line)

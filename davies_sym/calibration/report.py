@@ -27,8 +27,10 @@ def _number(value: float, digits: int) -> str:
 def fit_text(fit: Fit, measured_label: str = "eta") -> str:
     """The fit as lines of text: parameters, rows, rms and the largest residuals."""
     width = max(len(name) for name in fit.names)
-    lines = [f"{name:<{width}} = {_number(value, 6)} ± {_number(error, 3)}"
-             for name, value, error in zip(fit.names, fit.values, fit.standard_errors, strict=True)]
+    lines = [
+        f"{name:<{width}} = {_number(value, 6)} ± {_number(error, 3)}"
+        for name, value, error in zip(fit.names, fit.values, fit.standard_errors, strict=True)
+    ]
     if fit.note:
         lines.append(f"note: {fit.note}")
     lines.append(f"rows: {fit.rows} ({fit.degrees_of_freedom} degrees of freedom)")
@@ -39,8 +41,14 @@ def fit_text(fit: Fit, measured_label: str = "eta") -> str:
     return "\n".join(lines) + "\n"
 
 
-def residual_figure(fit: Fit, x: npt.NDArray[np.float64] | None = None, x_label: str = "row", *,
-                    measured_label: str = "eta", suffix: str = ".png") -> bytes:
+def residual_figure(
+    fit: Fit,
+    x: npt.NDArray[np.float64] | None = None,
+    x_label: str = "row",
+    *,
+    measured_label: str = "eta",
+    suffix: str = ".png",
+) -> bytes:
     """The residuals (model - measured) against ``x`` (default: the row number), as the
     bytes of a figure in the format of ``suffix`` (``.png``, ``.svg``, ``.pdf``)."""
     from davies_sym.emit.plots import figure_bytes, new_figure
@@ -58,7 +66,6 @@ def residual_figure(fit: Fit, x: npt.NDArray[np.float64] | None = None, x_label:
     axes.set_xlabel(x_label)
     axes.set_ylabel(f"model - measured {measured_label}")
     fitted = ", ".join(f"{n} = {_number(v, 4)}" for n, v in zip(fit.names, fit.values, strict=True))
-    axes.set_title(f"residuals of {fit.rows} rows (rms {_number(fit.rms, 3)}; dashed: ± rms)\n{fitted}",
-                   fontsize=9)
+    axes.set_title(f"residuals of {fit.rows} rows (rms {_number(fit.rms, 3)}; dashed: ± rms)\n{fitted}", fontsize=9)
     axes.grid(True, alpha=0.3)
     return figure_bytes(figure, suffix)

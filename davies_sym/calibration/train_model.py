@@ -71,8 +71,9 @@ class TrainModel:
             operating |= {str(s) for s in self.derived.speeds}
         missing = [n for n in names if n not in operating and n not in self.fitted and n not in self.fixed]
         if missing:
-            raise InputError([Problem("--at", f"give values for {', '.join(missing)} (or fit them with --fit)")],
-                             train.path)
+            raise InputError(
+                [Problem("--at", f"give values for {', '.join(missing)} (or fit them with --fit)")], train.path
+            )
         symbols = {str(s): s for s in expr.free_symbols}
         function = sympy.lambdify([symbols[n] for n in names], expr, "numpy")
         return function, names, number
@@ -85,8 +86,10 @@ class TrainModel:
             speeds = {str(s): data.column(f"w_{p}") * RPM for p, s in zip(ports, self.derived.speeds, strict=True)}
             operating = {**speeds, str(LOAD_TORQUE): np.abs(data.column(self.required[-1]))}
         else:
-            operating = {str(INPUT_SPEED): np.abs(data.column(self.required[0])) * RPM,
-                         str(INPUT_TORQUE): np.abs(data.column(self.required[1]))}
+            operating = {
+                str(INPUT_SPEED): np.abs(data.column(self.required[0])) * RPM,
+                str(INPUT_TORQUE): np.abs(data.column(self.required[1])),
+            }
         # The variant or region of each row: the one the generated formula module picks.
         parameters = {p["name"]: operating.get(p["name"], known.get(p["name"])) for p in self._regions.PARAMETERS}
         if isinstance(self.derived, SeveralInputs):

@@ -31,59 +31,107 @@ def _version() -> str:
 def parser() -> argparse.ArgumentParser:
     """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
     p = argparse.ArgumentParser(
-        prog="derive", description="Derive the efficiency of a gear train (or machine) described in a YAML "
-        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.")
+        prog="derive",
+        description="Derive the efficiency of a gear train (or machine) described in a YAML "
+        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",
+    )
     # ``.complete``: what shtab offers for the argument in a completion script (--completion).
-    files = p.add_argument("files", nargs="*", metavar="FILE",
-                           help="topology file (YAML); several files need --out DIR")
+    files = p.add_argument(
+        "files", nargs="*", metavar="FILE", help="topology file (YAML); several files need --out DIR"
+    )
     files.complete = YAML_FILES  # type: ignore[attr-defined]
-    catalog = p.add_argument("--catalog", nargs="?", const="", metavar="NAME",
-                             help="alone: list the catalog of literature trains that comes with the package; with a "
-                             "NAME: derive that train in place of FILE (e.g. derive --catalog tuplin --latex)")
+    catalog = p.add_argument(
+        "--catalog",
+        nargs="?",
+        const="",
+        metavar="NAME",
+        help="alone: list the catalog of literature trains that comes with the package; with a "
+        "NAME: derive that train in place of FILE (e.g. derive --catalog tuplin --latex)",
+    )
     catalog.complete = catalog_completion()  # type: ignore[attr-defined]
     p.add_argument("--version", action="version", version=f"%(prog)s (davies_sym) {_version()}")
     form = p.add_mutually_exclusive_group()
     form.add_argument("--json", action="store_true", help="print the JSON document")
-    form.add_argument("--latex", action="store_true", help="print a standalone LaTeX document of the variants (of "
-                      "the power-flow regions for a train with several inputs)")
-    out = p.add_argument("-o", "--out", metavar="FILE|DIR",
-                         help="write the document to FILE (atomically) instead of stdout; with a directory, write "
-                         "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out "
-                         "derivations/)")
+    form.add_argument(
+        "--latex",
+        action="store_true",
+        help="print a standalone LaTeX document of the variants (of "
+        "the power-flow regions for a train with several inputs)",
+    )
+    out = p.add_argument(
+        "-o",
+        "--out",
+        metavar="FILE|DIR",
+        help="write the document to FILE (atomically) instead of stdout; with a directory, write "
+        "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out "
+        "derivations/)",
+    )
     out.complete = ANY_FILE  # type: ignore[attr-defined]
-    python = p.add_argument("--python", metavar="OUT.py", help="write a Python module with one function per variant "
-                            "(per power-flow region for a train with several inputs)")
+    python = p.add_argument(
+        "--python",
+        metavar="OUT.py",
+        help="write a Python module with one function per variant "
+        "(per power-flow region for a train with several inputs)",
+    )
     python.complete = ANY_FILE  # type: ignore[attr-defined]
-    p.add_argument("--emit", choices=LANGUAGES, metavar="LANG",
-                   help=f"print (or with -o FILE write) the formulas as code in LANG ({', '.join(LANGUAGES)}): one "
-                   "function per variant (per power-flow region for a train with several inputs) and per turning "
-                   "condition, and the choice efficiency(...) that picks the one that holds; in place of the document")
-    p.add_argument("--completion", choices=SHELLS, metavar="SHELL",
-                   help=f"print a completion script for SHELL ({', '.join(SHELLS)}), e.g. "
-                   "derive --completion bash > ~/.local/share/bash-completion/completions/derive")
-    p.add_argument("--eval", nargs="*", metavar="NAME=VALUE",
-                   help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
-                   "(exact where possible; no values when every quantity of the train is a number); with --json "
-                   "one JSON object")
+    p.add_argument(
+        "--emit",
+        choices=LANGUAGES,
+        metavar="LANG",
+        help=f"print (or with -o FILE write) the formulas as code in LANG ({', '.join(LANGUAGES)}): one "
+        "function per variant (per power-flow region for a train with several inputs) and per turning "
+        "condition, and the choice efficiency(...) that picks the one that holds; in place of the document",
+    )
+    p.add_argument(
+        "--completion",
+        choices=SHELLS,
+        metavar="SHELL",
+        help=f"print a completion script for SHELL ({', '.join(SHELLS)}), e.g. "
+        "derive --completion bash > ~/.local/share/bash-completion/completions/derive",
+    )
+    p.add_argument(
+        "--eval",
+        nargs="*",
+        metavar="NAME=VALUE",
+        help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
+        "(exact where possible; no values when every quantity of the train is a number); with --json "
+        "one JSON object",
+    )
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
-    p.add_argument("--state", metavar="NAME", help="operating state of a multi-speed set (default: every state; "
-                   "--eval, --python, --emit and --plot need one)")
-    p.add_argument("--plot", metavar="NAME=START:STOP",
-                   help="figure of the efficiency and the losses (the port torques for a train with several "
-                   "inputs) against one parameter (PNG, -o FILE)")
-    p.add_argument("--vs", metavar="NAME=START:STOP",
-                   help="with --plot: a second parameter; the figure shows the variant regions, the turning-condition "
-                   "curves and efficiency contours over both (e.g. the two input speeds of a differential: its "
-                   "power-flow regions)")
-    p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[],
-                   help="with --plot: values of the other parameters (default: the first published check of the file)")
+    p.add_argument(
+        "--state",
+        metavar="NAME",
+        help="operating state of a multi-speed set (default: every state; "
+        "--eval, --python, --emit and --plot need one)",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="NAME=START:STOP",
+        help="figure of the efficiency and the losses (the port torques for a train with several "
+        "inputs) against one parameter (PNG, -o FILE)",
+    )
+    p.add_argument(
+        "--vs",
+        metavar="NAME=START:STOP",
+        help="with --plot: a second parameter; the figure shows the variant regions, the turning-condition "
+        "curves and efficiency contours over both (e.g. the two input speeds of a differential: its "
+        "power-flow regions)",
+    )
+    p.add_argument(
+        "--at",
+        nargs="+",
+        metavar="NAME=VALUE",
+        default=[],
+        help="with --plot: values of the other parameters (default: the first published check of the file)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
     return p
 
 
-def values(train: Train, pairs: Sequence[str], option: str = "--eval",
-           operating: Collection[sympy.Symbol] = ()) -> dict[sympy.Symbol, sympy.Expr]:
+def values(
+    train: Train, pairs: Sequence[str], option: str = "--eval", operating: Collection[sympy.Symbol] = ()
+) -> dict[sympy.Symbol, sympy.Expr]:
     """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
     efficiencies in (0, 1]) and of the ``operating`` symbols the formulas take besides
     (input torque and speed, positive)."""
@@ -98,13 +146,19 @@ def values(train: Train, pairs: Sequence[str], option: str = "--eval",
             problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
             continue
         if name not in symbols:
-            problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: "
-                                    f"{', '.join(sorted(symbols))})"))
+            problems.append(
+                Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(sorted(symbols))})")
+            )
             continue
         if name in defined:
             d = defined[name]
-            problems.append(Problem(option, f"{name} is the {d.meaning} ({d.source}); give "
-                                    f"{', '.join(sorted(map(str, d.expression.free_symbols)))} instead"))
+            problems.append(
+                Problem(
+                    option,
+                    f"{name} is the {d.meaning} ({d.source}); give "
+                    f"{', '.join(sorted(map(str, d.expression.free_symbols)))} instead",
+                )
+            )
             continue
         try:
             value = parse_expression(text)
@@ -130,16 +184,18 @@ def sweep(train: Train, option: str, text: str, names: Collection[str] | None = 
     if not sep or not colon or None in bounds:
         raise InputError([Problem(option, f"expected NAME=START:STOP, got {text!r}")], train.path)
     if name.strip() not in known:
-        raise InputError([Problem(option, f"unknown symbol {name.strip()!r} (the train has: "
-                                  f"{', '.join(known)})")], train.path)
+        raise InputError(
+            [Problem(option, f"unknown symbol {name.strip()!r} (the train has: {', '.join(known)})")], train.path
+        )
     low, high = (float(v) for v in bounds)  # type: ignore[arg-type]
     if not low < high:
         raise InputError([Problem(option, f"the interval {text!r} is empty (START < STOP)")], train.path)
     return Sweep(name.strip(), low, high)
 
 
-def plot_sweeps(train: Train, args: argparse.Namespace,
-                names: Collection[str] | None = None) -> tuple[Sweep, Sweep | None]:
+def plot_sweeps(
+    train: Train, args: argparse.Namespace, names: Collection[str] | None = None
+) -> tuple[Sweep, Sweep | None]:
     """``--plot`` and ``--vs`` as sweeps of ``names`` (default: the train's symbols); a
     figure needs its file (``-o FILE.png``)."""
     if not args.out:
@@ -153,13 +209,20 @@ def figure_suffix(path: str, source: str | None) -> str:
     """The figure format ``-o`` names by its suffix (``.png``, ``.svg`` or ``.pdf``)."""
     suffix = figure_format(path)
     if suffix is None:
-        raise InputError([Problem("-o", f"{shortened(path)}: name the figure's file .png, .svg or .pdf (the "
-                                  "suffix says the format)")], source)
+        raise InputError(
+            [
+                Problem(
+                    "-o", f"{shortened(path)}: name the figure's file .png, .svg or .pdf (the suffix says the format)"
+                )
+            ],
+            source,
+        )
     return suffix
 
 
-def held_values(train: Train, given: Mapping[str, float], needed: Iterable[str],
-                sweeps: tuple[Sweep, Sweep | None]) -> dict[str, float]:
+def held_values(
+    train: Train, given: Mapping[str, float], needed: Iterable[str], sweeps: tuple[Sweep, Sweep | None]
+) -> dict[str, float]:
     """The values a figure holds fixed: every ``needed`` name but the swept ones, each
     from ``given`` (``--at``); the missing ones are named."""
     swept = {s.name for s in sweeps if s is not None}
@@ -175,12 +238,21 @@ def eval_port(train: Train, args: argparse.Namespace) -> str:
     chosen = args.input
     if args.output is not None:
         if args.output not in ports:
-            raise InputError([Problem("--output", f"{args.output!r} is not a port (ports: {', '.join(ports)})")],
-                             train.path)
+            raise InputError(
+                [Problem("--output", f"{args.output!r} is not a port (ports: {', '.join(ports)})")], train.path
+            )
         other = ports[1] if args.output == ports[0] else ports[0]
         if chosen is not None and chosen != other:
-            raise InputError([Problem("--input", f"input {chosen!r} and output {args.output!r} are not the two "
-                                      f"ports of the train ({', '.join(ports)})")], train.path)
+            raise InputError(
+                [
+                    Problem(
+                        "--input",
+                        f"input {chosen!r} and output {args.output!r} are not the two "
+                        f"ports of the train ({', '.join(ports)})",
+                    )
+                ],
+                train.path,
+            )
         chosen = other
     if chosen is not None and chosen not in ports:
         raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
@@ -191,8 +263,14 @@ def check_emit(args: argparse.Namespace, source: str | None) -> None:
     """``--emit`` writes code in place of the document: refuse what would need both."""
     if not args.emit:
         return
-    for option, given in (("--json", args.json), ("--latex", args.latex), ("--plot", args.plot),
-                          ("--eval", args.eval is not None)):
+    for option, given in (
+        ("--json", args.json),
+        ("--latex", args.latex),
+        ("--plot", args.plot),
+        ("--eval", args.eval is not None),
+    ):
         if given:
-            raise InputError([Problem("--emit", f"writes code in place of the document: not with {option} (run "
-                                      "derive twice)")], source)
+            raise InputError(
+                [Problem("--emit", f"writes code in place of the document: not with {option} (run derive twice)")],
+                source,
+            )

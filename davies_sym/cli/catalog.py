@@ -32,12 +32,21 @@ def chosen_files(args: argparse.Namespace) -> list[str] | None:
     None when ``--catalog`` alone asks for the listing."""
     if args.catalog is None:
         if not args.files:
-            raise InputError([Problem("FILE", "give a topology file (or --catalog NAME for a train of the catalog; "
-                                      "derive --catalog lists them)")], "derive")
+            raise InputError(
+                [
+                    Problem(
+                        "FILE",
+                        "give a topology file (or --catalog NAME for a train of the catalog; "
+                        "derive --catalog lists them)",
+                    )
+                ],
+                "derive",
+            )
         return list(args.files)
     if args.files:
-        raise InputError([Problem("--catalog", f"give a catalog name or files, not both (got {args.files[0]!r} "
-                                  "as well)")], "derive")
+        raise InputError(
+            [Problem("--catalog", f"give a catalog name or files, not both (got {args.files[0]!r} as well)")], "derive"
+        )
     if args.catalog == "":
         return None
     return [catalog_file(args.catalog)]

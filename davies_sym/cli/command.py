@@ -33,10 +33,15 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
     for path in files:
         stem = os.path.splitext(os.path.basename(path))[0]
         outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py")]
-        clash = [o for o in outputs if any(os.path.exists(o) and os.path.samefile(o, f) for f in files
-                                           if os.path.exists(f))]
-        clash += [o for o in os.listdir(directory) if o.startswith(f"{stem}_") and
-                  any(os.path.samefile(os.path.join(directory, o), f) for f in files if os.path.exists(f))]
+        clash = [
+            o for o in outputs if any(os.path.exists(o) and os.path.samefile(o, f) for f in files if os.path.exists(f))
+        ]
+        clash += [
+            o
+            for o in os.listdir(directory)
+            if o.startswith(f"{stem}_")
+            and any(os.path.samefile(os.path.join(directory, o), f) for f in files if os.path.exists(f))
+        ]
         if clash:
             print(f"input error: {path}: --out: refusing to overwrite the input file {clash[0]}", file=sys.stderr)
             status = 2
@@ -44,8 +49,11 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
         failures: list[str] = []
         try:
             train = load(path)
-            written = (several_derivations(train, stem, progress) if several_degrees_of_freedom(train)
-                       else write_derivations(train, stem, progress, failures))
+            written = (
+                several_derivations(train, stem, progress)
+                if several_degrees_of_freedom(train)
+                else write_derivations(train, stem, progress, failures)
+            )
         except DaviesError as exc:
             print(message(exc, path), file=sys.stderr)
             status = 2
@@ -54,8 +62,11 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
             print(line, file=sys.stderr)
             status = 2
         if not written:
-            print(f"derive: {path}: {train.degrees_of_freedom} degrees of freedom and one input port: only its "
-                  "kinematics is derived (list one input port per degree of freedom for formulas)", file=sys.stderr)
+            print(
+                f"derive: {path}: {train.degrees_of_freedom} degrees of freedom and one input port: only its "
+                "kinematics is derived (list one input port per degree of freedom for formulas)",
+                file=sys.stderr,
+            )
             continue
         for name, content in written:
             write_atomic(os.path.join(directory, name), content)
@@ -72,8 +83,11 @@ def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
         above = folder
         while not os.path.exists(above):
             above = os.path.dirname(above)
-        why = (f"{_path_text(above)} is a file, not a folder" if not os.path.isdir(above)
-               else f"the folder {_path_text(folder)} does not exist (create it first)")
+        why = (
+            f"{_path_text(above)} is a file, not a folder"
+            if not os.path.isdir(above)
+            else f"the folder {_path_text(folder)} does not exist (create it first)"
+        )
         raise InputError([Problem(option, why)], inputs[0])
     if os.path.isdir(target):
         raise InputError([Problem(option, f"{_path_text(target)} is a folder; give a file name")], inputs[0])
@@ -94,8 +108,11 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
             _check_target(target, option, [path])
     train = load(path)
     failures: list[str] = []
-    outputs = (several_outputs(train, args, progress) if several_degrees_of_freedom(train)
-               else one_input_outputs(train, args, progress, failures))
+    outputs = (
+        several_outputs(train, args, progress)
+        if several_degrees_of_freedom(train)
+        else one_input_outputs(train, args, progress, failures)
+    )
     for target, content in outputs:
         if target is None:
             sys.stdout.write(content if isinstance(content, str) else content.decode())
@@ -111,8 +128,11 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
         print("derive: several files need --out DIR (a directory)", file=sys.stderr)
         return 2
     if args.json or args.latex or args.python or args.emit or args.eval is not None or args.plot:
-        print("derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --emit, --eval "
-              "and --plot take one file", file=sys.stderr)
+        print(
+            "derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --emit, --eval "
+            "and --plot take one file",
+            file=sys.stderr,
+        )
         return 2
     return _derive_into(args.out, args.files, progress)
 
@@ -160,6 +180,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(status_json("bad input", reason))
         return 2
     except OSError as exc:
-        print(f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",
-              file=sys.stderr)
+        print(
+            f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",
+            file=sys.stderr,
+        )
         return 2

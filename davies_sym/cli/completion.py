@@ -29,17 +29,21 @@ def _preamble(shell: str) -> str:
     if shell != "bash":
         return ""
     names = " ".join(catalog_names())
-    return "\n".join([
-        "# $1=COMP_WORDS[1]",
-        "_shtab_derive_yaml_files() {",
-        "  compgen -d -- $1  # into folders",
-        "  compgen -f -X '!*.yaml' -- $1",
-        "  compgen -f -X '!*.yml' -- $1",
-        "}",
-        "",
-        "_shtab_derive_catalog_names() {",
-        f'  compgen -W "{names}" -- $1',
-        "}", ""])
+    return "\n".join(
+        [
+            "# $1=COMP_WORDS[1]",
+            "_shtab_derive_yaml_files() {",
+            "  compgen -d -- $1  # into folders",
+            "  compgen -f -X '!*.yaml' -- $1",
+            "  compgen -f -X '!*.yml' -- $1",
+            "}",
+            "",
+            "_shtab_derive_catalog_names() {",
+            f'  compgen -W "{names}" -- $1',
+            "}",
+            "",
+        ]
+    )
 
 
 def completion_script(parser: argparse.ArgumentParser, shell: str) -> str:

@@ -16,5 +16,4 @@ def message(exc: DaviesError, path: str) -> str:
 def status_json(status: str, reason: str) -> str:
     """The JSON answer of a refusal: ``status`` ("bad input", exit 2; "not covered", exit 3)
     and the ``reason`` that standard error or the last line gives."""
-    return json.dumps({"status": status, "exit_status": 2 if status == "bad input" else 3, "reason": reason},
-                      indent=2)
+    return json.dumps({"status": status, "exit_status": 2 if status == "bad input" else 3, "reason": reason}, indent=2)

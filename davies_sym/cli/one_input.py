@@ -50,8 +50,9 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     return figure_bytes(region_figure(variants, x, y, fixed, port), figure_suffix(args.out, train.path))
 
 
-def derive_sets(train: Train, state: str | None, progress: Progress,
-                 failures: list[str]) -> list[tuple[str, VariantSet]]:
+def derive_sets(
+    train: Train, state: str | None, progress: Progress, failures: list[str]
+) -> list[tuple[str, VariantSet]]:
     """The variants of the train, or of each of its states (only ``state`` if given).  A
     state that cannot be derived is reported in ``failures`` (its message names the state)
     and the others are still derived; when none can be, the first error is raised."""
@@ -79,8 +80,13 @@ def derive_sets(train: Train, state: str | None, progress: Progress,
 
 def _state_entry(vs: VariantSet) -> dict[str, object]:
     ratio = vs.analysis.speed_ratio().to_expr()
-    return {"name": vs.train.name, "input": vs.train.ports.input, "output": vs.train.ports.output,
-            "speed_ratio": sympy.sstr(ratio), **variants_document(vs)}
+    return {
+        "name": vs.train.name,
+        "input": vs.train.ports.input,
+        "output": vs.train.ports.output,
+        "speed_ratio": sympy.sstr(ratio),
+        **variants_document(vs),
+    }
 
 
 def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
@@ -92,18 +98,32 @@ def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, p
             return json.dumps(document, indent=2) + "\n"
         return text_summary(document) + "\n" + variants_text(vs) + "\n"
     if as_json:
-        return json.dumps({"status": "ok", "name": train.name, "source": train.source, "file": train.path,
-                           "states": {name: _state_entry(vs) for name, vs in sets}}, indent=2) + "\n"
+        return (
+            json.dumps(
+                {
+                    "status": "ok",
+                    "name": train.name,
+                    "source": train.source,
+                    "file": train.path,
+                    "states": {name: _state_entry(vs) for name, vs in sets},
+                },
+                indent=2,
+            )
+            + "\n"
+        )
     parts = [train.name]
     for name, vs in sets:
-        parts.append(f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "
-                     f"{vs.train.ports.output}; speed ratio {sympy.sstr(vs.analysis.speed_ratio().to_expr())}")
+        parts.append(
+            f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "
+            f"{vs.train.ports.output}; speed ratio {sympy.sstr(vs.analysis.speed_ratio().to_expr())}"
+        )
         parts.append(variants_text(vs))
     return "\n".join(parts) + "\n"
 
 
-def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress,
-                failures: list[str]) -> list[tuple[str | None, str | bytes]]:
+def one_input_outputs(
+    train: Train, args: argparse.Namespace, progress: Progress, failures: list[str]
+) -> list[tuple[str | None, str | bytes]]:
     """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation
     (of the states that derive; the others are reported in ``failures``)."""
     if (args.vs or args.at) and not args.plot:
@@ -111,8 +131,16 @@ def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress
     check_emit(args, train.path)
     sets = derive_sets(train, args.state, progress, failures)
     if (args.python or args.emit or args.eval is not None or args.plot) and len(sets) > 1:
-        raise InputError([Problem("--state", "the train has states: choose one with --state (states: "
-                                  f"{', '.join(st.name for st in train.states)})")], train.path)
+        raise InputError(
+            [
+                Problem(
+                    "--state",
+                    "the train has states: choose one with --state (states: "
+                    f"{', '.join(st.name for st in train.states)})",
+                )
+            ],
+            train.path,
+        )
     if args.plot:
         return [(args.out, _plot(sets[0][1], args))]
     if args.emit:
@@ -126,8 +154,11 @@ def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress
     # Everything is computed (and every value checked) before anything is written.
     chosen = sets[0][1].train  # the state's train: its own ports and symbols
     operating = operating_symbols(sets[0][1])
-    evaluation = (evaluate(sets[0][1], values(chosen, args.eval, "--eval", operating), eval_port(chosen, args))
-                  if args.eval is not None else None)
+    evaluation = (
+        evaluate(sets[0][1], values(chosen, args.eval, "--eval", operating), eval_port(chosen, args))
+        if args.eval is not None
+        else None
+    )
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
@@ -137,8 +168,14 @@ def one_input_outputs(train: Train, args: argparse.Namespace, progress: Progress
         outputs.append((None, text))
     if evaluation is not None:
         state = {"state": args.state} if args.state else {}
-        outputs.append((None, json.dumps({"file": train.path, **state, **evaluation.document()}, indent=2) + "\n"
-                        if args.json else evaluation.text()))
+        outputs.append(
+            (
+                None,
+                json.dumps({"file": train.path, **state, **evaluation.document()}, indent=2) + "\n"
+                if args.json
+                else evaluation.text(),
+            )
+        )
     return outputs
 
 
@@ -148,6 +185,9 @@ def write_derivations(train: Train, stem: str, progress: Progress, failures: lis
     sets = derive_sets(train, None, progress, failures)
     if train.states:
         return [(f"{stem}.tex", latex_states_document([vs for _, vs in sets]))] + [
-            (f"{stem}_{name}.py", python_module(vs, file_parameters(train))) for name, vs in sets]
-    return [(f"{stem}.tex", latex_document(sets[0][1])), (f"{stem}.py", python_module(sets[0][1],
-                                                                                     file_parameters(train)))]
+            (f"{stem}_{name}.py", python_module(vs, file_parameters(train))) for name, vs in sets
+        ]
+    return [
+        (f"{stem}.tex", latex_document(sets[0][1])),
+        (f"{stem}.py", python_module(sets[0][1], file_parameters(train))),
+    ]

@@ -39,17 +39,34 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
     its kinematics."""
     several = len(train.ports.inputs) > 1
     if not several and (args.latex or args.python or args.emit or args.plot or args.eval is not None):
-        raise InputError([Problem("ports.input", f"the train has {train.degrees_of_freedom or 'several'} degrees "
-                                  "of freedom: list one input port per degree of freedom (ports: {input: [A, B], "
-                                  "...}) to derive the efficiency")], train.path)
+        raise InputError(
+            [
+                Problem(
+                    "ports.input",
+                    f"the train has {train.degrees_of_freedom or 'several'} degrees "
+                    "of freedom: list one input port per degree of freedom (ports: {input: [A, B], "
+                    "...}) to derive the efficiency",
+                )
+            ],
+            train.path,
+        )
     if args.state:
-        raise InputError([Problem("--state", "operating states are derived for trains of one degree of freedom "
-                                  "only")], train.path)
+        raise InputError(
+            [Problem("--state", "operating states are derived for trains of one degree of freedom only")], train.path
+        )
     for option, given in (("--input", args.input), ("--output", args.output)):
         if given is not None:
-            raise InputError([Problem(option, "a train driven at several ports has no single input: its "
-                                      "power-flow regions say which ports put power in (give the input speeds "
-                                      "to --eval instead)")], train.path)
+            raise InputError(
+                [
+                    Problem(
+                        option,
+                        "a train driven at several ports has no single input: its "
+                        "power-flow regions say which ports put power in (give the input speeds "
+                        "to --eval instead)",
+                    )
+                ],
+                train.path,
+            )
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
     check_emit(args, train.path)
@@ -64,16 +81,16 @@ def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
     given = assignments(args.at, "--at", train.path)
     unknown = sorted(set(given) - set(names))
     if unknown:
-        raise InputError([Problem("--at", f"unknown symbol {unknown[0]} (the formulas take: {', '.join(names)})")],
-                         train.path)
+        raise InputError(
+            [Problem("--at", f"unknown symbol {unknown[0]} (the formulas take: {', '.join(names)})")], train.path
+        )
     fixed = held_values(train, {n: float(v) for n, v in given.items()}, names, (x, y))
     if y is None:
         return figure_bytes(several_efficiency_figure(si, x, fixed, module), figure_suffix(args.out, train.path))
     return figure_bytes(several_region_figure(si, x, y, fixed, module), figure_suffix(args.out, train.path))
 
 
-def several_outputs(train: Train, args: argparse.Namespace,
-                    progress: Progress) -> list[tuple[str | None, str | bytes]]:
+def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str | bytes]]:
     """The outputs asked for, all computed before anything is written."""
     _refuse(train, args)
     if len(train.ports.inputs) == 1:
@@ -90,8 +107,7 @@ def several_outputs(train: Train, args: argparse.Namespace,
     else:
         document = several_inputs_document(si)
         text = json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n"
-    answer = (evaluate_several(si, assignments(args.eval, "--eval", train.path)) if args.eval is not None
-              else None)
+    answer = evaluate_several(si, assignments(args.eval, "--eval", train.path)) if args.eval is not None else None
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, several_inputs_module(si)))
@@ -100,8 +116,12 @@ def several_outputs(train: Train, args: argparse.Namespace,
     elif answer is None or args.latex:
         outputs.append((None, text))
     if answer is not None:
-        outputs.append((None, json.dumps({"file": train.path, **answer.document()}, indent=2) + "\n"
-                        if args.json else answer.text()))
+        outputs.append(
+            (
+                None,
+                json.dumps({"file": train.path, **answer.document()}, indent=2) + "\n" if args.json else answer.text(),
+            )
+        )
     return outputs
 
 

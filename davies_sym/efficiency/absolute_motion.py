@@ -83,11 +83,11 @@ def motion_along_path(analysis: Analysis, steps: Sequence[tuple[str, int]]) -> T
 
 def relative_motions(analysis: Analysis, reference: str) -> dict[str, Twist]:
     """``^i$_L`` for every link L by walking the coupling graph from the reference."""
-    return {link: motion_along_path(analysis, walk_path(analysis, reference, link))
-            for link in analysis.network.graph.links}
+    return {
+        link: motion_along_path(analysis, walk_path(analysis, reference, link)) for link in analysis.network.graph.links
+    }
 
 
 def twists_equal(a: Mapping[str, Twist], b: Mapping[str, Twist]) -> bool:
     """Exact equality of two link -> twist maps."""
-    return a.keys() == b.keys() and all(
-        x == y for link in a for x, y in zip(a[link], b[link], strict=True))
+    return a.keys() == b.keys() and all(x == y for link in a for x, y in zip(a[link], b[link], strict=True))

@@ -107,8 +107,10 @@ class PlanarFrames(Frames):
         lossy = [c.name for c in self.sliders if not c.friction.lossless]
         others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Prismatic, Revolute))]
         if lossy or others:
-            raise DerivationError(f"virtual-power balance: couplings {lossy + others} are outside its scope "
-                                  "(lossy sliders, explicit screws)")
+            raise DerivationError(
+                f"virtual-power balance: couplings {lossy + others} are outside its scope "
+                "(lossy sliders, explicit screws)"
+            )
         self.extra_unknowns = len(self.sliders)
         self.gear_axis = {g.name: pt(layout.gear_centres[g.name]) for g in train.gears}
         self.pitch = {m.name: pt(layout.coupling_points[m.name]) for m in self.meshes}
@@ -142,8 +144,10 @@ class PlanarFrames(Frames):
             frontier = nxt
         missing = [link for link in train.link_names if link not in reached]
         if missing:
-            raise DerivationError(f"virtual-power balance: links {missing} hang on no bearing chain from the "
-                                  f"reference {train.reference!r}")
+            raise DerivationError(
+                f"virtual-power balance: links {missing} hang on no bearing chain from the "
+                f"reference {train.reference!r}"
+            )
         return axis
 
     def _arm(self, mesh: str, gear: str) -> sympy.Expr:
@@ -167,8 +171,10 @@ class PlanarFrames(Frames):
 
     def _carrier(self, mesh: GearMesh) -> str:
         """The link holding both gear axes of ``mesh``."""
-        groups = [self._coaxial_group(link, self.gear_axis[gear]) - set(mesh.links)
-                  for gear, link in zip(mesh.gears, mesh.links, strict=True)]
+        groups = [
+            self._coaxial_group(link, self.gear_axis[gear]) - set(mesh.links)
+            for gear, link in zip(mesh.gears, mesh.links, strict=True)
+        ]
         common = [link for link in self.train.link_names if link in groups[0] and link in groups[1]]
         if not common:
             raise DerivationError(f"virtual-power balance: no carrier found for mesh {mesh.name}")
@@ -178,7 +184,8 @@ class PlanarFrames(Frames):
         """Whether ``planet`` turns in a bearing of ``carrier`` off the carrier's axis."""
         return not _same(self.axis[planet], self.axis[carrier]) and any(
             set(c.links) == {carrier, planet} and _same(self.bearing_axis[c.name], self.axis[planet])
-            for c in self.revolutes)
+            for c in self.revolutes
+        )
 
     def extra_kinematics(self, col: Mapping[str, int]) -> list[Row]:
         rows = []
@@ -194,17 +201,24 @@ class PlanarFrames(Frames):
         for side in (0, 1):
             if mesh.links[side] == link:
                 if not _same(self.gear_axis[mesh.gears[side]], self.axis[link]):
-                    raise DerivationError(f"virtual-power balance: gear {mesh.gears[side]} is not on the "
-                                          f"axis of its link {link}")
+                    raise DerivationError(
+                        f"virtual-power balance: gear {mesh.gears[side]} is not on the axis of its link {link}"
+                    )
                 row[2 * k + side] += 1
             planet, partner = mesh.links[side], 1 - side
             # A planet-planet mesh of one carrier acts on it with equal and opposite
             # wrenches: nothing reaches the carrier.
-            if (planet != link and mesh.links[partner] != link and self._carries(link, planet)
-                    and not self._carries(link, mesh.links[partner])):
+            if (
+                planet != link
+                and mesh.links[partner] != link
+                and self._carries(link, planet)
+                and not self._carries(link, mesh.links[partner])
+            ):
                 if not _same(self.gear_axis[mesh.gears[partner]], self.axis[link]):
-                    raise DerivationError(f"virtual-power balance: planet {planet} meshes gear "
-                                          f"{mesh.gears[partner]}, which is not coaxial with its carrier {link}")
+                    raise DerivationError(
+                        f"virtual-power balance: planet {planet} meshes gear "
+                        f"{mesh.gears[partner]}, which is not coaxial with its carrier {link}"
+                    )
                 row[2 * k + partner] -= 1
 
     def extra_reactions(self, row: Row, link: str, first: int) -> None:
@@ -230,8 +244,7 @@ class ConicalFrames(Frames):
         self.meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
         others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Revolute))]
         if others:
-            raise DerivationError(f"virtual-power balance: couplings {others} are outside its scope in a bevel "
-                                  "train")
+            raise DerivationError(f"virtual-power balance: couplings {others} are outside its scope in a bevel train")
         axis = {g.link: vec(layout.gear_axes[g.name]) for g in train.gears}
         self.carrier_of: dict[str, str] = {}
         for c in train.couplings:
@@ -245,12 +258,21 @@ class ConicalFrames(Frames):
             point, tangent = vec(layout.coupling_points[m.name]), vec(layout.mesh_tangents[m.name])
             held = {self.carrier_of[link] for link in m.links if link in self.carrier_of}
             if len(held) != 1:
-                raise DerivationError(f"virtual-power balance: mesh {m.name} needs exactly one carrier in a "
-                                      "bevel train")
+                raise DerivationError(
+                    f"virtual-power balance: mesh {m.name} needs exactly one carrier in a bevel train"
+                )
             self.carriers[m.name] = held.pop()
-            first, second = (exact(sum(x * t for x, t in zip(cross(axis[link] if link in self.carrier_of else main,
-                                                                    point), tangent, strict=True)))
-                             for link in m.links)
+            first, second = (
+                exact(
+                    sum(
+                        x * t
+                        for x, t in zip(
+                            cross(axis[link] if link in self.carrier_of else main, point), tangent, strict=True
+                        )
+                    )
+                )
+                for link in m.links
+            )
             self.arms[m.name] = (first, second)
 
     def speed(self, row: Row, col: Mapping[str, int], link: str, carrier: str, factor: sympy.Expr) -> None:
@@ -271,6 +293,5 @@ class ConicalFrames(Frames):
             partner = mesh.links[1 - side]
             # The planet's bearing passes to its carrier the mesh's moment about the
             # main axis: minus the moment on the partner gear, which turns about it.
-            if (self.carrier_of.get(mesh.links[side]) == link and partner != link
-                    and partner not in self.carrier_of):
+            if self.carrier_of.get(mesh.links[side]) == link and partner != link and partner not in self.carrier_of:
                 row[2 * k + 1 - side] -= 1

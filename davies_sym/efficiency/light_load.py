@@ -74,12 +74,16 @@ def loaded_laws(analysis: Analysis, roles: Sequence[MeshRole]) -> list[FrictionL
     (its reaction decides the moment's sense)."""
     meshes = {r.coupling for r in roles if not r.idle}
     every = {r.coupling for r in roles}
-    return [law for law in analysis.network.laws
-            if is_mesh_law(law, meshes) or (law.law == "coulomb" and not is_mesh_law(law, every))]
+    return [
+        law
+        for law in analysis.network.laws
+        if is_mesh_law(law, meshes) or (law.law == "coulomb" and not is_mesh_law(law, every))
+    ]
 
 
-def loaded_forces(derivation: Derivation, roles: Sequence[MeshRole], first: Mapping[str, bool],
-                  reversed_forces: Collection[str]) -> dict[str, tuple[RationalFunction, int]]:
+def loaded_forces(
+    derivation: Derivation, roles: Sequence[MeshRole], first: Mapping[str, bool], reversed_forces: Collection[str]
+) -> dict[str, tuple[RationalFunction, int]]:
     """Each loaded force of a case at the operating point, with the sign the case needs:
     that of its lossless value, the other for the couplings in ``reversed_forces``.  A
     force whose lossless sign the geometry does not decide is given times that value."""
@@ -94,16 +98,22 @@ def loaded_forces(derivation: Derivation, roles: Sequence[MeshRole], first: Mapp
         force = a * analysis.ring.rational(analysis.input_power_sign) if b.is_zero() else a * torque + b
         force = at_operating_point(substituted(force, roles, derivation.zetas, first), analysis)
         lossless = analysis.lossless_action_coefficients[transmitted] * analysis.ring.rational(
-            analysis.input_power_sign)
+            analysis.input_power_sign
+        )
         sign, _ = analysis.oracle.classify(*lossless.factor_list())
         flip = -1 if law.coupling in reversed_forces else 1
         out[law.coupling] = (force, int(sign) * flip) if sign in (1, -1) else (force * lossless, flip)
     return out
 
 
-def reached_cases(first: Mapping[str, bool], derive: Callable[[frozenset[str]], Derivation],
-                  roles: Sequence[MeshRole], points: Sequence[Point], efficiencies: Collection[sympy.Symbol],
-                  seed: int) -> list[LoadCase]:
+def reached_cases(
+    first: Mapping[str, bool],
+    derive: Callable[[frozenset[str]], Derivation],
+    roles: Sequence[MeshRole],
+    points: Sequence[Point],
+    efficiencies: Collection[sympy.Symbol],
+    seed: int,
+) -> list[LoadCase]:
     """The variant's lossless case, then every reversal sampled losses and input torques
     reach at ``points`` (``derive``: the derivation with the named bearings' reactions
     reversed)."""

@@ -45,15 +45,30 @@ def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
     coefficient = mesh.friction.coulomb if mesh.friction.coulomb is not None else mesh.friction.linear
     entry = f"couplings.{mesh.name}.friction"
     if coefficient is None:
-        return [train.problem(entry, f"a mesh needs a coulomb or linear friction law, from which its ordinary "
-                              f"efficiency is derived; remove `friction:` (the default is coulomb: zeta_{mesh.name})")]
+        return [
+            train.problem(
+                entry,
+                f"a mesh needs a coulomb or linear friction law, from which its ordinary "
+                f"efficiency is derived; remove `friction:` (the default is coulomb: zeta_{mesh.name})",
+            )
+        ]
     if not isinstance(coefficient, sympy.Symbol):
-        return [train.problem(f"{entry}.{law}", f"the coefficient is solved from the mesh's ordinary efficiency, so "
-                              f"it must be a symbol, not {sympy.sstr(coefficient)[:40]}; write {law}: "
-                              f"zeta_{mesh.name} and give the efficiency (`efficiency:`) instead")]
+        return [
+            train.problem(
+                f"{entry}.{law}",
+                f"the coefficient is solved from the mesh's ordinary efficiency, so "
+                f"it must be a symbol, not {sympy.sstr(coefficient)[:40]}; write {law}: "
+                f"zeta_{mesh.name} and give the efficiency (`efficiency:`) instead",
+            )
+        ]
     if any(coefficient in q.free_symbols for q in _other_quantities(train, mesh)):
-        return [train.problem(f"{entry}.{law}", f"{coefficient} is also used elsewhere in the train; give each mesh "
-                              f"a friction symbol of its own, e.g. zeta_{mesh.name}")]
+        return [
+            train.problem(
+                f"{entry}.{law}",
+                f"{coefficient} is also used elsewhere in the train; give each mesh "
+                f"a friction symbol of its own, e.g. zeta_{mesh.name}",
+            )
+        ]
     return []
 
 

@@ -33,8 +33,9 @@ def at_operating_point(form: RationalFunction, analysis: Analysis) -> RationalFu
     return form.substitute(analysis.input_motion.symbol, form.ring.rational(INPUT_SPEED))
 
 
-def zeta_forms(flows: Mapping[str, MeshPowerFlow],
-               roles: Sequence[MeshRole]) -> dict[tuple[str, bool], RationalFunction]:
+def zeta_forms(
+    flows: Mapping[str, MeshPowerFlow], roles: Sequence[MeshRole]
+) -> dict[tuple[str, bool], RationalFunction]:
     """zeta of every mesh for both directions (Laus eqs. (74)-(75)), in the ring of ``flows``."""
     out = {}
     for role in roles:
@@ -45,8 +46,12 @@ def zeta_forms(flows: Mapping[str, MeshPowerFlow],
     return out
 
 
-def substituted(form: RationalFunction, roles: Sequence[MeshRole],
-                zetas: Mapping[tuple[str, bool], RationalFunction], first: Mapping[str, bool]) -> RationalFunction:
+def substituted(
+    form: RationalFunction,
+    roles: Sequence[MeshRole],
+    zetas: Mapping[tuple[str, bool], RationalFunction],
+    first: Mapping[str, bool],
+) -> RationalFunction:
     """``form`` with each mesh's zeta of the direction ``first`` gives it (first gear drives or not)."""
     for role in roles:
         form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])

@@ -92,9 +92,15 @@ class ParameterDomain:
         v = self._converted(sympy.sympify(expr)).evaluate(point)
         return sympy.Rational(int(v.p), int(v.q))
 
-    def samples(self, count: int, seed: int = 0, extra: Iterable[sympy.Symbol] = (),
-                extra_range: tuple[int, int] = (1, 10), extra_scale: int = 1000,
-                attempts: int = 50) -> Iterator[Point]:
+    def samples(
+        self,
+        count: int,
+        seed: int = 0,
+        extra: Iterable[sympy.Symbol] = (),
+        extra_range: tuple[int, int] = (1, 10),
+        extra_scale: int = 1000,
+        attempts: int = 50,
+    ) -> Iterator[Point]:
         """Up to ``count`` admissible points; ``extra`` symbols drawn in
         ``extra_range / extra_scale``."""
         rng = random.Random(seed)

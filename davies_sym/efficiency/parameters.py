@@ -62,8 +62,11 @@ def _efficiency_meanings(train: Train) -> dict[sympy.Symbol, str]:
         both = mesh.efficiencies[0] == mesh.efficiencies[1]
         for k, eta in enumerate(mesh.efficiencies):
             driver, driven = (first, second) if k == 0 else (second, first)
-            text = (f"ordinary efficiency of mesh {mesh.name} (gears {first}, {second}), either gear driving"
-                    if both else f"ordinary efficiency of mesh {mesh.name}, gear {driver} driving gear {driven}")
+            text = (
+                f"ordinary efficiency of mesh {mesh.name} (gears {first}, {second}), either gear driving"
+                if both
+                else f"ordinary efficiency of mesh {mesh.name}, gear {driver} driving gear {driven}"
+            )
             for s in sorted_symbols(eta.free_symbols):
                 out.setdefault(s, text)
     return out
@@ -76,8 +79,7 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
         for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = train.coupling(law.coupling)
             what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
-            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}",
-                               units.get(law.law, "")))
+            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}", units.get(law.law, "")))
     return out
 
 
@@ -102,15 +104,21 @@ def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:
     """Every symbol of `formula_symbols`, in its order."""
-    ports = {INPUT_SPEED: Parameter(str(INPUT_SPEED), "input speed (magnitude, at the input port)", "rad/s", 0.0,
-                                    math.inf),
-             INPUT_TORQUE: Parameter(str(INPUT_TORQUE), "input torque (magnitude, at the input port)", "torque",
-                                     0.0, math.inf)}
+    ports = {
+        INPUT_SPEED: Parameter(str(INPUT_SPEED), "input speed (magnitude, at the input port)", "rad/s", 0.0, math.inf),
+        INPUT_TORQUE: Parameter(
+            str(INPUT_TORQUE), "input torque (magnitude, at the input port)", "torque", 0.0, math.inf
+        ),
+    }
     return parameters_of_train(variants.train, variants.analysis.network.laws, formula_symbols(variants), ports)
 
 
-def parameters_of_train(train: Train, laws: Sequence[FrictionLaw], symbols: Sequence[sympy.Symbol],
-                        operating: Mapping[sympy.Symbol, Parameter]) -> tuple[Parameter, ...]:
+def parameters_of_train(
+    train: Train,
+    laws: Sequence[FrictionLaw],
+    symbols: Sequence[sympy.Symbol],
+    operating: Mapping[sympy.Symbol, Parameter],
+) -> tuple[Parameter, ...]:
     """The rows of ``symbols`` (in their order): loss-model parameters, ordinary
     efficiencies in (0, 1], lengths and friction coefficients, and the ``operating``
     quantities (speeds and torques at the ports) as given."""
@@ -144,7 +152,8 @@ def eliminated_symbols(variants: VariantSet) -> dict[sympy.Symbol, sympy.Expr]:
 def _obviously_positive(expr: sympy.Expr) -> bool:
     """A sum of positive terms in positive symbols."""
     return all(c > 0 for c in sympy.Poly(expr, *sorted_symbols(expr.free_symbols)).coeffs()) and all(
-        s.is_positive for s in expr.free_symbols)
+        s.is_positive for s in expr.free_symbols
+    )
 
 
 def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:

@@ -95,8 +95,9 @@ class SeveralInputs:
         for c in self.conditions:
             value = _number(c.form, values, f"condition {c.name}")
             if value == 0:
-                raise DerivationError(f"the speeds lie on the boundary {c.name}: {sympy.sstr(c.form)} = 0 "
-                                      f"({', '.join(c.decides)})")
+                raise DerivationError(
+                    f"the speeds lie on the boundary {c.name}: {sympy.sstr(c.form)} = 0 ({', '.join(c.decides)})"
+                )
             signs[c.name] = 1 if value > 0 else -1
         candidates = [r for r in self.regions if dict(r.signs) == signs]
         if not candidates:
@@ -107,11 +108,15 @@ class SeveralInputs:
             if all(sympy.sign(forces[c]) != -assumed for c, (_, assumed) in r.loaded_forces.items()):
                 holding.append(r)
         if not holding:
-            raise NotCoveredError("no power flow agrees with its own forces at these values (the losses reverse a "
-                                  "tooth force or bearing reaction in a way no region covers)")
+            raise NotCoveredError(
+                "no power flow agrees with its own forces at these values (the losses reverse a "
+                "tooth force or bearing reaction in a way no region covers)"
+            )
         first = _number(holding[0].efficiency, values, "the efficiency")
         if any(_number(r.efficiency, values, "the efficiency") != first for r in holding[1:]):
-            raise NotCoveredError(f"regions {', '.join(f'({r.number})' for r in holding)} all agree with their own "
-                                  "forces at these values and give different efficiencies (a statically "
-                                  "indeterminate friction state)")
+            raise NotCoveredError(
+                f"regions {', '.join(f'({r.number})' for r in holding)} all agree with their own "
+                "forces at these values and give different efficiencies (a statically "
+                "indeterminate friction state)"
+            )
         return holding[0]

@@ -51,14 +51,17 @@ def _input_side(variants: VariantSet, port: str, derivation: Derivation) -> _Inp
     declared input's when only the meshes' friction makes the two sides alike)."""
     analysis = derivation.analysis
     p_in = analysis.port_power_rf(port)
-    forms = {name: at_operating_point(-(analysis.power_rf(name, _friction_actions(analysis, name)) / p_in), analysis)
-             for name in lossy_couplings(variants)}
+    forms = {
+        name: at_operating_point(-(analysis.power_rf(name, _friction_actions(analysis, name)) / p_in), analysis)
+        for name in lossy_couplings(variants)
+    }
     return _InputSide(forms, derivation.zetas)
 
 
 def _substituted(variants: VariantSet, side: _InputSide, variant: Variant) -> dict[str, RationalFunction]:
-    return {name: substituted(form, variants.roles, side.zetas, variant.first_drives)
-            for name, form in side.forms.items()}
+    return {
+        name: substituted(form, variants.roles, side.zetas, variant.first_drives) for name, form in side.forms.items()
+    }
 
 
 def loss_fractions(variants: VariantSet, variant: Variant) -> dict[str, RationalFunction]:

@@ -43,8 +43,13 @@ def is_loaded(law: FrictionLaw, meshes: Collection[str]) -> bool:
     return is_mesh_law(law, meshes) or law.law == "coulomb"
 
 
-def region_forms(context: RegionContext, number: int, signs: dict[str, int], vector: tuple[int, ...],
-                 reversed_forces: frozenset[str] = frozenset()) -> Region:
+def region_forms(
+    context: RegionContext,
+    number: int,
+    signs: dict[str, int],
+    vector: tuple[int, ...],
+    reversed_forces: frozenset[str] = frozenset(),
+) -> Region:
     """The closed forms of one region (Laus eq. (51) with the region's signs): the speed
     conditions' signs ``vector`` and the couplings whose loaded force is reversed."""
     analysis, flows, pairing = context.analysis, context.flows, context.pairing
@@ -119,8 +124,9 @@ def region_forms(context: RegionContext, number: int, signs: dict[str, int], vec
             j = index[law.transmitted or ""]
             force = solution[j].get(load, zero) * load_torque + solution[j].get(const, zero)
             forces[law.coupling] = (force, assumed_sign(law))
-    return Region(number, signs, first, inputs, outputs, torques, -(powers[ports.output] / p_in), forces,
-                  reversed_forces)
+    return Region(
+        number, signs, first, inputs, outputs, torques, -(powers[ports.output] / p_in), forces, reversed_forces
+    )
 
 
 def _sign(value: RationalFunction, analysis: Analysis) -> int:

@@ -30,8 +30,14 @@ from davies_sym.topology.model import Train
 Point = dict[sympy.Symbol, sympy.Expr]
 
 
-def reached_signs(train: Train, analysis: Analysis, forms: Sequence[sympy.Expr], speeds: tuple[sympy.Symbol, ...],
-                  samples: int, seed: int) -> dict[tuple[int, ...], list[Point]]:
+def reached_signs(
+    train: Train,
+    analysis: Analysis,
+    forms: Sequence[sympy.Expr],
+    speeds: tuple[sympy.Symbol, ...],
+    samples: int,
+    seed: int,
+) -> dict[tuple[int, ...], list[Point]]:
     """Sign vectors of the speed conditions that admissible designs reach, each with the
     points (geometry and input speeds) that reached it."""
     domain = ParameterDomain.of(train, analysis.network.layout)
@@ -41,8 +47,13 @@ def reached_signs(train: Train, analysis: Analysis, forms: Sequence[sympy.Expr],
         fixed = [sympy.expand(f.subs(point)) for f in forms]
         directions: list[tuple[Fraction, ...]] = []
         if len(speeds) == 2:
-            angles = sorted({math.atan2(-float(f.coeff(speeds[0])), float(f.coeff(speeds[1]))) % math.pi + k * math.pi
-                             for f in fixed for k in (0, 1)})
+            angles = sorted(
+                {
+                    math.atan2(-float(f.coeff(speeds[0])), float(f.coeff(speeds[1]))) % math.pi + k * math.pi
+                    for f in fixed
+                    for k in (0, 1)
+                }
+            )
             angles.append(angles[0] + 2 * math.pi)
             for a, b in pairwise(angles):
                 middle = (a + b) / 2
@@ -63,8 +74,15 @@ class Draws:
     ``load`` torque over eight decades and other loss parameters over six; the symbols
     ``drawn`` are drawn even where the points give them."""
 
-    def __init__(self, points: Sequence[Point], efficiencies: Collection[sympy.Symbol], load: sympy.Symbol,
-                 seed: int, count: int = 400, drawn: Collection[sympy.Symbol] = ()):
+    def __init__(
+        self,
+        points: Sequence[Point],
+        efficiencies: Collection[sympy.Symbol],
+        load: sympy.Symbol,
+        seed: int,
+        count: int = 400,
+        drawn: Collection[sympy.Symbol] = (),
+    ):
         self.points = [{k: v for k, v in p.items() if k not in drawn} for p in points[:4]]
         self.load = load
         self.rows = count * len(self.points)
@@ -95,22 +113,26 @@ class Draws:
         return out
 
 
-def needed_signs(forces: Mapping[str, tuple[RationalFunction, int]],
-                 draws: Draws) -> tuple[np.ndarray, np.ndarray, list[sympy.Symbol]]:
+def needed_signs(
+    forces: Mapping[str, tuple[RationalFunction, int]], draws: Draws
+) -> tuple[np.ndarray, np.ndarray, list[sympy.Symbol]]:
     """Per draw: whether each force has the sign it needs (rows: draws), whether every
     force is finite, and the symbols drawn."""
     signed = [f.to_expr() * s for f, s in forces.values()]
     free = sorted({x for f in signed for x in f.free_symbols}, key=str)
     function = sympy.lambdify(free, signed, "numpy")
     with np.errstate(all="ignore"):
-        values = [np.broadcast_to(np.asarray(v, dtype=float), (draws.rows,))
-                  for v in function(*(draws.column(s) for s in free))]
+        values = [
+            np.broadcast_to(np.asarray(v, dtype=float), (draws.rows,))
+            for v in function(*(draws.column(s) for s in free))
+        ]
     table = np.array(values).T
     return table > 0, np.all(np.isfinite(table), axis=1), free
 
 
-def holds_somewhere(region: Region, points: Sequence[Point], efficiencies: Sequence[sympy.Symbol],
-                    seed: int, count: int = 400) -> bool:
+def holds_somewhere(
+    region: Region, points: Sequence[Point], efficiencies: Sequence[sympy.Symbol], seed: int, count: int = 400
+) -> bool:
     """Whether some sampled losses and load at one of ``points`` give every loaded force
     of ``region`` the sign it assumes."""
     if not region.loaded_forces:

@@ -56,10 +56,17 @@ class _SeveralInputAnalysis(Analysis):
         free = {name for combo in combinations.values() for name in combo}
         if free != set(inputs):
             extra = sorted(free - set(inputs))
-            raise MobilityError([self.train.problem(
-                "ports.input", f"the train has {len(free)} degrees of freedom but {len(inputs)} input ports drive "
-                "it" + (f" (also free: {', '.join(extra)})" if extra else "; an input port cannot turn on its own"))],
-                self.train.path)
+            raise MobilityError(
+                [
+                    self.train.problem(
+                        "ports.input",
+                        f"the train has {len(free)} degrees of freedom but {len(inputs)} input ports drive "
+                        "it"
+                        + (f" (also free: {', '.join(extra)})" if extra else "; an input port cannot turn on its own"),
+                    )
+                ],
+                self.train.path,
+            )
         speeds = {name: RationalFunction.polynomial(self.ring, self.ring.gen(s)) for name, s in inputs.items()}
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
         return {name: sum((c * speeds[j] for j, c in combo.items()), zero) for name, combo in combinations.items()}
@@ -75,8 +82,10 @@ def _primitive(form: RationalFunction, analysis: Analysis, speeds: frozenset[sym
         raise DerivationError(f"expected a speed in the input speeds, got {sympy.sstr(form.to_expr())}")
     sign, undecided = analysis.oracle.classify(content, fixed)
     if sign not in (1, -1):
-        raise DerivationError(f"the sign of {sympy.sstr(undecided)} decides a power direction and depends on "
-                              "the geometry; give the geometry as numbers")
+        raise DerivationError(
+            f"the sign of {sympy.sstr(undecided)} decides a power direction and depends on "
+            "the geometry; give the geometry as numbers"
+        )
     return int(sign), sympy.expand(moving[0][0])
 
 
@@ -99,8 +108,9 @@ class _Conditions:
         return len(self.forms) - 1, 1
 
 
-def derive_several_inputs(train: Train, progress: Progress | None = None, samples: int = 40,
-                          seed: int = 0) -> SeveralInputs:
+def derive_several_inputs(
+    train: Train, progress: Progress | None = None, samples: int = 40, seed: int = 0
+) -> SeveralInputs:
     """Every power-flow region of ``train`` (several input ports) with its closed forms."""
     say = progress or (lambda message: None)
     check_mesh_friction(train)
@@ -111,10 +121,17 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
     etas = efficiency_symbols(train)
     clash = sorted(str(s) for s in (*speeds, LOAD_TORQUE) if str(s) in train.symbols)
     if clash:
-        raise MobilityError([Problem("", f"{', '.join(clash)} name the input speeds and the load torque; rename "
-                                     "the symbol in the file")], train.path)
-    analysis = _SeveralInputAnalysis(train, coulomb_signs="mesh-linear", progress=progress,
-                                     extra_symbols=[*etas, *speeds, LOAD_TORQUE])
+        raise MobilityError(
+            [
+                Problem(
+                    "", f"{', '.join(clash)} name the input speeds and the load torque; rename the symbol in the file"
+                )
+            ],
+            train.path,
+        )
+    analysis = _SeveralInputAnalysis(
+        train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=[*etas, *speeds, LOAD_TORQUE]
+    )
     net = analysis.network
     say("speeds in the input speeds (null space of M_N)")
     motion = analysis.motion_magnitudes
@@ -162,6 +179,7 @@ def derive_several_inputs(train: Train, progress: Progress | None = None, sample
             candidate = region_forms(context, len(regions) + 1, named, signs, reversal)
             if holds_somewhere(candidate, points, etas, seed=seed + len(regions)):
                 regions.append(candidate)
-    conds = tuple(SpeedCondition(n, f, tuple(d)) for n, f, d in zip(names, conditions.forms, conditions.decides,
-                                                                       strict=True))
+    conds = tuple(
+        SpeedCondition(n, f, tuple(d)) for n, f, d in zip(names, conditions.forms, conditions.decides, strict=True)
+    )
     return SeveralInputs(train, analysis, speeds, port_speeds, conds, tuple(regions), pairing)

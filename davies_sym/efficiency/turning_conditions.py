@@ -114,8 +114,9 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
             same = sympy.expand(existing.simplified - simplified) == 0
             opposite = sympy.expand(existing.simplified + simplified) == 0
             if same or opposite:
-                roles.append(MeshRole(c.name, flow, None, existing.name, orientation * (1 if same else -1),
-                                      c.efficiencies))
+                roles.append(
+                    MeshRole(c.name, flow, None, existing.name, orientation * (1 if same else -1), c.efficiencies)
+                )
                 break
         else:
             name = f"c{len(conditions) + 1}"

@@ -33,8 +33,10 @@ def variant_set_html(name: str, conditions: Sequence[TurningCondition], variants
     rows = []
     for v in variants:
         where = ", ".join(_conditions_latex(conditions, v)) or "always"
-        rows.append(f"<tr><td>({v.number})</td><td>{html.escape(v.input)} &rarr; {html.escape(v.output)}</td>"
-                    f"<td>\\({html.escape(where)}\\)</td><td>\\(\\eta = {html.escape(latex(v.efficiency))}\\)"
-                    "</td></tr>")
+        rows.append(
+            f"<tr><td>({v.number})</td><td>{html.escape(v.input)} &rarr; {html.escape(v.output)}</td>"
+            f"<td>\\({html.escape(where)}\\)</td><td>\\(\\eta = {html.escape(latex(v.efficiency))}\\)"
+            "</td></tr>"
+        )
     head = "<tr><th>variant</th><th>ports</th><th>holds where</th><th>efficiency</th></tr>"
     return f"<p><b>{html.escape(name)}</b>: {len(variants)} variants</p><table>{head}{''.join(rows)}</table>"

@@ -128,9 +128,16 @@ class VariantSet:
             else:
                 unknown.append(f"{key} (value {value!r} is not a number)")
         if unknown:
-            raise InputError([Problem("values", f"cannot use {', '.join(unknown)} (the names are: "
-                                      f"{', '.join(sorted(names))}; the values numbers or texts like '1/3')")],
-                             self.train.path)
+            raise InputError(
+                [
+                    Problem(
+                        "values",
+                        f"cannot use {', '.join(unknown)} (the names are: "
+                        f"{', '.join(sorted(names))}; the values numbers or texts like '1/3')",
+                    )
+                ],
+                self.train.path,
+            )
         return out
 
     def _completed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
@@ -146,15 +153,24 @@ class VariantSet:
     def _variant_at(self, values: Mapping[sympy.Symbol, sympy.Expr], input: str | None) -> Variant:
         port = input or self.train.ports.input
         if port not in (self.train.ports.input, self.train.ports.output):
-            raise InputError([Problem("--input", f"{port!r} is not a port of the train (ports: "
-                                      f"{self.train.ports.input}, {self.train.ports.output})")], self.train.path)
+            raise InputError(
+                [
+                    Problem(
+                        "--input",
+                        f"{port!r} is not a port of the train (ports: "
+                        f"{self.train.ports.input}, {self.train.ports.output})",
+                    )
+                ],
+                self.train.path,
+            )
         signs = {}
         for c in self.conditions:
             value = sympy.sympify(c.expression.subs(values))
             if not value.is_number:
                 missing = sorted(map(str, value.free_symbols))
-                raise MissingValuesError([Problem("--eval", f"condition {c.name} needs values for "
-                                                  f"{', '.join(missing)}")], self.train.path)
+                raise MissingValuesError(
+                    [Problem("--eval", f"condition {c.name} needs values for {', '.join(missing)}")], self.train.path
+                )
             signs[c.name] = 1 if value >= 0 else -1
         candidates = [v for v in self.variants if v.input == port and dict(v.signs) == signs]
         if not candidates:
@@ -166,12 +182,16 @@ class VariantSet:
             return agreeing[0]
         base = candidates[0]
         if not agreeing:
-            raise NotCoveredError(f"the losses reverse loaded forces at these values as no derived variant "
-                                  f"covers (input {port}): the forces of variant ({base.number}) have the signs "
-                                  f"{self._force_signs(base, values)}")
+            raise NotCoveredError(
+                f"the losses reverse loaded forces at these values as no derived variant "
+                f"covers (input {port}): the forces of variant ({base.number}) have the signs "
+                f"{self._force_signs(base, values)}"
+            )
         numbers = ", ".join(f"({v.number})" for v in agreeing)
-        raise NotCoveredError(f"the loaded forces of variants {numbers} all agree at these values, with different "
-                              "efficiencies: the friction does not decide the power flow here")
+        raise NotCoveredError(
+            f"the loaded forces of variants {numbers} all agree at these values, with different "
+            "efficiencies: the friction does not decide the power flow here"
+        )
 
     def _force_values(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[str, sympy.Expr]:
         out = {}
@@ -179,8 +199,15 @@ class VariantSet:
             value = sympy.sympify(force.to_expr().subs(values)) * sign
             if not value.is_number:
                 missing = sorted(map(str, value.free_symbols))
-                raise MissingValuesError([Problem("--eval", f"the force in {coupling} (which variant holds) needs "
-                                                  f"values for {', '.join(missing)}")], self.train.path)
+                raise MissingValuesError(
+                    [
+                        Problem(
+                            "--eval",
+                            f"the force in {coupling} (which variant holds) needs values for {', '.join(missing)}",
+                        )
+                    ],
+                    self.train.path,
+                )
             out[coupling] = value
         return out
 
@@ -199,13 +226,15 @@ class VariantSet:
         value = self._variant_at(given, input).efficiency.subs(given)
         if not sympy.sympify(value).is_number:
             missing = sorted(map(str, value.free_symbols))
-            raise MissingValuesError([Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")],
-                                     self.train.path)
+            raise MissingValuesError(
+                [Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")], self.train.path
+            )
         return value
 
 
-def derive_variants(train: Train, progress: Progress | None = None, samples: int = 200,
-                    seed: int = 0, layout: Layout | None = None) -> VariantSet:
+def derive_variants(
+    train: Train, progress: Progress | None = None, samples: int = 200, seed: int = 0, layout: Layout | None = None
+) -> VariantSet:
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
     (``layout``: a geometry other than the one derived from the train)."""
     say = progress or (lambda message: None)
@@ -215,8 +244,16 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     etas = efficiency_symbols(train)
     taken = sorted(str(s) for s in OPERATING_SYMBOLS if str(s) in train.symbols)
     if taken:
-        raise InputError([Problem("", f"{', '.join(taken)} name the input torque and speed of the formulas; "
-                                  "rename the symbol in the file")], train.path)
+        raise InputError(
+            [
+                Problem(
+                    "",
+                    f"{', '.join(taken)} name the input torque and speed of the formulas; "
+                    "rename the symbol in the file",
+                )
+            ],
+            train.path,
+        )
     extra = [*etas, *OPERATING_SYMBOLS]
     analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=extra, layout=layout)
     say("virtual power flow through the meshes")
@@ -231,10 +268,19 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
             side = analysis
             if key != (True, frozenset()):
                 ports = train.ports if declared_input else train.ports.swapped()
-                side = Analysis(train.with_ports(ports), coulomb_signs="mesh-linear", progress=progress,
-                                extra_symbols=extra, layout=layout, reversed_coulomb=bearings)
-            flows = ({r.coupling: r.flow for r in roles} if side is analysis
-                     else {r.coupling: named_mesh_power_flow(side, r.coupling) for r in roles})
+                side = Analysis(
+                    train.with_ports(ports),
+                    coulomb_signs="mesh-linear",
+                    progress=progress,
+                    extra_symbols=extra,
+                    layout=layout,
+                    reversed_coulomb=bearings,
+                )
+            flows = (
+                {r.coupling: r.flow for r in roles}
+                if side is analysis
+                else {r.coupling: named_mesh_power_flow(side, r.coupling) for r in roles}
+            )
             derivations[key] = Derivation(side, at_operating_point(side.efficiency_rf, side), zeta_forms(flows, roles))
         return derivations[key]
 
@@ -249,8 +295,12 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
     operating = random.Random(seed)
     for point in points:
         # Loads and speeds well above what the small drawn loss coefficients take.
-        point.update({INPUT_TORQUE: sympy.Integer(operating.randint(50, 500)),
-                      INPUT_SPEED: sympy.Integer(operating.randint(1, 10))})
+        point.update(
+            {
+                INPUT_TORQUE: sympy.Integer(operating.randint(50, 500)),
+                INPUT_SPEED: sympy.Integer(operating.randint(1, 10)),
+            }
+        )
     regions: dict[tuple[int, ...], list[Point]] = {}
     for point in points:
         key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
@@ -268,26 +318,50 @@ def derive_variants(train: Train, progress: Progress | None = None, samples: int
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
             if not resolve_again:
                 rf = substituted(declared.form, roles, declared.zetas, first)
-                variant = Variant(len(variants) + 1, port_in, port_out, signs, first,
-                                  rf if declared_input else rf.inverse(), bool(region))
+                variant = Variant(
+                    len(variants) + 1,
+                    port_in,
+                    port_out,
+                    signs,
+                    first,
+                    rf if declared_input else rf.inverse(),
+                    bool(region),
+                )
                 variants.append(_checked(variant, region, etas, analysis, conditions, rng))
                 continue
-            base, *reversals = reached_cases(first, partial(derive, declared_input), roles,
-                                             region, etas, seed)
-            variant = Variant(len(variants) + 1, port_in, port_out, signs, first, base.efficiency, bool(region),
-                              loaded_forces=base.forces)
+            base, *reversals = reached_cases(first, partial(derive, declared_input), roles, region, etas, seed)
+            variant = Variant(
+                len(variants) + 1,
+                port_in,
+                port_out,
+                signs,
+                first,
+                base.efficiency,
+                bool(region),
+                loaded_forces=base.forces,
+            )
             variants.append(_checked(variant, region, etas, base.derivation.analysis, conditions, rng))
             light += [(port_in, port_out, signs, case) for case in reversals]
     for port_in, port_out, signs, case in light:
         say(f"light-load variant {len(variants) + 1}: input {port_in}, {', '.join(sorted(case.reversed))} reversed")
-        variant = Variant(len(variants) + 1, port_in, port_out, signs, case.first_drives, case.efficiency, True,
-                          reversed_forces=case.reversed, loaded_forces=case.forces)
+        variant = Variant(
+            len(variants) + 1,
+            port_in,
+            port_out,
+            signs,
+            case.first_drives,
+            case.efficiency,
+            True,
+            reversed_forces=case.reversed,
+            loaded_forces=case.forces,
+        )
         variants.append(_checked(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
     return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared.form, derivations)
 
 
-def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
-                   roles: Sequence[MeshRole]) -> list[sympy.Symbol]:
+def _other_symbols(
+    form: RationalFunction, etas: Sequence[sympy.Symbol], roles: Sequence[MeshRole]
+) -> list[sympy.Symbol]:
     """Symbols left in the formulas besides geometry and efficiencies (bearing
     friction, viscous coefficients, input torque and speed)."""
     out = set(form.to_expr().free_symbols) - set(etas)
@@ -295,8 +369,7 @@ def _other_symbols(form: RationalFunction, etas: Sequence[sympy.Symbol],
     return sorted_symbols(out)
 
 
-def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition],
-                    analysis: Analysis) -> sympy.Expr | None:
+def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition], analysis: Analysis) -> sympy.Expr | None:
     """A product with the sign of the efficiency inside the variant's region: factors
     the symbols' assumptions decide, and factors that are a turning condition (whose
     sign the region fixes), are replaced by their signs.  None when always positive."""
@@ -321,8 +394,14 @@ def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:
     return rf.num.degrees()[index] > 0 or rf.den.degrees()[index] > 0
 
 
-def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Symbol], analysis: Analysis,
-             conditions: Sequence[TurningCondition], rng: random.Random) -> Variant:
+def _checked(
+    variant: Variant,
+    region: Sequence[Point],
+    etas: Sequence[sympy.Symbol],
+    analysis: Analysis,
+    conditions: Sequence[TurningCondition],
+    rng: random.Random,
+) -> Variant:
     """Partial-derivative rule at a region sample; self-locking by sampling."""
     rf = variant.efficiency_rf
     locking_expression = _sign_in_region(variant, conditions, analysis)
@@ -335,17 +414,23 @@ def _checked(variant: Variant, region: Sequence[Point], etas: Sequence[sympy.Sym
         derivative_check = "not checked: the train self-locks at every sampled point"
     if working:
         nominal = {**working[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
-        failed = [str(e) for e in etas
-                  if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0]
+        failed = [
+            str(e) for e in etas if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0
+        ]
         derivative_check = "positive" if not failed else f"failed: {', '.join(failed)}"
     if region:
         for point in region[:40]:
             values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
+            try:
+                value = rf.evaluate(values)
+            except ZeroDivisionError:
+                continue  # a pole of the formula at this sample: it says nothing of locking
             # Outside (0, 1] the power directions the variant assumes do not hold: the
             # train (or one of its stages, when two locked stages multiply) self-locks.
-            if not 0 < rf.evaluate(values) <= 1:
+            if not 0 < value <= 1:
                 used = variant.efficiency.free_symbols
                 locked = {k: v for k, v in values.items() if k in used}
                 break
-    return replace(variant, derivative_check=derivative_check, self_locking_point=locked,
-                   locking_expression=locking_expression)
+    return replace(
+        variant, derivative_check=derivative_check, self_locking_point=locked, locking_expression=locking_expression
+    )

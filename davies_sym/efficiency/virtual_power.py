@@ -53,8 +53,9 @@ class MeshPowerFlow:
         ring = self.flow_ratio.ring
         zeta = ring.rational(self.friction_symbol)
         driver, driven = (0, 1) if first_drives else (1, 0)
-        return ((self.transmitted_power[driven] + zeta * self.friction_power[driven])
-                / (self.transmitted_power[driver] + zeta * self.friction_power[driver]))
+        return (self.transmitted_power[driven] + zeta * self.friction_power[driven]) / (
+            self.transmitted_power[driver] + zeta * self.friction_power[driver]
+        )
 
     def friction_for(self, efficiency: sympy.Expr, first_drives: bool) -> RationalFunction:
         """zeta from the ordinary efficiency of the given direction (eqs. (33), (35), (74))."""
@@ -66,8 +67,9 @@ class MeshPowerFlow:
         if den.is_zero() and all(p.is_zero() for p in (*self.transmitted_power, *self.friction_power)):
             return num  # the mesh does not turn in its carrier (a locked set): no loss, any zeta
         if den.is_zero():
-            raise DerivationError(f"mesh {self.coupling}: its friction torque does no virtual work "
-                                  f"seen from carrier {self.carrier!r}")
+            raise DerivationError(
+                f"mesh {self.coupling}: its friction torque does no virtual work seen from carrier {self.carrier!r}"
+            )
         return num / den
 
 
@@ -108,9 +110,17 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, 
         return locked
     # A valid file can say this (a bearing joining the wrong links): a located refusal.
     train = analysis.train
-    raise TopologyError([train.problem(f"couplings.{mesh.name}", "no other link holds the axes of both gears (the "
-                                       "mesh has no carrier), so its ordinary efficiency is not defined; check which "
-                                       "links the bearings join")], train.path)
+    raise TopologyError(
+        [
+            train.problem(
+                f"couplings.{mesh.name}",
+                "no other link holds the axes of both gears (the "
+                "mesh has no carrier), so its ordinary efficiency is not defined; check which "
+                "links the bearings join",
+            )
+        ],
+        train.path,
+    )
 
 
 def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
@@ -126,13 +136,16 @@ def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
     net = analysis.network
     laws = [law for law in net.laws if law.coupling == mesh.name and law.law in ("coulomb", "linear")]
     if len(laws) != 1:
-        raise DerivationError(f"mesh {mesh.name} has no load-dependent friction law to express "
-                              "through an ordinary efficiency")
+        raise DerivationError(
+            f"mesh {mesh.name} has no load-dependent friction law to express through an ordinary efficiency"
+        )
     law = laws[0]
     lossless = net.coupling_actions(mesh.name, lossless=True)
     if len(lossless) != 1 or law.transmitted != lossless[0].name:
-        raise DerivationError(f"mesh {mesh.name} transmits {len(lossless)} actions in this screw "
-                              "system; its ordinary efficiency needs exactly one (the tooth force)")
+        raise DerivationError(
+            f"mesh {mesh.name} transmits {len(lossless)} actions in this screw "
+            "system; its ordinary efficiency needs exactly one (the tooth force)"
+        )
     carrier, sides = find_carrier(analysis, mesh)
     ring = analysis.ring
     w_u = [ring.rational(v) for v in lossless[0].wrench]
@@ -143,5 +156,13 @@ def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
     force = analysis.lossless_action_coefficients[lossless[0].name]
     input_power = analysis.lossless_input_power()
     flow_ratio = force * transmitted[0] / input_power
-    return MeshPowerFlow(mesh.name, carrier, mesh.links, mesh.gears, flow_ratio,
-                         (transmitted[0], transmitted[1]), (friction[0], friction[1]), law.coefficient)
+    return MeshPowerFlow(
+        mesh.name,
+        carrier,
+        mesh.links,
+        mesh.gears,
+        flow_ratio,
+        (transmitted[0], transmitted[1]),
+        (friction[0], friction[1]),
+        law.coefficient,
+    )

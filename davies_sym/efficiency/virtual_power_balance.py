@@ -60,8 +60,9 @@ class BalanceResult:
     speeds: Mapping[str, sympy.Rational]
 
 
-def virtual_power_balance(train: Train, values: Values, input: str | None = None,
-                          layout: Layout | None = None) -> BalanceResult:
+def virtual_power_balance(
+    train: Train, values: Values, input: str | None = None, layout: Layout | None = None
+) -> BalanceResult:
     """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one);
     ``layout`` replaces the derived geometry (to study a published one)."""
     if layout is None:
@@ -92,8 +93,9 @@ def virtual_power_balance(train: Train, values: Values, input: str | None = None
         # Unknowns: (M_p, M_q) per mesh, the extra ones of the geometry, then the output
         # torque; the input torque is 1.
         n = 2 * len(meshes) + frames.extra_unknowns + 1
-        eqs = [_loss_row(m, k, n, arms[m.name], rel, carriers[m.name], first_drives, values)
-               for k, m in enumerate(meshes)]
+        eqs = [
+            _loss_row(m, k, n, arms[m.name], rel, carriers[m.name], first_drives, values) for k, m in enumerate(meshes)
+        ]
         rhs: list[sympy.Expr] = [sympy.Integer(0)] * len(meshes)
         for link in links:  # (vi) torque balance of every member about its axis
             row = [sympy.Integer(0)] * n
@@ -125,16 +127,26 @@ def _speeds(train: Train, port_in: str, links: list[str], rows: list[list[sympy.
     for end, sign in ((b, 1), (a, -1)):
         if end in col:
             row[col[end]] += sign
-    values = _solve_exact([*rows, row], [sympy.Integer(0)] * len(rows) + [sympy.Integer(1)],
-                          "the kinematics do not have one degree of freedom")
+    values = _solve_exact(
+        [*rows, row],
+        [sympy.Integer(0)] * len(rows) + [sympy.Integer(1)],
+        "the kinematics do not have one degree of freedom",
+    )
     w = dict(zip(links, values, strict=True))
     w[train.reference] = sympy.Integer(0)
     return w
 
 
-def _loss_row(mesh: GearMesh, k: int, n: int, arms: tuple[sympy.Expr, sympy.Expr],
-              rel: Callable[[str, str], sympy.Expr], carrier: str, first_drives: Mapping[str, bool] | None,
-              values: Values) -> list[sympy.Expr]:
+def _loss_row(
+    mesh: GearMesh,
+    k: int,
+    n: int,
+    arms: tuple[sympy.Expr, sympy.Expr],
+    rel: Callable[[str, str], sympy.Expr],
+    carrier: str,
+    first_drives: Mapping[str, bool] | None,
+    values: Values,
+) -> list[sympy.Expr]:
     """(iv-v) Loss formula of mesh ``k``: M_q s_q + eta M_p s_p = 0 (driver p) divided by the
     carrier-frame speed through Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, which
     stays regular in a locked set (where the mesh does not turn and loses nothing)."""
@@ -165,10 +177,16 @@ def _port_terms(train: Train, link: str, port_in: str, port_out: str) -> tuple[s
     return const, out
 
 
-def _balance_result(train: Train, meshes: list[GearMesh], carriers: Mapping[str, str], w: Mapping[str, sympy.Expr],
-                    rel: Callable[[str, str], sympy.Expr],
-                    solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
-                    port_in: str, port_out: str) -> BalanceResult:
+def _balance_result(
+    train: Train,
+    meshes: list[GearMesh],
+    carriers: Mapping[str, str],
+    w: Mapping[str, sympy.Expr],
+    rel: Callable[[str, str], sympy.Expr],
+    solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
+    port_in: str,
+    port_out: str,
+) -> BalanceResult:
     """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency."""
     # (ii-iii) lossless flow: the side delivering virtual power drives.
     lossless, _ = solve(None)
@@ -179,9 +197,17 @@ def _balance_result(train: Train, meshes: list[GearMesh], carriers: Mapping[str,
     p_in = exact(w[pb] - w[pa])
     qa, qb = train.coupling(port_out).links
     p_out = exact(t_out * (w[qb] - w[qa]))
-    losses = {m.name: sympy.Rational(exact(-(torques[m.name][0] * rel(m.links[0], carriers[m.name])
-                                             + torques[m.name][1] * rel(m.links[1], carriers[m.name]))))
-              for m in meshes}
+    losses = {
+        m.name: sympy.Rational(
+            exact(
+                -(
+                    torques[m.name][0] * rel(m.links[0], carriers[m.name])
+                    + torques[m.name][1] * rel(m.links[1], carriers[m.name])
+                )
+            )
+        )
+        for m in meshes
+    }
     # (viii) efficiency, with the power balance (4.3b) as a check.
     total_loss = sum(losses.values(), sympy.Integer(0))
     if exact(p_in + p_out - total_loss) != 0:
@@ -190,13 +216,12 @@ def _balance_result(train: Train, meshes: list[GearMesh], carriers: Mapping[str,
     efficiency = sympy.Rational(exact((p_in - total_loss) / p_in))
     if exact(efficiency + p_out / p_in) != 0:
         raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
-    return BalanceResult(efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first,
-                         {k: exact(v) for k, v in w.items()})
+    return BalanceResult(
+        efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first, {k: exact(v) for k, v in w.items()}
+    )
 
 
 def _efficiency(mesh: GearMesh, index: int, values: Values) -> sympy.Expr:
     if mesh.efficiencies is None or (mesh.friction.coulomb is None and mesh.friction.linear is None):
         return sympy.Integer(1)
     return sympy.sympify(mesh.efficiencies[index]).subs(values)
-
-

@@ -32,8 +32,9 @@ def docstring(text: str, indent: str) -> ast.Expr:
     lines: list[str] = []
     for paragraph in clean:
         lines += textwrap.wrap(paragraph, WIDTH - len(indent) - 6) or [""]
-    body = lines[0] if len(lines) == 1 else "\n".join([lines[0], *(indent + ln if ln else "" for ln in lines[1:]),
-                                                       indent])
+    body = (
+        lines[0] if len(lines) == 1 else "\n".join([lines[0], *(indent + ln if ln else "" for ln in lines[1:]), indent])
+    )
     return ast.Expr(ast.Constant(body))
 
 
@@ -122,8 +123,12 @@ def _function(node: ast.FunctionDef, indent: str) -> list[str]:
     if _fits(indent, one):
         lines = [indent + one]
     else:
-        lines = [f"{indent}def {node.name}(", f"{indent}{_STEP}*,",
-                 *(f"{indent}{_STEP}{p}," for p in params), f"{indent}){returns}:"]
+        lines = [
+            f"{indent}def {node.name}(",
+            f"{indent}{_STEP}*,",
+            *(f"{indent}{_STEP}{p}," for p in params),
+            f"{indent}){returns}:",
+        ]
     for statement in node.body:
         lines += statement_lines(statement, indent + _STEP)
     return lines

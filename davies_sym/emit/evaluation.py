@@ -35,17 +35,24 @@ class Evaluation:
 
     def document(self) -> dict[str, object]:
         """The JSON answer (``--eval --json``): status, variant, both numbers and their exact values."""
-        return {"status": "ok", "input": self.input, "output": self.output,
-                "variant": {"number": self.variant.number, "name": self.variant.name,
-                            "conditions": list(self.conditions)},
-                "speed_ratio": float(self.speed_ratio), "speed_ratio_exact": sympy.sstr(self.speed_ratio),
-                "efficiency": float(self.efficiency), "efficiency_exact": sympy.sstr(self.efficiency)}
+        return {
+            "status": "ok",
+            "input": self.input,
+            "output": self.output,
+            "variant": {"number": self.variant.number, "name": self.variant.name, "conditions": list(self.conditions)},
+            "speed_ratio": float(self.speed_ratio),
+            "speed_ratio_exact": sympy.sstr(self.speed_ratio),
+            "efficiency": float(self.efficiency),
+            "efficiency_exact": sympy.sstr(self.efficiency),
+        }
 
     def text(self) -> str:
         """Three lines: the variant, the speed ratio, and the efficiency alone (scripts read the last line)."""
-        return (f"variant ({self.variant.number}): input {self.input}, output {self.output}\n"
-                f"speed ratio ({self.input} over {self.output}): {float(self.speed_ratio)!r}\n"
-                f"{float(self.efficiency)!r}\n")
+        return (
+            f"variant ({self.variant.number}): input {self.input}, output {self.output}\n"
+            f"speed ratio ({self.input} over {self.output}): {float(self.speed_ratio)!r}\n"
+            f"{float(self.efficiency)!r}\n"
+        )
 
 
 def evaluate(variants: VariantSet, values: Mapping[sympy.Symbol, sympy.Expr], port: str) -> Evaluation:
@@ -62,21 +69,29 @@ def evaluate(variants: VariantSet, values: Mapping[sympy.Symbol, sympy.Expr], po
         # A constraint no parameter could be solved for (a nonlinear one) is checked here.
         residual = sympy.expand(c.expression.subs(values))
         if residual.is_number and residual != 0:
-            raise DesignError([Problem("--eval", f"the values break the geometric constraint {c} (difference "
-                                       f"{residual})")], train.path)
+            raise DesignError(
+                [Problem("--eval", f"the values break the geometric constraint {c} (difference {residual})")],
+                train.path,
+            )
     ratio = ratio_expr.subs(values)
     ratio = ratio if port == train.ports.input else 1 / ratio
     if not (ratio.is_finite and ratio != 0):
         still = other if ratio != 0 else port
-        raise NotCoveredError(f"port {still} does not turn at these values (speed ratio {port} over {other} "
-                              f"{'0' if ratio == 0 else 'infinite'}): no efficiency")
+        raise NotCoveredError(
+            f"port {still} does not turn at these values (speed ratio {port} over {other} "
+            f"{'0' if ratio == 0 else 'infinite'}): no efficiency"
+        )
     variant = variants.variant_for(values, port)
     value = variants.evaluate(values, port)
     if value <= 0 and INPUT_TORQUE in variant.efficiency.free_symbols:
-        raise NotCoveredError(f"the input torque does not overcome the load-independent losses (drag, viscous or "
-                              f"bearing friction) at these values with {port} as input: variant ({variant.number}) "
-                              f"gives {sympy.N(value, 6)}; the output would have to put power in")
+        raise NotCoveredError(
+            f"the input torque does not overcome the load-independent losses (drag, viscous or "
+            f"bearing friction) at these values with {port} as input: variant ({variant.number}) "
+            f"gives {sympy.N(value, 6)}; the output would have to put power in"
+        )
     if not 0 < value <= 1:
-        raise NotCoveredError(f"the train self-locks at these values with {port} as input: variant "
-                              f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]")
+        raise NotCoveredError(
+            f"the train self-locks at these values with {port} as input: variant "
+            f"({variant.number}) gives {sympy.N(value, 6)}, outside (0, 1]"
+        )
     return Evaluation(port, other, variant, tuple(condition_text(variants, variant)), ratio, value)

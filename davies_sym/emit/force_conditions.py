@@ -12,8 +12,9 @@ import sympy
 from davies_sym.algebra.polynomials import RationalFunction
 
 
-def force_conditions(loaded: Mapping[str, tuple[RationalFunction, int]], meshes: Collection[str],
-                     reversed_forces: Collection[str]) -> list[tuple[str, sympy.Expr, int]]:
+def force_conditions(
+    loaded: Mapping[str, tuple[RationalFunction, int]], meshes: Collection[str], reversed_forces: Collection[str]
+) -> list[tuple[str, sympy.Expr, int]]:
     """(what the force is, the force, the sign it needs) for each loaded force."""
     out = []
     for coupling, (force, sign) in loaded.items():
@@ -26,4 +27,3 @@ def force_conditions(loaded: Mapping[str, tuple[RationalFunction, int]], meshes:
 def force_text(conditions: list[tuple[str, sympy.Expr, int]]) -> list[str]:
     """Each condition as ``tooth force of M1: ... > 0``."""
     return [f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0" for what, force, sign in conditions]
-

@@ -29,7 +29,7 @@ class _Printer(NumPyPrinter):  # type: ignore[misc]  # sympy has no type informa
 
     def _module_format(self, fqn: str, register: bool = True) -> str:
         name = str(super()._module_format(fqn, register))
-        return "np." + name[len("numpy."):] if name.startswith("numpy.") else name
+        return "np." + name[len("numpy.") :] if name.startswith("numpy.") else name
 
 
 def _code(expr: sympy.Basic) -> str:
@@ -75,11 +75,11 @@ def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
     tree = ast.parse(source)
     body = tree.body[1:]  # without the docstring
     imports = [n for n in body if isinstance(n, (ast.Import, ast.ImportFrom))]
-    block = "\n".join(lines[imports[0].lineno - 1:imports[-1].end_lineno])
+    block = "\n".join(lines[imports[0].lineno - 1 : imports[-1].end_lineno])
     before: list[str] = []
     after: list[str] = []
     placeholders: dict[str, ast.expr] = {}
-    for node in body[len(imports):]:
+    for node in body[len(imports) :]:
         if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
             placeholders[node.target.id] = node.annotation
             continue
@@ -104,12 +104,12 @@ def constant(runtime: Runtime, name: str, value: ast.expr) -> ast.AnnAssign:
 
 def usable(runtime: Runtime, name: str) -> bool:
     """Whether ``name`` may be written as an identifier of the generated module."""
-    return (name.isascii() and name.isidentifier() and not keyword.iskeyword(name)
-            and name not in runtime.names)
+    return name.isascii() and name.isidentifier() and not keyword.iskeyword(name) and name not in runtime.names
 
 
-def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
-            steps: list[tuple[sympy.Symbol, sympy.Expr]]) -> sympy.Expr:
+def _fitted(
+    expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tuple[sympy.Symbol, sympy.Expr]]
+) -> sympy.Expr:
     """``expr`` with long parts moved into temporaries (appended to ``steps``) until its
     code is at most `_BUDGET` characters: sums and products in groups of terms,
     other functions argument by argument."""
@@ -139,8 +139,9 @@ def _fitted(expr: sympy.Expr, fresh: Iterator[sympy.Symbol],
     return expr.func(*(_temporary(a, fresh, steps) for a in args))
 
 
-def _temporary(expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tuple[sympy.Symbol, sympy.Expr]]) \
-        -> sympy.Expr:
+def _temporary(
+    expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tuple[sympy.Symbol, sympy.Expr]]
+) -> sympy.Expr:
     if expr.is_Atom:
         return expr
     symbol = next(fresh)
@@ -148,8 +149,9 @@ def _temporary(expr: sympy.Expr, fresh: Iterator[sympy.Symbol], steps: list[tupl
     return symbol
 
 
-def formula_function(name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array",
-                      relation: bool = False) -> tuple[ast.FunctionDef, tuple[str, ...]]:
+def formula_function(
+    name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array", relation: bool = False
+) -> tuple[ast.FunctionDef, tuple[str, ...]]:
     """A function of the symbols of ``exprs`` returning them (one: an array, several: a
     tuple; ``relation``: whether the expression is positive), common subexpressions and
     long parts computed once, each on its own line; also its argument names."""
@@ -165,24 +167,29 @@ def formula_function(name: str, doc: str, exprs: Sequence[sympy.Expr], returns: 
     body += [ast.Assign([ast.Name(str(s), ast.Store())], parsed(v)) for s, v in steps]
     returned: ast.expr
     if relation:
-        returned = ast.Call(ast.Attribute(name_node("np"), "asarray", ast.Load()),
-                                   [ast.Compare(parsed(results[0]), [ast.Gt()], [ast.Constant(0)])], [])
+        returned = ast.Call(
+            ast.Attribute(name_node("np"), "asarray", ast.Load()),
+            [ast.Compare(parsed(results[0]), [ast.Gt()], [ast.Constant(0)])],
+            [],
+        )
     elif len(results) == 1:
         returned = call("_array", parsed(results[0]))
     else:
         returned = ast.Tuple([call("_array", parsed(r)) for r in results], ast.Load())
     body.append(ast.Return(returned))
-    arguments = ast.arguments([], [], None, [ast.arg(a, name_node("ArrayLike")) for a in args], [None] * len(args),
-                              None, [])
+    arguments = ast.arguments(
+        [], [], None, [ast.arg(a, name_node("ArrayLike")) for a in args], [None] * len(args), None, []
+    )
     returns_node = ast.parse(returns, mode="eval").body
     return ast.FunctionDef(name, arguments, body, [], returns_node, None), args
 
 
-
 def table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:
     """``{key: (function, (argument names))}``."""
-    return ast.Dict([ast.Constant(k) for k, _, _ in entries],
-                    [ast.Tuple([name_node(f), literal(tuple(a))], ast.Load()) for _, f, a in entries])
+    return ast.Dict(
+        [ast.Constant(k) for k, _, _ in entries],
+        [ast.Tuple([name_node(f), literal(tuple(a))], ast.Load()) for _, f, a in entries],
+    )
 
 
 def compiled_module(source: str, name: str) -> ModuleType:

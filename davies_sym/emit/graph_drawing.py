@@ -38,17 +38,35 @@ def coupling_graph_figure(train: Train) -> Any:
         pairs[key] = index + 1
         bend = 0.0 if index == 0 else (0.25 * ((index + 1) // 2) * (1 if index % 2 else -1))
         colour = "tab:red" if c.name in ports else ("tab:blue" if _kind(train, c.name) == "mesh" else "dimgray")
-        axis.annotate("", xy=positions[b], xytext=positions[a],
-                      arrowprops={"arrowstyle": "-|>", "color": colour, "shrinkA": 16, "shrinkB": 16,
-                                  "connectionstyle": f"arc3,rad={bend}", "linewidth": 1.6})
+        axis.annotate(
+            "",
+            xy=positions[b],
+            xytext=positions[a],
+            arrowprops={
+                "arrowstyle": "-|>",
+                "color": colour,
+                "shrinkA": 16,
+                "shrinkB": 16,
+                "connectionstyle": f"arc3,rad={bend}",
+                "linewidth": 1.6,
+            },
+        )
         (xa, ya), (xb, yb) = positions[a], positions[b]
         mx, my = (xa + xb) / 2, (ya + yb) / 2
         # The label sits on the bent edge: the midpoint pushed along the normal.
         nx_, ny_ = -(yb - ya), xb - xa
         mx, my = mx + bend * nx_ * 0.5, my + bend * ny_ * 0.5
         text = f"{c.name} ({_kind(train, c.name)}" + (f", {ports[c.name]})" if c.name in ports else ")")
-        axis.text(mx, my, text, fontsize=8, ha="center", va="center", color=colour,
-                  bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.85})
+        axis.text(
+            mx,
+            my,
+            text,
+            fontsize=8,
+            ha="center",
+            va="center",
+            color=colour,
+            bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.85},
+        )
     for link, (x, y) in positions.items():
         reference = link == train.reference
         axis.scatter([x], [y], s=700, color="#f0f0f0" if not reference else "#d0d0d0", edgecolors="black", zorder=3)

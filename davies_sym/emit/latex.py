@@ -20,9 +20,20 @@ from davies_sym.emit.variant_report import load_dependent, variant_forces
 from davies_sym.topology.symbol_display import latex
 
 # "<" and ">" print as inverted punctuation in the default text font: they need commands.
-_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-            "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "<": r"\textless{}",
-            ">": r"\textgreater{}"}
+_SPECIAL = {
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "$": r"\$",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+    "<": r"\textless{}",
+    ">": r"\textgreater{}",
+}
 
 
 def escape(text: str) -> str:
@@ -51,8 +62,10 @@ def definitions_latex(definitions: list[tuple[sympy.Symbol, sympy.Expr, str, str
     after its meaning, broken into lines when long."""
     out = []
     for symbol, expression, meaning, source in definitions:
-        out += [rf"\noindent where ${latex(symbol)}$ is the {escape(meaning)} ({escape(source)}):",
-                *display(latex(symbol), expression)]
+        out += [
+            rf"\noindent where ${latex(symbol)}$ is the {escape(meaning)} ({escape(source)}):",
+            *display(latex(symbol), expression),
+        ]
     return out
 
 
@@ -64,17 +77,24 @@ def _latex_notes(variant: Variant) -> list[str]:
         out.append(r"\noindent Infeasible: no sampled admissible geometry satisfies its conditions.\\")
     out.append(rf"\noindent Partial derivatives in the mesh efficiencies: {escape(variant.derivative_check)}.\\")
     if variant.self_locking_point is not None:
-        point = ", ".join(f"${latex(k)} = {latex(v)}$"
-                          for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
+        point = ", ".join(
+            f"${latex(k)} = {latex(v)}$"
+            for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0]))
+        )
         out.append(rf"\noindent Self-locking: the efficiency is outside $(0, 1]$ at the sampled point {point}.\\")
     if variant.locking_expression is not None:
         sign = inline_or_display(variant.locking_expression)
         if len(sign) == 1:
-            out.append(rf"\noindent The efficiency has the sign of {sign[0]}; the train self-locks where that is "
-                       r"$\le 0$.\\")
+            out.append(
+                rf"\noindent The efficiency has the sign of {sign[0]}; the train self-locks where that is "
+                r"$\le 0$.\\"
+            )
         else:
-            out += [r"\noindent The efficiency has the sign of", *sign,
-                    r"\noindent and the train self-locks where that is $\le 0$.\\"]
+            out += [
+                r"\noindent The efficiency has the sign of",
+                *sign,
+                r"\noindent and the train self-locks where that is $\le 0$.\\",
+            ]
     return out
 
 
@@ -83,12 +103,18 @@ def _sign(sign: int) -> str:
 
 
 #: Packages of TeX Live base and recommended only; ``L`` is a ragged-right ``tabularx`` column.
-PREAMBLE = [r"\documentclass[11pt]{article}",
-            "% Compile with pdflatex; needs amsmath, booktabs, geometry, tabularx and array "
-            "(TeX Live base and recommended).",
-            r"\usepackage{amsmath}", r"\usepackage{booktabs}", r"\usepackage{array}", r"\usepackage{tabularx}",
-            r"\usepackage[a4paper,margin=2cm]{geometry}", r"\allowdisplaybreaks",
-            r"\newcolumntype{L}{>{\raggedright\arraybackslash}X}", r"\begin{document}"]
+PREAMBLE = [
+    r"\documentclass[11pt]{article}",
+    "% Compile with pdflatex; needs amsmath, booktabs, geometry, tabularx and array (TeX Live base and recommended).",
+    r"\usepackage{amsmath}",
+    r"\usepackage{booktabs}",
+    r"\usepackage{array}",
+    r"\usepackage{tabularx}",
+    r"\usepackage[a4paper,margin=2cm]{geometry}",
+    r"\allowdisplaybreaks",
+    r"\newcolumntype{L}{>{\raggedright\arraybackslash}X}",
+    r"\begin{document}",
+]
 
 
 def latex_document(variants: VariantSet) -> str:
@@ -135,9 +161,14 @@ def table(columns: str, header: list[str], rows: list[list[str]]) -> list[str]:
     so that a page break can fall between them."""
     out: list[str] = []
     for start in range(0, max(len(rows), 1), TABLE_ROWS):
-        out += [r"\par\noindent", rf"\begin{{tabularx}}{{\linewidth}}{{{columns}}}", r"\toprule",
-                " & ".join(header) + r" \\", r"\midrule"]
-        out += [" & ".join(cells) + r" \\" for cells in rows[start:start + TABLE_ROWS]]
+        out += [
+            r"\par\noindent",
+            rf"\begin{{tabularx}}{{\linewidth}}{{{columns}}}",
+            r"\toprule",
+            " & ".join(header) + r" \\",
+            r"\midrule",
+        ]
+        out += [" & ".join(cells) + r" \\" for cells in rows[start : start + TABLE_ROWS]]
         out += [r"\bottomrule", r"\end{tabularx}"]
     return out
 
@@ -146,11 +177,16 @@ def _conditions_table(variants: VariantSet) -> list[str]:
     """The turning conditions with the meshes each decides."""
     rows = []
     for c in variants.conditions:
-        decided = [f"{escape(r.coupling)} when {'$>0$' if r.orientation > 0 else '$<0$'}"
-                   for r in variants.roles if r.condition == c.name]
+        decided = [
+            f"{escape(r.coupling)} when {'$>0$' if r.orientation > 0 else '$<0$'}"
+            for r in variants.roles
+            if r.condition == c.name
+        ]
         rows.append([f"${c.name}$", f"${latex(c.simplified)}$", ", ".join(decided)])
-    return [r"\subsection*{Turning conditions}",
-            *table("lLL", ["Condition", "Expression", "Meshes (first gear drives, declared input)"], rows)]
+    return [
+        r"\subsection*{Turning conditions}",
+        *table("lLL", ["Condition", "Expression", "Meshes (first gear drives, declared input)"], rows),
+    ]
 
 
 def variants_table(variants: VariantSet) -> list[str]:
@@ -158,8 +194,14 @@ def variants_table(variants: VariantSet) -> list[str]:
     statuses = [_status(v) for v in variants.variants]
     extra = any(statuses)
     columns = "lll" + "c" * len(variants.conditions) + "L" + ("L" if extra else "")
-    header = ["Variant", "Input", "Output", *(f"${c.name}$" for c in variants.conditions),
-              r"Mesh: driving gear $\to$ driven gear", *(["Status"] if extra else [])]
+    header = [
+        "Variant",
+        "Input",
+        "Output",
+        *(f"${c.name}$" for c in variants.conditions),
+        r"Mesh: driving gear $\to$ driven gear",
+        *(["Status"] if extra else []),
+    ]
     rows = []
     for v, status in zip(variants.variants, statuses, strict=True):
         cells = [f"({v.number})", escape(v.input), escape(v.output)]
@@ -174,24 +216,33 @@ def _section(variants: VariantSet) -> list[str]:
     out = [rf"\section*{{{escape(train.name)}}}"]
     if train.source:
         out.append(rf"\noindent Source: {escape(train.source)}.\\")
-    out.append(rf"Ports: input {escape(train.ports.input)}, output {escape(train.ports.output)}; "
-               rf"reference link {escape(train.reference)}. Ordinary efficiencies are those of each mesh "
-               r"with its carrier held; swapping input and output reverses every mesh.")
+    out.append(
+        rf"Ports: input {escape(train.ports.input)}, output {escape(train.ports.output)}; "
+        rf"reference link {escape(train.reference)}. Ordinary efficiencies are those of each mesh "
+        r"with its carrier held; swapping input and output reverses every mesh."
+    )
     if variants.conditions:
         out += _conditions_table(variants)
     fixed = [r for r in variants.roles if r.condition is None and not r.idle]
     idle = [escape(r.coupling) for r in variants.roles if r.idle]
     if idle:
-        out.append(rf"\par\noindent Meshes that carry no power (their set locked or unloaded; no loss): "
-                   rf"{', '.join(idle)}.")
+        out.append(
+            rf"\par\noindent Meshes that carry no power (their set locked or unloaded; no loss): "
+            rf"{', '.join(idle)}."
+        )
     if fixed:
-        text = "; ".join(f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} "
-                         "drives" for r in fixed)
+        text = "; ".join(
+            f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} drives"
+            for r in fixed
+        )
         out.append(rf"\par\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
     out += variants_table(variants)
     for v in variants.variants:
-        out.append(rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
-                   + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions)) + ".")
+        out.append(
+            rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
+            + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions))
+            + "."
+        )
         if load_dependent(variants):
             # Variants of one input and turning-condition signs differ by the loaded forces' signs.
             out += force_latex(variant_forces(variants, v))

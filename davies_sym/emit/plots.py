@@ -60,16 +60,20 @@ def new_figure(width: float = 7.0, height: float = 5.0) -> Any:
     try:
         from matplotlib.figure import Figure
     except ImportError as exc:
-        raise MissingDependencyError("figures need matplotlib, an optional dependency: pip install "
-                                     "'davies_sym[plots]'") from exc
+        raise MissingDependencyError(
+            "figures need matplotlib, an optional dependency: pip install 'davies_sym[plots]'"
+        ) from exc
 
     return Figure(figsize=(width, height), layout="constrained")
 
 
 #: Figure formats by file suffix, each without the metadata that changes from run to run
 #: (software version, creation time), so that the same figure gives the same bytes.
-FIGURE_FORMATS = {".png": ("png", {"Software": None}), ".svg": ("svg", {"Date": None, "Creator": None}),
-                  ".pdf": ("pdf", {"CreationDate": None, "Producer": None, "Creator": None})}
+FIGURE_FORMATS = {
+    ".png": ("png", {"Software": None}),
+    ".svg": ("svg", {"Date": None, "Creator": None}),
+    ".pdf": ("pdf", {"CreationDate": None, "Producer": None, "Creator": None}),
+}
 
 
 def figure_format(path: str) -> str | None:
@@ -130,31 +134,65 @@ def shade_regions(axes: Sequence[Any], xs: np.ndarray, numbers: np.ndarray, desc
         n = int(numbers[a])
         if n == 0:
             continue
-        axes[0].axvspan(xs[a], xs[b - 1], color=colours[(n - 1) % len(colours)], zorder=0,
-                        label=None if n in seen else describe(n))
+        axes[0].axvspan(
+            xs[a], xs[b - 1], color=colours[(n - 1) % len(colours)], zorder=0, label=None if n in seen else describe(n)
+        )
         seen.add(n)
         if a > 0:
             for axis in axes:
                 axis.axvline(xs[a], color="grey", linestyle="--", linewidth=1)
 
 
-def map_regions(axis: Any, gx: np.ndarray, gy: np.ndarray, numbers: np.ndarray, eta: np.ndarray,
-                count: int, conditions: Mapping[str, np.ndarray], describe: Callable[[int], str], blank: str,
-                legend_below: bool = False) -> None:
+def map_regions(
+    axis: Any,
+    gx: np.ndarray,
+    gy: np.ndarray,
+    numbers: np.ndarray,
+    eta: np.ndarray,
+    count: int,
+    conditions: Mapping[str, np.ndarray],
+    describe: Callable[[int], str],
+    blank: str,
+    legend_below: bool = False,
+) -> None:
     """Regions coloured by number (NaN blank, labelled ``blank``), efficiency contours in
     percent, each condition's zero curve in red, and a legend of the regions present."""
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
-    palette = ["#9ecae1", "#fdae6b", "#a1d99b", "#bcbddc", "#f7b6d2", "#dbdb8d", "#c49c94", "#c7c7c7",
-               "#6baed6", "#fd8d3c", "#74c476", "#9e9ac8", "#e377c2", "#bcbd22", "#8c6d31", "#17becf"]
+    palette = [
+        "#9ecae1",
+        "#fdae6b",
+        "#a1d99b",
+        "#bcbddc",
+        "#f7b6d2",
+        "#dbdb8d",
+        "#c49c94",
+        "#c7c7c7",
+        "#6baed6",
+        "#fd8d3c",
+        "#74c476",
+        "#9e9ac8",
+        "#e377c2",
+        "#bcbd22",
+        "#8c6d31",
+        "#17becf",
+    ]
     colours = [palette[k % len(palette)] for k in range(max(count, 1))]
-    axis.pcolormesh(gx, gy, np.ma.masked_invalid(numbers), cmap=ListedColormap(colours), vmin=0.5,
-                    vmax=max(count, 1) + 0.5, shading="auto")
+    axis.pcolormesh(
+        gx,
+        gy,
+        np.ma.masked_invalid(numbers),
+        cmap=ListedColormap(colours),
+        vmin=0.5,
+        vmax=max(count, 1) + 0.5,
+        shading="auto",
+    )
     finite = eta[np.isfinite(eta)]
     if finite.size and finite.max() > finite.min():
-        levels = [v for v in (10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99)
-                  if 100 * finite.min() < v < 100 * finite.max()]
+        levels = [
+            v for v in (10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99) if 100 * finite.min() < v < 100 * finite.max()
+        ]
         contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
         axis.clabel(contours, fmt="%.1f %%", fontsize=7)
     for name, level in conditions.items():
@@ -170,8 +208,9 @@ def map_regions(axis: Any, gx: np.ndarray, gy: np.ndarray, numbers: np.ndarray, 
         axis.legend(handles=handles, fontsize=8, loc="best")
 
 
-def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str,
-                      module: ModuleType | None = None) -> Any:
+def efficiency_figure(
+    variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str, module: ModuleType | None = None
+) -> Any:
     """Efficiency and stacked losses against one parameter, variant regions marked
     (``module``: the train's compiled `formula_module`, if already at hand)."""
     module = module or formula_module(variants)
@@ -179,8 +218,9 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), xs.shape)
-    losses = {k: np.broadcast_to(v, xs.shape) for k, v in
-              module.losses(input=input, errors="ignore", **arguments).items()}
+    losses = {
+        k: np.broadcast_to(v, xs.shape) for k, v in module.losses(input=input, errors="ignore", **arguments).items()
+    }
     numbers = _variant_numbers(module, arguments, input, xs.shape)
     figure = new_figure(7.0, 6.0)
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
@@ -191,8 +231,7 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     top.legend(fontsize=8, loc="best")
     top.grid(True, alpha=0.3)
     if losses:
-        bottom.stackplot(xs, *[100 * v for v in losses.values()], labels=[f"loss in {k}" for k in losses],
-                         alpha=0.8)
+        bottom.stackplot(xs, *[100 * v for v in losses.values()], labels=[f"loss in {k}" for k in losses], alpha=0.8)
         bottom.legend(fontsize=8, loc="upper left")
     bottom.set_ylabel("loss [% of input power]")
     bottom.set_xlabel(label(module, sweep.name), fontsize=9)
@@ -200,8 +239,9 @@ def efficiency_figure(variants: VariantSet, sweep: Sweep, values: Mapping[str, f
     return figure
 
 
-def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str,
-                  module: ModuleType | None = None) -> Any:
+def region_figure(
+    variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str, float], input: str, module: ModuleType | None = None
+) -> Any:
     """Variant regions, turning-condition curves and efficiency contours over two parameters."""
     module = module or formula_module(variants)
     gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
@@ -213,14 +253,28 @@ def region_figure(variants: VariantSet, x: Sweep, y: Sweep, values: Mapping[str,
     figure = new_figure(7.0, 5.5)
     axis = figure.subplots()
     with np.errstate(all="ignore"):
-        levels = {name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
-                  for name, (function, args) in module._CONDITIONS.items()}
-    map_regions(axis, gx, gy, numbers, eta, len(module.VARIANTS), levels, lambda n: _describe(module, n),
-                "self-locking or not admissible")
+        levels = {
+            name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
+            for name, (function, args) in module._CONDITIONS.items()
+        }
+    map_regions(
+        axis,
+        gx,
+        gy,
+        numbers,
+        eta,
+        len(module.VARIANTS),
+        levels,
+        lambda n: _describe(module, n),
+        "self-locking or not admissible",
+    )
     axis.set_xlabel(label(module, x.name), fontsize=9)
     axis.set_ylabel(label(module, y.name), fontsize=9)
-    axis.set_title(f"{variants.train.name}: variants, turning conditions (red), efficiency [%]\n"
-                   f"input {input}; {fixed_text(values, [x.name, y.name])}", fontsize=9)
+    axis.set_title(
+        f"{variants.train.name}: variants, turning conditions (red), efficiency [%]\n"
+        f"input {input}; {fixed_text(values, [x.name, y.name])}",
+        fontsize=9,
+    )
     return figure
 
 

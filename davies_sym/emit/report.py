@@ -24,8 +24,11 @@ FRICTION_CONVENTION = (
 
 def _friction(coupling: Any) -> dict[str, str]:
     f = coupling.friction
-    return {law: sympy.sstr(getattr(f, law)) for law in ("coulomb", "linear", "viscous", "drag")
-            if getattr(f, law) is not None}
+    return {
+        law: sympy.sstr(getattr(f, law))
+        for law in ("coulomb", "linear", "viscous", "drag")
+        if getattr(f, law) is not None
+    }
 
 
 def train_document(analysis: Analysis) -> dict[str, Any]:
@@ -42,35 +45,46 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
             entry["position"] = [sympy.sstr(v) for v in point]
         entry["friction"] = _friction(c)
         entry["motions"] = {v.name: [sympy.sstr(x) for x in v.twist] for v in net.coupling_motions(c.name)}
-        entry["actions"] = {v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]}
-                            for v in net.coupling_actions(c.name)}
+        entry["actions"] = {
+            v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]} for v in net.coupling_actions(c.name)
+        }
         couplings.append(entry)
     efficiency = restore(analysis.efficiency, analysis.network.layout.radicals)
     ratio = restore(analysis.speed_ratio().to_expr(), analysis.network.layout.radicals)
-    conditions = [{"symbol": str(s.symbol), "coupling": s.coupling,
-                   "equals": f"sign({sympy.sstr(s.expression)})"} for s in analysis.sign_conditions]
+    conditions = [
+        {"symbol": str(s.symbol), "coupling": s.coupling, "equals": f"sign({sympy.sstr(s.expression)})"}
+        for s in analysis.sign_conditions
+    ]
     return {
         "name": train.name,
         "source": train.source,
         "file": train.path,
         "links": list(train.link_names),
         "reference": train.reference,
-        "gears": [{"name": g.name, "link": g.link, "radius": sympy.sstr(g.radius), "internal": g.internal}
-                  for g in train.gears],
+        "gears": [
+            {"name": g.name, "link": g.link, "radius": sympy.sstr(g.radius), "internal": g.internal}
+            for g in train.gears
+        ],
         "couplings": couplings,
         "ports": {"input": train.ports.input, "output": train.ports.output},
         "degrees_of_freedom": analysis.degrees_of_freedom,
         "screw_system_order": net.order,
-        "screw_system": {"motion_coordinates": list(net.system.twist_names),
-                         "action_coordinates": list(net.system.wrench_names)},
+        "screw_system": {
+            "motion_coordinates": list(net.system.twist_names),
+            "action_coordinates": list(net.system.wrench_names),
+        },
         "spanning_tree": list(net.tree),
         "geometric_constraints": [r.constraint for r in train.dependent or ()]
         + [str(c) for c in net.layout.constraints],
         "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in train.dependent or ()},
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
-        "speed_ratio": {"input": train.ports.input, "output": train.ports.output, "expression": sympy.sstr(ratio),
-                        "latex": display_latex(ratio)},
+        "speed_ratio": {
+            "input": train.ports.input,
+            "output": train.ports.output,
+            "expression": sympy.sstr(ratio),
+            "latex": display_latex(ratio),
+        },
         "efficiency_friction_form": {
             "input": train.ports.input,
             "output": train.ports.output,
@@ -115,14 +129,22 @@ def kinematics_document(analysis: Analysis) -> dict[str, Any]:
             continue
         expr = sympy.Add(*(c.to_expr() * make_symbol(f, "magnitude") for f, c in combo.items()))
         relations[name] = sympy.sstr(expr)
-    return {"name": analysis.train.name, "source": analysis.train.source, "file": analysis.train.path,
-            "degrees_of_freedom": analysis.degrees_of_freedom, "primary_speeds": primaries,
-            "kinematics": relations}
+    return {
+        "name": analysis.train.name,
+        "source": analysis.train.source,
+        "file": analysis.train.path,
+        "degrees_of_freedom": analysis.degrees_of_freedom,
+        "primary_speeds": primaries,
+        "kinematics": relations,
+    }
 
 
 def kinematics_text(document: dict[str, Any]) -> str:
-    lines = [document["name"], f"  degrees of freedom: {document['degrees_of_freedom']}; primary speeds: "
-             f"{', '.join(document['primary_speeds'])}"]
+    lines = [
+        document["name"],
+        f"  degrees of freedom: {document['degrees_of_freedom']}; primary speeds: "
+        f"{', '.join(document['primary_speeds'])}",
+    ]
     lines += [f"  {name} = {expr}" for name, expr in document["kinematics"].items()]
     lines.append("  (the efficiency with several inputs is not derived yet)")
     return "\n".join(lines)

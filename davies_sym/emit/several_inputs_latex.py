@@ -24,20 +24,37 @@ def _ports(names: tuple[str, ...]) -> str:
 
 def _drivers(si: SeveralInputs, region: Region) -> str:
     """``M1: 1$\\to$2, ...``: the driving and the driven gear of every mesh."""
-    return ", ".join(rf"{escape(mesh)}:~{escape(driver)}$\to${escape(driven)}"
-                     for mesh, driver, driven in drivers(si, region))
+    return ", ".join(
+        rf"{escape(mesh)}:~{escape(driver)}$\to${escape(driven)}" for mesh, driver, driven in drivers(si, region)
+    )
 
 
 def _tables(si: SeveralInputs) -> list[str]:
     """The speed conditions with what each decides, and the power-flow regions."""
     conditions = [[f"${c.name}$", f"${latex(c.form)}$", escape("; ".join(c.decides))] for c in si.conditions]
-    regions = [[f"({r.number})", *("$> 0$" if r.signs[c.name] > 0 else "$< 0$" for c in si.conditions),
-                _ports(r.inputs), _ports(r.outputs), _drivers(si, r)] for r in si.regions]
-    header = ["Region", *(f"${c.name}$" for c in si.conditions), "Power in", "Power out",
-              r"Mesh: driving gear $\to$ driven gear"]
-    return [r"\subsection*{Speed conditions}",
-            *table("llL", ["Condition", "Expression", "Its sign decides"], conditions),
-            r"\subsection*{Power-flow regions}", *table("l" + "c" * len(si.conditions) + "llL", header, regions)]
+    regions = [
+        [
+            f"({r.number})",
+            *("$> 0$" if r.signs[c.name] > 0 else "$< 0$" for c in si.conditions),
+            _ports(r.inputs),
+            _ports(r.outputs),
+            _drivers(si, r),
+        ]
+        for r in si.regions
+    ]
+    header = [
+        "Region",
+        *(f"${c.name}$" for c in si.conditions),
+        "Power in",
+        "Power out",
+        r"Mesh: driving gear $\to$ driven gear",
+    ]
+    return [
+        r"\subsection*{Speed conditions}",
+        *table("llL", ["Condition", "Expression", "Its sign decides"], conditions),
+        r"\subsection*{Power-flow regions}",
+        *table("l" + "c" * len(si.conditions) + "llL", header, regions),
+    ]
 
 
 def several_inputs_latex(si: SeveralInputs) -> str:
@@ -48,10 +65,12 @@ def several_inputs_latex(si: SeveralInputs) -> str:
     if train.source:
         out.append(rf"\noindent Source: {escape(train.source)}.\\")
     speeds = ", ".join(f"${latex(s)}$" for s in si.speeds)
-    out.append(rf"Input ports {_ports(ports.inputs)} with speeds {speeds} (signed); output port "
-               rf"{escape(ports.output)} with the load torque ${latex(LOAD_TORQUE)} > 0$ resisting its motion. "
-               r"The efficiency is the output's power over the sum of the input shafts' powers (Mantriota and "
-               r"Pennestri 2003, eq.~(6)); a shaft driven backwards by the others takes power and lowers that sum.")
+    out.append(
+        rf"Input ports {_ports(ports.inputs)} with speeds {speeds} (signed); output port "
+        rf"{escape(ports.output)} with the load torque ${latex(LOAD_TORQUE)} > 0$ resisting its motion. "
+        r"The efficiency is the output's power over the sum of the input shafts' powers (Mantriota and "
+        r"Pennestri 2003, eq.~(6)); a shaft driven backwards by the others takes power and lowers that sum."
+    )
     speed_rows = [(latex(speed_symbol(p)), v.to_expr()) for p, v in si.port_speeds.items() if p not in ports.inputs]
     if speed_rows:
         out += [r"\subsection*{Speeds}", *aligned(speed_rows)]

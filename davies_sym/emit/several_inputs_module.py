@@ -53,18 +53,22 @@ from davies_sym.topology.symbol_display import latex as display_latex
 _ENTRY_NAMES = frozenset({"errors", "values", "efficiency", "torques", "speeds", "region"})
 
 
-def _entry(name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr,
-           errors: bool = True) -> ast.FunctionDef:
+def _entry(
+    name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr, errors: bool = True
+) -> ast.FunctionDef:
     """``name(*, [errors='warn',] required...)`` with the arguments as arrays in ``values``."""
     params = [ast.arg("errors", name_node("str"))] if errors else []
     defaults: list[ast.expr | None] = [ast.Constant("warn")] if errors else []
     params += [ast.arg(a, name_node("ArrayLike")) for a in required]
     defaults += [None] * len(required)
     values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a)) for a in required])
-    body: list[ast.stmt] = [docstring(doc, "    "),
-                            ast.AnnAssign(ast.Name("values", ast.Store()),
-                                          ast.parse("dict[str, Array]", mode="eval").body, values, simple=1),
-                            ast.Return(returned)]
+    body: list[ast.stmt] = [
+        docstring(doc, "    "),
+        ast.AnnAssign(
+            ast.Name("values", ast.Store()), ast.parse("dict[str, Array]", mode="eval").body, values, simple=1
+        ),
+        ast.Return(returned),
+    ]
     arguments = ast.arguments([], [], None, params, defaults, None, [])
     return ast.FunctionDef(name, arguments, body, [], ast.parse(returns, mode="eval").body, None)
 
@@ -76,11 +80,23 @@ def _code(si: SeveralInputs, region: Region) -> int:
 
 def operating_parameters(si: SeveralInputs) -> dict[sympy.Symbol, Parameter]:
     """The speeds and the load as parameters."""
-    out = {s: Parameter(str(s), f"speed of input port {p} (signed, along the coupling's positive direction)",
-                        "rad/s", -float("inf"), float("inf"))
-           for p, s in zip(si.train.ports.inputs, si.speeds, strict=True)}
-    out[LOAD_TORQUE] = Parameter(str(LOAD_TORQUE), f"load torque at output port {si.train.ports.output} "
-                                 "(magnitude, resisting its motion)", "torque", 0.0, float("inf"))
+    out = {
+        s: Parameter(
+            str(s),
+            f"speed of input port {p} (signed, along the coupling's positive direction)",
+            "rad/s",
+            -float("inf"),
+            float("inf"),
+        )
+        for p, s in zip(si.train.ports.inputs, si.speeds, strict=True)
+    }
+    out[LOAD_TORQUE] = Parameter(
+        str(LOAD_TORQUE),
+        f"load torque at output port {si.train.ports.output} (magnitude, resisting its motion)",
+        "torque",
+        0.0,
+        float("inf"),
+    )
     return out
 
 
@@ -97,18 +113,29 @@ def several_inputs_module(si: SeveralInputs) -> str:
 
     functions: list[ast.FunctionDef] = []
     tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
-        "_CONDITIONS": [], "_SPEEDS": [], "_EFFICIENCY": [], "_TORQUES": [], "_FORCES": []}
+        "_CONDITIONS": [],
+        "_SPEEDS": [],
+        "_EFFICIENCY": [],
+        "_TORQUES": [],
+        "_FORCES": [],
+    }
 
-    def add(table_name: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr],
-            returns: str = "Array") -> tuple[str, ...]:
+    def add(
+        table_name: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array"
+    ) -> tuple[str, ...]:
         function, args = formula_function(name, doc, exprs, returns)
         functions.append(function)
         tables[table_name].append((key, name, args))
         return args
 
     for c in si.conditions:
-        add("_CONDITIONS", c.name, f"condition_{c.name}",
-            f"Speed condition {c.name}: {sympy.sstr(c.form)} ({'; '.join(c.decides)}).", [public(c.form)])
+        add(
+            "_CONDITIONS",
+            c.name,
+            f"condition_{c.name}",
+            f"Speed condition {c.name}: {sympy.sstr(c.form)} ({'; '.join(c.decides)}).",
+            [public(c.form)],
+        )
     speed_args: set[str] = set()
     for p, v in si.port_speeds.items():
         speed_args |= set(add("_SPEEDS", p, f"_speed_{p}", f"Speed of port {p}.", [public(v.to_expr())]))
@@ -116,69 +143,146 @@ def several_inputs_module(si: SeveralInputs) -> str:
     for r in si.regions:
         name = f"region_{r.number}"
         where = " and ".join(condition_text(si, r))
-        doc = (f"Efficiency in region ({r.number}), where {where}: power in at {', '.join(r.inputs)}, out at "
-               f"{', '.join(r.outputs)}; " + "; ".join(mesh_text(si, r)) + ".")
+        doc = (
+            f"Efficiency in region ({r.number}), where {where}: power in at {', '.join(r.inputs)}, out at "
+            f"{', '.join(r.outputs)}; " + "; ".join(mesh_text(si, r)) + "."
+        )
         every |= set(add("_EFFICIENCY", name, name, doc, [public(r.efficiency)]))
-        every |= set(add("_TORQUES", name, f"_torques_{r.number}",
-                         f"Torque at {', '.join(ports.every)} in region ({r.number}).",
-                         [public(r.torques[p].to_expr()) for p in ports.every], "tuple[Array, ...]"))
+        every |= set(
+            add(
+                "_TORQUES",
+                name,
+                f"_torques_{r.number}",
+                f"Torque at {', '.join(ports.every)} in region ({r.number}).",
+                [public(r.torques[p].to_expr()) for p in ports.every],
+                "tuple[Array, ...]",
+            )
+        )
         forces = [public(f.to_expr() * assumed) for f, assumed in r.loaded_forces.values()]
         if forces:
-            every |= set(add("_FORCES", name, f"_forces_{r.number}",
-                             f"Tooth forces and loaded reactions of {', '.join(r.loaded_forces)} in region "
-                             f"({r.number}) times the sign it assumes: the region holds where all are positive.",
-                             forces,
-                             "tuple[Array, ...]" if len(forces) > 1 else "Array"))
+            every |= set(
+                add(
+                    "_FORCES",
+                    name,
+                    f"_forces_{r.number}",
+                    f"Tooth forces and loaded reactions of {', '.join(r.loaded_forces)} in region "
+                    f"({r.number}) times the sign it assumes: the region holds where all are positive.",
+                    forces,
+                    "tuple[Array, ...]" if len(forces) > 1 else "Array",
+                )
+            )
     condition_args = {a for _, _, args in tables["_CONDITIONS"] for a in args}
     required = [str(s) for s in sorted_symbols({sympy.Symbol(a) for a in every | condition_args | speed_args})]
-    symbols = {str(s): s for s in (*si.speeds, LOAD_TORQUE, *train.symbols.values(),
-                                   *parameters_of(set(train.symbols.values()), train.definitions))}
+    symbols = {
+        str(s): s
+        for s in (
+            *si.speeds,
+            LOAD_TORQUE,
+            *train.symbols.values(),
+            *parameters_of(set(train.symbols.values()), train.definitions),
+        )
+    }
     for a in required:
         if not usable(runtime, a) or a.startswith("_"):
-            raise DerivationError(f"the symbol {a!r} cannot be a name in the generated module (a Python keyword, "
-                                  "a name the module uses, or not an ASCII identifier); rename it in the topology "
-                                  "file")
+            raise DerivationError(
+                f"the symbol {a!r} cannot be a name in the generated module (a Python keyword, "
+                "a name the module uses, or not an ASCII identifier); rename it in the topology "
+                "file"
+            )
     for f in functions:
         if not usable(runtime, f.name) or [g.name for g in functions].count(f.name) > 1:
-            raise DerivationError(f"the generated function name {f.name!r} is not usable; rename the ports in the "
-                                  "topology file")
-    parameters = parameters_of_train(train, si.analysis.network.laws, [symbols[a] for a in required],
-                                     operating_parameters(si))
+            raise DerivationError(
+                f"the generated function name {f.name!r} is not usable; rename the ports in the topology file"
+            )
+    parameters = parameters_of_train(
+        train, si.analysis.network.laws, [symbols[a] for a in required], operating_parameters(si)
+    )
     data: dict[str, object] = {
-        "INPUTS": tuple(ports.inputs), "OUTPUT": ports.output, "PORTS": tuple(ports.every),
-        "PARAMETERS": tuple({"name": p.name, "meaning": p.meaning, "unit": p.unit, "low": p.low, "high": p.high,
-                             "closed_low": p.closed_low} for p in parameters),
+        "INPUTS": tuple(ports.inputs),
+        "OUTPUT": ports.output,
+        "PORTS": tuple(ports.every),
+        "PARAMETERS": tuple(
+            {
+                "name": p.name,
+                "meaning": p.meaning,
+                "unit": p.unit,
+                "low": p.low,
+                "high": p.high,
+                "closed_low": p.closed_low,
+            }
+            for p in parameters
+        ),
         "SPEEDS": {p: sympy.sstr(public(v.to_expr())) for p, v in si.port_speeds.items()},
         "CONDITIONS": {c.name: (sympy.sstr(c.form), display_latex(c.form)) for c in si.conditions},
-        "REGIONS": tuple({"name": f"region_{r.number}", "number": r.number, "code": _code(si, r),
-                          "conditions": tuple(condition_text(si, r)), "meshes": tuple(mesh_text(si, r)),
-                          "power_in": tuple(r.inputs), "power_out": tuple(r.outputs),
-                          "reversed": tuple(sorted(r.reversed)), "forces": tuple(region_force_text(r)),
-                          "formula": sympy.sstr(public(r.efficiency)), "latex": display_latex(public(r.efficiency))}
-                         for r in si.regions),
+        "REGIONS": tuple(
+            {
+                "name": f"region_{r.number}",
+                "number": r.number,
+                "code": _code(si, r),
+                "conditions": tuple(condition_text(si, r)),
+                "meshes": tuple(mesh_text(si, r)),
+                "power_in": tuple(r.inputs),
+                "power_out": tuple(r.outputs),
+                "reversed": tuple(sorted(r.reversed)),
+                "forces": tuple(region_force_text(r)),
+                "formula": sympy.sstr(public(r.efficiency)),
+                "latex": display_latex(public(r.efficiency)),
+            }
+            for r in si.regions
+        ),
     }
     values = (name_node("errors"), name_node("values"))
     entries = [
-        _entry("efficiency", "Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of "
-               "the input shafts' powers, the region chosen element by element; NaN where the formulas do not hold "
-               "(errors: 'warn', 'raise', 'ignore').", required, "Array", call("_efficiency", *values)),
-        _entry("torques", "The torque the outside applies at each port (by name), the region chosen element by "
-               "element; NaN where efficiency is.", required, "dict[str, Array]", call("_torques", *values)),
-        _entry("speeds", "The speed of every port (by name) in the input speeds.", sorted(speed_args,
-               key=required.index), "dict[str, Array]", call("_speeds", name_node("values")), errors=False),
-        _entry("region", "The number of the power-flow region (REGIONS) that holds at each point; 0 where none does "
-               "(on a speed-condition line, or no region's loaded forces agree), -1 where several do.", required,
-               "NDArray[np.int64]", call("_region_numbers", name_node("values")), errors=False),
+        _entry(
+            "efficiency",
+            "Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of "
+            "the input shafts' powers, the region chosen element by element; NaN where the formulas do not hold "
+            "(errors: 'warn', 'raise', 'ignore').",
+            required,
+            "Array",
+            call("_efficiency", *values),
+        ),
+        _entry(
+            "torques",
+            "The torque the outside applies at each port (by name), the region chosen element by "
+            "element; NaN where efficiency is.",
+            required,
+            "dict[str, Array]",
+            call("_torques", *values),
+        ),
+        _entry(
+            "speeds",
+            "The speed of every port (by name) in the input speeds.",
+            sorted(speed_args, key=required.index),
+            "dict[str, Array]",
+            call("_speeds", name_node("values")),
+            errors=False,
+        ),
+        _entry(
+            "region",
+            "The number of the power-flow region (REGIONS) that holds at each point; 0 where none does "
+            "(on a speed-condition line, or no region's loaded forces agree), -1 where several do.",
+            required,
+            "NDArray[np.int64]",
+            call("_region_numbers", name_node("values")),
+            errors=False,
+        ),
     ]
     origin = os.path.basename(train.path) if train.path else "a topology file"
-    doc = "\n".join([
-        f"Efficiency of {train.name}, driven at {', '.join(ports.inputs)}: every power-flow region.", "",
-        f"Source: {train.source or 'not given'}.", f"Generated by davies_sym from {origin}; do not edit.", "",
-        f"Input speeds {', '.join(str(s) for s in si.speeds)} (signed, rad/s), load torque {LOAD_TORQUE} at "
-        f"{ports.output} (magnitude, resisting its motion).  efficiency(**params) and torques(**params) take the "
-        "parameters of PARAMETERS (scalars or numpy arrays, broadcast together), pick the region element by "
-        "element from the speed conditions, and give NaN with a DesignWarning (errors='raise': a DesignError) "
-        "where the formulas do not hold."])
+    doc = "\n".join(
+        [
+            f"Efficiency of {train.name}, driven at {', '.join(ports.inputs)}: every power-flow region.",
+            "",
+            f"Source: {train.source or 'not given'}.",
+            f"Generated by davies_sym from {origin}; do not edit.",
+            "",
+            f"Input speeds {', '.join(str(s) for s in si.speeds)} (signed, rad/s), load torque {LOAD_TORQUE} at "
+            f"{ports.output} (magnitude, resisting its motion).  efficiency(**params) and torques(**params) take the "
+            "parameters of PARAMETERS (scalars or numpy arrays, broadcast together), pick the region element by "
+            "element from the speed conditions, and give NaN with a DesignWarning (errors='raise': a DesignError) "
+            "where the formulas do not hold.",
+        ]
+    )
     items: list[tuple[int, str | ast.stmt]] = [(0, docstring(doc, "")), (1, runtime.imports)]
     items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
     items += [(2 if k == 0 else 0, constant(runtime, n, literal(v))) for k, (n, v) in enumerate(data.items())]

@@ -43,8 +43,9 @@ def _conditions_text(module: ModuleType) -> str:
     return "; ".join(f"{name} = {text}" for name, (text, _) in module.CONDITIONS.items())
 
 
-def several_region_figure(si: SeveralInputs, x: Sweep, y: Sweep, values: Mapping[str, float],
-                          module: ModuleType | None = None) -> Any:
+def several_region_figure(
+    si: SeveralInputs, x: Sweep, y: Sweep, values: Mapping[str, float], module: ModuleType | None = None
+) -> Any:
     """Regions, speed conditions (red) and efficiency contours over two parameters."""
     module = module or several_inputs_formulas(si)
     gx, gy = np.meshgrid(x.values(POINTS_2D), y.values(POINTS_2D))
@@ -54,21 +55,38 @@ def several_region_figure(si: SeveralInputs, x: Sweep, y: Sweep, values: Mapping
     numbers = np.broadcast_to(module.region(**{k: kwargs[k] for k in required}), gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
     with np.errstate(all="ignore"):
-        levels = {name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
-                  for name, (function, args) in module._CONDITIONS.items()}
+        levels = {
+            name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
+            for name, (function, args) in module._CONDITIONS.items()
+        }
     figure = new_figure(7.5, 7.5)
     axis = figure.subplots()
-    map_regions(axis, gx, gy, numbers, eta, len(module.REGIONS), levels, lambda n: _describe(module, n),
-                "not covered: a condition line, or losses larger than the load", legend_below=True)
+    map_regions(
+        axis,
+        gx,
+        gy,
+        numbers,
+        eta,
+        len(module.REGIONS),
+        levels,
+        lambda n: _describe(module, n),
+        "not covered: a condition line, or losses larger than the load",
+        legend_below=True,
+    )
     axis.set_xlabel(label(module, x.name), fontsize=9)
     axis.set_ylabel(label(module, y.name), fontsize=9)
-    axis.set_title(f"{si.train.name}\npower-flow regions, speed conditions (red: {_conditions_text(module)}), "
-                   f"efficiency [%]\n{fixed_text(values, [x.name, y.name])}", fontsize=9, wrap=True)
+    axis.set_title(
+        f"{si.train.name}\npower-flow regions, speed conditions (red: {_conditions_text(module)}), "
+        f"efficiency [%]\n{fixed_text(values, [x.name, y.name])}",
+        fontsize=9,
+        wrap=True,
+    )
     return figure
 
 
-def several_efficiency_figure(si: SeveralInputs, sweep: Sweep, values: Mapping[str, float],
-                              module: ModuleType | None = None) -> Any:
+def several_efficiency_figure(
+    si: SeveralInputs, sweep: Sweep, values: Mapping[str, float], module: ModuleType | None = None
+) -> Any:
     """Efficiency (regions shaded) and every port's torque against one parameter."""
     module = module or several_inputs_formulas(si)
     xs = sweep.values(POINTS_1D)

@@ -53,35 +53,57 @@ def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:
     """The JSON document: kinematics, conditions and regions with their closed forms."""
     train = si.train
     return {
-        "status": "ok", "name": train.name, "source": train.source, "file": train.path,
-        "inputs": list(train.ports.inputs), "output": train.ports.output,
-        "input_speeds": [str(s) for s in si.speeds], "load_torque": str(LOAD_TORQUE),
+        "status": "ok",
+        "name": train.name,
+        "source": train.source,
+        "file": train.path,
+        "inputs": list(train.ports.inputs),
+        "output": train.ports.output,
+        "input_speeds": [str(s) for s in si.speeds],
+        "load_torque": str(LOAD_TORQUE),
         "port_speeds": {p: sympy.sstr(v.to_expr()) for p, v in si.port_speeds.items()},
         "load_dependent": any(r.reversed for r in si.regions),
-        "speed_conditions": [{"name": c.name, "expression": sympy.sstr(c.form), "decides": list(c.decides)}
-                             for c in si.conditions],
-        "regions": [{"number": r.number, "conditions": condition_text(si, r), "meshes": mesh_text(si, r),
-                     "power_in": list(r.inputs), "power_out": list(r.outputs),
-                     "reversed": sorted(r.reversed), "forces": region_force_text(r),
-                     "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
-                     "efficiency": sympy.sstr(r.efficiency), "latex": display_latex(r.efficiency)}
-                    for r in si.regions],
+        "speed_conditions": [
+            {"name": c.name, "expression": sympy.sstr(c.form), "decides": list(c.decides)} for c in si.conditions
+        ],
+        "regions": [
+            {
+                "number": r.number,
+                "conditions": condition_text(si, r),
+                "meshes": mesh_text(si, r),
+                "power_in": list(r.inputs),
+                "power_out": list(r.outputs),
+                "reversed": sorted(r.reversed),
+                "forces": region_force_text(r),
+                "torques": {p: sympy.sstr(t.to_expr()) for p, t in r.torques.items()},
+                "efficiency": sympy.sstr(r.efficiency),
+                "latex": display_latex(r.efficiency),
+            }
+            for r in si.regions
+        ],
     }
 
 
 def several_inputs_text(document: Mapping[str, Any]) -> str:
     """Plain text of `several_inputs_document`."""
-    lines = [document["name"],
-             f"  inputs {', '.join(document['inputs'])} (speeds {', '.join(document['input_speeds'])}), output "
-             f"{document['output']} (load torque {document['load_torque']}, resisting its motion)"]
-    lines += [f"  speed of {p}: {speed_symbol(p)} = {v}" for p, v in document["port_speeds"].items()
-              if str(speed_symbol(p)) not in document["input_speeds"]]
+    lines = [
+        document["name"],
+        f"  inputs {', '.join(document['inputs'])} (speeds {', '.join(document['input_speeds'])}), output "
+        f"{document['output']} (load torque {document['load_torque']}, resisting its motion)",
+    ]
+    lines += [
+        f"  speed of {p}: {speed_symbol(p)} = {v}"
+        for p, v in document["port_speeds"].items()
+        if str(speed_symbol(p)) not in document["input_speeds"]
+    ]
     for c in document["speed_conditions"]:
         lines.append(f"  speed condition {c['name']}: sign of {c['expression']} ({'; '.join(c['decides'])})")
     for r in document["regions"]:
         reversed_text = f"; the losses reverse the force in {', '.join(r['reversed'])}" if r["reversed"] else ""
-        lines.append(f"  ({r['number']}) where {' and '.join(r['conditions'])}{reversed_text}: without losses power "
-                     f"in at {', '.join(r['power_in'])}, out at {', '.join(r['power_out'])}")
+        lines.append(
+            f"  ({r['number']}) where {' and '.join(r['conditions'])}{reversed_text}: without losses power "
+            f"in at {', '.join(r['power_in'])}, out at {', '.join(r['power_out'])}"
+        )
         if document["load_dependent"]:
             lines += [f"      holds where the {f}" for f in r["forces"]]
         lines += [f"      {m}" for m in r["meshes"]]
@@ -110,16 +132,24 @@ class SeveralEvaluation:
         return tuple(p for p, v in self.powers.items() if v < 0)
 
     def document(self) -> dict[str, object]:
-        return {"status": "ok", "region": self.region.number, "conditions": list(self.conditions),
-                "power_in": list(self.inputs), "power_out": list(self.outputs),
-                "powers": {p: float(v) for p, v in self.powers.items()},
-                "torques": {p: float(t) for p, t in self.torques.items()},
-                "efficiency": float(self.efficiency), "efficiency_exact": sympy.sstr(self.efficiency)}
+        return {
+            "status": "ok",
+            "region": self.region.number,
+            "conditions": list(self.conditions),
+            "power_in": list(self.inputs),
+            "power_out": list(self.outputs),
+            "powers": {p: float(v) for p, v in self.powers.items()},
+            "torques": {p: float(t) for p, t in self.torques.items()},
+            "efficiency": float(self.efficiency),
+            "efficiency_exact": sympy.sstr(self.efficiency),
+        }
 
     def text(self) -> str:
         torques = ", ".join(f"T_{p} = {float(t)!r}" for p, t in self.torques.items())
-        return (f"region ({self.region.number}): power in at {', '.join(self.inputs)}, out at "
-                f"{', '.join(self.outputs)}\n{torques}\n{float(self.efficiency)!r}\n")
+        return (
+            f"region ({self.region.number}): power in at {', '.join(self.inputs)}, out at "
+            f"{', '.join(self.outputs)}\n{torques}\n{float(self.efficiency)!r}\n"
+        )
 
 
 def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> SeveralEvaluation:
@@ -128,8 +158,10 @@ def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> Sev
     known = {str(s): s for s in (*si.speeds, LOAD_TORQUE)} | dict(train.symbols)
     unknown = sorted(set(values) - set(known))
     if unknown:
-        raise InputError([Problem("--eval", f"unknown symbol {unknown[0]} (this train takes: "
-                                  f"{', '.join(sorted(known))})")], train.path)
+        raise InputError(
+            [Problem("--eval", f"unknown symbol {unknown[0]} (this train takes: {', '.join(sorted(known))})")],
+            train.path,
+        )
     point = completed({known[k]: v for k, v in values.items()}, train.definitions)
     try:
         region = si.region_at(point)
@@ -141,9 +173,10 @@ def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> Sev
     if missing:
         raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
     if not 0 < eta <= 1:
-        raise NotCoveredError(f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "
-                              "the losses exceed the power put in (the load is too small for the drag, or the "
-                              "train self-locks)")
-    powers = {p: sympy.sympify(t * si.port_speeds[p].to_expr().subs(point) * si.pairing[p])
-              for p, t in torques.items()}
+        raise NotCoveredError(
+            f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "
+            "the losses exceed the power put in (the load is too small for the drag, or the "
+            "train self-locks)"
+        )
+    powers = {p: sympy.sympify(t * si.port_speeds[p].to_expr().subs(point) * si.pairing[p]) for p, t in torques.items()}
     return SeveralEvaluation(region, tuple(condition_text(si, region)), torques, eta, powers)

@@ -122,13 +122,19 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
             mask = np.array((code == region["code"]) & ~boundary, dtype=bool)
             if mask.any() and region["name"] in _FORCES:
                 function, names = _FORCES[region["name"]]
-                chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
-                          for n in names}
+                chosen = {
+                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
+                }
                 forces = function(**chosen)
                 # A force that depends on none of the arrays comes back as a scalar.
                 size = (int(np.count_nonzero(mask)),)
-                agree = np.all([np.broadcast_to(np.asarray(f) >= 0, size)
-                                for f in (forces if isinstance(forces, tuple) else (forces,))], axis=0)
+                agree = np.all(
+                    [
+                        np.broadcast_to(np.asarray(f) >= 0, size)
+                        for f in (forces if isinstance(forces, tuple) else (forces,))
+                    ],
+                    axis=0,
+                )
                 mask[mask] = agree
             numbers[mask] = region["number"]
             count += mask
@@ -146,8 +152,9 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
             if not mask.any() or region["name"] not in table:
                 continue
             function, names = table[region["name"]]
-            chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask]
-                      for n in names}
+            chosen = {
+                n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
+            }
             parts = function(**chosen)
             for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                 result[k, mask] = part
@@ -164,8 +171,9 @@ def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
     return bad
 
 
-def _not_covered(numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array,
-                 values: dict[str, Array]) -> tuple[NDArray[np.bool_], str]:
+def _not_covered(
+    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, values: dict[str, Array]
+) -> tuple[NDArray[np.bool_], str]:
     """Where the formulas do not hold, and why (counts of each reason), given the regions
     chosen, the condition lines and the efficiency."""
     outside = _outside_ranges(values)
@@ -173,10 +181,12 @@ def _not_covered(numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: A
     nowhere = (numbers <= 0) & ~boundary & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((eta > 0) & (eta <= 1 + 1e-12)) & (numbers > 0) & ~outside
-    why = (f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
-           f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
-           "no region's loaded forces agree with their assumed signs (losses reversing forces as no region "
-           f"covers) and {int(np.count_nonzero(locked))} with an efficiency outside (0, 1]: NaN there")
+    why = (
+        f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
+        f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
+        "no region's loaded forces agree with their assumed signs (losses reversing forces as no region "
+        f"covers) and {int(np.count_nonzero(locked))} with an efficiency outside (0, 1]: NaN there"
+    )
     return outside | on_line | nowhere | locked, why
 
 

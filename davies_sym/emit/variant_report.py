@@ -36,14 +36,17 @@ def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
     out = []
     for role in variants.roles:
         if role.idle:
-            out.append(f"{role.coupling}: carries no power (gears {role.flow.gears[0]}, {role.flow.gears[1]}; "
-                       f"its set is locked or unloaded), no loss")
+            out.append(
+                f"{role.coupling}: carries no power (gears {role.flow.gears[0]}, {role.flow.gears[1]}; "
+                f"its set is locked or unloaded), no loss"
+            )
             continue
         first = variant.first_drives[role.coupling]
         driver, driven = role.flow.gears if first else role.flow.gears[::-1]
         eta = role.efficiencies[0 if first else 1]
-        out.append(f"{role.coupling}: gear {driver} drives gear {driven} ({sympy.sstr(eta)}), "
-                   f"carrier {role.flow.carrier}")
+        out.append(
+            f"{role.coupling}: gear {driver} drives gear {driven} ({sympy.sstr(eta)}), carrier {role.flow.carrier}"
+        )
     return out
 
 
@@ -57,50 +60,79 @@ def notes(variant: Variant) -> list[str]:
         point = ", ".join(f"{k}={v}" for k, v in sorted(variant.self_locking_point.items(), key=lambda kv: str(kv[0])))
         out.append(f"self-locking: efficiency outside (0, 1] at sampled point {point}")
     if variant.locking_expression is not None:
-        out.append(f"the efficiency has the sign of {sympy.sstr(variant.locking_expression)}; "
-                   "it self-locks where that is <= 0")
+        out.append(
+            f"the efficiency has the sign of {sympy.sstr(variant.locking_expression)}; it self-locks where that is <= 0"
+        )
     return out
 
 
 def variants_document(variants: VariantSet) -> dict[str, Any]:
     """The ``turning_conditions``, ``meshes`` and ``variants`` entries of the JSON document."""
-    conditions = [{"name": c.name, "expression": sympy.sstr(c.expression), "simplified": sympy.sstr(c.simplified),
-                   "latex": display_latex(c.simplified)} for c in variants.conditions]
+    conditions = [
+        {
+            "name": c.name,
+            "expression": sympy.sstr(c.expression),
+            "simplified": sympy.sstr(c.simplified),
+            "latex": display_latex(c.simplified),
+        }
+        for c in variants.conditions
+    ]
     meshes = []
     for r in variants.roles:
-        meshes.append({
-            "coupling": r.coupling, "carrier": r.flow.carrier, "gears": list(r.flow.gears),
-            "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
-            "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
-            "decided": r.condition is None,
-            "carries_power": not r.idle,
-            "first_gear_drives_when": "no power crosses the mesh" if r.idle else (
-                ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
-                if r.condition is None else
-                f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"),
-        })
+        meshes.append(
+            {
+                "coupling": r.coupling,
+                "carrier": r.flow.carrier,
+                "gears": list(r.flow.gears),
+                "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
+                "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
+                "decided": r.condition is None,
+                "carries_power": not r.idle,
+                "first_gear_drives_when": "no power crosses the mesh"
+                if r.idle
+                else (
+                    ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
+                    if r.condition is None
+                    else f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"
+                ),
+            }
+        )
     items = []
     for v in variants.variants:
-        items.append({
-            "number": v.number,
-            "name": v.name,
-            "input": v.input,
-            "output": v.output,
-            "conditions": [{"condition": c.name, "expression": sympy.sstr(c.simplified), "sign": v.signs[c.name]}
-                           for c in variants.conditions],
-            "meshes": mesh_text(variants, v),
-            "efficiency": sympy.sstr(v.efficiency),
-            "latex": display_latex(v.efficiency),
-            "feasible": v.feasible,
-            "derivative_check": v.derivative_check,
-            "self_locking_sampled": v.self_locking_point is not None,
-            "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
-            "reversed_forces": sorted(v.reversed_forces),
-            "loaded_forces": [{"force": what, "expression": sympy.sstr(force), "sign": sign}
-                              for what, force, sign in variant_forces(variants, v)],
-        })
-    definitions = [{"symbol": str(d.symbol), "expression": sympy.sstr(d.expression), "latex": display_latex(d.expression),
-                    "meaning": d.meaning, "source": d.source} for d in variants.train.definitions]
+        items.append(
+            {
+                "number": v.number,
+                "name": v.name,
+                "input": v.input,
+                "output": v.output,
+                "conditions": [
+                    {"condition": c.name, "expression": sympy.sstr(c.simplified), "sign": v.signs[c.name]}
+                    for c in variants.conditions
+                ],
+                "meshes": mesh_text(variants, v),
+                "efficiency": sympy.sstr(v.efficiency),
+                "latex": display_latex(v.efficiency),
+                "feasible": v.feasible,
+                "derivative_check": v.derivative_check,
+                "self_locking_sampled": v.self_locking_point is not None,
+                "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
+                "reversed_forces": sorted(v.reversed_forces),
+                "loaded_forces": [
+                    {"force": what, "expression": sympy.sstr(force), "sign": sign}
+                    for what, force, sign in variant_forces(variants, v)
+                ],
+            }
+        )
+    definitions = [
+        {
+            "symbol": str(d.symbol),
+            "expression": sympy.sstr(d.expression),
+            "latex": display_latex(d.expression),
+            "meaning": d.meaning,
+            "source": d.source,
+        }
+        for d in variants.train.definitions
+    ]
     return {"turning_conditions": conditions, "meshes": meshes, "variants": items, "definitions": definitions}
 
 
@@ -108,8 +140,10 @@ def variants_text(variants: VariantSet) -> str:
     """Plain-text table of conditions and variants."""
     lines = []
     for c in variants.conditions:
-        lines.append(f"  turning condition {c.name}: sign of {sympy.sstr(c.simplified)}"
-                     + (f" (derived: {sympy.sstr(c.expression)})" if c.expression != c.simplified else ""))
+        lines.append(
+            f"  turning condition {c.name}: sign of {sympy.sstr(c.simplified)}"
+            + (f" (derived: {sympy.sstr(c.expression)})" if c.expression != c.simplified else "")
+        )
     for v in variants.variants:
         where = "; ".join(condition_text(variants, v)) or "always"
         lines.append(f"  ({v.number}) input {v.input}, output {v.output}, where {where}:")

@@ -80,9 +80,14 @@ def axis_structure(train: Train) -> AxisStructure:
             bearing_on[c.name] = a
     frames = _mesh_frames(train, meshes, parent, depth, coaxial)
     axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
-    return AxisStructure(parent=parent, depth=depth, axis=axis,
-                         bearing_axis={name: axis[link] for name, link in bearing_on.items()},
-                         meshes=frames, root=_root(train, axis))
+    return AxisStructure(
+        parent=parent,
+        depth=depth,
+        axis=axis,
+        bearing_axis={name: axis[link] for name, link in bearing_on.items()},
+        meshes=frames,
+        root=_root(train, axis),
+    )
 
 
 def _bearing_tree(train: Train, revolutes: Sequence[Revolute]) -> tuple[dict[str, str], dict[str, int], dict[str, str]]:
@@ -135,16 +140,24 @@ def _options(mesh: GearMesh, parent: Mapping[str, str], depth: Mapping[str, int]
     return [(frame, equal) for _, _, frame, equal in sorted(options, key=lambda o: (o[0], o[1]))]
 
 
-def _mesh_frames(train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, str], depth: Mapping[str, int],
-                 coaxial: LinkGroups) -> dict[str, MeshFrame]:
+def _mesh_frames(
+    train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, str], depth: Mapping[str, int], coaxial: LinkGroups
+) -> dict[str, MeshFrame]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
     joins two coaxial links."""
     for mesh in meshes:
         if coaxial.find(mesh.links[0]) == coaxial.find(mesh.links[1]):
-            raise GeometryError([train.problem(
-                f"couplings.{mesh.name}", f"links {mesh.links[0]!r} and {mesh.links[1]!r} turn about one axis "
-                "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
-                "`axis:` on its revolute")], train.path)
+            raise GeometryError(
+                [
+                    train.problem(
+                        f"couplings.{mesh.name}",
+                        f"links {mesh.links[0]!r} and {mesh.links[1]!r} turn about one axis "
+                        "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
+                        "`axis:` on its revolute",
+                    )
+                ],
+                train.path,
+            )
     choices = [_options(m, parent, depth) for m in meshes]
     for assignment in _assignments(choices):
         groups = LinkGroups(sorted(train.link_names))
@@ -158,11 +171,19 @@ def _mesh_frames(train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, 
                 if equal is not None:
                     coaxial.union(*equal)
             return {m.name: frame for m, (frame, _) in zip(meshes, assignment, strict=True)}
-    problems = [train.problem(f"couplings.{m.name}", "no link holds both gear axes of this mesh together with "
-                              "the other meshes: the planet's carrier must turn about the axis of the gear it "
-                              "meshes") for m, c in zip(meshes, choices, strict=True) if len(c) != 1]
-    raise GeometryError(problems or [train.problem("couplings", "the meshes cannot all keep their centre "
-                                                   "distances")], train.path)
+    problems = [
+        train.problem(
+            f"couplings.{m.name}",
+            "no link holds both gear axes of this mesh together with "
+            "the other meshes: the planet's carrier must turn about the axis of the gear it "
+            "meshes",
+        )
+        for m, c in zip(meshes, choices, strict=True)
+        if len(c) != 1
+    ]
+    raise GeometryError(
+        problems or [train.problem("couplings", "the meshes cannot all keep their centre distances")], train.path
+    )
 
 
 def _assignments(choices: Sequence[list[Choice]]) -> Iterator[tuple[Choice, ...]]:

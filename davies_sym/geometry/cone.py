@@ -53,13 +53,18 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
     tilted_links = {g.link for g in train.gears if g.tilted}
     for g in train.gears:
         if g.link not in axes and g.link not in tilted_links:  # a failed tilt is reported already
-            problems.append(train.problem(f"gears.{g.name}.axis", "in a train with intersecting axes every gear "
-                                          "needs its axis direction (a direction, or `tilted`)"))
+            problems.append(
+                train.problem(
+                    f"gears.{g.name}.axis",
+                    "in a train with intersecting axes every gear needs its axis direction (a direction, or `tilted`)",
+                )
+            )
     return axes
 
 
-def _tilted_axis(train: Train, gear: Gear, axes: Mapping[str, Vector], radicals: RadicalTable,
-                 problems: list[Problem]) -> Vector | None:
+def _tilted_axis(
+    train: Train, gear: Gear, axes: Mapping[str, Vector], radicals: RadicalTable, problems: list[Problem]
+) -> Vector | None:
     """Axis of a bevel planet meshing two coaxial gears A and B that face each other.
 
     The pitch points on A and B are the ends of a diameter of the planet's pitch circle,
@@ -75,14 +80,20 @@ def _tilted_axis(train: Train, gear: Gear, axes: Mapping[str, Vector], radicals:
             if other.link in axes:
                 partners.append(other)
     if len(partners) != 2:
-        problems.append(train.problem(entry, f"a tilted axis needs two meshes with gears of known axes, "
-                                      f"found {len(partners)}"))
+        problems.append(
+            train.problem(entry, f"a tilted axis needs two meshes with gears of known axes, found {len(partners)}")
+        )
         return None
     a, b = (axes[p.link] for p in partners)
     if any(radicals.reduce(x + y) != 0 for x, y in zip(a, b, strict=True)):
-        problems.append(train.problem(entry, f"a tilted axis needs gears {partners[0].name!r} and "
-                                      f"{partners[1].name!r} on one axis, facing each other "
-                                      "(opposite axis directions)"))
+        problems.append(
+            train.problem(
+                entry,
+                f"a tilted axis needs gears {partners[0].name!r} and "
+                f"{partners[1].name!r} on one axis, facing each other "
+                "(opposite axis directions)",
+            )
+        )
         return None
     radial = Y_AXIS if any(x != 0 for x in cross(b, Y_AXIS)) else X_AXIS
     radial = vector([sympy.expand(x - _dot(radial, b) * y) for x, y in zip(radial, b, strict=True)])
@@ -125,8 +136,12 @@ def conical_layout(train: Train) -> Layout:
             a, b = gear_axes[g.name], gear_axes[h.name]
             normal = vector([radicals.reduce(x) for x in cross(a, b)])
             if all(x == 0 for x in normal):
-                problems.append(train.problem(f"couplings.{c.name}", "the gear axes are parallel: give the train "
-                                              "without axis directions (planar layout)"))
+                problems.append(
+                    train.problem(
+                        f"couplings.{c.name}",
+                        "the gear axes are parallel: give the train without axis directions (planar layout)",
+                    )
+                )
                 continue
             sin = radicals.sqrt(_norm_squared(normal))
             pitch = vector([radicals.reduce((h.radius * x + g.radius * y) / sin) for x, y in zip(a, b, strict=True)])
@@ -138,20 +153,27 @@ def conical_layout(train: Train) -> Layout:
                 if gear.name in cone_distance:
                     other, previous = cone_distance[gear.name]
                     if radicals.reduce(distance - previous) != 0:
-                        problems.append(train.problem(
-                            f"couplings.{c.name}",
-                            f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
-                            f"sqrt({radicals.restore(distance)}) and in {other!r} at "
-                            f"sqrt({radicals.restore(previous)}); one gear has one pitch circle"))
+                        problems.append(
+                            train.problem(
+                                f"couplings.{c.name}",
+                                f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
+                                f"sqrt({radicals.restore(distance)}) and in {other!r} at "
+                                f"sqrt({radicals.restore(previous)}); one gear has one pitch circle",
+                            )
+                        )
                 else:
                     cone_distance[gear.name] = (c.name, distance)
         elif isinstance(c, Revolute):
             # The bearing turns about the axis of the link it holds (its axis class).
-            holder = next((link for link in sorted(axes) if structure.axis[link] == structure.bearing_axis[c.name]),
-                          None)
+            holder = next(
+                (link for link in sorted(axes) if structure.axis[link] == structure.bearing_axis[c.name]), None
+            )
             if holder is None:
-                problems.append(train.problem(f"couplings.{c.name}", "no gear turns about this bearing's axis: its "
-                                              "direction is unknown"))
+                problems.append(
+                    train.problem(
+                        f"couplings.{c.name}", "no gear turns about this bearing's axis: its direction is unknown"
+                    )
+                )
                 continue
             points[c.name] = origin
             coupling_axes[c.name] = axes[holder]

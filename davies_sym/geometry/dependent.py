@@ -58,19 +58,27 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
         expr = without_positive_factors(sympy.expand(c.expression.subs(values)))
         if expr == 0:
             continue  # implied by the constraints solved already
-        candidates = [s for s in sorted_symbols(expr.free_symbols)
-                      if sympy.degree(expr, s) == 1 and str(s) not in independent]
+        candidates = [
+            s for s in sorted_symbols(expr.free_symbols) if sympy.degree(expr, s) == 1 and str(s) not in independent
+        ]
         if not candidates:
-            problems.append(train.problem(
-                "independent" if independent else f"couplings.{c.coupling}",
-                f"the geometric constraint {c} leaves no parameter to solve for"
-                + (f": `independent` lists all of {', '.join(sorted(map(str, expr.free_symbols)))}; "
-                   "leave one out" if independent else "")))
+            problems.append(
+                train.problem(
+                    "independent" if independent else f"couplings.{c.coupling}",
+                    f"the geometric constraint {c} leaves no parameter to solve for"
+                    + (
+                        f": `independent` lists all of {', '.join(sorted(map(str, expr.free_symbols)))}; leave one out"
+                        if independent
+                        else ""
+                    ),
+                )
+            )
             continue
         symbol = min(candidates, key=lambda s: _rank(s, expr, c.coupling, preferred))
         solution = sympy.expand(sympy.solve(expr, symbol)[0])  # linear in symbol: one root
-        relations = [Relation(r.symbol, sympy.expand(r.expression.subs(symbol, solution)), r.constraint)
-                     for r in relations]
+        relations = [
+            Relation(r.symbol, sympy.expand(r.expression.subs(symbol, solution)), r.constraint) for r in relations
+        ]
         relations.append(Relation(symbol, solution, str(c)))
     if problems:
         raise GeometryError(problems, train.path)
@@ -92,8 +100,9 @@ def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
     return out
 
 
-def _rank(symbol: sympy.Symbol, expr: sympy.Expr, coupling: str,
-          preferred: Mapping[str, list[sympy.Symbol]]) -> tuple[int, int, str]:
+def _rank(
+    symbol: sympy.Symbol, expr: sympy.Expr, coupling: str, preferred: Mapping[str, list[sympy.Symbol]]
+) -> tuple[int, int, str]:
     solution = sympy.expand(sympy.solve(expr, symbol)[0])
     positive_sum = solution.is_Add and all(t.as_coeff_Mul()[0] > 0 for t in solution.args)
     closing = preferred.get(coupling, [])
@@ -117,9 +126,14 @@ def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dic
             continue  # the relation cannot be checked without the other values
         difference = sympy.expand(value - implied)
         if difference != 0:
-            problems.append(Problem(str(symbol), f"{symbol} = {value} breaks the relation {relation} (from the "
-                                    f"geometric constraint {relation.constraint}), which gives {implied}; the "
-                                    f"difference is {difference}"))
+            problems.append(
+                Problem(
+                    str(symbol),
+                    f"{symbol} = {value} breaks the relation {relation} (from the "
+                    f"geometric constraint {relation.constraint}), which gives {implied}; the "
+                    f"difference is {difference}",
+                )
+            )
     if problems:
         raise DesignError(problems, train.path)
     return out

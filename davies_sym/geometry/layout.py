@@ -80,9 +80,13 @@ def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, objec
     """Every gear's axis group has a position, or the layout fails with all problems."""
     for g in train.gears:
         if groups.find(g.link) not in positions:
-            problems.append(train.problem(
-                f"gears.{g.name}", "its position cannot be derived: no mesh or revolute with `at` connects it "
-                "to the rest of the train"))
+            problems.append(
+                train.problem(
+                    f"gears.{g.name}",
+                    "its position cannot be derived: no mesh or revolute with `at` connects it "
+                    "to the rest of the train",
+                )
+            )
     if problems:
         raise GeometryError(problems, train.path)
 
@@ -108,10 +112,12 @@ def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sym
     for constraint in constraints:
         # Prefer eliminating a symbol that is a positive combination of the others
         # (the annulus: ra -> sa + 2 pa), so that positivity arguments still apply.
-        options = sorted(constraint_substitutions((constraint,)),
-                         key=lambda sub: not all(c > 0 for c in sympy.Poly(*sub.values()).coeffs()))
+        options = sorted(
+            constraint_substitutions((constraint,)),
+            key=lambda sub: not all(c > 0 for c in sympy.Poly(*sub.values()).coeffs()),
+        )
         for substitution in options:
-            (symbol, expr), = substitution.items()
+            ((symbol, expr),) = substitution.items()
             expr = sympy.expand(expr.subs(eliminated))
             if symbol not in eliminated and symbol not in expr.free_symbols:
                 eliminated = {k: sympy.expand(v.subs(symbol, expr)) for k, v in eliminated.items()}
@@ -120,9 +126,18 @@ def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sym
     return eliminated
 
 
-def add_constraint(train: Train, constraints: list[GeometricConstraint], problems: list[Problem], offset: sympy.Expr,
-                    distance: sympy.Expr, coupling: str, oracle: SignOracle, entry: str | None = None,
-                    message: str | None = None, loop: Sequence[str] = ()) -> None:
+def add_constraint(
+    train: Train,
+    constraints: list[GeometricConstraint],
+    problems: list[Problem],
+    offset: sympy.Expr,
+    distance: sympy.Expr,
+    coupling: str,
+    oracle: SignOracle,
+    entry: str | None = None,
+    message: str | None = None,
+    loop: Sequence[str] = (),
+) -> None:
     """``offset = distance`` holds, is impossible (a problem naming the ``loop`` of couplings
     that closes here), or is a constraint on the radii."""
     difference = sympy.expand(offset - distance)
@@ -130,11 +145,15 @@ def add_constraint(train: Train, constraints: list[GeometricConstraint], problem
         return
     if difference.is_number or oracle.sign(difference) in (1, -1):
         through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""
-        problems.append(train.problem(
-            entry or f"couplings.{coupling}",
-            message or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "
-            f"{distance} where the other couplings give {offset} (difference {difference}); change the sizes so "
-            "that they agree, or write one radius as a symbol and let the constraint give it"))
+        problems.append(
+            train.problem(
+                entry or f"couplings.{coupling}",
+                message
+                or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "
+                f"{distance} where the other couplings give {offset} (difference {difference}); change the sizes so "
+                "that they agree, or write one radius as a symbol and let the constraint give it",
+            )
+        )
         return
     constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
@@ -143,6 +162,7 @@ def loop_through(via: Mapping[str, tuple[str, str]], a: str, b: str, closing: st
     """The couplings of the loop a mesh ``closing`` between axis classes ``a`` and ``b``
     closes: the placing meshes (``via``: class -> (mesh, class it was placed from)) from
     each end back to their common class, and the closing one."""
+
     def chain(cls: str) -> tuple[list[str], list[str]]:
         classes, meshes = [cls], []
         while cls in via:
@@ -155,4 +175,4 @@ def loop_through(via: Mapping[str, tuple[str, str]], a: str, b: str, closing: st
     common = next((cls for cls in classes_b if cls in classes_a), None)
     if common is None:
         return [closing]
-    return sorted({*meshes_a[:classes_a.index(common)], *meshes_b[:classes_b.index(common)], closing})
+    return sorted({*meshes_a[: classes_a.index(common)], *meshes_b[: classes_b.index(common)], closing})

@@ -53,14 +53,21 @@ def side_of_second(mesh: GearMesh, structure: AxisStructure, gears: Mapping[str,
     return None
 
 
-def place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-                  problems: list[Problem], via: dict[str, tuple[str, str]]) -> dict[str, sympy.Expr]:
+def place_classes(
+    train: Train,
+    structure: AxisStructure,
+    meshes: Sequence[GearMesh],
+    gears: Mapping[str, Gear],
+    problems: list[Problem],
+    via: dict[str, tuple[str, str]],
+) -> dict[str, sympy.Expr]:
     """The y of every axis class: the main axis at 0 and the classes whose bearing gives
     `at` there, then mesh by mesh (in name order) outward; a class nothing reaches is on
     the main axis when no gear turns about it.  ``via`` records which mesh placed each class from which."""
     positions: dict[str, sympy.Expr] = {structure.root: sympy.Integer(0)}
-    bearings = sorted((c for c in train.couplings if isinstance(c, Revolute) and c.at is not None),
-                      key=lambda c: c.name)
+    bearings = sorted(
+        (c for c in train.couplings if isinstance(c, Revolute) and c.at is not None), key=lambda c: c.name
+    )
     geared = {structure.axis[g.link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
@@ -77,13 +84,23 @@ def place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearM
             return positions
         if rest[0] in geared:
             gear = next(g for g in train.gears if structure.axis[g.link] == rest[0])
-            problems.append(train.problem(f"gears.{gear.name}", "its position cannot be derived: no mesh connects "
-                                          "it to the main axis; give a bearing of its link an `at`"))
+            problems.append(
+                train.problem(
+                    f"gears.{gear.name}",
+                    "its position cannot be derived: no mesh connects "
+                    "it to the main axis; give a bearing of its link an `at`",
+                )
+            )
         positions[rest[0]] = sympy.Integer(0)
 
 
-def _place_one(structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-               positions: dict[str, sympy.Expr], via: dict[str, tuple[str, str]]) -> bool:
+def _place_one(
+    structure: AxisStructure,
+    meshes: Sequence[GearMesh],
+    gears: Mapping[str, Gear],
+    positions: dict[str, sympy.Expr],
+    via: dict[str, tuple[str, str]],
+) -> bool:
     """Place the class of the first mesh (by name) with exactly one end placed."""
     for mesh in meshes:
         ends = [structure.axis[link] for link in mesh.links]
@@ -125,10 +142,15 @@ def planar_line_layout(train: Train) -> Layout:
         if side is None:
             side = oracle.sign(offset) if offset != 0 else None
             if side not in (1, -1):
-                problems.append(train.problem(
-                    f"couplings.{mesh.name}", f"cannot tell on which side of gear {g.name!r} gear {h.name!r} lies "
-                    f"(centre offset {offset}): the meshes of carrier {structure.meshes[mesh.name].carrier!r} close "
-                    "a loop a line cannot draw; draw the train in 2-D with `placement:`"))
+                problems.append(
+                    train.problem(
+                        f"couplings.{mesh.name}",
+                        f"cannot tell on which side of gear {g.name!r} gear {h.name!r} lies "
+                        f"(centre offset {offset}): the meshes of carrier "
+                        f"{structure.meshes[mesh.name].carrier!r} close "
+                        "a loop a line cannot draw; draw the train in 2-D with `placement:`",
+                    )
+                )
                 continue
         if mesh.internal:
             ann = g if g.internal else h
@@ -138,15 +160,32 @@ def planar_line_layout(train: Train) -> Layout:
         else:
             points[mesh.name] = line_point(centres[g.name] + side * g.radius)
         ends = [structure.axis[link] for link in mesh.links]
-        add_constraint(train, constraints, problems, side * offset, centre_distance(mesh, gears), mesh.name, oracle,
-                       loop=loop_through(via, ends[0], ends[1], mesh.name))
+        add_constraint(
+            train,
+            constraints,
+            problems,
+            side * offset,
+            centre_distance(mesh, gears),
+            mesh.name,
+            oracle,
+            loop=loop_through(via, ends[0], ends[1], mesh.name),
+        )
     for c in train.couplings:
         if isinstance(c, Revolute):
             y = positions[structure.bearing_axis[c.name]]
             if c.at is not None:
                 # Where the meshes fix this axis, the bearing's `at` is a constraint.
-                add_constraint(train, constraints, problems, y, c.at, c.name, oracle, f"couplings.{c.name}.at",
-                               f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {y}")
+                add_constraint(
+                    train,
+                    constraints,
+                    problems,
+                    y,
+                    c.at,
+                    c.name,
+                    oracle,
+                    f"couplings.{c.name}.at",
+                    f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {y}",
+                )
             points[c.name] = line_point(y)
         elif not isinstance(c, GearMesh):
             points[c.name] = line_point(sympy.Integer(0))

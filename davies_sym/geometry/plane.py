@@ -35,8 +35,13 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     """Axis positions, pitch points and constraints of a planar train drawn in 2-D;
     ``direction`` (x, y) is the placement direction of the planets."""
     problems: list[Problem] = []
-    radicals = RadicalTable(facts=[centre_distance(m, {g.name: g for g in train.gears}) for m in train.couplings
-                                   if isinstance(m, GearMesh) and m.internal])
+    radicals = RadicalTable(
+        facts=[
+            centre_distance(m, {g.name: g for g in train.gears})
+            for m in train.couplings
+            if isinstance(m, GearMesh) and m.internal
+        ]
+    )
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
@@ -79,8 +84,9 @@ def plane_layout(train: Train, direction: Point) -> Layout:
                 add_constraint(train, constraints, problems, actual, distance, mesh.name, oracle)
         # The line of centres has length `distance` on an admissible design.
         u = (radicals.reduce(offset[0] / distance), radicals.reduce(offset[1] / distance))
-        points[mesh.name] = vector((radicals.reduce(base[0] + reach * u[0]),
-                                    radicals.reduce(base[1] + reach * u[1]), 0))
+        points[mesh.name] = vector(
+            (radicals.reduce(base[0] + reach * u[0]), radicals.reduce(base[1] + reach * u[1]), 0)
+        )
         tangents[mesh.name] = vector((u[1], -u[0], 0))
         normals[mesh.name] = vector((u[0], u[1], 0))
     for c in train.couplings:
@@ -88,8 +94,17 @@ def plane_layout(train: Train, direction: Point) -> Layout:
             point = positions[structure.bearing_axis[c.name]]
             if c.at is not None:
                 along = radicals.reduce(point[0] * unit[0] + point[1] * unit[1])
-                add_constraint(train, constraints, problems, along, c.at, c.name, oracle, f"couplings.{c.name}.at",
-                               f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {along}")
+                add_constraint(
+                    train,
+                    constraints,
+                    problems,
+                    along,
+                    c.at,
+                    c.name,
+                    oracle,
+                    f"couplings.{c.name}.at",
+                    f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {along}",
+                )
             points[c.name] = vector((*point, 0))
         elif not isinstance(c, GearMesh):
             points[c.name] = vector((0, 0, 0))
@@ -106,8 +121,16 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     )
 
 
-def _place_classes(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-                   unit: Point, radicals: RadicalTable, problems: list[Problem], used: set[str]) -> dict[str, Point]:
+def _place_classes(
+    train: Train,
+    structure: AxisStructure,
+    meshes: Sequence[GearMesh],
+    gears: Mapping[str, Gear],
+    unit: Point,
+    radicals: RadicalTable,
+    problems: list[Problem],
+    used: set[str],
+) -> dict[str, Point]:
     """The centre of every axis class: the main axis at the origin and the classes whose
     bearing gives `at` along the placement direction, then outward one class at a time
     (meshes in name order): a class meshing two placed classes with distinct centres
@@ -117,8 +140,9 @@ def _place_classes(train: Train, structure: AxisStructure, meshes: Sequence[Gear
     ``used`` collects the meshes that placed a class (the others close loops)."""
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
-    bearings = sorted((c for c in train.couplings if isinstance(c, Revolute) and c.at is not None),
-                      key=lambda c: c.name)
+    bearings = sorted(
+        (c for c in train.couplings if isinstance(c, Revolute) and c.at is not None), key=lambda c: c.name
+    )
     geared = {structure.axis[g.link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
@@ -135,14 +159,27 @@ def _place_classes(train: Train, structure: AxisStructure, meshes: Sequence[Gear
             return positions
         if rest[0] in geared:
             gear = next(g for g in train.gears if structure.axis[g.link] == rest[0])
-            problems.append(train.problem(f"gears.{gear.name}", "its position cannot be derived: no mesh connects "
-                                          "it to the main axis; give a bearing of its link an `at`"))
+            problems.append(
+                train.problem(
+                    f"gears.{gear.name}",
+                    "its position cannot be derived: no mesh connects "
+                    "it to the main axis; give a bearing of its link an `at`",
+                )
+            )
         positions[rest[0]] = zero
 
 
-def _place_one(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh], gears: Mapping[str, Gear],
-               positions: dict[str, Point], unit: Point, radicals: RadicalTable, problems: list[Problem],
-               used: set[str]) -> bool:
+def _place_one(
+    train: Train,
+    structure: AxisStructure,
+    meshes: Sequence[GearMesh],
+    gears: Mapping[str, Gear],
+    positions: dict[str, Point],
+    unit: Point,
+    radicals: RadicalTable,
+    problems: list[Problem],
+    used: set[str],
+) -> bool:
     """Place one class; False when no mesh reaches an unplaced class."""
     reach: dict[str, list[tuple[Point, sympy.Expr, str]]] = {}
     first: tuple[str, Point, str] | None = None
@@ -181,29 +218,43 @@ def _place_one(train: Train, structure: AxisStructure, meshes: Sequence[GearMesh
     return True
 
 
-def _triangle(first: tuple[Point, sympy.Expr, str], second: tuple[Point, sympy.Expr, str], radicals: RadicalTable,
-              train: Train, problems: list[Problem]) -> Point | None:
+def _triangle(
+    first: tuple[Point, sympy.Expr, str],
+    second: tuple[Point, sympy.Expr, str],
+    radicals: RadicalTable,
+    train: Train,
+    problems: list[Problem],
+) -> Point | None:
     """The point at distance d_A from A and d_B from B, counter-clockwise of A -> B."""
     (a, da, mesh_a), (b, db, mesh_b) = first, second
     ab = (radicals.reduce(b[0] - a[0]), radicals.reduce(b[1] - a[1]))
     try:
         length = radicals.sqrt(radicals.reduce(ab[0] ** 2 + ab[1] ** 2))
     except RadicalError as exc:
-        problems.append(train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} would close a "
-                                      f"triangle whose side is not known to be real ({exc}); give the radii as "
-                                      "numbers, or draw the train with another placement"))
+        problems.append(
+            train.problem(
+                f"couplings.{mesh_b}",
+                f"the meshes {mesh_a} and {mesh_b} would close a "
+                f"triangle whose side is not known to be real ({exc}); give the radii as "
+                "numbers, or draw the train with another placement",
+            )
+        )
         return None
     along = radicals.reduce((da**2 - db**2 + length**2) / (2 * length))
     roots = {r.symbol for r in radicals.radicals}
     if (sympy.sympify(along).free_symbols | sympy.sympify(length).free_symbols) & roots:
-        problems.append(train.problem(f"couplings.{mesh_b}", "this planet would sit on nested square roots; "
-                                      "give the train another placement"))
+        problems.append(
+            train.problem(
+                f"couplings.{mesh_b}", "this planet would sit on nested square roots; give the train another placement"
+            )
+        )
         return None
     try:
         height = radicals.sqrt(radicals.reduce(da**2 - along**2))
     except RadicalError as exc:
-        problems.append(train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a "
-                                      f"triangle: {exc}"))
+        problems.append(
+            train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a triangle: {exc}")
+        )
         return None
     u = (radicals.reduce(ab[0] / length), radicals.reduce(ab[1] / length))
     return (radicals.reduce(a[0] + along * u[0] - height * u[1]), radicals.reduce(a[1] + along * u[1] + height * u[0]))

@@ -37,8 +37,9 @@ def substituted(expr: sympy.Expr, definitions: Iterable[Definition]) -> sympy.Ex
     return sympy.sympify(expr).xreplace(table) if table else expr
 
 
-def completed(values: Mapping[sympy.Symbol, sympy.Expr],
-              definitions: Iterable[Definition]) -> dict[sympy.Symbol, sympy.Expr]:
+def completed(
+    values: Mapping[sympy.Symbol, sympy.Expr], definitions: Iterable[Definition]
+) -> dict[sympy.Symbol, sympy.Expr]:
     """``values`` with the value of every defined symbol whose parameters are given."""
     out = dict(values)
     for d in definitions:

@@ -59,10 +59,17 @@ class Analysis:
     than the load): their resolved Coulomb sign is taken the other way.
     """
 
-    def __init__(self, train: Train, tree: Sequence[str] | None = None,
-                 action_tree: Sequence[str] | None = None, coulomb_signs: str = "resolve",
-                 progress: Progress | None = None, extra_symbols: Sequence[sympy.Symbol] = (),
-                 layout: Layout | None = None, reversed_coulomb: frozenset[str] = frozenset()):
+    def __init__(
+        self,
+        train: Train,
+        tree: Sequence[str] | None = None,
+        action_tree: Sequence[str] | None = None,
+        coulomb_signs: str = "resolve",
+        progress: Progress | None = None,
+        extra_symbols: Sequence[sympy.Symbol] = (),
+        layout: Layout | None = None,
+        reversed_coulomb: frozenset[str] = frozenset(),
+    ):
         if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
             raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
         if layout is None:
@@ -82,8 +89,9 @@ class Analysis:
         if len(constraints) > 1:
             substitutions.append(joint_substitution(constraints))
         self.oracle = SignOracle(net.layout.positive_facts, substitutions)
-        self.sign_symbols = {law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
-                             for law in net.laws if law.law == "coulomb"}
+        self.sign_symbols = {
+            law.coupling: make_symbol(f"sigma_{law.coupling}", "sign") for law in net.laws if law.law == "coulomb"
+        }
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
         symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
         for law in net.laws:
@@ -126,8 +134,7 @@ class Analysis:
         net = self.network
         M_N = net.network_motion_matrix()
         index = net.motions.index(self.input_motion)
-        elimination = gauss_jordan(self.rows(M_N), len(net.motions), prefer_free=[index],
-                                   reduce=self._reduce)
+        elimination = gauss_jordan(self.rows(M_N), len(net.motions), prefer_free=[index], reduce=self._reduce)
         free = elimination.free
         problems = mobility_problems(self.train, net, free, index)
         if problems:
@@ -143,8 +150,13 @@ class Analysis:
         _ = self._motion_solution  # the mobility check
         net = self.network
         # Primary speeds: the input, then the other couplings on the reference (shaft speeds).
-        on_reference = [net.motions.index(v) for c in self.train.couplings if self.train.reference in c.links
-                        for v in net.coupling_motions(c.name) if v is not self.input_motion]
+        on_reference = [
+            net.motions.index(v)
+            for c in self.train.couplings
+            if self.train.reference in c.links
+            for v in net.coupling_motions(c.name)
+            if v is not self.input_motion
+        ]
         return self.motions_in([self.input_motion.name, *(net.motions[j].name for j in on_reference)])
 
     def motions_in(self, preferred: Sequence[str]) -> dict[str, dict[str, RationalFunction]]:
@@ -152,8 +164,9 @@ class Analysis:
         among ``preferred`` (motion names) first: eq. (1) for any mobility."""
         net = self.network
         prefer = [net.motions.index(net.motion(name)) for name in preferred]
-        elimination = gauss_jordan(self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer,
-                                   reduce=self._reduce)
+        elimination = gauss_jordan(
+            self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer, reduce=self._reduce
+        )
         solution = elimination.solution(self.ring)
         return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
 
@@ -182,8 +195,9 @@ class Analysis:
         net = self.network
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
-        elimination = gauss_jordan(self.rows(net.network_action_matrix(lossless=True)), len(cols),
-                                   prefer_free=[index], reduce=self._reduce)
+        elimination = gauss_jordan(
+            self.rows(net.network_action_matrix(lossless=True)), len(cols), prefer_free=[index], reduce=self._reduce
+        )
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -191,14 +205,28 @@ class Analysis:
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
         if index not in free:
-            raise MobilityError([self.train.problem(
-                "ports.input", f"the input torque on {self.train.ports.input!r} is determined by the other "
-                "actions: the input does no work")], self.train.path)
+            raise MobilityError(
+                [
+                    self.train.problem(
+                        "ports.input",
+                        f"the input torque on {self.train.ports.input!r} is determined by the other "
+                        "actions: the input does no work",
+                    )
+                ],
+                self.train.path,
+            )
         others = [cols[j].name for j in free if j != index]
         if others:
-            raise MobilityError([self.train.problem(
-                "couplings", f"the actions are not determined by the input: {', '.join(others)} stay free "
-                "(the network is overconstrained in this screw system, or a port is missing)")], self.train.path)
+            raise MobilityError(
+                [
+                    self.train.problem(
+                        "couplings",
+                        f"the actions are not determined by the input: {', '.join(others)} stay free "
+                        "(the network is overconstrained in this screw system, or a port is missing)",
+                    )
+                ],
+                self.train.path,
+            )
 
     # -- friction signs (eqs. (21), (24), (41)) --------------------------------------
     def _input_pairing(self) -> sympy.Expr:
@@ -256,8 +284,10 @@ class Analysis:
     def _law_row(self, law: FrictionLaw) -> dict[str, sympy.Expr]:
         if law.law == "coulomb":
             assert law.transmitted is not None
-            return {law.variable: sympy.Integer(1),
-                    law.transmitted: self.coulomb_sign_values[law.coupling] * law.coefficient}
+            return {
+                law.variable: sympy.Integer(1),
+                law.transmitted: self.coulomb_sign_values[law.coupling] * law.coefficient,
+            }
         if law.law == "linear":
             assert law.transmitted is not None
             return {law.variable: sympy.Integer(1), law.transmitted: -law.coefficient}
@@ -269,8 +299,9 @@ class Analysis:
         net = self.network
         names = [v.name for v in net.actions]
         rows = []
-        ordered = ([law for law in net.laws if law.law not in SOURCE_LAWS]
-                   + [law for law in net.laws if law.law in SOURCE_LAWS])
+        ordered = [law for law in net.laws if law.law not in SOURCE_LAWS] + [
+            law for law in net.laws if law.law in SOURCE_LAWS
+        ]
         for law in ordered:
             entries = self._law_row(law)
             rows.append([entries.get(n, 0) for n in names])
@@ -298,7 +329,8 @@ class Analysis:
             raise DerivationError(
                 f"coupling {law.coupling}: which way it turns depends on the geometry (the sign of "
                 f"{sympy.sstr(undecided)}), so its constant drag has no single closed form; give its losses as "
-                "a viscous law, or fix the geometry so the direction is known")
+                "a viscous law, or fix the geometry so the direction is known"
+            )
         return int(sign)
 
     @cached_property
@@ -323,8 +355,7 @@ class Analysis:
             raise DerivationError("the dependent sources are inconsistent with the network")
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
-        return {v.name: (solution[k].get(index, zero), solution[k].get(const, zero))
-                for k, v in enumerate(net.actions)}
+        return {v.name: (solution[k].get(index, zero), solution[k].get(const, zero)) for k, v in enumerate(net.actions)}
 
     @cached_property
     def action_magnitudes(self) -> dict[str, RationalFunction]:
@@ -408,8 +439,12 @@ class Analysis:
 
     def _repr_latex_(self) -> str:
         one = self.degrees_of_freedom == 1
-        return analysis_latex(self.degrees_of_freedom, (self.train.ports.input, self.train.ports.output),
-                              self.speed_ratio().to_expr() if one else None, self.efficiency if one else None)
+        return analysis_latex(
+            self.degrees_of_freedom,
+            (self.train.ports.input, self.train.ports.output),
+            self.speed_ratio().to_expr() if one else None,
+            self.efficiency if one else None,
+        )
 
     def motion_matrix(self) -> sympy.Matrix:
         """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""
@@ -422,9 +457,23 @@ class Analysis:
         return sympy.Matrix(cols).T
 
 
-def analyse(train: Train, *, tree: Sequence[str] | None = None, action_tree: Sequence[str] | None = None,
-            coulomb_signs: str = "resolve", progress: Progress | None = None,
-            extra_symbols: Sequence[sympy.Symbol] = (), layout: Layout | None = None) -> Analysis:
+def analyse(
+    train: Train,
+    *,
+    tree: Sequence[str] | None = None,
+    action_tree: Sequence[str] | None = None,
+    coulomb_signs: str = "resolve",
+    progress: Progress | None = None,
+    extra_symbols: Sequence[sympy.Symbol] = (),
+    layout: Layout | None = None,
+) -> Analysis:
     """Run Davies' method on ``train`` (see `Analysis` for the options)."""
-    return Analysis(train, tree=tree, action_tree=action_tree, coulomb_signs=coulomb_signs, progress=progress,
-                    extra_symbols=extra_symbols, layout=layout)
+    return Analysis(
+        train,
+        tree=tree,
+        action_tree=action_tree,
+        coulomb_signs=coulomb_signs,
+        progress=progress,
+        extra_symbols=extra_symbols,
+        layout=layout,
+    )

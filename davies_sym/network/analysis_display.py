@@ -8,8 +8,9 @@ import sympy
 from davies_sym.topology.symbol_display import latex
 
 
-def analysis_latex(mobility: int, ports: tuple[str, str], ratio: sympy.Expr | None,
-                   efficiency: sympy.Expr | None) -> str:
+def analysis_latex(
+    mobility: int, ports: tuple[str, str], ratio: sympy.Expr | None, efficiency: sympy.Expr | None
+) -> str:
     """``$$F_N = 1,\\ \\omega_A / \\omega_B = ...,\\ \\eta = ...$$`` (``ports``: input and
     output); a train of several degrees of freedom shows its mobility alone, its
     efficiency needs the input speeds (``derive_several_inputs``)."""

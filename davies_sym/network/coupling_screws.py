@@ -51,8 +51,9 @@ class CouplingScrews:
     constraints: tuple[NamedScrew, ...]
 
 
-def _point_constraints(point: Vector, forces_first: tuple[Vector, ...] = (),
-                       axis: Vector | None = None) -> tuple[NamedScrew, ...]:
+def _point_constraints(
+    point: Vector, forces_first: tuple[Vector, ...] = (), axis: Vector | None = None
+) -> tuple[NamedScrew, ...]:
     """Candidate constraint wrenches at ``point``: given forces, then forces along the
     axes, then torques about the axes, then torques normal to a bearing's ``axis``
     (a tilted planet bearing carries the torque P_G of Laus eq. (81))."""
@@ -97,7 +98,11 @@ def _written(c: ScrewCoupling, layout: Layout) -> CouplingScrews:
 
 
 WRITERS: Mapping[type[Coupling], Callable[..., CouplingScrews]] = {
-    Revolute: _revolute, GearMesh: _mesh, Prismatic: _prismatic, ScrewCoupling: _written}
+    Revolute: _revolute,
+    GearMesh: _mesh,
+    Prismatic: _prismatic,
+    ScrewCoupling: _written,
+}
 
 
 def coupling_screws(coupling: Coupling, layout: Layout) -> CouplingScrews:

@@ -96,8 +96,13 @@ def _unique(names: list[str]) -> list[str]:
 class Network:
     """All matrices of Davies' method for one train and one choice of spanning trees."""
 
-    def __init__(self, train: Train, tree: Sequence[str] | None = None,
-                 action_tree: Sequence[str] | None = None, layout: Layout | None = None):
+    def __init__(
+        self,
+        train: Train,
+        tree: Sequence[str] | None = None,
+        action_tree: Sequence[str] | None = None,
+        layout: Layout | None = None,
+    ):
         self.train = train
         self.layout = layout if layout is not None else train_layout(train)
         self.graph = CouplingGraph(train.link_names, [(c.name, *c.links) for c in train.couplings])
@@ -123,20 +128,29 @@ class Network:
     def _absorb_radicals(self, full: dict[str, CouplingScrews]) -> dict[str, CouplingScrews]:
         """Square roots written in low-level screws become radical symbols of the layout
         (positive radicands), so the exact algebra treats them like tilted bevel axes."""
-        if not any(has_square_root(x) for screws in full.values() for group in (screws.motions, screws.constraints)
-                   for named in group for x in named.screw):
+        if not any(
+            has_square_root(x)
+            for screws in full.values()
+            for group in (screws.motions, screws.constraints)
+            for named in group
+            for x in named.screw
+        ):
             return full
         table = RadicalTable(list(self.layout.radicals))
 
         def absorb(group: tuple[NamedScrew, ...]) -> tuple[NamedScrew, ...]:
-            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw))
-                         for n in group)
+            return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw)) for n in group)
 
-        out = {name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
-               for name, s in full.items()}
+        out = {
+            name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
+            for name, s in full.items()
+        }
         added = tuple(r for r in table.radicals if r not in self.layout.radicals)
-        self.layout = replace(self.layout, radicals=tuple(table.radicals),
-                              positive_facts=self.layout.positive_facts + tuple(r.radicand for r in added))
+        self.layout = replace(
+            self.layout,
+            radicals=tuple(table.radicals),
+            positive_facts=self.layout.positive_facts + tuple(r.radicand for r in added),
+        )
         return out
 
     # -- variables -------------------------------------------------------------------
@@ -148,13 +162,14 @@ class Network:
         for c in self.train.couplings:
             red = self.reduced[c.name]
             names = _unique([m.name for m in red.motions])
-            cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw)
-                  for n, m in zip(names, red.motions, strict=True)]
+            cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw) for n, m in zip(names, red.motions, strict=True)]
             motions += cm
             needs_axis = c.name in ports or not c.friction.lossless
             if needs_axis and (len(cm) > 1 and not isinstance(c, GearMesh)):
-                raise DerivationError(f"coupling {c.name}: ports and friction need a coupling with one "
-                                      f"freedom, it has {len(cm)} in this screw system")
+                raise DerivationError(
+                    f"coupling {c.name}: ports and friction need a coupling with one "
+                    f"freedom, it has {len(cm)} in this screw system"
+                )
             if not needs_axis:
                 actions += self._constraint_actions(c, red)
                 continue
@@ -166,8 +181,9 @@ class Network:
             if has_port:
                 actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
             constraints = self._constraint_actions(c, red)
-            load_law = ("coulomb" if c.friction.coulomb is not None
-                        else "linear" if c.friction.linear is not None else None)
+            load_law = (
+                "coulomb" if c.friction.coulomb is not None else "linear" if c.friction.linear is not None else None
+            )
             transmitted = self._transmitted(c, constraints) if load_law is not None else None
             if load_law is not None:
                 name = f"{base}star_{c.name}" if has_port else f"{base}_{c.name}"
@@ -188,8 +204,10 @@ class Network:
 
     def _constraint_actions(self, c: Coupling, red: ReducedCoupling) -> list[ActionVariable]:
         names = _unique([w.name for w in red.constraints])
-        return [ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint")
-                for n, w in zip(names, red.constraints, strict=True)]
+        return [
+            ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint")
+            for n, w in zip(names, red.constraints, strict=True)
+        ]
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.
@@ -198,14 +216,20 @@ class Network:
         raise DerivationError(
             f"coupling {c.name}: a load-dependent friction law needs one reaction force, but this coupling "
             f"transmits {', '.join(a.name for a in constraints)} in the screw system of order "
-            f"{self.system.order}; use a viscous law or describe the reaction with one force")
+            f"{self.system.order}; use a viscous law or describe the reaction with one force"
+        )
 
     def _check_names(self) -> None:
         clash = {v.name for v in self.motions} | {v.name for v in self.actions}
         clash &= set(self.train.symbols)
         if clash:
-            raise TopologyError([Problem("", f"symbol {n!r} is also the name of a motion or action "
-                                         "magnitude; rename it") for n in sorted(clash)], self.train.path)
+            raise TopologyError(
+                [
+                    Problem("", f"symbol {n!r} is also the name of a motion or action magnitude; rename it")
+                    for n in sorted(clash)
+                ],
+                self.train.path,
+            )
 
     # -- lookups ---------------------------------------------------------------------
     def motion(self, name: str) -> MotionVariable:
@@ -221,8 +245,7 @@ class Network:
         return [v for v in self.motions if v.coupling == coupling]
 
     def coupling_actions(self, coupling: str, lossless: bool = False) -> list[ActionVariable]:
-        return [v for v in self.actions if v.coupling == coupling
-                and not (lossless and v.role in LOSS_ROLES)]
+        return [v for v in self.actions if v.coupling == coupling and not (lossless and v.role in LOSS_ROLES)]
 
     # -- matrices (Laus eqs. (17), (19), (54)-(56), App. E) --------------------------
     @property
@@ -244,8 +267,9 @@ class Network:
     def motion_index_matrix(self) -> sympy.Matrix:
         """X_M (e x F): 1 where motion alpha belongs to edge j (App. E)."""
         edges = self.graph.edges
-        return sympy.Matrix(len(edges), len(self.motions),
-                            lambda j, a: 1 if self.motions[a].coupling == edges[j] else 0)
+        return sympy.Matrix(
+            len(edges), len(self.motions), lambda j, a: 1 if self.motions[a].coupling == edges[j] else 0
+        )
 
     def action_index_matrix(self, lossless: bool = False) -> sympy.Matrix:
         """X_A (e x C): 1 where action alpha belongs to edge j (App. E)."""
@@ -289,8 +313,13 @@ def _check_reciprocal(train: Train, c: ScrewCoupling, screws: CouplingScrews) ->
     for a in screws.constraints:
         for m in screws.motions:
             if sympy.expand(power(a.screw, m.screw)) != 0:
-                problems.append(Problem(f"couplings.{c.name}.actions", f"action {a.name!r} does work on "
-                                        f"motion {m.name!r} (power {sympy.expand(power(a.screw, m.screw))}); "
-                                        "transmitted actions must be reciprocal to the motions"))
+                problems.append(
+                    Problem(
+                        f"couplings.{c.name}.actions",
+                        f"action {a.name!r} does work on "
+                        f"motion {m.name!r} (power {sympy.expand(power(a.screw, m.screw))}); "
+                        "transmitted actions must be reciprocal to the motions",
+                    )
+                )
     if problems:
         raise TopologyError(problems, train.path)

@@ -16,12 +16,16 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
     dof = len(free)
     problems = []
     if input_index not in free:
-        problems.append(train.problem(
-            "ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked"))
+        problems.append(
+            train.problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked")
+        )
     if train.degrees_of_freedom is not None and dof != train.degrees_of_freedom:
-        problems.append(train.problem(
-            "degrees_of_freedom",
-            f"the train has {dof} degree(s) of freedom, the file says {train.degrees_of_freedom}"))
+        problems.append(
+            train.problem(
+                "degrees_of_freedom",
+                f"the train has {dof} degree(s) of freedom, the file says {train.degrees_of_freedom}",
+            )
+        )
     elif train.degrees_of_freedom is None and dof != len(train.ports.inputs):
         # Without a stated mobility, one degree of freedom per input port is expected.
         driven = {m.name for p in train.ports.inputs for m in network.coupling_motions(p)[:1]}

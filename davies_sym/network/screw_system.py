@@ -112,8 +112,9 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
     reduced_motions = sympy.Matrix([list(system.reduce_twist(m.screw)) for m in motions])
     freedom = reduced_motions.rank(simplify=True)
     if freedom != len(motions):
-        raise CouplingScrewError(name, "its unit motion screws are not independent; give screws that span "
-                                       "different motions")
+        raise CouplingScrewError(
+            name, "its unit motion screws are not independent; give screws that span different motions"
+        )
     chosen: list[NamedScrew] = []
     rows: list[list[sympy.Expr]] = []
     for candidate in screws.constraints:
@@ -126,7 +127,10 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
         if len(chosen) == system.order - freedom:
             break
     if len(chosen) != system.order - freedom:
-        raise CouplingScrewError(name, f"found {len(chosen)} independent constraint actions reciprocal to its "
-                                       f"motions, need {system.order - freedom}")
+        raise CouplingScrewError(
+            name,
+            f"found {len(chosen)} independent constraint actions reciprocal to its "
+            f"motions, need {system.order - freedom}",
+        )
     kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)
     return ReducedCoupling(kept, tuple(chosen))

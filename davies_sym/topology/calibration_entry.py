@@ -36,8 +36,10 @@ def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | Non
         return None
     for i, name in enumerate(names):
         if name not in reader.symbols:
-            reader.problem(f"calibrate.fit[{i}]", f"{name!r} is not a symbol of the file (symbols: "
-                           f"{', '.join(sorted(reader.symbols))})")
+            reader.problem(
+                f"calibrate.fit[{i}]",
+                f"{name!r} is not a symbol of the file (symbols: {', '.join(sorted(reader.symbols))})",
+            )
     start = reader.mapping(entry.get("start", {}), "calibrate.start") or {}
     values: dict[str, float] = {}
     for name, v in start.items():

@@ -24,6 +24,7 @@ def catalog_file(name: str) -> str:
     stem = name[:-5] if name.endswith(".yaml") else name
     names = catalog_names()
     if stem not in names:
-        raise InputError([Problem("--catalog", f"no catalog train {stem!r}; the catalog has: {', '.join(names)}")],
-                         "derive")
+        raise InputError(
+            [Problem("--catalog", f"no catalog train {stem!r}; the catalog has: {', '.join(names)}")], "derive"
+        )
     return str(catalog_folder() / f"{stem}.yaml")

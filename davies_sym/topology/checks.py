@@ -55,9 +55,17 @@ def _read_check(item: Any, path: str, reader: EntryReader, couplings: Mapping[st
         reader.unknown(f"{path}.input", "coupling", port)
     if len(reader.problems) > before or value is None or tolerance is None:
         return None
-    return Expected(quantity="efficiency", values=values, value=value, tolerance=tolerance,
-                    source=texts["source"] or "", input=port, state=texts["state"], published=published is not False,
-                    differs=texts["differs"])
+    return Expected(
+        quantity="efficiency",
+        values=values,
+        value=value,
+        tolerance=tolerance,
+        source=texts["source"] or "",
+        input=port,
+        state=texts["state"],
+        published=published is not False,
+        differs=texts["differs"],
+    )
 
 
 def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Coupling]) -> dict[str, str]:
@@ -87,12 +95,18 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
 
 def mesh_efficiency_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:
     """The symbols written as a mesh's ordinary efficiency."""
-    return {e for c in couplings if isinstance(c, GearMesh) and c.efficiencies
-            for e in c.efficiencies if isinstance(e, sympy.Symbol)}
+    return {
+        e
+        for c in couplings
+        if isinstance(c, GearMesh) and c.efficiencies
+        for e in c.efficiencies
+        if isinstance(e, sympy.Symbol)
+    }
 
 
-def role_problem(name: str, symbol: sympy.Symbol | None, number: sympy.Expr, shown: str,
-                 efficiencies: set[sympy.Symbol]) -> str | None:
+def role_problem(
+    name: str, symbol: sympy.Symbol | None, number: sympy.Expr, shown: str, efficiencies: set[sympy.Symbol]
+) -> str | None:
     """Why ``number`` (shown to the user as ``shown``) cannot be the value of ``symbol``:
     an efficiency lies in (0, 1], a size is positive; None when it can (or the symbol is
     unknown)."""

@@ -39,12 +39,12 @@ class Coupling:
     DOC: ClassVar[str] = ""
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Gear]) -> Coupling | None:
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> Coupling | None:
         """The coupling its entry describes, or None when ``reader`` holds the problems
         (``gears``: the train's gears by name, for the kinds that join gears)."""
         raise NotImplementedError
-
 
     @property
     def gears(self) -> tuple[str, str] | None:
@@ -81,20 +81,31 @@ class Revolute(Coupling):
     axis: str | None = None
 
     kind: ClassVar[str] = "revolute"
-    DOC: ClassVar[str] = ("Revolute pair between two links. Its axis is parallel to the gear "
-                          "axes; its position is that of the gears of either link, or `at`.")
+    DOC: ClassVar[str] = (
+        "Revolute pair between two links. Its axis is parallel to the gear "
+        "axes; its position is that of the gears of either link, or `at`."
+    )
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("links", "[link, link]", True, "The two links; the edge goes from the first to the second."),
-        Field("at", "number or expression", False,
-              "Position of the axis on the layout line (y), needed only when neither link carries a gear."),
-        Field("axis", "link", False,
-              "The link whose gear axis this bearing is on, when both links carry gears but are not "
-              "coaxial (a planet pin in a carrier that also has teeth). Default: the two links are coaxial."),
+        Field(
+            "at",
+            "number or expression",
+            False,
+            "Position of the axis on the layout line (y), needed only when neither link carries a gear.",
+        ),
+        Field(
+            "axis",
+            "link",
+            False,
+            "The link whose gear axis this bearing is on, when both links carry gears but are not "
+            "coaxial (a planet pin in a carrier that also has teeth). Default: the two links are coaxial.",
+        ),
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Gear]) -> Revolute | None:
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> Revolute | None:
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
@@ -124,18 +135,24 @@ class GearMesh(Coupling):
     efficiency_definitions: tuple[Definition, ...] = ()
 
     kind: ClassVar[str] = "mesh"
-    DOC: ClassVar[str] = ("Gear mesh between two gears. The edge goes from the link of the first gear "
-                          "to the link of the second. External or internal is derived from the gears "
-                          "(`internal: true` marks an annulus); `mesh` may state it as a check.")
+    DOC: ClassVar[str] = (
+        "Gear mesh between two gears. The edge goes from the link of the first gear "
+        "to the link of the second. External or internal is derived from the gears "
+        "(`internal: true` marks an annulus); `mesh` may state it as a check."
+    )
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("gears", "[gear, gear]", True, "The two meshing gears."),
         Field("mesh", "`external` or `internal`", False, "Checked against the gears."),
-        Field("efficiency", "symbol or number, a list of two, or a mapping", False,
-              "Ordinary efficiency of the mesh (carrier held). One value serves both power "
-              "directions; a list gives [first gear drives, second gear drives]; a mapping derives both "
-              "from the tooth geometry of an external spur mesh (Laus App. A, eq. (136)): "
-              "`eta_<coupling>_<gear>_<gear>` (driver first), see *Tooth contact*. "
-              "Default: `eta_<coupling>`."),
+        Field(
+            "efficiency",
+            "symbol or number, a list of two, or a mapping",
+            False,
+            "Ordinary efficiency of the mesh (carrier held). One value serves both power "
+            "directions; a list gives [first gear drives, second gear drives]; a mapping derives both "
+            "from the tooth geometry of an external spur mesh (Laus App. A, eq. (136)): "
+            "`eta_<coupling>_<gear>_<gear>` (driver first), see *Tooth contact*. "
+            "Default: `eta_<coupling>`.",
+        ),
     )
 
     @property
@@ -147,8 +164,9 @@ class GearMesh(Coupling):
         return self.friction.definitions + self.efficiency_definitions
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Gear]) -> GearMesh | None:
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> GearMesh | None:
         if "gears" not in entry:
             return None  # reported as a missing required key
         pair = entry["gears"]
@@ -166,8 +184,11 @@ class GearMesh(Coupling):
             return None
         g1, g2 = gears[names[0]], gears[names[1]]
         if g1.link == g2.link:
-            reader.problem(f"{path}.gears", f"gears {g1.name!r} and {g2.name!r} are both on link "
-                           f"{g1.link!r}: a mesh must join gears on different links")
+            reader.problem(
+                f"{path}.gears",
+                f"gears {g1.name!r} and {g2.name!r} are both on link "
+                f"{g1.link!r}: a mesh must join gears on different links",
+            )
             return None
         if g1.internal and g2.internal:
             reader.problem(f"{path}.gears", "two internal gears cannot mesh")
@@ -179,8 +200,10 @@ class GearMesh(Coupling):
         if stated is not None and stated not in ("external", "internal"):
             reader.problem(f"{path}.mesh", f"expected `external` or `internal`, got {shortened(str(stated))}")
         elif stated is not None and (stated == "internal") != internal:
-            reader.problem(f"{path}.mesh", f"stated {shortened(str(stated))} but the gears make an "
-                           f"{'internal' if internal else 'external'} mesh")
+            reader.problem(
+                f"{path}.mesh",
+                f"stated {shortened(str(stated))} but the gears make an {'internal' if internal else 'external'} mesh",
+            )
         default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default, name)
         value = entry.get("efficiency", f"eta_{name}")
@@ -199,8 +222,11 @@ def _annulus_larger(annulus: Gear, pinion: Gear, path: str, reader: EntryReader)
     if sympy.expand(annulus.radius - pinion.radius).is_positive is not False:
         return True
     sizes = [shortened(sympy.sstr(g.radius), 30) for g in (annulus, pinion)]
-    reader.problem(f"{path}.gears", f"the annulus {annulus.name!r} (radius {sizes[0]}) is not larger than the gear "
-                   f"{pinion.name!r} inside it (radius {sizes[1]}); give the annulus the larger radius")
+    reader.problem(
+        f"{path}.gears",
+        f"the annulus {annulus.name!r} (radius {sizes[0]}) is not larger than the gear "
+        f"{pinion.name!r} inside it (radius {sizes[1]}); give the annulus the larger radius",
+    )
     return False
 
 
@@ -209,8 +235,7 @@ def _read_efficiencies(value: Any, path: str, reader: EntryReader) -> tuple[symp
     if len(values) not in (1, 2):
         reader.problem(path, f"expected one efficiency or a list of two, got {len(values)}")
         return None
-    read = [reader.quantity(v, f"{path}[{i}]" if len(values) > 1 else path, "efficiency")
-            for i, v in enumerate(values)]
+    read = [reader.quantity(v, f"{path}[{i}]" if len(values) > 1 else path, "efficiency") for i, v in enumerate(values)]
     if any(r is None for r in read):
         return None
     for i, r in enumerate(read):
@@ -237,8 +262,9 @@ class Prismatic(Coupling):
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Gear]) -> Prismatic | None:
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> Prismatic | None:
         links = _read_links(entry, path, reader)
         direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
@@ -273,22 +299,29 @@ class ScrewCoupling(Coupling):
     action_screws: tuple[NamedScrew, ...] = ()
 
     kind: ClassVar[str] = "screws"
-    DOC: ClassVar[str] = ("Low-level coupling with explicit unit screws, as in the tables of Laus "
-                          "appendices B and C. Coordinates not written are zero.")
+    DOC: ClassVar[str] = (
+        "Low-level coupling with explicit unit screws, as in the tables of Laus "
+        "appendices B and C. Coordinates not written are zero."
+    )
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("links", "[link, link]", True, "The two links."),
-        Field("motions", "mapping", True,
-              "Unit twists: magnitude name -> {r, s, t, u, v, w} (axis formation)."),
-        Field("actions", "mapping", True,
-              "Unit wrenches transmitted: magnitude name -> {R, S, T, U, V, W} (ray formation)."),
+        Field("motions", "mapping", True, "Unit twists: magnitude name -> {r, s, t, u, v, w} (axis formation)."),
+        Field(
+            "actions",
+            "mapping",
+            True,
+            "Unit wrenches transmitted: magnitude name -> {R, S, T, U, V, W} (ray formation).",
+        ),
     )
 
     @classmethod
-    def from_entry(cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader,
-                   gears: Mapping[str, Gear]) -> ScrewCoupling | None:
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> ScrewCoupling | None:
         links = _read_links(entry, path, reader)
-        motions = (_read_screws(entry["motions"], f"{path}.motions", reader, TWIST_COORDINATES)
-                   if "motions" in entry else None)
+        motions = (
+            _read_screws(entry["motions"], f"{path}.motions", reader, TWIST_COORDINATES) if "motions" in entry else None
+        )
         actions = _read_screws(entry.get("actions", {}), f"{path}.actions", reader, WRENCH_COORDINATES)
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
         if links is None or motions is None or actions is None:
@@ -299,8 +332,9 @@ class ScrewCoupling(Coupling):
         return cls(name, links, friction, motions, actions)
 
 
-def _read_screws(value: Any, path: str, reader: EntryReader,
-                 coordinates: tuple[str, ...]) -> tuple[NamedScrew, ...] | None:
+def _read_screws(
+    value: Any, path: str, reader: EntryReader, coordinates: tuple[str, ...]
+) -> tuple[NamedScrew, ...] | None:
     entry = reader.mapping(value, path)
     if entry is None:
         return None
@@ -329,9 +363,7 @@ def _read_screws(value: Any, path: str, reader: EntryReader,
     return tuple(out)
 
 
-KINDS: Mapping[str, type[Coupling]] = {
-    k.kind: k for k in (Revolute, GearMesh, Prismatic, ScrewCoupling)
-}
+KINDS: Mapping[str, type[Coupling]] = {k.kind: k for k in (Revolute, GearMesh, Prismatic, ScrewCoupling)}
 
 
 def coupling_fields(kind: type[Coupling]) -> tuple[Field, ...]:

@@ -17,10 +17,14 @@ from davies_sym.topology.yaml_source import SourceDocument
 
 #: Names that definitions may take, by kind, and how the rule reads in a message.
 NAME_PATTERNS: dict[str, tuple[re.Pattern[str], str]] = {
-    "link": (re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
-             "ASCII letters, digits, spaces and _ / . + -"),
-    "gear": (re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
-             "ASCII letters, digits, spaces and _ / . + -"),
+    "link": (
+        re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
+        "ASCII letters, digits, spaces and _ / . + -",
+    ),
+    "gear": (
+        re.compile(r"[A-Za-z0-9_](?:[A-Za-z0-9_/.+ -]{0,38}[A-Za-z0-9_/.+-])?"),
+        "ASCII letters, digits, spaces and _ / . + -",
+    ),
     "coupling": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
     "state": (re.compile(r"[A-Za-z0-9_]{1,40}"), "ASCII letters, digits and underscores"),
 }
@@ -59,8 +63,11 @@ class EntryReader:
             return
         if kind in self.absent:
             self.unreadable.add(kind)
-            self.problem(path, f"unknown {kind} {shortened(name)}: the file has no `{kind}s` table; add one "
-                         f"that defines every {kind} the file names")
+            self.problem(
+                path,
+                f"unknown {kind} {shortened(name)}: the file has no `{kind}s` table; add one "
+                f"that defines every {kind} the file names",
+            )
             return
         text = message or f"unknown {kind} {shortened(name)}"
         first = self._unknown.get((kind, name))

@@ -40,7 +40,11 @@ MAX_EXPONENT = 64
 MAX_BITS = 1024
 
 _FUNCTIONS: dict[str, Callable[[sympy.Expr], sympy.Expr]] = {
-    "sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos, "tan": sympy.tan}
+    "sqrt": sympy.sqrt,
+    "sin": sympy.sin,
+    "cos": sympy.cos,
+    "tan": sympy.tan,
+}
 _CONSTANTS: dict[str, sympy.Expr] = {"pi": sympy.pi}
 #: A decimal literal with an exponent small enough to expand (Fraction would expand any).
 _DECIMAL = re.compile(r"(\d+(\.\d*)?|\.\d+)([eE][-+]?\d{1,3})?")
@@ -51,8 +55,22 @@ NON_FINITE_NAMES = frozenset({"oo", "zoo", "nan", "inf"})
 #: module uses them), the grammar's functions and constants, the non-finite names and
 #: the names the generated modules define for themselves.
 RESERVED_NAMES = frozenset(
-    [*keyword.kwlist, *keyword.softkwlist, *dir(builtins), *_FUNCTIONS, *_CONSTANTS, *NON_FINITE_NAMES,
-     "np", "numpy", "math", "warnings", "input", "errors", "state"])
+    [
+        *keyword.kwlist,
+        *keyword.softkwlist,
+        *dir(builtins),
+        *_FUNCTIONS,
+        *_CONSTANTS,
+        *NON_FINITE_NAMES,
+        "np",
+        "numpy",
+        "math",
+        "warnings",
+        "input",
+        "errors",
+        "state",
+    ]
+)
 
 
 class ExpressionError(ValueError):
@@ -71,8 +89,9 @@ def shortened(text: str, limit: int = 60) -> str:
 def check_name(name: str) -> str | None:
     """Why ``name`` cannot be a symbol, or None when it can."""
     if not _NAME.fullmatch(name):
-        return (f"{shortened(name)} is not a symbol name: use ASCII letters, digits and underscores, "
-                "starting with a letter")
+        return (
+            f"{shortened(name)} is not a symbol name: use ASCII letters, digits and underscores, starting with a letter"
+        )
     if name in NON_FINITE_NAMES:
         return f"{name!r} reads as a value that is not finite; write a finite number, or name the symbol {name}_1"
     if name in RESERVED_NAMES:
@@ -97,8 +116,10 @@ def parse_expression(text: str, symbol: Callable[[str], sympy.Symbol] | None = N
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         words = [w for w in _NAME.findall(text) if keyword.iskeyword(w)]
         hint = f" ({words[0]!r} is a Python keyword, not a name)" if words else ""
-        raise ExpressionError(f"cannot read {shortened(text)} as an expression{hint}: write numbers, names, "
-                              "+ - * / **, parentheses, sqrt, sin, cos, tan and pi") from None
+        raise ExpressionError(
+            f"cannot read {shortened(text)} as an expression{hint}: write numbers, names, "
+            "+ - * / **, parentheses, sqrt, sin, cos, tan and pi"
+        ) from None
     try:
         expr = _Builder(text, symbol).build(tree.body, 0)
     except RecursionError:  # pragma: no cover - the depth bound comes first
@@ -131,8 +152,10 @@ class _Builder:
         self.symbol = symbol
 
     def refuse(self, what: str) -> ExpressionError:
-        return ExpressionError(f"{shortened(self.text)}: {what} is not allowed in an expression (write numbers, "
-                               "names, + - * / **, parentheses, sqrt, sin, cos, tan and pi)")
+        return ExpressionError(
+            f"{shortened(self.text)}: {what} is not allowed in an expression (write numbers, "
+            "names, + - * / **, parentheses, sqrt, sin, cos, tan and pi)"
+        )
 
     def build(self, node: ast.expr, depth: int) -> sympy.Expr:
         if depth > MAX_DEPTH:
@@ -157,8 +180,14 @@ class _Builder:
             if right == 0:
                 raise ExpressionError(f"{shortened(self.text)} divides by zero")
             return self.bounded(left / right)
-        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in _FUNCTIONS
-                and len(node.args) == 1 and not node.keywords and not isinstance(node.args[0], ast.Starred)):
+        if (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Name)
+            and node.func.id in _FUNCTIONS
+            and len(node.args) == 1
+            and not node.keywords
+            and not isinstance(node.args[0], ast.Starred)
+        ):
             return self.bounded(_FUNCTIONS[node.func.id](self.build(node.args[0], depth + 1)))
         raise self.refuse(_describe(node))
 
@@ -190,11 +219,13 @@ class _Builder:
 
     def power(self, base: sympy.Expr, exponent: sympy.Expr) -> sympy.Expr:
         if not exponent.is_Rational:
-            raise ExpressionError(f"{shortened(self.text)}: an exponent must be a rational number, "
-                                  f"not {shortened(str(exponent), 30)}")
+            raise ExpressionError(
+                f"{shortened(self.text)}: an exponent must be a rational number, not {shortened(str(exponent), 30)}"
+            )
         if abs(exponent.p) > MAX_EXPONENT or exponent.q > MAX_EXPONENT:
-            raise ExpressionError(f"{shortened(self.text)}: the exponent {exponent} is too large "
-                                  f"(at most {MAX_EXPONENT})")
+            raise ExpressionError(
+                f"{shortened(self.text)}: the exponent {exponent} is too large (at most {MAX_EXPONENT})"
+            )
         if base == 0 and exponent < 0:
             raise ExpressionError(f"{shortened(self.text)} divides by zero")
         return self.bounded(base**exponent)
@@ -207,8 +238,7 @@ class _Builder:
         for pw in expr.atoms(sympy.Pow):
             e = pw.exp
             if e.is_Rational and (abs(e.p) > MAX_EXPONENT or e.q > MAX_EXPONENT):
-                raise ExpressionError(f"{shortened(self.text)}: the exponent {e} is too large "
-                                      f"(at most {MAX_EXPONENT})")
+                raise ExpressionError(f"{shortened(self.text)}: the exponent {e} is too large (at most {MAX_EXPONENT})")
         return expr
 
 
@@ -217,9 +247,16 @@ def _describe(node: ast.AST) -> str:
         if isinstance(node.op, ast.BitXor):
             return "^ (write ** for a power)"
         return f"the operator {type(node.op).__name__}"
-    kinds = {ast.Attribute: "an attribute (.)", ast.Subscript: "a subscript ([])", ast.Lambda: "a lambda",
-             ast.IfExp: "a conditional (if/else)", ast.Call: "a call of anything but sqrt, sin, cos, tan",
-             ast.Compare: "a comparison", ast.BoolOp: "and/or", ast.JoinedStr: "a string"}
+    kinds = {
+        ast.Attribute: "an attribute (.)",
+        ast.Subscript: "a subscript ([])",
+        ast.Lambda: "a lambda",
+        ast.IfExp: "a conditional (if/else)",
+        ast.Call: "a call of anything but sqrt, sin, cos, tan",
+        ast.Compare: "a comparison",
+        ast.BoolOp: "and/or",
+        ast.JoinedStr: "a string",
+    }
     for kind, text in kinds.items():
         if isinstance(node, kind):
             return text

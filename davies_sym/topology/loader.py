@@ -39,13 +39,15 @@ def load(path: str | os.PathLike[str]) -> Train:
     except OSError as exc:
         raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], name) from None
     if len(data) > MAX_FILE_BYTES:
-        raise TopologyError([Problem("", f"the file is larger than {MAX_FILE_BYTES // 1000} kB; a train file is "
-                                     "a few kB")], name)
+        raise TopologyError(
+            [Problem("", f"the file is larger than {MAX_FILE_BYTES // 1000} kB; a train file is a few kB")], name
+        )
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise TopologyError([Problem("", f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8")],
-                            name) from None
+        raise TopologyError(
+            [Problem("", f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8")], name
+        ) from None
     return loads(text, name)
 
 
@@ -62,8 +64,9 @@ def build_train(document: SourceDocument) -> Train:
     reader.check_keys(data, "", TOP_LEVEL)
     version = data.get("format", FORMAT_VERSION)
     if version != FORMAT_VERSION:
-        reader.problem("format", f"unsupported topology language version {describe(version)} (this is "
-                       f"{FORMAT_VERSION})")
+        reader.problem(
+            "format", f"unsupported topology language version {describe(version)} (this is {FORMAT_VERSION})"
+        )
     # A missing table is reported once (its key); references to its names are not.
     for key, kind in (("links", "link"), ("couplings", "coupling")):
         if key not in data:
@@ -72,8 +75,9 @@ def build_train(document: SourceDocument) -> Train:
         reader.absent.add("gear")
     links = _read_links(data["links"], reader) if "links" in data else []
     gears = _read_gears(data.get("gears", {}), reader, {link.name for link in links})
-    couplings = _read_couplings(data["couplings"], reader, {link.name for link in links}, gears) \
-        if "couplings" in data else {}
+    couplings = (
+        _read_couplings(data["couplings"], reader, {link.name for link in links}, gears) if "couplings" in data else {}
+    )
     ports = _read_ports(data["ports"], reader, couplings) if "ports" in data else None
     if reader.problems:
         raise TopologyError(reader.problems, document.name)
@@ -133,8 +137,10 @@ def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.
     radians = angle * sympy.pi / 180
     cos, sin = sympy.cos(radians), sympy.sin(radians)
     if any(p.has(sympy.cos, sympy.sin) for p in (cos, sin)):
-        reader.problem("placement", f"the sine and cosine of {angle} degrees are not square roots; give the "
-                       "direction as [x, y] instead")
+        reader.problem(
+            "placement",
+            f"the sine and cosine of {angle} degrees are not square roots; give the direction as [x, y] instead",
+        )
         return None
     return (cos, sin)
 
@@ -217,8 +223,9 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
     return gears
 
 
-def _read_size(entry: Mapping[str, Any], path: str,
-               reader: EntryReader) -> tuple[sympy.Expr | None, int | sympy.Expr | None, sympy.Expr | None]:
+def _read_size(
+    entry: Mapping[str, Any], path: str, reader: EntryReader
+) -> tuple[sympy.Expr | None, int | sympy.Expr | None, sympy.Expr | None]:
     """Pitch radius from ``radius`` or from ``teeth`` and ``module``."""
     has_radius, has_teeth = "radius" in entry, "teeth" in entry
     if has_radius == has_teeth:
@@ -236,8 +243,7 @@ def _read_size(entry: Mapping[str, Any], path: str,
             return None, None, None
         teeth = count
     elif not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
-        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got "
-                       f"{describe(teeth)}")
+        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got {describe(teeth)}")
         return None, None, None
     if "module" not in entry:
         reader.problem(path, "`teeth` needs `module` to give the pitch radius")
@@ -248,8 +254,7 @@ def _read_size(entry: Mapping[str, Any], path: str,
     return module * teeth / 2, teeth, module
 
 
-def _read_couplings(value: Any, reader: EntryReader, links: set[str],
-                    gears: Mapping[str, Gear]) -> dict[str, Coupling]:
+def _read_couplings(value: Any, reader: EntryReader, links: set[str], gears: Mapping[str, Gear]) -> dict[str, Coupling]:
     couplings: dict[str, Coupling] = {}
     table = reader.mapping(value, "couplings")
     if table is None:
@@ -312,8 +317,9 @@ def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Couplin
         return None
     every = [*names["input"], *names["output"]]
     if len(set(every)) != len(every):
-        reader.problem("ports", "every port must be a different coupling (an input is also the output, or "
-                       "listed twice)")
+        reader.problem(
+            "ports", "every port must be a different coupling (an input is also the output, or listed twice)"
+        )
         return None
     first, *others = names["input"]
     return Ports(first, names["output"][0], tuple(others))
@@ -327,8 +333,9 @@ def _port(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Co
         reader.unknown(path, "coupling", name, f"port on a missing coupling {shortened(name)}")
         return None
     if isinstance(couplings[name], GearMesh):
-        reader.problem(path, f"coupling {name!r} is a gear mesh; a port sits on a revolute or prismatic "
-                       "coupling (a shaft)")
+        reader.problem(
+            path, f"coupling {name!r} is a gear mesh; a port sits on a revolute or prismatic coupling (a shaft)"
+        )
         return None
     return name
 
@@ -339,12 +346,15 @@ def _check_connected(links: list[Link], couplings: Mapping[str, Coupling], reade
     graph.add_edges_from(c.links for c in couplings.values())
     if not nx.is_connected(graph):
         parts = sorted((sorted(map(str, part)) for part in nx.connected_components(graph)), key=len)
-        reader.problem("couplings", "the coupling graph is not connected: "
-                       + " | ".join(", ".join(p) for p in parts) + " are separate")
+        reader.problem(
+            "couplings",
+            "the coupling graph is not connected: " + " | ".join(", ".join(p) for p in parts) + " are separate",
+        )
 
 
-def _read_reference(value: Any, reader: EntryReader, links: list[Link],
-                    couplings: Mapping[str, Coupling], ports: Ports | None) -> str | None:
+def _read_reference(
+    value: Any, reader: EntryReader, links: list[Link], couplings: Mapping[str, Coupling], ports: Ports | None
+) -> str | None:
     names = [link.name for link in links]
     if value is not None:
         name = reader.name(value, "reference")
@@ -356,14 +366,17 @@ def _read_reference(value: Any, reader: EntryReader, links: list[Link],
         return None
     common = set(couplings[ports.input].links) & set(couplings[ports.output].links)
     if len(common) != 1:
-        reader.problem("reference", "give the reference link: the input and output couplings "
-                       f"share {'no link' if not common else 'two links'}")
+        reader.problem(
+            "reference",
+            f"give the reference link: the input and output couplings share {'no link' if not common else 'two links'}",
+        )
         return None
     return common.pop()
 
 
-def _read_states(value: Any, reader: EntryReader, links: set[str],
-                 couplings: Mapping[str, Coupling]) -> tuple[State, ...]:
+def _read_states(
+    value: Any, reader: EntryReader, links: set[str], couplings: Mapping[str, Coupling]
+) -> tuple[State, ...]:
     """The ``states`` mapping: ports, brakes, clutches and free members per state."""
     states = reader.mapping(value, "states")
     if states is None:
@@ -408,6 +421,15 @@ def _read_states(value: Any, reader: EntryReader, links: set[str],
             else:
                 clutch.append((found[0], found[1]))
         if ports[0] is not None and ports[1] is not None:
-            out.append(State(str(name), ports[0], ports[1], tuple(brake), tuple(clutch), tuple(free),
-                             str(entry.get("description", ""))))
+            out.append(
+                State(
+                    str(name),
+                    ports[0],
+                    ports[1],
+                    tuple(brake),
+                    tuple(clutch),
+                    tuple(free),
+                    str(entry.get("description", "")),
+                )
+            )
     return tuple(out)

@@ -59,8 +59,9 @@ def read_friction(value: Any, path: str, reader: EntryReader, default: Friction,
     definitions: tuple[Definition, ...] = ()
     if "bearing" in entry:
         if "coulomb" in laws or "linear" in laws:
-            reader.problem(path, "`bearing` gives the Coulomb law of the journal: write it without `coulomb` "
-                           "or `linear`")
+            reader.problem(
+                path, "`bearing` gives the Coulomb law of the journal: write it without `coulomb` or `linear`"
+            )
         journal = _read_bearing(entry["bearing"], f"{path}.bearing", reader, name)
         if journal is not None:
             laws["coulomb"], definitions = journal.symbol, (journal,)
@@ -86,30 +87,42 @@ def _read_bearing(value: Any, path: str, reader: EntryReader, name: str) -> Defi
     if mu is None or radius is None:
         return None
     zeta = _defined_symbol(f"zeta_{name}", "friction", reader)
-    return Definition(zeta, friction_circle_radius(mu, radius, contact),
-                      f"friction-circle radius of journal bearing {name} ({contact} contact)",
-                      "Laus App. D, Table 16", _units((mu, "1"), (radius, "length (one unit for all)")))
+    return Definition(
+        zeta,
+        friction_circle_radius(mu, radius, contact),
+        f"friction-circle radius of journal bearing {name} ({contact} contact)",
+        "Laus App. D, Table 16",
+        _units((mu, "1"), (radius, "length (one unit for all)")),
+    )
 
 
-def tooth_contact(entry: Mapping[str, Any], path: str, reader: EntryReader, name: str,
-                   gears: tuple[Gear, Gear]) -> tuple[Definition, ...]:
+def tooth_contact(
+    entry: Mapping[str, Any], path: str, reader: EntryReader, name: str, gears: tuple[Gear, Gear]
+) -> tuple[Definition, ...]:
     """Both ordinary efficiencies of an external spur mesh from its tooth geometry (Laus
     App. A): eq. (136) with the approach and recess lengths of eqs. (134)-(135)."""
     reader.check_keys(entry, path, TOOTH_CONTACT)
     if any(g.internal for g in gears):
-        reader.problem(path, "the tooth-contact model (Laus App. A) covers external spur meshes; give the "
-                       "ordinary efficiency of this internal mesh as a symbol or a number")
+        reader.problem(
+            path,
+            "the tooth-contact model (Laus App. A) covers external spur meshes; give the "
+            "ordinary efficiency of this internal mesh as a symbol or a number",
+        )
         return ()
     if "mu" not in entry or "pressure_angle" not in entry:
         return ()  # reported as missing required keys
     mu = reader.quantity(entry["mu"], f"{path}.mu", "friction")
     degrees = reader.quantity(entry["pressure_angle"], f"{path}.pressure_angle", "angle")
     if degrees is not None and not (degrees.is_number and 0 < degrees < 45):
-        reader.problem(f"{path}.pressure_angle", f"expected a number of degrees between 0 and 45, got "
-                       f"{describe(entry['pressure_angle'])}")
+        reader.problem(
+            f"{path}.pressure_angle",
+            f"expected a number of degrees between 0 and 45, got {describe(entry['pressure_angle'])}",
+        )
         degrees = None
-    lengths = [reader.quantity(entry[k], f"{path}.{k}", "length") if k in entry else None
-               for k in ("addendum", "approach", "recess")]
+    lengths = [
+        reader.quantity(entry[k], f"{path}.{k}", "length") if k in entry else None
+        for k in ("addendum", "approach", "recess")
+    ]
     addendum, approach, recess = lengths
     if ("approach" in entry) != ("recess" in entry):
         reader.problem(path, "give both `approach` and `recess`, or neither (they are then computed from the addenda)")
@@ -118,8 +131,11 @@ def tooth_contact(entry: Mapping[str, Any], path: str, reader: EntryReader, name
         modules = {g.module for g in gears}
         if len(modules) != 1 or None in modules:
             if approach is None:
-                reader.problem(path, "the addendum defaults to the gears' module, but these gears do not share "
-                               "one: give `addendum` (or `approach` and `recess`)")
+                reader.problem(
+                    path,
+                    "the addendum defaults to the gears' module, but these gears do not share "
+                    "one: give `addendum` (or `approach` and `recess`)",
+                )
                 return ()
         else:
             addendum = modules.pop()
@@ -136,14 +152,20 @@ def tooth_contact(entry: Mapping[str, Any], path: str, reader: EntryReader, name
             assert addendum is not None
             lengths_of = contact_lengths(driver.radius, driven.radius, addendum, angle)
         symbol = _defined_symbol(f"eta_{name}_{driver.name}_{driven.name}", "efficiency", reader)
-        out.append(Definition(symbol, spur_mesh_efficiency(driver.radius, driven.radius, angle, mu, *lengths_of),
-                              f"ordinary efficiency of mesh {name}, gear {driver.name} driving gear {driven.name}, "
-                              "from the tooth geometry", "Laus App. A, eqs. (134)-(136)",
-                              _units((mu, "1"), *((x, "length (one unit for all)")
-                                                  for x in (addendum, approach, recess) if x is not None))))
+        out.append(
+            Definition(
+                symbol,
+                spur_mesh_efficiency(driver.radius, driven.radius, angle, mu, *lengths_of),
+                f"ordinary efficiency of mesh {name}, gear {driver.name} driving gear {driven.name}, "
+                "from the tooth geometry",
+                "Laus App. A, eqs. (134)-(136)",
+                _units(
+                    (mu, "1"),
+                    *((x, "length (one unit for all)") for x in (addendum, approach, recess) if x is not None),
+                ),
+            )
+        )
     return tuple(out)
-
-
 
 
 def _defined_symbol(name: str, role: str, reader: EntryReader) -> sympy.Symbol:

@@ -137,8 +137,13 @@ class Train:
         summary = f"input {', '.join(self.ports.inputs)}, output {self.ports.output}; reference link {self.reference}"
         if (self.degrees_of_freedom or 1) > 1:
             summary += f"; {self.degrees_of_freedom} degrees of freedom"
-        return train_html(self.name, self.source, summary, [(k.name, k.description) for k in self.links],
-                          [(c.name, type(c).__name__, " \u2014 ".join(c.links)) for c in self.couplings])
+        return train_html(
+            self.name,
+            self.source,
+            summary,
+            [(k.name, k.description) for k in self.links],
+            [(c.name, type(c).__name__, " \u2014 ".join(c.links)) for c in self.couplings],
+        )
 
     def problem(self, entry: str, message: str) -> Problem:
         """A `Problem` at ``entry`` with the line it has in the source file."""

@@ -36,8 +36,9 @@ def train_in_state(train: Train, state: State) -> Train:
     free = set(state.free)
     for link in free:
         if joined.find(link) != link or len(groups[link]) > 1:
-            problems.append(train.problem(f"states.{state.name}.free", f"{link!r} cannot be free and braked or "
-                                          "clutched"))
+            problems.append(
+                train.problem(f"states.{state.name}.free", f"{link!r} cannot be free and braked or clutched")
+            )
     couplings: list[Coupling] = []
     ports = {state.input, state.output}
     # Ports first, so that of two bearings a clutch makes parallel the port is kept.
@@ -47,15 +48,22 @@ def train_in_state(train: Train, state: State) -> Train:
         ends = (rename(c.links[0]), rename(c.links[1]))
         if ends[0] == ends[1]:
             continue
-        twin = next((d for d in couplings if isinstance(d, Revolute) and isinstance(c, Revolute)
-                     and set(d.links) == set(ends)), None)
+        twin = next(
+            (d for d in couplings if isinstance(d, Revolute) and isinstance(c, Revolute) and set(d.links) == set(ends)),
+            None,
+        )
         if twin is not None:
             # Two bearings between the same two members (a clutch joined two shafts that
             # both run in the housing): one carries the load; a lossy twin would split it.
             if not c.friction.lossless:
-                problems.append(train.problem(f"couplings.{c.name}", f"in state {state.name!r} this bearing "
-                                              f"runs beside {twin.name!r} between the same members; their "
-                                              "friction would need a load split"))
+                problems.append(
+                    train.problem(
+                        f"couplings.{c.name}",
+                        f"in state {state.name!r} this bearing "
+                        f"runs beside {twin.name!r} between the same members; their "
+                        "friction would need a load split",
+                    )
+                )
             continue
         couplings.append(replace(c, links=ends))
     order = {c.name: i for i, c in enumerate(train.couplings)}
@@ -63,18 +71,30 @@ def train_in_state(train: Train, state: State) -> Train:
     kept = {c.name for c in couplings}
     for key, port in (("input", state.input), ("output", state.output)):
         if port not in kept:
-            problems.append(train.problem(f"states.{state.name}.{key}",
-                                          f"port {port!r} does not exist in this state (its members are joined "
-                                          "or free)"))
+            problems.append(
+                train.problem(
+                    f"states.{state.name}.{key}",
+                    f"port {port!r} does not exist in this state (its members are joined or free)",
+                )
+            )
     if problems:
         raise TopologyError(problems, train.path)
-    links = tuple(Link(name, "") for name in dict.fromkeys(rename(link) for link in train.link_names
-                                                          if link not in free))
+    links = tuple(
+        Link(name, "") for name in dict.fromkeys(rename(link) for link in train.link_names if link not in free)
+    )
     gears = tuple(replace(g, link=rename(g.link)) for g in train.gears if g.link not in free)
-    return replace(train, name=f"{train.name}, {state.description or state.name}", links=links, gears=gears,
-                   couplings=tuple(couplings), ports=Ports(state.input, state.output),
-                   reference=rename(train.reference), degrees_of_freedom=None, states=(),
-                   whole=_without(train.whole or train, free, Ports(state.input, state.output)))
+    return replace(
+        train,
+        name=f"{train.name}, {state.description or state.name}",
+        links=links,
+        gears=gears,
+        couplings=tuple(couplings),
+        ports=Ports(state.input, state.output),
+        reference=rename(train.reference),
+        degrees_of_freedom=None,
+        states=(),
+        whole=_without(train.whole or train, free, Ports(state.input, state.output)),
+    )
 
 
 def _without(train: Train, free: set[str], ports: Ports) -> Train:
@@ -83,6 +103,11 @@ def _without(train: Train, free: set[str], ports: Ports) -> Train:
     no part, so no axis of the state depends on theirs)."""
     if not free:
         return replace(train, ports=ports, states=())
-    return replace(train, ports=ports, links=tuple(link for link in train.links if link.name not in free),
-                   gears=tuple(g for g in train.gears if g.link not in free),
-                   couplings=tuple(c for c in train.couplings if not set(c.links) & free), states=())
+    return replace(
+        train,
+        ports=ports,
+        links=tuple(link for link in train.links if link.name not in free),
+        gears=tuple(g for g in train.gears if g.link not in free),
+        couplings=tuple(c for c in train.couplings if not set(c.links) & free),
+        states=(),
+    )

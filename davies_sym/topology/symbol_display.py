@@ -16,8 +16,32 @@ import sympy
 from sympy.printing.mathml import MathMLPresentationPrinter
 
 #: Greek letters a name may start with (sympy typesets these as letters).
-_GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda", "mu",
-          "nu", "xi", "omicron", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega")
+_GREEK = (
+    "alpha",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "iota",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "omicron",
+    "pi",
+    "rho",
+    "sigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "chi",
+    "psi",
+    "omega",
+)
 
 
 def display_name(name: str) -> str:
@@ -38,7 +62,7 @@ def display_name(name: str) -> str:
     for word in sorted(_GREEK, key=len, reverse=True):
         # eta2, etaC: a Greek quantity; pin, mux: not (lower-case letter after the word).
         if name.startswith(word) and len(name) > len(word) and not name[len(word)].islower():
-            return f"{word}_{name[len(word):]}"
+            return f"{word}_{name[len(word) :]}"
     return name if len(name) == 1 else f"{name[0]}_{name[1:]}"
 
 
@@ -67,8 +91,11 @@ def mathml_body(expr: sympy.Basic) -> str:
     body = str(MathMLPresentationPrinter({"mul_symbol": None}).doprint(renamed))
     # The printer writes the relations' operators unescaped, which is not XML, and the
     # hyphen where typesetting has the minus sign.
-    return (body.replace("<mo><</mo>", "<mo>&lt;</mo>").replace("<mo>></mo>", "<mo>&gt;</mo>")
-            .replace("<mo>-</mo>", "<mo>&#8722;</mo>"))
+    return (
+        body.replace("<mo><</mo>", "<mo>&lt;</mo>")
+        .replace("<mo>></mo>", "<mo>&gt;</mo>")
+        .replace("<mo>-</mo>", "<mo>&#8722;</mo>")
+    )
 
 
 def mathml(expr: sympy.Basic, display: bool = False) -> str:

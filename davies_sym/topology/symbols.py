@@ -18,19 +18,21 @@ import sympy
 from davies_sym.topology.expressions import MAX_BITS, ExpressionError, parse_expression, shortened
 
 #: Assumptions per symbol role.
-ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType({
-    "length": {"positive": True},
-    "teeth": {"positive": True},
-    # Positions take their names from the radii (at: r1 - r3): the same symbols; only
-    # their numbers may be zero or negative.
-    "position": {"positive": True},
-    "friction": {"positive": True},
-    "viscous": {"positive": True},
-    "efficiency": {"positive": True},
-    "magnitude": {"real": True},
-    "sign": {"nonzero": True, "integer": True},
-    "angle": {"real": True},
-})
+ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType(
+    {
+        "length": {"positive": True},
+        "teeth": {"positive": True},
+        # Positions take their names from the radii (at: r1 - r3): the same symbols; only
+        # their numbers may be zero or negative.
+        "position": {"positive": True},
+        "friction": {"positive": True},
+        "viscous": {"positive": True},
+        "efficiency": {"positive": True},
+        "magnitude": {"real": True},
+        "sign": {"nonzero": True, "integer": True},
+        "angle": {"real": True},
+    }
+)
 
 
 #: A plain decimal or fraction with a modest exponent (Fraction would expand 1e999999999).
@@ -99,13 +101,17 @@ def parse_quantity(value: object, role: str, symbols: dict[str, sympy.Symbol], r
         number = parsed if parsed.is_number else None
         if number is None:
             if role in POSITIVE_ROLES and parsed.is_positive is False:
-                raise QuantityError(f"{shortened(value)} is never positive; a size or a coefficient is positive "
-                                    "(write it without the minus sign, or with positive terms)")
+                raise QuantityError(
+                    f"{shortened(value)} is never positive; a size or a coefficient is positive "
+                    "(write it without the minus sign, or with positive terms)"
+                )
             return parsed
     if number is not None:
         if number.is_Rational and max(abs(number.p).bit_length(), number.q.bit_length()) > MAX_BITS:
-            raise QuantityError(f"{shortened(str(value))} is too large for a number of a train (at most "
-                                f"{MAX_BITS} bits); write it in other units")
+            raise QuantityError(
+                f"{shortened(str(value))} is too large for a number of a train (at most "
+                f"{MAX_BITS} bits); write it in other units"
+            )
         if role in POSITIVE_ROLES and not number > 0:
             raise QuantityError(f"{shortened(str(value))} must be positive (a size or a coefficient)")
         return number
@@ -131,10 +137,14 @@ def inexact(expr: sympy.Expr, roots: bool = False) -> str | None:
         if exponent.q != 2:
             return "only square roots are exact; write a number instead"
         if not roots:
-            return ("a square root is exact only in a direction (axis, placement, screw coordinates); write a "
-                    "rational expression instead, e.g. a new symbol for this value")
-        if any(isinstance(p, sympy.Pow) and p.exp.is_Rational and not p.exp.is_Integer
-               for p in sympy.preorder_traversal(power.base)):
+            return (
+                "a square root is exact only in a direction (axis, placement, screw coordinates); write a "
+                "rational expression instead, e.g. a new symbol for this value"
+            )
+        if any(
+            isinstance(p, sympy.Pow) and p.exp.is_Rational and not p.exp.is_Integer
+            for p in sympy.preorder_traversal(power.base)
+        ):
             return "nested square roots are not exact; write a number instead"
     return None
 

@@ -48,8 +48,9 @@ class _TooLarge(Exception):
         self.line = line
 
 
-def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[Problem],
-             budget: list[int], depth: int = 0) -> Any:
+def _convert(
+    node: yaml.Node, path: str, lines: dict[str, int], problems: list[Problem], budget: list[int], depth: int = 0
+) -> Any:
     budget[0] -= 1
     if budget[0] < 0:
         raise _TooLarge(f"the document expands to more than {MAX_NODES} entries (aliases used as a bomb?)")
@@ -57,15 +58,25 @@ def _convert(node: yaml.Node, path: str, lines: dict[str, int], problems: list[P
         raise _TooLarge(_TOO_DEEP, node.start_mark.line + 1)
     lines.setdefault(path, node.start_mark.line + 1)
     if node.tag not in _PLAIN_TAGS:
-        problems.append(Problem(path, f"the YAML tag {node.tag!r} is not part of the language; write plain values",
-                                node.start_mark.line + 1))
+        problems.append(
+            Problem(
+                path,
+                f"the YAML tag {node.tag!r} is not part of the language; write plain values",
+                node.start_mark.line + 1,
+            )
+        )
         return None
     if isinstance(node, yaml.MappingNode):
         out: dict[str, Any] = {}
         for key_node, value_node in node.value:
             if key_node.tag == "tag:yaml.org,2002:merge":
-                problems.append(Problem(path, "merge keys (<<) are not part of the language; write the entries out",
-                                        key_node.start_mark.line + 1))
+                problems.append(
+                    Problem(
+                        path,
+                        "merge keys (<<) are not part of the language; write the entries out",
+                        key_node.start_mark.line + 1,
+                    )
+                )
                 continue
             if not isinstance(key_node, yaml.ScalarNode):
                 problems.append(Problem(path, "a key must be a plain name", key_node.start_mark.line + 1))
@@ -123,8 +134,14 @@ def _scalar(node: yaml.Node) -> Any:
 def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
     """Parse YAML text into a `SourceDocument`; syntax errors carry the line."""
     if text.startswith("\ufeff"):
-        raise TopologySyntaxError([Problem("", "the file starts with a byte-order mark (U+FEFF); save it as UTF-8 "
-                                           "without a byte-order mark", 1)], name)
+        raise TopologySyntaxError(
+            [
+                Problem(
+                    "", "the file starts with a byte-order mark (U+FEFF); save it as UTF-8 without a byte-order mark", 1
+                )
+            ],
+            name,
+        )
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except RecursionError:
@@ -132,8 +149,14 @@ def parse_yaml(text: str, name: str | None = None) -> SourceDocument:
     except yaml.reader.ReaderError as exc:
         line = text.count("\n", 0, exc.position) + 1
         code = exc.character if isinstance(exc.character, int) else ord(exc.character)
-        raise TopologySyntaxError([Problem("", f"the character U+{code:04X} (a control character) is not allowed in "
-                                           "YAML text; delete it", line)], name) from None
+        raise TopologySyntaxError(
+            [
+                Problem(
+                    "", f"the character U+{code:04X} (a control character) is not allowed in YAML text; delete it", line
+                )
+            ],
+            name,
+        ) from None
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         message = " ".join(str(part) for part in (exc.context, exc.problem) if part)

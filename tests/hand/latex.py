@@ -48,8 +48,32 @@ _NUMBER = re.compile(r"\d+(?:\.\d+)?")
 _DIGIT = re.compile(r"\d")
 
 #: Greek words a symbol's name may start with (its quantity).
-GREEK = ("alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "iota", "kappa", "lambda", "mu", "nu",
-         "xi", "omicron", "pi", "rho", "sigma", "tau", "upsilon", "phi", "chi", "psi", "omega")
+GREEK = (
+    "alpha",
+    "beta",
+    "gamma",
+    "delta",
+    "epsilon",
+    "zeta",
+    "eta",
+    "theta",
+    "iota",
+    "kappa",
+    "lambda",
+    "mu",
+    "nu",
+    "xi",
+    "omicron",
+    "pi",
+    "rho",
+    "sigma",
+    "tau",
+    "upsilon",
+    "phi",
+    "chi",
+    "psi",
+    "omega",
+)
 _QUANTITY = re.compile(r"(%s)(?![a-z])(.*)\Z" % "|".join(sorted(GREEK, key=len, reverse=True)), re.DOTALL)
 #: Layout between the tokens of a formula broken over lines.
 _LAYOUT = re.compile(r"\s+|&|\\\\|\\qquad(?![A-Za-z])|\\quad(?![A-Za-z])")
@@ -86,7 +110,7 @@ class _Reader:
         self.names = _names(symbols)
 
     def fail(self, what: str) -> LatexError:
-        return LatexError(f"{what} at {self.pos}: ...{self.text[self.pos:self.pos + 30]!r} in {self.text!r}")
+        return LatexError(f"{what} at {self.pos}: ...{self.text[self.pos : self.pos + 30]!r} in {self.text!r}")
 
     def _layout(self, pos: int) -> int:
         while True:
@@ -280,8 +304,10 @@ def document_equations(text: str, name: str = "\\eta") -> dict[int, str]:
 def force_conditions(section: str) -> list[tuple[str, str]]:
     """(force, ``<`` or ``>``) of every "Holds where ...:" inequality ``force > 0`` in a
     section of an emitted document, on one line or broken over an ``align*``."""
-    pattern = (r"Holds where [^\n]*:\n(?:\\begin\{equation\*\}\n(.*?) ([<>]) 0\n\\end\{equation\*\}"
-               r"|\\begin\{align\*\}\n(.*?) ([<>]) 0\n\\end\{align\*\})")
+    pattern = (
+        r"Holds where [^\n]*:\n(?:\\begin\{equation\*\}\n(.*?) ([<>]) 0\n\\end\{equation\*\}"
+        r"|\\begin\{align\*\}\n(.*?) ([<>]) 0\n\\end\{align\*\})"
+    )
     out = []
     for line, relation, broken, broken_relation in re.findall(pattern, section, flags=re.DOTALL):
         if line:

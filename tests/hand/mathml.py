@@ -19,9 +19,29 @@ from html.parser import HTMLParser
 
 import sympy
 
-_GREEK = {"α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "ε": "epsilon", "ζ": "zeta", "η": "eta",
-          "θ": "theta", "κ": "kappa", "λ": "lambda", "μ": "mu", "ν": "nu", "ξ": "xi", "π": "pi", "ρ": "rho",
-          "σ": "sigma", "τ": "tau", "φ": "phi", "χ": "chi", "ψ": "psi", "ω": "omega"}
+_GREEK = {
+    "α": "alpha",
+    "β": "beta",
+    "γ": "gamma",
+    "δ": "delta",
+    "ε": "epsilon",
+    "ζ": "zeta",
+    "η": "eta",
+    "θ": "theta",
+    "κ": "kappa",
+    "λ": "lambda",
+    "μ": "mu",
+    "ν": "nu",
+    "ξ": "xi",
+    "π": "pi",
+    "ρ": "rho",
+    "σ": "sigma",
+    "τ": "tau",
+    "φ": "phi",
+    "χ": "chi",
+    "ψ": "psi",
+    "ω": "omega",
+}
 _TIMES = {"\u2062", "·", "×", "⋅"}
 _MINUS = {"-", "\u2212"}
 
@@ -172,7 +192,7 @@ class _Reader:
                 inner = text_of(items[end]) if items[end].tag == "mo" else None
                 depth += {"(": 1, ")": -1}.get(inner or "", 0)
                 end += 1
-            value = self.inner(items[pos:end - 1])
+            value = self.inner(items[pos : end - 1])
             self.items, self.pos = items, end
             return value
         if op is not None:
@@ -194,5 +214,5 @@ def read_mathml(element: Node, symbols: Iterable[sympy.Symbol]) -> sympy.Expr:
         rows = rows[0].elements()
     equals = [i for i, k in enumerate(rows) if k.tag == "mo" and text_of(k) == "="]
     if equals:
-        rows = rows[equals[-1] + 1:]
+        rows = rows[equals[-1] + 1 :]
     return reader.row(rows)

@@ -54,8 +54,10 @@ class Result:
 
     def describe(self) -> str:
         status = "TIMEOUT" if self.timed_out else f"exit {self.returncode}"
-        return (f"{status} after {self.elapsed:.2f} s\n--- stdout (tail) ---\n{self.stdout[-1500:]}\n"
-                f"--- stderr (tail) ---\n{self.stderr[-3000:]}")
+        return (
+            f"{status} after {self.elapsed:.2f} s\n--- stdout (tail) ---\n{self.stdout[-1500:]}\n"
+            f"--- stderr (tail) ---\n{self.stderr[-3000:]}"
+        )
 
 
 class Hang(Exception):
@@ -81,8 +83,13 @@ def run_main(args: Sequence[str], timeout: float = 60.0) -> Result:
             except SystemExit as exc:  # argparse
                 code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
             except Hang:
-                return Result(None, out.getvalue(), err.getvalue() + "\n[watchdog: in-process run hung]",
-                              time.perf_counter() - start, timed_out=True)
+                return Result(
+                    None,
+                    out.getvalue(),
+                    err.getvalue() + "\n[watchdog: in-process run hung]",
+                    time.perf_counter() - start,
+                    timed_out=True,
+                )
             except BaseException:
                 err.write(traceback.format_exc())
                 code = 1
@@ -92,8 +99,9 @@ def run_main(args: Sequence[str], timeout: float = 60.0) -> Result:
     return Result(code, out.getvalue(), err.getvalue(), time.perf_counter() - start)
 
 
-def run_cli(args: Sequence[str], timeout: float = 30.0, cwd: str | os.PathLike[str] | None = None,
-            memory: int | None = None) -> Result:
+def run_cli(
+    args: Sequence[str], timeout: float = 30.0, cwd: str | os.PathLike[str] | None = None, memory: int | None = None
+) -> Result:
     """``python -m davies_sym.cli ARGS`` in a fresh process (this worktree first on PYTHONPATH);
     ``memory``: an address-space limit in bytes (a bomb then fails in its own process
     instead of starving the machine)."""
@@ -106,9 +114,15 @@ def run_cli(args: Sequence[str], timeout: float = 30.0, cwd: str | os.PathLike[s
     env["PYTHONPATH"] = str(ROOT) + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH") else "")
     start = time.perf_counter()
     try:
-        proc = subprocess.run([sys.executable, "-m", "davies_sym.cli", *map(str, args)], capture_output=True,
-                              cwd=cwd, env=env, timeout=timeout, check=False,
-                              preexec_fn=limit)
+        proc = subprocess.run(
+            [sys.executable, "-m", "davies_sym.cli", *map(str, args)],
+            capture_output=True,
+            cwd=cwd,
+            env=env,
+            timeout=timeout,
+            check=False,
+            preexec_fn=limit,
+        )
     except subprocess.TimeoutExpired as exc:
         return Result(None, _text(exc.stdout), _text(exc.stderr), time.perf_counter() - start, timed_out=True)
     return Result(proc.returncode, _text(proc.stdout), _text(proc.stderr), time.perf_counter() - start)
@@ -124,8 +138,15 @@ def problem_lines(result: Result) -> list[str]:
     return [line for line in result.stderr.splitlines() if line.strip()]
 
 
-def assert_refused(result: Result, path: str | os.PathLike[str] | None, entries: Iterable[str] = (),
-                   *, line: bool = True, max_lines: int | None = 1, status: int = 2) -> None:
+def assert_refused(
+    result: Result,
+    path: str | os.PathLike[str] | None,
+    entries: Iterable[str] = (),
+    *,
+    line: bool = True,
+    max_lines: int | None = 1,
+    status: int = 2,
+) -> None:
     """The refusal contract (see the module docstring).
 
     ``path``: the file the message must name (None for command-line-only problems);
@@ -155,11 +176,13 @@ def assert_refused(result: Result, path: str | os.PathLike[str] | None, entries:
 
 def assert_not_executed(*markers: Path, result: Result | None = None) -> None:
     for marker in markers:
-        assert not marker.exists(), (f"PAYLOAD EXECUTED: {marker} was created"
-                                     + (f"\n{result.describe()}" if result is not None else ""))
+        assert not marker.exists(), f"PAYLOAD EXECUTED: {marker} was created" + (
+            f"\n{result.describe()}" if result is not None else ""
+        )
 
 
 # --- the full run -----------------------------------------------------------------------------------------
+
 
 def full_run(config: pytest.Config) -> bool:
     """Whether the whole hostile set runs: ``-m slow`` (or an expression selecting slow) or ``HOSTILE_FULL=1``.
@@ -176,6 +199,7 @@ def skip_slow_unless_full(request: pytest.FixtureRequest) -> None:
 
 
 # --- YAML documents -----------------------------------------------------------------------------------------
+
 
 def load_yaml(path: str | os.PathLike[str]) -> Any:
     with open(path, encoding="utf-8") as handle:

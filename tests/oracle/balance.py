@@ -176,8 +176,7 @@ class BalanceResult:
 # -- exact linear algebra ----------------------------------------------------------------
 
 
-def solve_linear(rows: Sequence[Sequence[Fraction]], rhs: Sequence[Fraction],
-                 ncols: int) -> list[Fraction] | None:
+def solve_linear(rows: Sequence[Sequence[Fraction]], rhs: Sequence[Fraction], ncols: int) -> list[Fraction] | None:
     """The unique solution of ``rows x = rhs`` (Gauss-Jordan over the rationals), or None
     when the system is inconsistent or has a null space."""
     a = [[Fraction(v) for v in row] + [Fraction(b)] for row, b in zip(rows, rhs, strict=True)]
@@ -276,11 +275,15 @@ def in_state(train: TrainSpec, state: State | str) -> TrainSpec:
     gears = tuple(replace(g, member=find(g.member)) for g in train.gears if g.member not in free)
     kept = {g.name for g in gears}
     by_name = {g.name: g for g in gears}
-    meshes = tuple(m for m in train.meshes if m.gears[0] in kept and m.gears[1] in kept
-                   and by_name[m.gears[0]].member != by_name[m.gears[1]].member)
+    meshes = tuple(
+        m
+        for m in train.meshes
+        if m.gears[0] in kept and m.gears[1] in kept and by_name[m.gears[0]].member != by_name[m.gears[1]].member
+    )
     ports = {p: find(mem) for p, mem in train.ports.items() if mem not in free}
-    return TrainSpec(f"{train.name}[{state.name}]", tuple(members), gears, meshes, fixed, ports,
-                     state.input, state.output)
+    return TrainSpec(
+        f"{train.name}[{state.name}]", tuple(members), gears, meshes, fixed, ports, state.input, state.output
+    )
 
 
 # -- the balance -------------------------------------------------------------------------
@@ -358,8 +361,16 @@ class Balance:
         else:  # external, or annulus g: pitch point at r_g from g's axis towards h
             pitch = (oa[0] + g.radius * u[0], oa[1] + g.radius * u[1])
         tangent = (-u[1], u[0])
-        return _MeshGeometry(mesh, ma.name, mb.name, carrier, pitch, tangent,
-                             cross(sub(pitch, oa), tangent), cross(sub(pitch, ob), tangent))
+        return _MeshGeometry(
+            mesh,
+            ma.name,
+            mb.name,
+            carrier,
+            pitch,
+            tangent,
+            cross(sub(pitch, oa), tangent),
+            cross(sub(pitch, ob), tangent),
+        )
 
     # kinematics -------------------------------------------------------------------------
     def speeds(self, input_member: str) -> dict[str, Fraction]:
@@ -397,8 +408,9 @@ class Balance:
         return out
 
     # statics ----------------------------------------------------------------------------
-    def _statics(self, w: Mapping[str, Fraction], inp: str, out: str,
-                 first_drives: Mapping[str, bool] | None) -> list[Fraction] | None:
+    def _statics(
+        self, w: Mapping[str, Fraction], inp: str, out: str, first_drives: Mapping[str, bool] | None
+    ) -> list[Fraction] | None:
         """Solve for (F_k, M_k) of every mesh and T_out, with T_in = 1.  ``first_drives``
         None: lossless (M_k = 0)."""
         m = len(self.geometry)
@@ -448,8 +460,17 @@ class Balance:
             rhs.append(Fraction(0))
         return solve_linear(rows, rhs, ncols)
 
-    def _result(self, w: Mapping[str, Fraction], inp: str, out: str, port_in: str, port_out: str,
-                x: Sequence[Fraction], first: Mapping[str, bool], iterations: int) -> BalanceResult:
+    def _result(
+        self,
+        w: Mapping[str, Fraction],
+        inp: str,
+        out: str,
+        port_in: str,
+        port_out: str,
+        x: Sequence[Fraction],
+        first: Mapping[str, bool],
+        iterations: int,
+    ) -> BalanceResult:
         m = len(self.geometry)
         forces = {g.mesh.name: x[2 * k] for k, g in enumerate(self.geometry)}
         couples = {g.mesh.name: x[2 * k + 1] for k, g in enumerate(self.geometry)}
@@ -460,12 +481,25 @@ class Balance:
             raise MobilityProblem("the input does not turn")
         if w[out] == 0:
             raise MobilityProblem("the output does not turn")
-        return BalanceResult(port_in, port_out, w[inp] / w[out], -p_out / p_in, dict(w),
-                             {port_in: Fraction(1), port_out: t_out}, forces, couples, dict(first), losses,
-                             p_in, p_out, iterations)
+        return BalanceResult(
+            port_in,
+            port_out,
+            w[inp] / w[out],
+            -p_out / p_in,
+            dict(w),
+            {port_in: Fraction(1), port_out: t_out},
+            forces,
+            couples,
+            dict(first),
+            losses,
+            p_in,
+            p_out,
+            iterations,
+        )
 
-    def carrier_frame_powers(self, w: Mapping[str, Fraction],
-                             x: Sequence[Fraction]) -> dict[str, tuple[Fraction, Fraction]]:
+    def carrier_frame_powers(
+        self, w: Mapping[str, Fraction], x: Sequence[Fraction]
+    ) -> dict[str, tuple[Fraction, Fraction]]:
         """Power of each mesh on its first and second gear, in the mesh carrier's frame."""
         out = {}
         for k, geo in enumerate(self.geometry):
@@ -474,8 +508,9 @@ class Balance:
             out[geo.mesh.name] = ((-geo.arm_a * f - c) * (w[geo.a] - wc), (geo.arm_b * f + c) * (w[geo.b] - wc))
         return out
 
-    def _drivers(self, powers: Mapping[str, tuple[Fraction, Fraction]],
-                 previous: Mapping[str, bool] | None) -> dict[str, bool]:
+    def _drivers(
+        self, powers: Mapping[str, tuple[Fraction, Fraction]], previous: Mapping[str, bool] | None
+    ) -> dict[str, bool]:
         out = {}
         for name, (pa, pb) in powers.items():
             if pa < 0 or pb > 0:
@@ -489,8 +524,9 @@ class Balance:
     def _consistent(self, powers: Mapping[str, tuple[Fraction, Fraction]], first: Mapping[str, bool]) -> bool:
         return all((pa <= 0) if first[n] else (pb <= 0) for n, (pa, pb) in powers.items())
 
-    def solve(self, port_in: str | None = None, port_out: str | None = None, lossless: bool = False,
-              max_iterations: int = 20) -> BalanceResult:
+    def solve(
+        self, port_in: str | None = None, port_out: str | None = None, lossless: bool = False, max_iterations: int = 20
+    ) -> BalanceResult:
         """Speed ratio and efficiency with ``port_in`` as input (default: the train's)."""
         port_in = port_in or self.train.input
         if port_out is None:
@@ -515,8 +551,11 @@ class Balance:
             if self._consistent(powers, first):
                 result = self._result(w, inp, out, port_in, port_out, x, first, iteration)
                 if result.efficiency <= 0:
-                    raise SelfLocking(f"{self.train.name}: efficiency {float(result.efficiency):.6g} <= 0 "
-                                      f"with input {port_in} (self-locking)", result.efficiency)
+                    raise SelfLocking(
+                        f"{self.train.name}: efficiency {float(result.efficiency):.6g} <= 0 "
+                        f"with input {port_in} (self-locking)",
+                        result.efficiency,
+                    )
                 return result
             seen.append(dict(first))
             first = self._drivers(powers, first)
@@ -524,8 +563,7 @@ class Balance:
                 break
         return self._enumerate(w, inp, out, port_in, port_out)
 
-    def _enumerate(self, w: Mapping[str, Fraction], inp: str, out: str, port_in: str,
-                   port_out: str) -> BalanceResult:
+    def _enumerate(self, w: Mapping[str, Fraction], inp: str, out: str, port_in: str, port_out: str) -> BalanceResult:
         """Every driver assignment; the one consistent with its own power flow and positive
         efficiency (several or none: self-locking / inconsistency)."""
         names = [g.mesh.name for g in self.geometry]
@@ -543,14 +581,17 @@ class Balance:
         if len(values) == 1:
             return found[0]
         if not found:
-            raise SelfLocking(f"{self.train.name}: no consistent driver assignment with positive efficiency "
-                              f"(input {port_in})")
-        raise SelfLocking(f"{self.train.name}: several consistent driver assignments "
-                          f"({sorted(float(v) for v in values)})")
+            raise SelfLocking(
+                f"{self.train.name}: no consistent driver assignment with positive efficiency (input {port_in})"
+            )
+        raise SelfLocking(
+            f"{self.train.name}: several consistent driver assignments ({sorted(float(v) for v in values)})"
+        )
 
 
-def solve(train: TrainSpec, port_in: str | None = None, state: State | str | None = None,
-          lossless: bool = False) -> BalanceResult:
+def solve(
+    train: TrainSpec, port_in: str | None = None, state: State | str | None = None, lossless: bool = False
+) -> BalanceResult:
     """Speed ratio and efficiency of ``train`` (in ``state``) with ``port_in`` as input."""
     if state is not None:
         train = in_state(train, state)
@@ -559,8 +600,10 @@ def solve(train: TrainSpec, port_in: str | None = None, state: State | str | Non
 
 def with_efficiencies(train: TrainSpec, etas: Mapping[str, Fraction] | Fraction) -> TrainSpec:
     """``train`` with other mesh efficiencies (one value for all, or per mesh)."""
+
     def eta(m: Mesh) -> Fraction:
         return etas if isinstance(etas, Fraction) else etas.get(m.name, m.eta)
+
     return replace(train, meshes=tuple(replace(m, eta=eta(m)) for m in train.meshes))
 
 

@@ -61,8 +61,15 @@ def compare(train: RandomTrain, sp: Spelling) -> list[Outcome]:
     spec = train.oracle()
     out: list[Outcome] = []
 
-    def add(state: str, port: str, quantity: str, kind: str, detail: str = "",
-            e: Fraction | float | None = None, o: Fraction | float | None = None) -> None:
+    def add(
+        state: str,
+        port: str,
+        quantity: str,
+        kind: str,
+        detail: str = "",
+        e: Fraction | float | None = None,
+        o: Fraction | float | None = None,
+    ) -> None:
         out.append(Outcome(train.family, train.seed, sp.name, state, port, quantity, kind, detail, e, o))
 
     for state in train.oracle_states():
@@ -104,10 +111,16 @@ def compare(train: RandomTrain, sp: Spelling) -> list[Outcome]:
                 continue
             if locking is not None:
                 # Both self-lock; the number itself (which driver assignment) has no physical meaning.
-                add(state.name, port, "efficiency", LOCKING if got <= 0 else WRONG, f"oracle: {locking}", got,
-                    locking.value)
+                add(
+                    state.name,
+                    port,
+                    "efficiency",
+                    LOCKING if got <= 0 else WRONG,
+                    f"oracle: {locking}",
+                    got,
+                    locking.value,
+                )
             else:
                 assert oracle_value is not None
-                add(state.name, port, "efficiency", OK if close(got, oracle_value) else WRONG, "", got,
-                    oracle_value)
+                add(state.name, port, "efficiency", OK if close(got, oracle_value) else WRONG, "", got, oracle_value)
     return out

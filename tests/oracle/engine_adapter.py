@@ -49,8 +49,7 @@ def engine_states(yaml_text: str) -> list[str]:
 
 def _values(train: Any, values: Mapping[str, Fraction]) -> dict[sympy.Symbol, sympy.Rational]:
     symbols = train.symbols
-    return {symbols[name]: sympy.Rational(v.numerator, v.denominator) for name, v in values.items()
-            if name in symbols}
+    return {symbols[name]: sympy.Rational(v.numerator, v.denominator) for name, v in values.items() if name in symbols}
 
 
 def _number(expr: Any) -> Fraction | float:
@@ -68,15 +67,15 @@ def engine_derive(yaml_text: str, state: str | None = None) -> int:
     return len(_variants(yaml_text, state).variants)
 
 
-def engine_efficiency(yaml_text: str, values: Mapping[str, Fraction], input_port: str,
-                      state: str | None = None) -> Fraction | float:
+def engine_efficiency(
+    yaml_text: str, values: Mapping[str, Fraction], input_port: str, state: str | None = None
+) -> Fraction | float:
     """The engine's efficiency -P_out / P_in with ``input_port`` as input."""
     vs = _variants(yaml_text, state)
     return _number(vs.evaluate(_values(vs.train, values), input_port))
 
 
-def engine_speed_ratio(yaml_text: str, values: Mapping[str, Fraction],
-                       state: str | None = None) -> Fraction | float:
+def engine_speed_ratio(yaml_text: str, values: Mapping[str, Fraction], state: str | None = None) -> Fraction | float:
     """The engine's t_in / t_out for the declared ports (of ``state``): each t is the
     motion of the port coupling's second link relative to its first."""
     train = _train(yaml_text, state)

@@ -219,8 +219,10 @@ class LossyBalance:
         """Member speeds (housing frame) from the input port speeds."""
         n, idx = len(self.moving), {name: i for i, name in enumerate(self.moving)}
         if len(self.geometry) + len(inputs) != n:
-            raise MobilityProblem(f"{self.train.name}: {n} moving members and {len(self.geometry)} meshes "
-                                  f"need {n - len(self.geometry)} input speeds, got {len(inputs)}")
+            raise MobilityProblem(
+                f"{self.train.name}: {n} moving members and {len(self.geometry)} meshes "
+                f"need {n - len(self.geometry)} input speeds, got {len(inputs)}"
+            )
         rows, rhs = [], []
         for geo in self.geometry:
             row = [Fraction(0)] * n
@@ -250,8 +252,15 @@ class LossyBalance:
         return w[geo.a] - wc, w[geo.b] - wc
 
     # statics ----------------------------------------------------------------------------
-    def _statics(self, w: Mapping[str, Fraction], inputs: Sequence[str], output: str, t_out: Fraction,
-                 first: Mapping[str, bool] | None, sigma: Mapping[str, int]) -> list[Fraction] | None:
+    def _statics(
+        self,
+        w: Mapping[str, Fraction],
+        inputs: Sequence[str],
+        output: str,
+        t_out: Fraction,
+        first: Mapping[str, bool] | None,
+        sigma: Mapping[str, int],
+    ) -> list[Fraction] | None:
         """Solve for x = [F_k, M_k, R_m, T_i].  ``first`` None: lossless."""
         k, n = len(self.geometry), len(self.moving)
         ncols = 2 * k + n + len(inputs)
@@ -302,11 +311,19 @@ class LossyBalance:
     def _powers(self, w: Mapping[str, Fraction], x: Sequence[Fraction]) -> dict[str, tuple[Fraction, Fraction]]:
         """Carrier-frame power of each mesh on its first and second gear."""
         k = len(self.geometry)
-        return {geo.mesh.name: ((-geo.arm_a * x[j] - x[k + j]) * da, (geo.arm_b * x[j] + x[k + j]) * db)
-                for j, geo in enumerate(self.geometry) for da, db in [self.carrier_frame(w, geo)]}
+        return {
+            geo.mesh.name: ((-geo.arm_a * x[j] - x[k + j]) * da, (geo.arm_b * x[j] + x[k + j]) * db)
+            for j, geo in enumerate(self.geometry)
+            for da, db in [self.carrier_frame(w, geo)]
+        }
 
-    def _signs(self, w: Mapping[str, Fraction], x: Sequence[Fraction], first: Mapping[str, bool] | None,
-               sigma: Mapping[str, int] | None) -> tuple[dict[str, bool], dict[str, int]]:
+    def _signs(
+        self,
+        w: Mapping[str, Fraction],
+        x: Sequence[Fraction],
+        first: Mapping[str, bool] | None,
+        sigma: Mapping[str, int] | None,
+    ) -> tuple[dict[str, bool], dict[str, int]]:
         """The drivers and reaction signs that the solution ``x`` implies (ties: keep the old)."""
         new_first = {}
         for name, (pa, pb) in self._powers(w, x).items():
@@ -316,24 +333,26 @@ class LossyBalance:
         new_sigma = {m: sign(x[2 * k + i]) or (sigma or {}).get(m, 1) for i, m in enumerate(self.moving)}
         return new_first, new_sigma
 
-    def _consistent(self, w: Mapping[str, Fraction], x: Sequence[Fraction], first: Mapping[str, bool],
-                    sigma: Mapping[str, int]) -> bool:
+    def _consistent(
+        self, w: Mapping[str, Fraction], x: Sequence[Fraction], first: Mapping[str, bool], sigma: Mapping[str, int]
+    ) -> bool:
         """Only the signs that matter: lossy meshes that turn in their carrier's frame, Coulomb
         bearings that slip."""
         meshes, bearings = self._sign_variables(w)
         powers, k = self._powers(w, x), len(self.geometry)
         r = {m: x[2 * k + i] for i, m in enumerate(self.moving)}
-        return (all((powers[n][0] <= 0) if first[n] else (powers[n][1] <= 0) for n in meshes)
-                and all(sigma.get(m, 1) * r[m] >= 0 for m in bearings))
+        return all((powers[n][0] <= 0) if first[n] else (powers[n][1] <= 0) for n in meshes) and all(
+            sigma.get(m, 1) * r[m] >= 0 for m in bearings
+        )
 
     def _sign_variables(self, w: Mapping[str, Fraction]) -> tuple[list[str], list[str]]:
-        meshes = [g.mesh.name for g in self.geometry
-                  if g.mesh.eta != 1 and any(self.carrier_frame(w, g))]
+        meshes = [g.mesh.name for g in self.geometry if g.mesh.eta != 1 and any(self.carrier_frame(w, g))]
         bearings = [m for m, b in self.bearings.items() if b.rho != 0 and self.rel(w, m) != 0]
         return meshes, bearings
 
-    def solve(self, inputs: Mapping[str, Number], output: str, load: Number, lossless: bool = False,
-              max_iterations: int = 30) -> LossyResult:
+    def solve(
+        self, inputs: Mapping[str, Number], output: str, load: Number, lossless: bool = False, max_iterations: int = 30
+    ) -> LossyResult:
         """Input port speeds ``inputs`` (port -> speed), output port ``output`` with the external
         torque ``load`` (a resisting load has ``load * w_out < 0``)."""
         win = {p: q(v) for p, v in inputs.items()}
@@ -363,35 +382,49 @@ class LossyBalance:
                 first, sigma = self._signs(w, x, first, sigma)
         found = self._enumerate(w, names, output, t_out)
         if not found:
-            raise NoConsistentSolution(f"{self.train.name}: no consistent assignment of mesh drivers and "
-                                       f"bearing-reaction signs (a jammed, self-locking train)")
+            raise NoConsistentSolution(
+                f"{self.train.name}: no consistent assignment of mesh drivers and "
+                f"bearing-reaction signs (a jammed, self-locking train)"
+            )
         if len(found) > 1:
             values = sorted(float(self._result(w, names, output, t_out, *s, -1).efficiency) for s in found)
-            raise AmbiguousSolution(f"{self.train.name}: {len(found)} consistent sign assignments give "
-                                    f"different solutions (efficiencies {values})")
+            raise AmbiguousSolution(
+                f"{self.train.name}: {len(found)} consistent sign assignments give "
+                f"different solutions (efficiencies {values})"
+            )
         if solution is None:  # the iteration cycled: take the unique consistent assignment
             solution, iterations = found[0], -1
         elif found[0][0] != solution[0]:
             raise OracleError(f"{self.train.name}: iteration and enumeration disagree (internal error)")
         return self._result(w, names, output, t_out, *solution, iterations)
 
-    def _enumerate(self, w: Mapping[str, Fraction], names: Sequence[str], output: str,
-                   t_out: Fraction) -> list[tuple[list[Fraction], dict[str, bool], dict[str, int]]]:
+    def _enumerate(
+        self, w: Mapping[str, Fraction], names: Sequence[str], output: str, t_out: Fraction
+    ) -> list[tuple[list[Fraction], dict[str, bool], dict[str, int]]]:
         """Every consistent sign assignment (one per distinct solution)."""
         meshes, bearings = self._sign_variables(w)
         base_first = {g.mesh.name: True for g in self.geometry}
         found: dict[tuple[Fraction, ...], tuple[list[Fraction], dict[str, bool], dict[str, int]]] = {}
         for choice in itertools.product((True, False), repeat=len(meshes) + len(bearings)):
             first = {**base_first, **dict(zip(meshes, choice, strict=False))}
-            sigma = {m: 1 if c else -1 for m, c in zip(bearings, choice[len(meshes):], strict=True)}
+            sigma = {m: 1 if c else -1 for m, c in zip(bearings, choice[len(meshes) :], strict=True)}
             x = self._statics(w, names, output, t_out, first, sigma)
             if x is not None and self._consistent(w, x, first, sigma):
                 found.setdefault(tuple(x), (x, first, sigma))
         return list(found.values())
 
-    def _result(self, w: Mapping[str, Fraction], names: Sequence[str], output: str, t_out: Fraction,
-                x: Sequence[Fraction], first: Mapping[str, bool], sigma: Mapping[str, int],
-                iterations: int, lossless: bool = False) -> LossyResult:
+    def _result(
+        self,
+        w: Mapping[str, Fraction],
+        names: Sequence[str],
+        output: str,
+        t_out: Fraction,
+        x: Sequence[Fraction],
+        first: Mapping[str, bool],
+        sigma: Mapping[str, int],
+        iterations: int,
+        lossless: bool = False,
+    ) -> LossyResult:
         k, n = len(self.geometry), len(self.moving)
         torques = {p: x[2 * k + n + i] for i, p in enumerate(names)} | {output: t_out}
         powers = {p: t * w[self.train.ports[p]] for p, t in torques.items()}
@@ -408,14 +441,27 @@ class LossyBalance:
         p_in, p_out = sum((powers[p] for p in names), Fraction(0)), powers[output]
         if p_in == 0:
             raise MobilityProblem(f"{self.train.name}: no power enters through the inputs")
-        return LossyResult(tuple(names), output, dict(w), torques, powers,
-                           {g.mesh.name: x[j] for j, g in enumerate(self.geometry)},
-                           {g.mesh.name: x[k + j] for j, g in enumerate(self.geometry)},
-                           reactions, losses, dict(first), p_in, p_out, -p_out / p_in, iterations)
+        return LossyResult(
+            tuple(names),
+            output,
+            dict(w),
+            torques,
+            powers,
+            {g.mesh.name: x[j] for j, g in enumerate(self.geometry)},
+            {g.mesh.name: x[k + j] for j, g in enumerate(self.geometry)},
+            reactions,
+            losses,
+            dict(first),
+            p_in,
+            p_out,
+            -p_out / p_in,
+            iterations,
+        )
 
 
-def solve(train: LossyTrain, inputs: Mapping[str, Number], output: str, load: Number,
-          lossless: bool = False) -> LossyResult:
+def solve(
+    train: LossyTrain, inputs: Mapping[str, Number], output: str, load: Number, lossless: bool = False
+) -> LossyResult:
     """Solve ``train`` with input port speeds ``inputs`` and the external torque ``load`` at ``output``."""
     return LossyBalance(train).solve(inputs, output, load, lossless)
 
@@ -437,8 +483,13 @@ def _per_member(value: Number | Mapping[str, Number]) -> dict[str, Fraction]:
     return dict.fromkeys(SR20_MEMBERS, q(value))
 
 
-def sr20(eta_1: Number = 1, eta_2: Number = 1, drag: Number | Mapping[str, Number] = 0,
-         viscous: Number | Mapping[str, Number] = 0, rho: Number | Mapping[str, Number] = 0) -> LossyTrain:
+def sr20(
+    eta_1: Number = 1,
+    eta_2: Number = 1,
+    drag: Number | Mapping[str, Number] = 0,
+    viscous: Number | Mapping[str, Number] = 0,
+    rho: Number | Mapping[str, Number] = 0,
+) -> LossyTrain:
     """The SR20 differential: sun gear 1 (z 36) on shaft d1 (port A), compound planet p = gears
     2/3 (z 32, 20) on the carrier c (port K), output gear 4 (z 45) on o (port O); meshes M1 = (1, 2)
     with ``eta_1`` and M2 = (4, 3) with ``eta_2``.  ``drag``, ``viscous``, ``rho``: one value for

@@ -57,6 +57,7 @@ def run_one(args: tuple[str, int, tuple[str, ...]]) -> list[tuple[Outcome, str]]
         values = ", ".join(f"{k}: {v}" for k, v in sp.values.items())
         out += [(o, f"# values: {{{values}}}\n{sp.yaml}") for o in outcomes]
     from oracle import engine_adapter
+
     engine_adapter.clear_cache()
     return out
 
@@ -97,10 +98,14 @@ def main(argv: list[str] | None = None) -> int:
         by_train[(o.family, o.spelling, o.seed)].append(o)
 
     print(f"{args.n} seeds x {len(families)} families, {len(results)} comparisons, {time.time() - t0:.0f} s")
-    print("Per train (every state, both inputs): trains / derive ok / all correct / wrong number / "
-          "refusal / traceback / oracle error; self-locking cases where both agree count as correct")
-    header = f"{'family':14s} {'spelling':9s} {'n':>4s} {'derive':>6s} {'correct':>7s} {'wrong':>5s} " \
-             f"{'refuse':>6s} {'trace':>5s} {'oracle':>6s}  comparisons ok/all"
+    print(
+        "Per train (every state, both inputs): trains / derive ok / all correct / wrong number / "
+        "refusal / traceback / oracle error; self-locking cases where both agree count as correct"
+    )
+    header = (
+        f"{'family':14s} {'spelling':9s} {'n':>4s} {'derive':>6s} {'correct':>7s} {'wrong':>5s} "
+        f"{'refuse':>6s} {'trace':>5s} {'oracle':>6s}  comparisons ok/all"
+    )
     print(header)
     print("-" * len(header))
     for family in families:
@@ -109,12 +114,15 @@ def main(argv: list[str] | None = None) -> int:
             if not keys:
                 continue
             verdicts = Counter(train_verdict(by_train[k]) for k in keys)
-            derive_ok = sum(all(o.kind not in (REFUSAL, TRACEBACK) for o in by_train[k] if o.quantity == "derive")
-                            for k in keys)
+            derive_ok = sum(
+                all(o.kind not in (REFUSAL, TRACEBACK) for o in by_train[k] if o.quantity == "derive") for k in keys
+            )
             comps = [o for k in keys for o in by_train[k] if o.quantity != "derive"]
             good = sum(o.kind in (OK, LOCKING) for o in comps)
-            print(f"{family:14s} {name:9s} {len(keys):4d} {derive_ok:6d} {verdicts[OK]:7d} {verdicts[WRONG]:5d} "
-                  f"{verdicts[REFUSAL]:6d} {verdicts[TRACEBACK]:5d} {verdicts[ORACLE]:6d}  {good}/{len(comps)}")
+            print(
+                f"{family:14s} {name:9s} {len(keys):4d} {derive_ok:6d} {verdicts[OK]:7d} {verdicts[WRONG]:5d} "
+                f"{verdicts[REFUSAL]:6d} {verdicts[TRACEBACK]:5d} {verdicts[ORACLE]:6d}  {good}/{len(comps)}"
+            )
     print()
     print("Failure classes (count of outcomes, family/spelling, example):")
     classes: dict[tuple[str, str], list[Outcome]] = defaultdict(list)
@@ -134,13 +142,17 @@ def main(argv: list[str] | None = None) -> int:
         key = (o.family, o.spelling)
         if shown[key] < args.examples:
             shown[key] += 1
-            print(f"  {o.case}: engine {o.engine} ({float(o.engine) if o.engine is not None else None}), "
-                  f"oracle {o.oracle} ({float(o.oracle) if o.oracle is not None else None})")
+            print(
+                f"  {o.case}: engine {o.engine} ({float(o.engine) if o.engine is not None else None}), "
+                f"oracle {o.oracle} ({float(o.oracle) if o.oracle is not None else None})"
+            )
     if args.yaml:
         with open(args.yaml, "w", encoding="utf-8") as handle:
             for o, y in wrong:
-                handle.write(f"# {o.case}\n# engine {o.engine} = {float(o.engine) if o.engine is not None else None}"
-                             f"\n# oracle {o.oracle} = {float(o.oracle) if o.oracle is not None else None}\n")
+                handle.write(
+                    f"# {o.case}\n# engine {o.engine} = {float(o.engine) if o.engine is not None else None}"
+                    f"\n# oracle {o.oracle} = {float(o.oracle) if o.oracle is not None else None}\n"
+                )
                 handle.write(y + "---\n")
     return 0
 

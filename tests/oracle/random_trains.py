@@ -40,10 +40,19 @@ from fractions import Fraction
 
 from .balance import Gear, Member, Mesh, State, TrainSpec
 
-FAMILIES = ("pair", "chain", "planetary", "stepped", "double_pinion", "wolfrom", "tuplin", "simpson",
-            "ravigneaux")
-SPELLINGS = ("catalog", "minimal", "numeric", "reversed", "flipped", "shuffled", "renamed", "teeth", "brake",
-             "combined")
+FAMILIES = ("pair", "chain", "planetary", "stepped", "double_pinion", "wolfrom", "tuplin", "simpson", "ravigneaux")
+SPELLINGS = (
+    "catalog",
+    "minimal",
+    "numeric",
+    "reversed",
+    "flipped",
+    "shuffled",
+    "renamed",
+    "teeth",
+    "brake",
+    "combined",
+)
 HOUSING = "0"
 RUN = "run"
 
@@ -95,8 +104,17 @@ class RandomTrain:
         members = tuple(Member(m.name, m.carrier, m.axis) for m in self.members)
         gears = tuple(Gear(g.name, g.member, g.radius, g.internal) for g in self.gears)
         meshes = tuple(Mesh(n, (a, b), eta) for n, (a, b, eta) in self.meshes.items())
-        return TrainSpec(f"{self.family}-{self.seed}", members, gears, meshes, HOUSING, dict(self.ports),
-                         self.input, self.output, tuple(self.oracle_states()))
+        return TrainSpec(
+            f"{self.family}-{self.seed}",
+            members,
+            gears,
+            meshes,
+            HOUSING,
+            dict(self.ports),
+            self.input,
+            self.output,
+            tuple(self.oracle_states()),
+        )
 
     def oracle_states(self) -> list[State]:
         if self.states:
@@ -191,12 +209,24 @@ def _pair(rng: random.Random, seed: int) -> RandomTrain:
         r1, r2 = sorted((r1, r2))
         if r1 == r2:
             r2 += 5
-    members = [TMember(HOUSING, "housing"), TMember("a", "fixed"),
-               TMember("b", "fixed", axis=_y(r2 - r1 if internal else r1 + r2))]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("a", "fixed"),
+        TMember("b", "fixed", axis=_y(r2 - r1 if internal else r1 + r2)),
+    ]
     gears = [TGear("G1", "a", r1), TGear("G2", "b", r2, internal)]
     inp, out = ("a", "b") if rng.random() < 0.5 else ("b", "a")
-    return RandomTrain("pair", seed, members, gears, {"C": ("G1", "G2", _eta(rng))},
-                       {"A": inp, "B": out}, "A", "B", description="fixed-axis pair" + (" (annulus)" * internal))
+    return RandomTrain(
+        "pair",
+        seed,
+        members,
+        gears,
+        {"C": ("G1", "G2", _eta(rng))},
+        {"A": inp, "B": out},
+        "A",
+        "B",
+        description="fixed-axis pair" + (" (annulus)" * internal),
+    )
 
 
 def _chain(rng: random.Random, seed: int) -> RandomTrain:
@@ -218,23 +248,56 @@ def _chain(rng: random.Random, seed: int) -> RandomTrain:
     members.append(TMember(f"s{k}", "fixed", axis=_y(pos)))
     ends = ["s1", f"s{k}"]
     rng.shuffle(ends)
-    return RandomTrain("chain", seed, members, gears, meshes, {"A": ends[0], "B": ends[1]}, "A", "B",
-                       description=f"compound fixed-axis chain of {k} shafts")
+    return RandomTrain(
+        "chain",
+        seed,
+        members,
+        gears,
+        meshes,
+        {"A": ends[0], "B": ends[1]},
+        "A",
+        "B",
+        description=f"compound fixed-axis chain of {k} shafts",
+    )
 
 
-def _three_shaft(family: str, rng: random.Random, seed: int, members: list[TMember], gears: list[TGear],
-                 meshes: dict[str, tuple[str, str, Fraction]], central: list[str], description: str,
-                 placement: bool = False) -> RandomTrain:
+def _three_shaft(
+    family: str,
+    rng: random.Random,
+    seed: int,
+    members: list[TMember],
+    gears: list[TGear],
+    meshes: dict[str, tuple[str, str, Fraction]],
+    central: list[str],
+    description: str,
+    placement: bool = False,
+) -> RandomTrain:
     held, inp, out = _planetary_roles(rng, central)
-    return RandomTrain(family, seed, members, gears, meshes, {"A": inp, "B": out}, "A", "B", held=held,
-                       placement=placement, description=f"{description}; {held} held, {inp} in, {out} out")
+    return RandomTrain(
+        family,
+        seed,
+        members,
+        gears,
+        meshes,
+        {"A": inp, "B": out},
+        "A",
+        "B",
+        held=held,
+        placement=placement,
+        description=f"{description}; {held} held, {inp} in, {out} out",
+    )
 
 
 def _planetary(rng: random.Random, seed: int) -> RandomTrain:
     rs, rp = _radius(rng, 6, 40), _radius(rng, 5, 30)
     rr = rs + 2 * rp
-    members = [TMember(HOUSING, "housing"), TMember("s", "central"), TMember("r", "central"),
-               TMember("c", "central"), TMember("p", "planet", "c", _y(rs + rp))]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s", "central"),
+        TMember("r", "central"),
+        TMember("c", "central"),
+        TMember("p", "planet", "c", _y(rs + rp)),
+    ]
     gears = [TGear("S", "s", rs), TGear("P", "p", rp), TGear("R", "r", rr, True)]
     meshes = {"C": ("S", "P", _eta(rng)), "D": ("R", "P", _eta(rng))}
     return _three_shaft("planetary", rng, seed, members, gears, meshes, ["s", "r", "c"], "simple planetary")
@@ -246,8 +309,13 @@ def _stepped(rng: random.Random, seed: int) -> RandomTrain:
         rr = rs + rp1 + rp2
         if rp1 != rp2:
             break
-    members = [TMember(HOUSING, "housing"), TMember("s", "central"), TMember("r", "central"),
-               TMember("c", "central"), TMember("p", "planet", "c", _y(rs + rp1))]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s", "central"),
+        TMember("r", "central"),
+        TMember("c", "central"),
+        TMember("p", "planet", "c", _y(rs + rp1)),
+    ]
     gears = [TGear("S", "s", rs), TGear("P1", "p", rp1), TGear("P2", "p", rp2), TGear("R", "r", rr, True)]
     meshes = {"C": ("S", "P1", _eta(rng)), "D": ("R", "P2", _eta(rng))}
     return _three_shaft("stepped", rng, seed, members, gears, meshes, ["s", "r", "c"], "stepped planet")
@@ -261,13 +329,19 @@ def _double_pinion(rng: random.Random, seed: int) -> RandomTrain:
         rr = d2 + rp2
         if rs > 0 and rp2 > 0 and d1 + rp1 < rr and d2 - rp2 > rs and rs >= 4 and rp1 >= 3 and rp2 >= 3:
             break
-    members = [TMember(HOUSING, "housing"), TMember("s", "central"), TMember("r", "central"),
-               TMember("c", "central"), TMember("p1", "planet", "c", (F(0), d1)),
-               TMember("p2", "planet", "c", (x, y))]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s", "central"),
+        TMember("r", "central"),
+        TMember("c", "central"),
+        TMember("p1", "planet", "c", (F(0), d1)),
+        TMember("p2", "planet", "c", (x, y)),
+    ]
     gears = [TGear("S", "s", rs), TGear("P1", "p1", rp1), TGear("P2", "p2", rp2), TGear("R", "r", rr, True)]
     meshes = {"C": ("S", "P1", _eta(rng)), "D": ("P1", "P2", _eta(rng)), "E": ("R", "P2", _eta(rng))}
-    return _three_shaft("double_pinion", rng, seed, members, gears, meshes, ["s", "r", "c"],
-                        "double-pinion planetary", placement=True)
+    return _three_shaft(
+        "double_pinion", rng, seed, members, gears, meshes, ["s", "r", "c"], "double-pinion planetary", placement=True
+    )
 
 
 def _wolfrom(rng: random.Random, seed: int) -> RandomTrain:
@@ -278,16 +352,37 @@ def _wolfrom(rng: random.Random, seed: int) -> RandomTrain:
         if rp1 != rp2:
             break
     e = rs + rp1
-    members = [TMember(HOUSING, "housing"), TMember("s", "central"), TMember("r1", "central"),
-               TMember("r2", "central"), TMember("c", "central"), TMember("p", "planet", "c", _y(e))]
-    gears = [TGear("S", "s", rs), TGear("P1", "p", rp1), TGear("R1", "r1", rr1, True), TGear("P2", "p", rp2),
-             TGear("R2", "r2", rr2, True)]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s", "central"),
+        TMember("r1", "central"),
+        TMember("r2", "central"),
+        TMember("c", "central"),
+        TMember("p", "planet", "c", _y(e)),
+    ]
+    gears = [
+        TGear("S", "s", rs),
+        TGear("P1", "p", rp1),
+        TGear("R1", "r1", rr1, True),
+        TGear("P2", "p", rp2),
+        TGear("R2", "r2", rr2, True),
+    ]
     meshes = {"C": ("S", "P1", _eta(rng)), "D": ("R1", "P1", _eta(rng)), "E": ("R2", "P2", _eta(rng))}
     held = rng.choice(["r1", "r1", "r2", "s"])
     rest = [m for m in ("s", "r1", "r2") if m != held]
     rng.shuffle(rest)
-    return RandomTrain("wolfrom", seed, members, gears, meshes, {"A": rest[0], "B": rest[1]}, "A", "B",
-                       held=held, description=f"Wolfrom, carrier free; {held} held, {rest[0]} in, {rest[1]} out")
+    return RandomTrain(
+        "wolfrom",
+        seed,
+        members,
+        gears,
+        meshes,
+        {"A": rest[0], "B": rest[1]},
+        "A",
+        "B",
+        held=held,
+        description=f"Wolfrom, carrier free; {held} held, {rest[0]} in, {rest[1]} out",
+    )
 
 
 def _tuplin(rng: random.Random, seed: int) -> RandomTrain:
@@ -297,8 +392,13 @@ def _tuplin(rng: random.Random, seed: int) -> RandomTrain:
         r1, r2 = e + r3, e + r4
         if r3 != r4:
             break
-    members = [TMember(HOUSING, "housing"), TMember("1", "central"), TMember("2", "central"),
-               TMember("5", "central"), TMember("3/4", "planet", "5", _y(e))]
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("1", "central"),
+        TMember("2", "central"),
+        TMember("5", "central"),
+        TMember("3/4", "planet", "5", _y(e)),
+    ]
     gears = [TGear("1", "1", r1, True), TGear("2", "2", r2, True), TGear("3", "3/4", r3), TGear("4", "3/4", r4)]
     meshes = {"C": ("1", "3", _eta(rng)), "D": ("2", "4", _eta(rng))}
     return _three_shaft("tuplin", rng, seed, members, gears, meshes, ["1", "2", "5"], "two annuli (Tuplin)")
@@ -306,18 +406,46 @@ def _tuplin(rng: random.Random, seed: int) -> RandomTrain:
 
 def _simpson(rng: random.Random, seed: int) -> RandomTrain:
     rs, rp1, rp2 = _radius(rng, 8, 30), _radius(rng, 5, 20), _radius(rng, 5, 20)
-    members = [TMember(HOUSING, "housing"), TMember("s", "central"), TMember("r1", "central"),
-               TMember("o", "central"), TMember("c2", "central"), TMember("p1", "planet", "o", _y(rs + rp1)),
-               TMember("p2", "planet", "c2", _y(rs + rp2))]
-    gears = [TGear("S", "s", rs), TGear("P1", "p1", rp1), TGear("R1", "r1", rs + 2 * rp1, True),
-             TGear("P2", "p2", rp2), TGear("R2", "o", rs + 2 * rp2, True)]
-    meshes = {"C": ("S", "P1", _eta(rng)), "D": ("R1", "P1", _eta(rng)), "E": ("S", "P2", _eta(rng)),
-              "F": ("R2", "P2", _eta(rng))}
-    states = [State("first", "A", "B", brake=("c2",)), State("second", "A", "B", brake=("s",)),
-              State("third", "A", "B", clutch=(("r1", "s"),)),
-              State("reverse", "G", "B", brake=("c2",), free=("r1", "p1"))]
-    return RandomTrain("simpson", seed, members, gears, meshes, {"A": "r1", "B": "o", "G": "s"}, "A", "B",
-                       states=states, description="Simpson three-speed set")
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s", "central"),
+        TMember("r1", "central"),
+        TMember("o", "central"),
+        TMember("c2", "central"),
+        TMember("p1", "planet", "o", _y(rs + rp1)),
+        TMember("p2", "planet", "c2", _y(rs + rp2)),
+    ]
+    gears = [
+        TGear("S", "s", rs),
+        TGear("P1", "p1", rp1),
+        TGear("R1", "r1", rs + 2 * rp1, True),
+        TGear("P2", "p2", rp2),
+        TGear("R2", "o", rs + 2 * rp2, True),
+    ]
+    meshes = {
+        "C": ("S", "P1", _eta(rng)),
+        "D": ("R1", "P1", _eta(rng)),
+        "E": ("S", "P2", _eta(rng)),
+        "F": ("R2", "P2", _eta(rng)),
+    }
+    states = [
+        State("first", "A", "B", brake=("c2",)),
+        State("second", "A", "B", brake=("s",)),
+        State("third", "A", "B", clutch=(("r1", "s"),)),
+        State("reverse", "G", "B", brake=("c2",), free=("r1", "p1")),
+    ]
+    return RandomTrain(
+        "simpson",
+        seed,
+        members,
+        gears,
+        meshes,
+        {"A": "r1", "B": "o", "G": "s"},
+        "A",
+        "B",
+        states=states,
+        description="Simpson three-speed set",
+    )
 
 
 def _ravigneaux(rng: random.Random, seed: int) -> RandomTrain:
@@ -328,24 +456,60 @@ def _ravigneaux(rng: random.Random, seed: int) -> RandomTrain:
         rs1, rr = d1 - rps, d2 + rpl
         if min(rps, rs2, rs1) >= 3 and rpl >= 3 and d1 + rps < rr:
             break
-    members = [TMember(HOUSING, "housing"), TMember("s1", "central"), TMember("s2", "central"),
-               TMember("c", "central"), TMember("r", "central"), TMember("ps", "planet", "c", (F(0), d1)),
-               TMember("pl", "planet", "c", (x, y))]
-    gears = [TGear("S1", "s1", rs1), TGear("S2", "s2", rs2), TGear("PS", "ps", rps), TGear("PL", "pl", rpl),
-             TGear("R", "r", rr, True)]
-    meshes = {"G1": ("S1", "PS", _eta(rng)), "G2": ("PS", "PL", _eta(rng)), "G3": ("S2", "PL", _eta(rng)),
-              "G4": ("R", "PL", _eta(rng))}
-    states = [State("reverse", "B", "D", brake=("c",), free=("s1", "ps")),
-              State("first", "A", "D", brake=("c",), free=("s2",)),
-              State("second", "A", "D", brake=("s2",)),
-              State("third", "A", "D", clutch=(("s1", "s2"),))]
-    return RandomTrain("ravigneaux", seed, members, gears, meshes, {"A": "s1", "B": "s2", "D": "r"}, "A", "D",
-                       states=states, placement=True, description="Ravigneaux set")
+    members = [
+        TMember(HOUSING, "housing"),
+        TMember("s1", "central"),
+        TMember("s2", "central"),
+        TMember("c", "central"),
+        TMember("r", "central"),
+        TMember("ps", "planet", "c", (F(0), d1)),
+        TMember("pl", "planet", "c", (x, y)),
+    ]
+    gears = [
+        TGear("S1", "s1", rs1),
+        TGear("S2", "s2", rs2),
+        TGear("PS", "ps", rps),
+        TGear("PL", "pl", rpl),
+        TGear("R", "r", rr, True),
+    ]
+    meshes = {
+        "G1": ("S1", "PS", _eta(rng)),
+        "G2": ("PS", "PL", _eta(rng)),
+        "G3": ("S2", "PL", _eta(rng)),
+        "G4": ("R", "PL", _eta(rng)),
+    }
+    states = [
+        State("reverse", "B", "D", brake=("c",), free=("s1", "ps")),
+        State("first", "A", "D", brake=("c",), free=("s2",)),
+        State("second", "A", "D", brake=("s2",)),
+        State("third", "A", "D", clutch=(("s1", "s2"),)),
+    ]
+    return RandomTrain(
+        "ravigneaux",
+        seed,
+        members,
+        gears,
+        meshes,
+        {"A": "s1", "B": "s2", "D": "r"},
+        "A",
+        "D",
+        states=states,
+        placement=True,
+        description="Ravigneaux set",
+    )
 
 
-_BUILDERS = {"pair": _pair, "chain": _chain, "planetary": _planetary, "stepped": _stepped,
-             "double_pinion": _double_pinion, "wolfrom": _wolfrom, "tuplin": _tuplin, "simpson": _simpson,
-             "ravigneaux": _ravigneaux}
+_BUILDERS = {
+    "pair": _pair,
+    "chain": _chain,
+    "planetary": _planetary,
+    "stepped": _stepped,
+    "double_pinion": _double_pinion,
+    "wolfrom": _wolfrom,
+    "tuplin": _tuplin,
+    "simpson": _simpson,
+    "ravigneaux": _ravigneaux,
+}
 
 
 def generate(family: str, seed: int) -> RandomTrain:
@@ -382,16 +546,65 @@ class Spelling:
         return self.states[state]
 
 
-_NAME_POOL = ["frame", "Sun", "shaft_in", "arm", "k1", "7", "3/4", "q-2", "ring.out", "Planet A", "m", "x9",
-              "lower", "UP", "n_4", "w", "11", "h/2", "gamma", "t0"]
-_COUPLING_POOL = ["In", "Out", "b1", "b2", "b3", "b4", "m1", "m2", "m3", "m4", "Z", "X7", "pin", "g_a", "g_b",
-                  "Q", "brg", "r", "tooth", "ZZ"]
+_NAME_POOL = [
+    "frame",
+    "Sun",
+    "shaft_in",
+    "arm",
+    "k1",
+    "7",
+    "3/4",
+    "q-2",
+    "ring.out",
+    "Planet A",
+    "m",
+    "x9",
+    "lower",
+    "UP",
+    "n_4",
+    "w",
+    "11",
+    "h/2",
+    "gamma",
+    "t0",
+]
+_COUPLING_POOL = [
+    "In",
+    "Out",
+    "b1",
+    "b2",
+    "b3",
+    "b4",
+    "m1",
+    "m2",
+    "m3",
+    "m4",
+    "Z",
+    "X7",
+    "pin",
+    "g_a",
+    "g_b",
+    "Q",
+    "brg",
+    "r",
+    "tooth",
+    "ZZ",
+]
 
 
 def _scalar(name: str) -> str:
     """A YAML scalar for a name (quoted unless it is a plain word or number)."""
     if re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*|[0-9]+|[0-9]+/[0-9]+", name) and name.lower() not in (
-            "true", "false", "yes", "no", "on", "off", "null", "y", "n"):
+        "true",
+        "false",
+        "yes",
+        "no",
+        "on",
+        "off",
+        "null",
+        "y",
+        "n",
+    ):
         return name
     return json.dumps(name)
 
@@ -409,8 +622,11 @@ def spelling(train: RandomTrain, name: str, rng: random.Random | None = None) ->
     joined with ``+`` (``reversed+renamed``).  ``rng`` chooses the order of entries, the
     names and the tooth counts (default: seeded by the train and the spelling)."""
     rng = rng or random.Random(f"{train.family}:{train.seed}:{name}")
-    parts = set(name.split("+")) if name != "combined" else {"reversed", "flipped", "shuffled", "renamed",
-                                                              "teeth", "placement"}
+    parts = (
+        set(name.split("+"))
+        if name != "combined"
+        else {"reversed", "flipped", "shuffled", "renamed", "teeth", "placement"}
+    )
     if name == "catalog":
         parts = set()
     reverse = "reversed" in parts
@@ -500,12 +716,10 @@ def spelling(train: RandomTrain, name: str, rng: random.Random | None = None) ->
         if m.role in ("central", "fixed"):
             canonical = port_of.get(m.name) or next(letters)
             needed = link(m.name) not in geared and housing not in geared
-            revolute(canonical, housing, link(m.name), at=m.role == "central" and (needed or not minimal),
-                     axis=None)
+            revolute(canonical, housing, link(m.name), at=m.role == "central" and (needed or not minimal), axis=None)
         else:
             carrier = link(m.carrier or HOUSING)
-            revolute(next(letters), carrier, link(m.name), at=False,
-                     axis=link(m.name) if carrier in geared else None)
+            revolute(next(letters), carrier, link(m.name), at=False, axis=link(m.name) if carrier in geared else None)
     for mesh, (a, b, eta) in train.meshes.items():
         pair = [gear_names[b], gear_names[a]] if reverse else [gear_names[a], gear_names[b]]
         entries = [("type", "mesh"), ("gears", "[" + ", ".join(_scalar(x) for x in pair) + "]")]
@@ -522,22 +736,34 @@ def spelling(train: RandomTrain, name: str, rng: random.Random | None = None) ->
             if s.brake:
                 entries.append(("brake", "[" + ", ".join(_scalar(link(x)) for x in s.brake) + "]"))
             if s.clutch:
-                entries.append(("clutch", "[" + ", ".join("[" + ", ".join(_scalar(link(x)) for x in pair) + "]"
-                                                          for pair in s.clutch) + "]"))
+                entries.append(
+                    (
+                        "clutch",
+                        "["
+                        + ", ".join("[" + ", ".join(_scalar(link(x)) for x in pair) + "]" for pair in s.clutch)
+                        + "]",
+                    )
+                )
             if s.free:
                 entries.append(("free", "[" + ", ".join(_scalar(link(x)) for x in s.free) + "]"))
             state_lines.append(f"  {_scalar(state_names[s.name])}: {_flow(entries)}")
             engine_states[s.name] = state_names[s.name]
     elif brake:
         name_run = "hold" if rename else RUN
-        entries = [("input", _scalar(cname(train.input))), ("output", _scalar(cname(train.output))),
-                   ("brake", f"[{_scalar(link(train.held or ''))}]")]
+        entries = [
+            ("input", _scalar(cname(train.input))),
+            ("output", _scalar(cname(train.output))),
+            ("brake", f"[{_scalar(link(train.held or ''))}]"),
+        ]
         state_lines.append(f"  {_scalar(name_run)}: {_flow(entries)}")
         engine_states[RUN] = name_run
     else:
         engine_states[RUN] = None
-    lines = ["format: 1", f"name: {json.dumps(f'random {train.family} {train.seed} ({name})')}",
-             f"# {train.description}"]
+    lines = [
+        "format: 1",
+        f"name: {json.dumps(f'random {train.family} {train.seed} ({name})')}",
+        f"# {train.description}",
+    ]
     if train.placement:
         lines.append("placement: [3, 4]" if "placement" in parts else "placement: [0, 1]")
     lines.append("links: [" + ", ".join(_scalar(x) for x in links) + "]")

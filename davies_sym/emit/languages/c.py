@@ -13,12 +13,58 @@ from davies_sym.emit.languages.target import Target, indented, kind_names
 _KINDS = {Kind.REAL: "double", Kind.BOOL: "bool", Kind.PORT: "int"}
 
 #: C99's keywords, <stdbool.h>'s macros, <math.h>'s constants and the printer's functions.
-RESERVED = frozenset({
-    "auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum", "extern",
-    "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return", "short", "signed",
-    "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void", "volatile", "while", "_Bool",
-    "_Complex", "_Imaginary", "bool", "true", "false", "NAN", "INFINITY", "HUGE_VAL", "M_PI", "M_E", "main",
-    "math", "errno"}) | printed_names(c_printer())
+RESERVED = frozenset(
+    {
+        "auto",
+        "break",
+        "case",
+        "char",
+        "const",
+        "continue",
+        "default",
+        "do",
+        "double",
+        "else",
+        "enum",
+        "extern",
+        "float",
+        "for",
+        "goto",
+        "if",
+        "inline",
+        "int",
+        "long",
+        "register",
+        "restrict",
+        "return",
+        "short",
+        "signed",
+        "sizeof",
+        "static",
+        "struct",
+        "switch",
+        "typedef",
+        "union",
+        "unsigned",
+        "void",
+        "volatile",
+        "while",
+        "_Bool",
+        "_Complex",
+        "_Imaginary",
+        "bool",
+        "true",
+        "false",
+        "NAN",
+        "INFINITY",
+        "HUGE_VAL",
+        "M_PI",
+        "M_E",
+        "main",
+        "math",
+        "errno",
+    }
+) | printed_names(c_printer())
 
 
 def _comment(lines: tuple[str, ...]) -> list[str]:
@@ -33,8 +79,7 @@ def _routine(routine: Routine) -> list[str]:
     printer = c_printer()
     arguments = ", ".join(f"{t} {n}" for t, n in kind_names(_KINDS, routine)) or "void"
     storage = "" if routine.exported else "static "
-    lines = [*_comment((routine.summary,)),
-             f"{storage}{_KINDS[routine.returns]} {routine.name}({arguments})", "{"]
+    lines = [*_comment((routine.summary,)), f"{storage}{_KINDS[routine.returns]} {routine.name}({arguments})", "{"]
     for step in routine.steps:
         if step.is_choice:
             lines.append(f"    {_KINDS[step.kind]} {step.target};")
@@ -48,10 +93,18 @@ def _routine(routine: Routine) -> list[str]:
 def write_c(program: Program) -> str:
     """The C99 source of ``program``."""
     check_names(program, "C", RESERVED)
-    port = ("The input port is an int: " + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
-            + "; efficiency returns NaN for any other value." if program.ports else "")
-    notes = ("", "C99, one file without a header: cc -std=c99 -O2 -c FILE.c (link with -lm); declare the functions "
-             "you call (double name(double ...);). " + port)
+    port = (
+        "The input port is an int: "
+        + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
+        + "; efficiency returns NaN for any other value."
+        if program.ports
+        else ""
+    )
+    notes = (
+        "",
+        "C99, one file without a header: cc -std=c99 -O2 -c FILE.c (link with -lm); declare the functions "
+        "you call (double name(double ...);). " + port,
+    )
     lines = _comment((*program.header, *notes))
     lines += ["", "#include <math.h>", "#include <stdbool.h>"]
     for routine in program.routines:

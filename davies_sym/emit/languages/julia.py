@@ -10,19 +10,70 @@ from davies_sym.emit.languages.program import Kind, Program, Routine
 from davies_sym.emit.languages.target import Target, indented
 
 #: Julia's keywords, the constants and functions the printed code uses.
-RESERVED = frozenset({
-    "baremodule", "begin", "break", "catch", "const", "continue", "do", "else", "elseif", "end", "export", "false",
-    "finally", "for", "function", "global", "if", "import", "let", "local", "macro", "module", "quote", "return",
-    "struct", "true", "try", "using", "while", "abstract", "type", "mutable", "primitive", "where", "in", "isa",
-    "outer", "public", "NaN", "Inf", "pi", "im", "Base", "Core", "Main", "nothing", "missing", "Integer", "Real",
-    "Float64", "Bool"}) | printed_names(julia_printer())
+RESERVED = frozenset(
+    {
+        "baremodule",
+        "begin",
+        "break",
+        "catch",
+        "const",
+        "continue",
+        "do",
+        "else",
+        "elseif",
+        "end",
+        "export",
+        "false",
+        "finally",
+        "for",
+        "function",
+        "global",
+        "if",
+        "import",
+        "let",
+        "local",
+        "macro",
+        "module",
+        "quote",
+        "return",
+        "struct",
+        "true",
+        "try",
+        "using",
+        "while",
+        "abstract",
+        "type",
+        "mutable",
+        "primitive",
+        "where",
+        "in",
+        "isa",
+        "outer",
+        "public",
+        "NaN",
+        "Inf",
+        "pi",
+        "im",
+        "Base",
+        "Core",
+        "Main",
+        "nothing",
+        "missing",
+        "Integer",
+        "Real",
+        "Float64",
+        "Bool",
+    }
+) | printed_names(julia_printer())
 
 
 def _routine(routine: Routine) -> list[str]:
     printer = julia_printer()
     arguments = ", ".join(f"{a.name}::Integer" if a.kind is Kind.PORT else a.name for a in routine.arguments)
-    lines = [*(f"# {line}".rstrip() for line in comment_lines([routine.summary])),
-             f"function {routine.name}({arguments})"]
+    lines = [
+        *(f"# {line}".rstrip() for line in comment_lines([routine.summary])),
+        f"function {routine.name}({arguments})",
+    ]
     for step in routine.steps:
         lines += indented(printer.doprint(step.value, assign_to=step.target), "    ")
     lines += [f"    return {printer.doprint(routine.result)}", "end"]
@@ -32,9 +83,13 @@ def _routine(routine: Routine) -> list[str]:
 def write_julia(program: Program) -> str:
     """The Julia source of ``program``."""
     check_names(program, "Julia", RESERVED, extra={program.module})
-    port = ("The input port is an integer: " + ", ".join(f"{k} for {p} as the input" for k, p in
-                                                        enumerate(program.ports))
-            + "; efficiency returns NaN for any other value." if program.ports else "")
+    port = (
+        "The input port is an integer: "
+        + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
+        + "; efficiency returns NaN for any other value."
+        if program.ports
+        else ""
+    )
     notes = ("", f'Julia: include("FILE.jl"); using .{program.module}; efficiency(...). ' + port)
     lines = [f"# {line}".rstrip() for line in comment_lines((*program.header, *notes))]
     lines += ["", f"module {program.module}", "", f"export {program.entry}"]

@@ -19,17 +19,120 @@ _KINDS = {Kind.REAL: "Real", Kind.BOOL: "Boolean", Kind.PORT: "Integer"}
 _NOT_COVERED = "0"
 
 #: Modelica's keywords, its predefined types and the functions the printed code uses.
-RESERVED = frozenset({
-    "algorithm", "and", "annotation", "block", "break", "class", "connect", "connector", "constant",
-    "constrainedby", "der", "discrete", "each", "else", "elseif", "elsewhen", "encapsulated", "end", "enumeration",
-    "equation", "expandable", "extends", "external", "false", "final", "flow", "for", "function", "if", "import",
-    "impure", "in", "initial", "inner", "input", "loop", "model", "not", "operator", "or", "outer", "output",
-    "package", "parameter", "partial", "protected", "public", "pure", "record", "redeclare", "replaceable", "return",
-    "stream", "then", "true", "type", "when", "while", "within", "Real", "Integer", "Boolean", "String", "time",
-    "Modelica", "sqrt", "abs", "exp", "log", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
-    "assert", "terminal", "sample", "pre", "edge", "change", "reinit", "noEvent", "smooth", "size", "ndims",
-    "zeros", "ones", "fill", "min", "max", "sum", "product", "integer", "floor", "ceil", "div", "mod", "rem",
-    "sign", "homotopy", "semiLinear", "delay", "cardinality", "inStream", "actualStream", "getInstanceName"})
+RESERVED = frozenset(
+    {
+        "algorithm",
+        "and",
+        "annotation",
+        "block",
+        "break",
+        "class",
+        "connect",
+        "connector",
+        "constant",
+        "constrainedby",
+        "der",
+        "discrete",
+        "each",
+        "else",
+        "elseif",
+        "elsewhen",
+        "encapsulated",
+        "end",
+        "enumeration",
+        "equation",
+        "expandable",
+        "extends",
+        "external",
+        "false",
+        "final",
+        "flow",
+        "for",
+        "function",
+        "if",
+        "import",
+        "impure",
+        "in",
+        "initial",
+        "inner",
+        "input",
+        "loop",
+        "model",
+        "not",
+        "operator",
+        "or",
+        "outer",
+        "output",
+        "package",
+        "parameter",
+        "partial",
+        "protected",
+        "public",
+        "pure",
+        "record",
+        "redeclare",
+        "replaceable",
+        "return",
+        "stream",
+        "then",
+        "true",
+        "type",
+        "when",
+        "while",
+        "within",
+        "Real",
+        "Integer",
+        "Boolean",
+        "String",
+        "time",
+        "Modelica",
+        "sqrt",
+        "abs",
+        "exp",
+        "log",
+        "sin",
+        "cos",
+        "tan",
+        "asin",
+        "acos",
+        "atan",
+        "sinh",
+        "cosh",
+        "tanh",
+        "assert",
+        "terminal",
+        "sample",
+        "pre",
+        "edge",
+        "change",
+        "reinit",
+        "noEvent",
+        "smooth",
+        "size",
+        "ndims",
+        "zeros",
+        "ones",
+        "fill",
+        "min",
+        "max",
+        "sum",
+        "product",
+        "integer",
+        "floor",
+        "ceil",
+        "div",
+        "mod",
+        "rem",
+        "sign",
+        "homotopy",
+        "semiLinear",
+        "delay",
+        "cardinality",
+        "inStream",
+        "actualStream",
+        "getInstanceName",
+    }
+)
 
 
 def _string(text: str) -> str:
@@ -40,8 +143,10 @@ def _string(text: str) -> str:
 def _finite(value: sympy.Basic) -> sympy.Basic:
     """``value`` without the checks against an infinite bound (Modelica has no infinity;
     its Reals are finite, so those checks hold)."""
+
     def finite(rel: sympy.Basic) -> bool:
         return not (isinstance(rel, sympy.core.relational.Relational) and rel.rhs.is_infinite)
+
     if isinstance(value, sympy.And):
         return sympy.And(*(a for a in value.args if finite(a)))
     return value if finite(value) else sympy.true
@@ -65,12 +170,19 @@ def _routine(routine: Routine) -> list[str]:
 def write_modelica(program: Program) -> str:
     """The Modelica source of ``program``."""
     check_names(program, "Modelica", RESERVED, extra={program.module}, leading_underscore=False)
-    port = ("The input port is an Integer: " + ", ".join(f"{k} for {p} as the input" for k, p in
-                                                        enumerate(program.ports))
-            + "; efficiency returns 0 for any other value. " if program.ports else "")
-    notes = ("", f"Modelica: {program.module}.{program.entry}(...) from a model. " + port + "Modelica has no NaN: "
-             "the choice functions return 0 where there is no efficiency (a valid one is in (0, 1]), and infinite "
-             "range bounds are not checked.")
+    port = (
+        "The input port is an Integer: "
+        + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
+        + "; efficiency returns 0 for any other value. "
+        if program.ports
+        else ""
+    )
+    notes = (
+        "",
+        f"Modelica: {program.module}.{program.entry}(...) from a model. " + port + "Modelica has no NaN: "
+        "the choice functions return 0 where there is no efficiency (a valid one is in (0, 1]), and infinite "
+        "range bounds are not checked.",
+    )
     lines = [f"// {line}".rstrip() for line in comment_lines((*program.header, *notes))]
     lines += [f"package {program.module} {_string(program.header[0])}"]
     for routine in program.routines:

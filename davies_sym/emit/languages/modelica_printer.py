@@ -26,8 +26,10 @@ class ModelicaPrinter(StrPrinter):  # type: ignore[misc]  # sympy has no type in
     _default_settings: ClassVar[dict[str, Any]] = {**StrPrinter._default_settings, "not_covered": "0.0"}
 
     #: sympy's functions by their Modelica names (``Abs`` is ``abs``, the others keep theirs).
-    _functions: ClassVar[dict[str, str]] = {"Abs": "abs", **{f: f for f in (
-        "sqrt", "exp", "log", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh")}}
+    _functions: ClassVar[dict[str, str]] = {
+        "Abs": "abs",
+        **{f: f for f in ("sqrt", "exp", "log", "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh")},
+    }
 
     def _print_Pow(self, expr: sympy.Pow, rational: bool = False) -> str:
         base, exp = expr.base, expr.exp
@@ -81,8 +83,9 @@ class ModelicaPrinter(StrPrinter):  # type: ignore[misc]  # sympy has no type in
 
     def _operand(self, item: sympy.Basic) -> str:
         text = str(self._print(item))
-        return text if item.is_Symbol or isinstance(item, (AppliedUndef, sympy.logic.boolalg.BooleanAtom)) \
-            else f"({text})"
+        return (
+            text if item.is_Symbol or isinstance(item, (AppliedUndef, sympy.logic.boolalg.BooleanAtom)) else f"({text})"
+        )
 
     def _print_And(self, expr: sympy.And) -> str:
         return " and ".join(self._operand(a) for a in expr.args)

@@ -13,8 +13,13 @@ from davies_sym.emit.languages.program import Program
 from davies_sym.errors import DerivationError
 
 
-def check_names(program: Program, language: str, reserved: Collection[str], extra: Collection[str] = (),
-                leading_underscore: bool = True) -> None:
+def check_names(
+    program: Program,
+    language: str,
+    reserved: Collection[str],
+    extra: Collection[str] = (),
+    leading_underscore: bool = True,
+) -> None:
     """Refuse a parameter or function name the language cannot take: not an ASCII
     identifier, a reserved word or a name the generated code uses (``reserved``), a name
     the file itself defines besides its functions (``extra``: the module's name, an
@@ -32,8 +37,10 @@ def check_names(program: Program, language: str, reserved: Collection[str], extr
             elif name.startswith("_") and not leading_underscore:
                 why = f"{language} names cannot start with '_'"
             if why:
-                raise DerivationError(f"the {kind} {name!r} cannot be a name in the generated {language} code ({why}); "
-                                      "rename it in the topology file")
+                raise DerivationError(
+                    f"the {kind} {name!r} cannot be a name in the generated {language} code ({why}); "
+                    "rename it in the topology file"
+                )
 
 
 def comment_text(line: str) -> str:
@@ -50,6 +57,12 @@ def comment_lines(lines: Iterable[str], width: int = 100) -> list[str]:
         text = comment_text(line)
         body = text.lstrip(" ")
         indent = " " * (len(text) - len(body))
-        out += textwrap.wrap(body, width, initial_indent=indent, subsequent_indent=indent + "    ",
-                             break_long_words=False, break_on_hyphens=False) or [""]
+        out += textwrap.wrap(
+            body,
+            width,
+            initial_indent=indent,
+            subsequent_indent=indent + "    ",
+            break_long_words=False,
+            break_on_hyphens=False,
+        ) or [""]
     return out

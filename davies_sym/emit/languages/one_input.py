@@ -61,8 +61,9 @@ def range_checks(parameters: tuple[Parameter, ...], names: tuple[str, ...]) -> l
 
 def _where(variants: VariantSet, variant: Variant) -> str:
     conditions = condition_text(variants, variant)
-    return f"input {variant.input}, output {variant.output}" + (f", where {' and '.join(conditions)}"
-                                                                  if conditions else "")
+    return f"input {variant.input}, output {variant.output}" + (
+        f", where {' and '.join(conditions)}" if conditions else ""
+    )
 
 
 def one_input_program(variants: VariantSet, module: str, not_covered: str, state: str | None = None) -> Program:
@@ -80,46 +81,72 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     table = parameter_table(variants)
     routines: list[Routine] = []
     for c in variants.conditions:
-        routines.append(formula_routine(f"condition_{c.name}", f"turning condition {c.name} = "
-                                        f"{sympy.sstr(c.simplified)}; its sign picks the variants",
-                                        public(c.expression), names))
+        routines.append(
+            formula_routine(
+                f"condition_{c.name}",
+                f"turning condition {c.name} = {sympy.sstr(c.simplified)}; its sign picks the variants",
+                public(c.expression),
+                names,
+            )
+        )
     forces: dict[str, Routine] = {}
     for v in variants.variants:
-        routines.append(formula_routine(v.name, f"efficiency of variant ({v.number}): {_where(variants, v)}",
-                                        public(v.efficiency), names))
+        routines.append(
+            formula_routine(
+                v.name, f"efficiency of variant ({v.number}): {_where(variants, v)}", public(v.efficiency), names
+            )
+        )
         if v.loaded_forces:
-            checks: list[Check] = [(public(f.to_expr() * sign), ">=", sympy.Integer(0))
-                                   for f, sign in v.loaded_forces.values()]
-            forces[v.name] = checks_routine(f"{v.name}_forces_agree", f"whether the loaded forces of "
-                                            f"{', '.join(v.loaded_forces)} have the signs variant ({v.number}) needs",
-                                            checks, names)
+            checks: list[Check] = [
+                (public(f.to_expr() * sign), ">=", sympy.Integer(0)) for f, sign in v.loaded_forces.values()
+            ]
+            forces[v.name] = checks_routine(
+                f"{v.name}_forces_agree",
+                f"whether the loaded forces of {', '.join(v.loaded_forces)} have the signs variant ({v.number}) needs",
+                checks,
+                names,
+            )
     routines += forces.values()
     relations = [r for r in admissible_relations(variants) if {str(s) for s in r.free_symbols} <= set(names)]
     checks = [*range_checks(table, names), *((r, ">", sympy.Integer(0)) for r in relations)]
-    admissible = checks_routine("admissible", "whether every parameter is in its range and every relation holds",
-                                checks, names)
+    admissible = checks_routine(
+        "admissible", "whether every parameter is in its range and every relation holds", checks, names
+    )
     routines.append(admissible)
     ports = (train.ports.input, train.ports.output)
     choices = [_port_choice(variants, port, names, routines, forces, admissible, not_covered) for port in ports]
     routines += choices
     port_argument = fresh("input_port", names)
     port = sympy.Symbol(port_argument, integer=True)
-    picked = sympy.Piecewise(*((call(choice), sympy.Eq(port, k)) for k, choice in enumerate(choices)),
-                             (NOT_COVERED, True), evaluate=False)
+    picked = sympy.Piecewise(
+        *((call(choice), sympy.Eq(port, k)) for k, choice in enumerate(choices)), (NOT_COVERED, True), evaluate=False
+    )
     result = fresh("eta", names)
-    entry = Routine("efficiency", f"the efficiency with {port_argument} = 0: {ports[0]} the input, {ports[1]} the "
-                    f"output, = 1: {ports[1]} the input, {ports[0]} the output; "
-                    f"{not_covered} for any other value",
-                    (*(Argument(n, Kind.REAL) for n in names), Argument(port_argument, Kind.PORT)), Kind.REAL,
-                    (Step(result, Kind.REAL, picked),), sympy.Symbol(result))
+    entry = Routine(
+        "efficiency",
+        f"the efficiency with {port_argument} = 0: {ports[0]} the input, {ports[1]} the "
+        f"output, = 1: {ports[1]} the input, {ports[0]} the output; "
+        f"{not_covered} for any other value",
+        (*(Argument(n, Kind.REAL) for n in names), Argument(port_argument, Kind.PORT)),
+        Kind.REAL,
+        (Step(result, Kind.REAL, picked),),
+        sympy.Symbol(result),
+    )
     routines.append(entry)
     _check_unique(routines, names)
     header = _header(variants, names, table, relations, routines, not_covered, state)
     return Program(module, header, tuple(routines), entry.name, names, ports)
 
 
-def _port_choice(variants: VariantSet, port: str, names: tuple[str, ...], routines: list[Routine],
-                 forces: dict[str, Routine], admissible: Routine, not_covered: str) -> Routine:
+def _port_choice(
+    variants: VariantSet,
+    port: str,
+    names: tuple[str, ...],
+    routines: list[Routine],
+    forces: dict[str, Routine],
+    admissible: Routine,
+    not_covered: str,
+) -> Routine:
     """``efficiency_from_<port>(...)``: the first variant of ``port`` whose turning
     conditions hold and whose loaded forces agree, screened for self-locking."""
     taken = set(names)
@@ -154,15 +181,28 @@ def _port_choice(variants: VariantSet, port: str, names: tuple[str, ...], routin
     steps.append(Step(chosen, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
     eta = local("eta")
     value = sympy.Symbol(chosen)
-    steps.append(Step(eta, Kind.REAL, sympy.Piecewise(
-        (value, sympy.And(relation(value, ">", sympy.Integer(0)), relation(value, "<=", UPPER))),
-        (NOT_COVERED, True), evaluate=False)))
+    steps.append(
+        Step(
+            eta,
+            Kind.REAL,
+            sympy.Piecewise(
+                (value, sympy.And(relation(value, ">", sympy.Integer(0)), relation(value, "<=", UPPER))),
+                (NOT_COVERED, True),
+                evaluate=False,
+            ),
+        )
+    )
     other = variants.train.ports.output if port == variants.train.ports.input else variants.train.ports.input
-    return Routine(f"efficiency_from_{identifier_part(port)}",
-                   f"the efficiency with {port} as the input port ({other} the output): the first of its variants "
-                   f"whose turning conditions hold (and loaded forces agree); {not_covered} outside the admissible "
-                   "parameters, where none holds, or where the efficiency is outside (0, 1] (self-locking)",
-                   tuple(Argument(n, Kind.REAL) for n in names), Kind.REAL, tuple(steps), sympy.Symbol(eta))
+    return Routine(
+        f"efficiency_from_{identifier_part(port)}",
+        f"the efficiency with {port} as the input port ({other} the output): the first of its variants "
+        f"whose turning conditions hold (and loaded forces agree); {not_covered} outside the admissible "
+        "parameters, where none holds, or where the efficiency is outside (0, 1] (self-locking)",
+        tuple(Argument(n, Kind.REAL) for n in names),
+        Kind.REAL,
+        tuple(steps),
+        sympy.Symbol(eta),
+    )
 
 
 def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:
@@ -171,19 +211,30 @@ def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:
     seen: set[str] = set()
     for r in routines:
         if r.name in seen or r.name in names:
-            raise DerivationError(f"the generated function name {r.name!r} is also the name of "
-                                  f"{'a parameter' if r.name in names else 'another function'}; rename the "
-                                  "parameter or the ports in the topology file")
+            raise DerivationError(
+                f"the generated function name {r.name!r} is also the name of "
+                f"{'a parameter' if r.name in names else 'another function'}; rename the "
+                "parameter or the ports in the topology file"
+            )
         seen.add(r.name)
 
 
-def _header(variants: VariantSet, names: tuple[str, ...], table: tuple[Parameter, ...], relations: list[sympy.Expr],
-            routines: list[Routine], not_covered: str, state: str | None) -> tuple[str, ...]:
+def _header(
+    variants: VariantSet,
+    names: tuple[str, ...],
+    table: tuple[Parameter, ...],
+    relations: list[sympy.Expr],
+    routines: list[Routine],
+    not_covered: str,
+    state: str | None,
+) -> tuple[str, ...]:
     """The opening comment: train, source, parameters, conditions, variants, functions."""
     train = variants.train
-    lines = [f"Efficiency of {train.name}: every turning-condition variant (Davies' method; Laus 2011, Tables 5 "
-             "and 6).", f"Source: {train.source or 'not given'}.",
-             f"Generated by davies_sym from {origin_text(train.path, state)}; do not edit."]
+    lines = [
+        f"Efficiency of {train.name}: every turning-condition variant (Davies' method; Laus 2011, Tables 5 and 6).",
+        f"Source: {train.source or 'not given'}.",
+        f"Generated by davies_sym from {origin_text(train.path, state)}; do not edit.",
+    ]
     eliminated = eliminated_symbols(variants)
     if eliminated:
         given = ", ".join(f"{k} = {sympy.sstr(v)}" for k, v in sorted(eliminated.items(), key=lambda kv: str(kv[0])))
@@ -198,15 +249,19 @@ def _header(variants: VariantSet, names: tuple[str, ...], table: tuple[Parameter
     for v in variants.variants:
         lines.append(f"  ({v.number}) {v.name}: {_where(variants, v)}")
         lines.append(f"      meshes: {'; '.join(mesh_text(variants, v))}")
-        lines += [f"      loaded force {text} (needed for this variant)"
-                  for text in _force_lines(variants, v)]
+        lines += [f"      loaded force {text} (needed for this variant)" for text in _force_lines(variants, v)]
     lines += ["", "Functions:"]
     lines += [f"  {r.name}({', '.join(r.argument_names)}): {r.summary}" for r in routines]
-    lines += ["", f"{not_covered} means: outside the admissible parameters, in no variant, or self-locking "
-              "(efficiency outside (0, 1])."]
+    lines += [
+        "",
+        f"{not_covered} means: outside the admissible parameters, in no variant, or self-locking "
+        "(efficiency outside (0, 1]).",
+    ]
     return tuple(lines)
 
 
 def _force_lines(variants: VariantSet, variant: Variant) -> list[str]:
-    return [f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0"
-            for what, force, sign in variant_forces(variants, variant)]
+    return [
+        f"{what}: {sympy.sstr(force)} {'>' if sign > 0 else '<'} 0"
+        for what, force, sign in variant_forces(variants, variant)
+    ]

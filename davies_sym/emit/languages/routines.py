@@ -47,8 +47,10 @@ def arguments_of(exprs: Iterable[sympy.Basic], order: Sequence[str]) -> tuple[Ar
     used = {s.name for e in exprs for s in e.free_symbols if isinstance(s, sympy.Symbol)}
     missing = sorted(used - set(order))
     if missing:
-        raise DerivationError(f"a formula uses {', '.join(missing)}, which the efficiency does not take as "
-                              "parameters; the code cannot be written")
+        raise DerivationError(
+            f"a formula uses {', '.join(missing)}, which the efficiency does not take as "
+            "parameters; the code cannot be written"
+        )
     return tuple(Argument(n, Kind.REAL) for n in order if n in used)
 
 
@@ -75,8 +77,9 @@ def relation(lhs: sympy.Basic, op: str, rhs: sympy.Basic) -> sympy.Basic:
     return sympy.Rel(lhs, rhs, op, evaluate=False)
 
 
-def checks_routine(name: str, summary: str, checks: Sequence[Check], order: Sequence[str],
-                   exported: bool = False) -> Routine:
+def checks_routine(
+    name: str, summary: str, checks: Sequence[Check], order: Sequence[str], exported: bool = False
+) -> Routine:
     """``name(arguments)``: whether every check holds (false where a side is NaN, as
     numpy's comparisons are)."""
     sides = [plain(e) for e, _, _ in checks]

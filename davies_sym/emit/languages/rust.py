@@ -12,20 +12,79 @@ from davies_sym.emit.languages.target import Target, kind_names
 _KINDS = {Kind.REAL: "f64", Kind.BOOL: "bool", Kind.PORT: "i32"}
 
 #: Rust's keywords (strict, reserved and weak ones that matter) and the types used.
-RESERVED = frozenset({
-    "as", "break", "const", "continue", "crate", "else", "enum", "extern", "false", "fn", "for", "if", "impl", "in",
-    "let", "loop", "match", "mod", "move", "mut", "pub", "ref", "return", "self", "Self", "static", "struct",
-    "super", "trait", "true", "type", "unsafe", "use", "where", "while", "async", "await", "dyn", "abstract",
-    "become", "box", "do", "final", "macro", "override", "priv", "typeof", "unsized", "virtual", "yield", "try",
-    "gen", "union", "f64", "f32", "i32", "bool", "std", "core"}) | printed_names(rust_printer())
+RESERVED = frozenset(
+    {
+        "as",
+        "break",
+        "const",
+        "continue",
+        "crate",
+        "else",
+        "enum",
+        "extern",
+        "false",
+        "fn",
+        "for",
+        "if",
+        "impl",
+        "in",
+        "let",
+        "loop",
+        "match",
+        "mod",
+        "move",
+        "mut",
+        "pub",
+        "ref",
+        "return",
+        "self",
+        "Self",
+        "static",
+        "struct",
+        "super",
+        "trait",
+        "true",
+        "type",
+        "unsafe",
+        "use",
+        "where",
+        "while",
+        "async",
+        "await",
+        "dyn",
+        "abstract",
+        "become",
+        "box",
+        "do",
+        "final",
+        "macro",
+        "override",
+        "priv",
+        "typeof",
+        "unsized",
+        "virtual",
+        "yield",
+        "try",
+        "gen",
+        "union",
+        "f64",
+        "f32",
+        "i32",
+        "bool",
+        "std",
+        "core",
+    }
+) | printed_names(rust_printer())
 
 
 def _routine(routine: Routine) -> list[str]:
     printer = rust_printer()
     arguments = ", ".join(f"{n}: {t}" for t, n in kind_names(_KINDS, routine))
     visibility = "pub " if routine.exported else ""
-    lines = [*(f"/// {line}".rstrip() for line in comment_lines([routine.summary])),
-             f"{visibility}fn {routine.name}({arguments}) -> {_KINDS[routine.returns]} {{"]
+    lines = [
+        *(f"/// {line}".rstrip() for line in comment_lines([routine.summary])),
+        f"{visibility}fn {routine.name}({arguments}) -> {_KINDS[routine.returns]} {{",
+    ]
     for step in routine.steps:
         lines.append(f"    let {step.target}: {_KINDS[step.kind]} = {printer.doprint(step.value)};")
     lines += [f"    {printer.doprint(routine.result)}", "}"]
@@ -35,8 +94,13 @@ def _routine(routine: Routine) -> list[str]:
 def write_rust(program: Program) -> str:
     """The Rust source of ``program``."""
     check_names(program, "Rust", RESERVED)
-    port = ("The input port is an i32: " + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
-            + "; efficiency returns f64::NAN for any other value." if program.ports else "")
+    port = (
+        "The input port is an i32: "
+        + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
+        + "; efficiency returns f64::NAN for any other value."
+        if program.ports
+        else ""
+    )
     notes = ("", "Rust: a module file (mod NAME; in your crate) or a crate of its own. " + port)
     lines = [f"// {line}".rstrip() for line in comment_lines((*program.header, *notes))]
     lines += ["", "#![allow(non_snake_case, unused_parens, clippy::all)]"]

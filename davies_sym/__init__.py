@@ -38,7 +38,8 @@ from davies_sym.errors import (
     TopologyError,
     TopologySyntaxError,
 )
-from davies_sym.network.analysis import Analysis, SignCondition, analyse
+from davies_sym.network.analysis import Analysis, analyse
+from davies_sym.network.sign_condition import SignCondition
 from davies_sym.topology.catalog_files import catalog_file, catalog_names
 from davies_sym.topology.loader import load, loads
 from davies_sym.topology.model import Gear, Link, Ports, State, Train

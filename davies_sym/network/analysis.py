@@ -9,7 +9,6 @@ actions, as in Laus eqs. (16) and (23).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from functools import cached_property
 
 import sympy
@@ -24,23 +23,12 @@ from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_s
 from davies_sym.network.analysis_display import analysis_latex
 from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
 from davies_sym.network.mobility import mobility_problems
+from davies_sym.network.sign_condition import SignCondition
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
 
 Progress = Callable[[str], None]
-
-
-@dataclass(frozen=True)
-class SignCondition:
-    """A Coulomb friction sign the declared ports do not decide.
-
-    ``symbol`` (+1 or -1) stands for ``sign(expression)`` in the friction form.
-    """
-
-    coupling: str
-    symbol: sympy.Symbol
-    expression: sympy.Expr
 
 
 class Analysis:
@@ -363,16 +351,6 @@ class Analysis:
         T_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_action.symbol))
         return {name: a * T_in + b for name, (a, b) in self.action_solution.items()}
 
-    def null_space(self) -> sympy.Matrix:
-        """The vector spanning Null(D_A), scaled so the input torque entry is 1 (eq. (23))."""
-        if self.dependent_sources.rows:
-            raise DerivationError("with dependent sources D_A Psi = [0; nu] has no plain null space")
-        return sympy.Matrix([a.to_expr() for a, _ in self.action_solution.values()])
-
-    def motion_null_space(self) -> sympy.Matrix:
-        """The vector spanning Null(M_N), scaled so the input speed entry is 1 (eq. (58))."""
-        return sympy.Matrix([c.to_expr() for c in self.motion_coefficients.values()])
-
     # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
     def coupling_twist(self, coupling: str) -> list[RationalFunction]:
         """Condensed motion screw of a coupling (a column of M, eq. (59))."""
@@ -445,16 +423,6 @@ class Analysis:
             self.speed_ratio().to_expr() if one else None,
             self.efficiency if one else None,
         )
-
-    def motion_matrix(self) -> sympy.Matrix:
-        """M (d x e), condensed per coupling, in terms of the input speed (eq. (59))."""
-        cols = [[c.to_expr() for c in self.coupling_twist(e)] for e in self.network.graph.edges]
-        return sympy.Matrix(cols).T
-
-    def action_matrix(self) -> sympy.Matrix:
-        """A (d x e), condensed per coupling, in terms of the input torque (eqs. (26), (65))."""
-        cols = [[c.to_expr() for c in self.coupling_wrench(e)] for e in self.network.graph.edges]
-        return sympy.Matrix(cols).T
 
 
 def analyse(

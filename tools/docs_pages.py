@@ -108,12 +108,10 @@ def _sign_math(expr: sympy.Expr, sign: int) -> str:
     return math(f"{mathml_body(expr)}<mo>{op}</mo><mn>0</mn>", f"{latex(expr)} {'>' if sign > 0 else '<'} 0")
 
 
-def _equation(name: str, number: int, expr: sympy.Expr) -> str:
-    """``name_(number) = expr`` as display math (``\\eta_{(3)} = ...``)."""
-    symbol = {"eta": "&#951;"}.get(name, name)
-    tex_name = {"eta": "\\eta"}.get(name, name)
-    lhs = f"<msub><mi>{symbol}</mi><mrow><mo>(</mo><mn>{number}</mn><mo>)</mo></mrow></msub><mo>=</mo>"
-    return math(lhs + mathml_body(expr), f"{tex_name}_{{({number})}} = {latex(expr)}", display=True)
+def _equation(number: int, expr: sympy.Expr) -> str:
+    """``eta_(number) = expr`` as display math (``\\eta_{(3)} = ...``)."""
+    lhs = f"<msub><mi>&#951;</mi><mrow><mo>(</mo><mn>{number}</mn><mo>)</mo></mrow></msub><mo>=</mo>"
+    return math(lhs + mathml_body(expr), f"\\eta_{{({number})}} = {latex(expr)}", display=True)
 
 
 def _escape(text: str) -> str:
@@ -196,7 +194,7 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
         )
     lines += ["", f"{heading} Formulas", ""]
     for v in variants.variants:
-        lines += [f"Variant ({v.number}), input {v.input}:", "", _equation("eta", v.number, v.efficiency), ""]
+        lines += [f"Variant ({v.number}), input {v.input}:", "", _equation(v.number, v.efficiency), ""]
     lines += [f"{heading} Parameters", "", "| name | meaning | unit | range |", "| --- | --- | --- | --- |"]
     for p in parameter_table(variants):
         lines.append(f"| `{p.name}` | {_escape(p.meaning)} | {p.unit} | {p.range_text} |")
@@ -242,7 +240,7 @@ def several_inputs_section(si: SeveralInputs, heading: str) -> list[str]:
         "",
     ]
     for r in si.regions:
-        lines += [f"Region ({r.number}):", "", _equation("eta", r.number, r.efficiency), ""]
+        lines += [f"Region ({r.number}):", "", _equation(r.number, r.efficiency), ""]
     return lines
 
 

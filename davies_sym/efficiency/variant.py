@@ -49,16 +49,28 @@ class Variant:
         """The formula, numerator and denominator factored."""
         return self.efficiency_rf.to_expr()
 
-    def _repr_latex_(self) -> str:
-        """``$$\\eta_{(n)} = ... \\qquad (A \\to B,\\ c_1 > 0)$$`` for a notebook; the
-        conditions by name (the variant set shows their expressions)."""
-        escaped = [p.replace("_", r"\_") for p in (self.input, self.output)]  # port names are identifiers
-        where = [rf"\text{{{escaped[0]}}} \to \text{{{escaped[1]}}}"]
-        where += [f"{latex(sympy.Symbol(c))} {'>' if s > 0 else '<'} 0" for c, s in self.signs.items()]
+    def where_latex(self, expressions: Mapping[str, str] | None = None) -> list[str]:
+        """Where the variant holds, as LaTeX: each turning condition's sign (``c_{1} > 0``,
+        or the condition's expression given in ``expressions`` by name) and the loaded
+        forces the losses reverse."""
+        shown = expressions or {}
+        out = [f"{shown.get(c) or latex(sympy.Symbol(c))} {'>' if s > 0 else '<'} 0" for c, s in self.signs.items()]
         if self.reversed_forces:
-            where.append(r"\text{light load: " + ", ".join(sorted(self.reversed_forces)) + " reversed}")
+            out.append(r"\text{light load: " + ", ".join(sorted(self.reversed_forces)) + " reversed}")
+        return out
+
+    def equation_latex(self, expressions: Mapping[str, str] | None = None) -> str:
+        """``$$\\eta_{(n)} = ... \\qquad (A \\to B,\\ c_1 > 0)$$``: the formula, its ports
+        and `where_latex`."""
+        escaped = [p.replace("_", r"\_") for p in (self.input, self.output)]  # port names are identifiers
+        where = [rf"\text{{{escaped[0]}}} \to \text{{{escaped[1]}}}", *self.where_latex(expressions)]
         joined = r",\ ".join(where)
         return rf"$$\eta_{{({self.number})}} = {latex(self.efficiency)} \qquad ({joined})$$"
+
+    def _repr_latex_(self) -> str:
+        """The equation for a notebook, conditions by name (the variant set shows their
+        expressions)."""
+        return self.equation_latex()
 
     @property
     def name(self) -> str:

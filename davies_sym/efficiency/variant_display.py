@@ -12,27 +12,23 @@ from davies_sym.efficiency.variant import Variant
 from davies_sym.topology.symbol_display import latex
 
 
-def _conditions_latex(conditions: Sequence[TurningCondition], variant: Variant) -> list[str]:
-    out = [f"{latex(c.simplified)} {'>' if variant.signs[c.name] > 0 else '<'} 0" for c in conditions]
-    if variant.reversed_forces:
-        out.append(r"\text{light load: " + ", ".join(sorted(variant.reversed_forces)) + " reversed}")
-    return out
+def _expressions(conditions: Sequence[TurningCondition]) -> dict[str, str]:
+    """Each turning condition's expression as LaTeX, by name."""
+    return {c.name: latex(c.simplified) for c in conditions}
 
 
 def variant_latex(conditions: Sequence[TurningCondition], variant: Variant) -> str:
     """``$$\\eta_{(n)} = ... \\quad (A \\to B,\\ conditions)$$``."""
-    ports = [p.replace("_", r"\_") for p in (variant.input, variant.output)]  # port names are identifiers
-    where = [rf"\text{{{ports[0]}}} \to \text{{{ports[1]}}}", *_conditions_latex(conditions, variant)]
-    joined = r",\ ".join(where)
-    return rf"$$\eta_{{({variant.number})}} = {latex(variant.efficiency)} \qquad ({joined})$$"
+    return variant.equation_latex(_expressions(conditions))
 
 
 def variant_set_html(name: str, conditions: Sequence[TurningCondition], variants: Sequence[Variant]) -> str:
     """A table of the variants: number, ports, where each holds, and its formula (LaTeX
     for the notebook's math renderer)."""
     rows = []
+    expressions = _expressions(conditions)
     for v in variants:
-        where = ", ".join(_conditions_latex(conditions, v)) or "always"
+        where = ", ".join(v.where_latex(expressions)) or "always"
         rows.append(
             f"<tr><td>({v.number})</td><td>{html.escape(v.input)} &rarr; {html.escape(v.output)}</td>"
             f"<td>\\({html.escape(where)}\\)</td><td>\\(\\eta = {html.escape(latex(v.efficiency))}\\)"

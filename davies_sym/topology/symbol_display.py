@@ -10,7 +10,7 @@ symbol looks the same everywhere.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 
 import sympy
 from sympy.printing.mathml import MathMLPresentationPrinter
@@ -80,8 +80,7 @@ def symbol_names(symbols: Iterable[sympy.Symbol]) -> dict[sympy.Symbol, str]:
 def latex(expr: sympy.Basic, **settings: object) -> str:
     """`sympy.latex` with every symbol under its display name; the order of the
     terms stays sympy's order of the original names."""
-    names: Mapping[sympy.Symbol, str] = symbol_names(expr.free_symbols)
-    return str(sympy.latex(expr, symbol_names=dict(names), **settings))
+    return str(sympy.latex(expr, symbol_names=symbol_names(expr.free_symbols), **settings))
 
 
 def mathml_body(expr: sympy.Basic) -> str:

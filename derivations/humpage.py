@@ -181,7 +181,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through D: -eta_34*eta_52*r2*r4 + r3*r5 > 0',
+            'power through E: eta_34*eta_52*r2*r4 - r3*r5 < 0',
+        ),
     },
     {
         'name': 'A_to_B_c1_neg',
@@ -204,7 +207,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through D: eta_25*eta_43*r3*r5 - r2*r4 < 0',
+            'power through E: -eta_25*eta_43*r3*r5 + r2*r4 > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_pos',
@@ -227,7 +233,11 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through C: (r2*r4 - r3*r5)*(eta_25*eta_43*r3*r5 - r2*r4) < 0',
+            'power through D: r2*r4 - r3*r5 < 0',
+            'power through E: -r2*r4 + r3*r5 > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_neg',
@@ -250,7 +260,11 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through C: -(r2*r4 - r3*r5)*(eta_34*eta_52*r2*r4 - r3*r5) < 0',
+            'power through D: r2*r4 - r3*r5 > 0',
+            'power through E: -r2*r4 + r3*r5 < 0',
+        ),
     },
 )
 
@@ -332,6 +346,26 @@ def _losses_A_to_B_c1_pos(
     )
 
 
+def _forces_A_to_B_c1_pos(
+    *,
+    eta_34: ArrayLike,
+    eta_52: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of D, E in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_34 = _array(eta_34)
+    eta_52 = _array(eta_52)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    r4 = _array(r4)
+    r5 = _array(r5)
+    _t0 = -eta_34 * eta_52 * r2 * r4 + r3 * r5
+    return (_array(_t0), _array(_t0))
+
+
 def A_to_B_c1_neg(
     *,
     eta_12: ArrayLike,
@@ -389,6 +423,26 @@ def _losses_A_to_B_c1_neg(
         _array(_t4 * (eta_25 - 1) * (_t1 * eta_12 + _t2 * r1)),
         _array(_t4 * r3 * (eta_43 - 1) * (_t3 * eta_12 + r1)),
     )
+
+
+def _forces_A_to_B_c1_neg(
+    *,
+    eta_25: ArrayLike,
+    eta_43: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of D, E in variant (2), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_25 = _array(eta_25)
+    eta_43 = _array(eta_43)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    r4 = _array(r4)
+    r5 = _array(r5)
+    _t0 = -eta_25 * eta_43 * r3 * r5 + r2 * r4
+    return (_array(_t0), _array(_t0))
 
 
 def B_to_A_c1_pos(
@@ -450,6 +504,29 @@ def _losses_B_to_A_c1_pos(
         _array(_t6 * (_t0 + _t2 * _t5) * (eta_25 - 1)),
         _array(_t3 * _t4 * (eta_43 - 1)),
     )
+
+
+def _forces_B_to_A_c1_pos(
+    *,
+    eta_25: ArrayLike,
+    eta_43: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D, E in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_25 = _array(eta_25)
+    eta_43 = _array(eta_43)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    r4 = _array(r4)
+    r5 = _array(r5)
+    _t0 = r2 * r4
+    _t1 = r3 * r5
+    _t2 = _t0 - _t1
+    _t3 = -_t2
+    return (_array(-_t2 * (-_t0 + _t1 * eta_25 * eta_43)), _array(_t3), _array(_t3))
 
 
 def B_to_A_c1_neg(
@@ -515,6 +592,28 @@ def _losses_B_to_A_c1_neg(
     )
 
 
+def _forces_B_to_A_c1_neg(
+    *,
+    eta_34: ArrayLike,
+    eta_52: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D, E in variant (4), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_34 = _array(eta_34)
+    eta_52 = _array(eta_52)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    r4 = _array(r4)
+    r5 = _array(r5)
+    _t0 = r2 * r4
+    _t1 = -r3 * r5
+    _t2 = _t0 + _t1
+    return (_array(_t2 * (_t0 * eta_34 * eta_52 + _t1)), _array(_t2), _array(_t2))
+
+
 def _ratio_formula(*, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike, r4: ArrayLike, r5: ArrayLike) -> Array:
     """Speed ratio with A as input."""
     r1 = _array(r1)
@@ -542,7 +641,12 @@ _LOSSES: Final[_Table] = {
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_21', 'eta_34', 'eta_52', 'r1', 'r2', 'r3', 'r4', 'r5')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r1', 'r2', 'r3', 'r4', 'r5'))}
-_FORCES: Final[_Table] = {}
+_FORCES: Final[_Table] = {
+    'A_to_B_c1_pos': (_forces_A_to_B_c1_pos, ('eta_34', 'eta_52', 'r2', 'r3', 'r4', 'r5')),
+    'A_to_B_c1_neg': (_forces_A_to_B_c1_neg, ('eta_25', 'eta_43', 'r2', 'r3', 'r4', 'r5')),
+    'B_to_A_c1_pos': (_forces_B_to_A_c1_pos, ('eta_25', 'eta_43', 'r2', 'r3', 'r4', 'r5')),
+    'B_to_A_c1_neg': (_forces_B_to_A_c1_neg, ('eta_34', 'eta_52', 'r2', 'r3', 'r4', 'r5')),
+}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -564,36 +668,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

@@ -133,7 +133,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'latex': '\\frac{- N_{1} N_{3} + N_{2} N_{4}}{- N_{1} N_{3} + N_{2} N_{4} \\eta_{1} \\eta_{2}}',
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through G1: N1*N3 - N2*N4*eta_1*eta_2 > 0',
+            'power through G2: -N1*N3 + N2*N4*eta_1*eta_2 < 0',
+        ),
     },
     {
         'name': 'A_to_B_c1_neg',
@@ -151,7 +154,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through G1: N1*N3*eta_1*eta_2 - N2*N4 < 0',
+            'power through G2: -N1*N3*eta_1*eta_2 + N2*N4 > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_pos',
@@ -169,7 +175,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G1: -N1*N3 + N2*N4 < 0', 'power through G2: N1*N3 - N2*N4 > 0'),
     },
     {
         'name': 'B_to_A_c1_neg',
@@ -184,7 +190,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'latex': '\\frac{N_{1} N_{3} - N_{2} N_{4} \\eta_{1} \\eta_{2}}{N_{1} N_{3} - N_{2} N_{4}}',
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G1: -N1*N3 + N2*N4 > 0', 'power through G2: N1*N3 - N2*N4 < 0'),
     },
 )
 
@@ -241,6 +247,26 @@ def _losses_A_to_B_c1_pos(
     return (_array(_t0 * _t1 * (eta_1 - 1)), _array(_t0 * _t1 * eta_1 * (eta_2 - 1)))
 
 
+def _forces_A_to_B_c1_pos(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of G1, G2 in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
+    N1 = _array(N1)
+    N2 = _array(N2)
+    N3 = _array(N3)
+    N4 = _array(N4)
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    _t0 = N1 * N3 - N2 * N4 * eta_1 * eta_2
+    return (_array(_t0), _array(_t0))
+
+
 def A_to_B_c1_neg(
     *,
     N1: ArrayLike,
@@ -284,6 +310,26 @@ def _losses_A_to_B_c1_neg(
     _t0 = N2 * N4
     _t1 = _t0 / (N1 * N3 * eta_1 * eta_2 - _t0)
     return (_array(_t1 * eta_2 * (eta_1 - 1)), _array(_t1 * (eta_2 - 1)))
+
+
+def _forces_A_to_B_c1_neg(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of G1, G2 in variant (2), each times the sign it needs: all >= 0 where the variant holds."""
+    N1 = _array(N1)
+    N2 = _array(N2)
+    N3 = _array(N3)
+    N4 = _array(N4)
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    _t0 = -N1 * N3 * eta_1 * eta_2 + N2 * N4
+    return (_array(_t0), _array(_t0))
 
 
 def B_to_A_c1_pos(
@@ -330,6 +376,16 @@ def _losses_B_to_A_c1_pos(
     return (_array(-_t1 * (eta_1 - 1)), _array(-_t1 * (eta_2 - 1) / eta_2))
 
 
+def _forces_B_to_A_c1_pos(*, N1: ArrayLike, N2: ArrayLike, N3: ArrayLike, N4: ArrayLike) -> tuple[Array, ...]:
+    """Loaded forces of G1, G2 in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
+    N1 = _array(N1)
+    N2 = _array(N2)
+    N3 = _array(N3)
+    N4 = _array(N4)
+    _t0 = N1 * N3 - N2 * N4
+    return (_array(_t0), _array(_t0))
+
+
 def B_to_A_c1_neg(
     *,
     N1: ArrayLike,
@@ -374,6 +430,16 @@ def _losses_B_to_A_c1_neg(
     return (_array(_t1 * (eta_1 - 1)), _array(_t1 * eta_1 * (eta_2 - 1)))
 
 
+def _forces_B_to_A_c1_neg(*, N1: ArrayLike, N2: ArrayLike, N3: ArrayLike, N4: ArrayLike) -> tuple[Array, ...]:
+    """Loaded forces of G1, G2 in variant (4), each times the sign it needs: all >= 0 where the variant holds."""
+    N1 = _array(N1)
+    N2 = _array(N2)
+    N3 = _array(N3)
+    N4 = _array(N4)
+    _t0 = -N1 * N3 + N2 * N4
+    return (_array(_t0), _array(_t0))
+
+
 def _ratio_formula(*, N1: ArrayLike, N2: ArrayLike, N3: ArrayLike, N4: ArrayLike) -> Array:
     """Speed ratio with A as input."""
     N1 = _array(N1)
@@ -400,7 +466,12 @@ _LOSSES: Final[_Table] = {
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('N1', 'N2', 'N3', 'N4'))}
-_FORCES: Final[_Table] = {}
+_FORCES: Final[_Table] = {
+    'A_to_B_c1_pos': (_forces_A_to_B_c1_pos, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+    'A_to_B_c1_neg': (_forces_A_to_B_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+    'B_to_A_c1_pos': (_forces_B_to_A_c1_pos, ('N1', 'N2', 'N3', 'N4')),
+    'B_to_A_c1_neg': (_forces_B_to_A_c1_neg, ('N1', 'N2', 'N3', 'N4')),
+}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -422,36 +493,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

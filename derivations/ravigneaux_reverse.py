@@ -220,36 +220,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

@@ -155,7 +155,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': False,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G3: -eta_1*eta_2*eta_4*rr + rs1 > 0',),
     },
     {
         'name': 'A_to_D_c1_neg',
@@ -178,7 +178,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G3: -eta_1*eta_2*eta_4*rr + rs1 < 0',),
     },
     {
         'name': 'D_to_A_c1_pos',
@@ -201,7 +201,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': False,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G3: -eta_1*eta_2*eta_4*rs1 + rr < 0',),
     },
     {
         'name': 'D_to_A_c1_neg',
@@ -225,7 +225,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through G3: -eta_1*eta_2*eta_4*rs1 + rr > 0',),
     },
 )
 
@@ -299,6 +299,23 @@ def _losses_A_to_D_c1_pos(
     )
 
 
+def _forces_A_to_D_c1_pos(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+) -> Array:
+    """Loaded forces of G3 in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return _array(-eta_1 * eta_2 * eta_4 * rr + rs1)
+
+
 def A_to_D_c1_neg(
     *,
     eta_1: ArrayLike,
@@ -353,6 +370,23 @@ def _losses_A_to_D_c1_neg(
         _array(-_t4 * (eta_3 - 1) * (_t1 * _t2 - rs1)),
         _array(-_t4 * (eta_4 - 1) * (_t2 * _t3 + rs1)),
     )
+
+
+def _forces_A_to_D_c1_neg(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+) -> Array:
+    """Loaded forces of G3 in variant (2), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return _array(eta_1 * eta_2 * eta_4 * rr - rs1)
 
 
 def D_to_A_c1_pos(
@@ -412,6 +446,23 @@ def _losses_D_to_A_c1_pos(
     )
 
 
+def _forces_D_to_A_c1_pos(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+) -> Array:
+    """Loaded forces of G3 in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return _array(eta_1 * eta_2 * eta_4 * rs1 - rr)
+
+
 def D_to_A_c1_neg(
     *,
     eta_1: ArrayLike,
@@ -467,6 +518,23 @@ def _losses_D_to_A_c1_neg(
     )
 
 
+def _forces_D_to_A_c1_neg(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+) -> Array:
+    """Loaded forces of G3 in variant (4), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return _array(-eta_1 * eta_2 * eta_4 * rs1 + rr)
+
+
 def _dependent_rpl(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
     """rpl = rr/2 - rs2/2 (the geometric constraint rpl + rs2 = -rpl + rr)."""
     rr = _array(rr)
@@ -498,7 +566,12 @@ _LOSSES: Final[_Table] = {
     'D_to_A_c1_neg': (_losses_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rr', 'rs1', 'rs2'))}
-_FORCES: Final[_Table] = {}
+_FORCES: Final[_Table] = {
+    'A_to_D_c1_pos': (_forces_A_to_D_c1_pos, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
+    'A_to_D_c1_neg': (_forces_A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
+    'D_to_A_c1_pos': (_forces_D_to_A_c1_pos, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
+    'D_to_A_c1_neg': (_forces_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
+}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -520,36 +593,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

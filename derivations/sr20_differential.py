@@ -123,8 +123,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': (),
         'forces': (
-            'tooth force of M1: -(8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) < 0',
-            'tooth force of M2: tau_out*(9*eta_M + 4)/(19890*eta_M) > 0',
+            'power through M1: -(8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) < 0',
+            'power through M2: tau_out*(9*eta_M + 4)/(19890*eta_M) > 0',
         ),
         'formula': (
             '4*eta_M**2*tau_out*(omega_A + omega_K)/(9*D_P*eta_M*omega_A - 9*D_P*eta_M*omega_K + '
@@ -146,8 +146,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': (),
         'forces': (
-            'tooth force of M1: -(-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 < 0',
-            'tooth force of M2: tau_out*(4*eta_M + 9)/19890 > 0',
+            'power through M1: -(-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 < 0',
+            'power through M2: tau_out*(4*eta_M + 9)/19890 > 0',
         ),
         'formula': (
             '4*tau_out*(omega_A + omega_K)/(-9*D_P*eta_M*omega_A + 9*D_P*eta_M*omega_K + 4*eta_M**2*omega_A*tau_out - '
@@ -169,8 +169,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': ('M1',),
         'forces': (
-            'tooth force of M1 (reversed by the losses): -(-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) > 0',
-            'tooth force of M2: tau_out*(4*eta_M + 9)/19890 > 0',
+            'power through M1 (reversed by the losses): -(-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) > 0',
+            'power through M2: tau_out*(4*eta_M + 9)/19890 > 0',
         ),
         'formula': (
             '4*eta_M*tau_out*(omega_A + omega_K)/(-9*D_P*omega_A + 9*D_P*omega_K + 4*eta_M*omega_A*tau_out + '
@@ -191,8 +191,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('K', 'O'),
         'reversed': (),
         'forces': (
-            'tooth force of M1: -(8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) < 0',
-            'tooth force of M2: tau_out*(9*eta_M + 4)/(19890*eta_M) > 0',
+            'power through M1: -(8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) < 0',
+            'power through M2: tau_out*(9*eta_M + 4)/(19890*eta_M) > 0',
         ),
         'formula': (
             '4*eta_M**2*tau_out*(omega_A + omega_K)/(9*D_P*eta_M*omega_A - 9*D_P*eta_M*omega_K + '
@@ -214,8 +214,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('A', 'O'),
         'reversed': (),
         'forces': (
-            'tooth force of M1: (-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 > 0',
-            'tooth force of M2: -tau_out*(4*eta_M + 9)/19890 < 0',
+            'power through M1: (-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 > 0',
+            'power through M2: -tau_out*(4*eta_M + 9)/19890 < 0',
         ),
         'formula': (
             '4*tau_out*(omega_A + omega_K)/(-9*D_P*eta_M*omega_A + 9*D_P*eta_M*omega_K + 4*eta_M**2*omega_A*tau_out - '
@@ -237,8 +237,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('A', 'O'),
         'reversed': ('M1',),
         'forces': (
-            'tooth force of M1 (reversed by the losses): (-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) < 0',
-            'tooth force of M2: -tau_out*(4*eta_M + 9)/19890 < 0',
+            'power through M1 (reversed by the losses): (-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) < 0',
+            'power through M2: -tau_out*(4*eta_M + 9)/19890 < 0',
         ),
         'formula': (
             '4*eta_M*tau_out*(omega_A + omega_K)/(-9*D_P*omega_A + 9*D_P*omega_K + 4*eta_M*omega_A*tau_out + '
@@ -259,8 +259,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('A', 'O'),
         'reversed': (),
         'forces': (
-            'tooth force of M1: -(-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 < 0',
-            'tooth force of M2: tau_out*(4*eta_M + 9)/19890 > 0',
+            'power through M1: -(-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 < 0',
+            'power through M2: tau_out*(4*eta_M + 9)/19890 > 0',
         ),
         'formula': (
             '4*tau_out*(omega_A + omega_K)/(-9*D_P*eta_M*omega_A + 9*D_P*eta_M*omega_K + 4*eta_M**2*omega_A*tau_out - '
@@ -282,8 +282,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('A', 'O'),
         'reversed': ('M1',),
         'forces': (
-            'tooth force of M1 (reversed by the losses): -(-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) > 0',
-            'tooth force of M2: tau_out*(4*eta_M + 9)/19890 > 0',
+            'power through M1 (reversed by the losses): -(-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) > 0',
+            'power through M2: tau_out*(4*eta_M + 9)/19890 > 0',
         ),
         'formula': (
             '4*eta_M*tau_out*(omega_A + omega_K)/(-9*D_P*omega_A + 9*D_P*omega_K + 4*eta_M*omega_A*tau_out + '
@@ -304,8 +304,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('K', 'O'),
         'reversed': (),
         'forces': (
-            'tooth force of M1: (8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) > 0',
-            'tooth force of M2: -tau_out*(9*eta_M + 4)/(19890*eta_M) < 0',
+            'power through M1: (8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) > 0',
+            'power through M2: -tau_out*(9*eta_M + 4)/(19890*eta_M) < 0',
         ),
         'formula': (
             '4*eta_M**2*tau_out*(omega_A + omega_K)/(9*D_P*eta_M*omega_A - 9*D_P*eta_M*omega_K + '
@@ -327,8 +327,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': (),
         'forces': (
-            'tooth force of M1: (-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 > 0',
-            'tooth force of M2: -tau_out*(4*eta_M + 9)/19890 < 0',
+            'power through M1: (-9*D_P + 4*eta_M*tau_out)*(9*eta_M + 8)/159120 > 0',
+            'power through M2: -tau_out*(4*eta_M + 9)/19890 < 0',
         ),
         'formula': (
             '4*tau_out*(omega_A + omega_K)/(-9*D_P*eta_M*omega_A + 9*D_P*eta_M*omega_K + 4*eta_M**2*omega_A*tau_out - '
@@ -350,8 +350,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': ('M1',),
         'forces': (
-            'tooth force of M1 (reversed by the losses): (-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) < 0',
-            'tooth force of M2: -tau_out*(4*eta_M + 9)/19890 < 0',
+            'power through M1 (reversed by the losses): (-9*D_P + 4*eta_M*tau_out)*(8*eta_M + 9)/(159120*eta_M) < 0',
+            'power through M2: -tau_out*(4*eta_M + 9)/19890 < 0',
         ),
         'formula': (
             '4*eta_M*tau_out*(omega_A + omega_K)/(-9*D_P*omega_A + 9*D_P*omega_K + 4*eta_M*omega_A*tau_out + '
@@ -372,8 +372,8 @@ REGIONS: Final[tuple[Region, ...]] = (
         'power_out': ('O',),
         'reversed': (),
         'forces': (
-            'tooth force of M1: (8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) > 0',
-            'tooth force of M2: -tau_out*(9*eta_M + 4)/(19890*eta_M) < 0',
+            'power through M1: (8*eta_M + 9)*(9*D_P*eta_M + 4*tau_out)/(159120*eta_M**2) > 0',
+            'power through M2: -tau_out*(9*eta_M + 4)/(19890*eta_M) < 0',
         ),
         'formula': (
             '4*eta_M**2*tau_out*(omega_A + omega_K)/(9*D_P*eta_M*omega_A - 9*D_P*eta_M*omega_K + '

@@ -130,7 +130,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through C: -eta_C*eta_D*r2*r3 - r1**2 + r1*r2 + r1*r3 > 0',
+            'power through D: eta_C*eta_D*r2*r3 + r1**2 - r1*r2 - r1*r3 < 0',
+        ),
     },
     {
         'name': 'A_to_B_c1_neg',
@@ -148,7 +151,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through C: -eta_C*eta_D*r1**2 + eta_C*eta_D*r1*r2 + eta_C*eta_D*r1*r3 - r2*r3 < 0',
+            'power through D: eta_C*eta_D*r1**2 - eta_C*eta_D*r1*r2 - eta_C*eta_D*r1*r3 + r2*r3 > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_pos',
@@ -166,7 +172,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through C: r1 - r2 < 0', 'power through D: -r1 + r2 > 0'),
     },
     {
         'name': 'B_to_A_c1_neg',
@@ -184,7 +190,7 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': ('power through C: r1 - r2 > 0', 'power through D: -r1 + r2 < 0'),
     },
 )
 
@@ -242,6 +248,24 @@ def _losses_A_to_B_c1_pos(
     return (_array(-_t0 * (eta_C - 1)), _array(-_t0 * eta_C * (eta_D - 1)))
 
 
+def _forces_A_to_B_c1_pos(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_C = _array(eta_C)
+    eta_D = _array(eta_D)
+    r1 = _array(r1)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    _t0 = -eta_C * eta_D * r2 * r3 - r1 ** 2 + r1 * r2 + r1 * r3
+    return (_array(_t0), _array(_t0))
+
+
 def A_to_B_c1_neg(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
     """Variant (2): input A, output B, where -r1 + r2 < 0.  C: gear 3 drives gear 1 (eta_C), carrier 5; D: gear 2
     drives gear 4 (eta_D), carrier 5.
@@ -276,6 +300,26 @@ def _losses_A_to_B_c1_neg(
     return (_array(_t2 * eta_D * (eta_C - 1)), _array(_t2 * (eta_D - 1)))
 
 
+def _forces_A_to_B_c1_neg(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D in variant (2), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_C = _array(eta_C)
+    eta_D = _array(eta_D)
+    r1 = _array(r1)
+    r2 = _array(r2)
+    r3 = _array(r3)
+    _t0 = eta_C * eta_D
+    _t1 = _t0 * r1
+    _t2 = _t0 * r1 ** 2 - _t1 * r2 - _t1 * r3 + r2 * r3
+    return (_array(_t2), _array(_t2))
+
+
 def B_to_A_c1_pos(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
     """Variant (3): input B, output A, where -r1 + r2 > 0.  C: gear 3 drives gear 1 (eta_C), carrier 5; D: gear 2
     drives gear 4 (eta_D), carrier 5.
@@ -308,6 +352,14 @@ def _losses_B_to_A_c1_pos(
     return (_array(-_t0 * eta_D * (eta_C - 1)), _array(-_t0 * (eta_D - 1)))
 
 
+def _forces_B_to_A_c1_pos(*, r1: ArrayLike, r2: ArrayLike) -> tuple[Array, ...]:
+    """Loaded forces of C, D in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
+    r1 = _array(r1)
+    r2 = _array(r2)
+    _t0 = -r1 + r2
+    return (_array(_t0), _array(_t0))
+
+
 def B_to_A_c1_neg(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
     """Variant (4): input B, output A, where -r1 + r2 < 0.  C: gear 1 drives gear 3 (eta_C), carrier 5; D: gear 4
     drives gear 2 (eta_D), carrier 5.
@@ -337,6 +389,14 @@ def _losses_B_to_A_c1_neg(
     r3 = _array(r3)
     _t0 = r1 * (r1 - r2 - r3) / (eta_D * (r1 - r2) * (r1 - r3))
     return (_array(_t0 * (eta_C - 1) / eta_C), _array(_t0 * (eta_D - 1)))
+
+
+def _forces_B_to_A_c1_neg(*, r1: ArrayLike, r2: ArrayLike) -> tuple[Array, ...]:
+    """Loaded forces of C, D in variant (4), each times the sign it needs: all >= 0 where the variant holds."""
+    r1 = _array(r1)
+    r2 = _array(r2)
+    _t0 = r1 - r2
+    return (_array(_t0), _array(_t0))
 
 
 def _dependent_r4(*, r1: ArrayLike, r2: ArrayLike, r3: ArrayLike) -> Array:
@@ -374,7 +434,12 @@ _LOSSES: Final[_Table] = {
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r1', 'r2', 'r3'))}
-_FORCES: Final[_Table] = {}
+_FORCES: Final[_Table] = {
+    'A_to_B_c1_pos': (_forces_A_to_B_c1_pos, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+    'A_to_B_c1_neg': (_forces_A_to_B_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+    'B_to_A_c1_pos': (_forces_B_to_A_c1_pos, ('r1', 'r2')),
+    'B_to_A_c1_neg': (_forces_B_to_A_c1_neg, ('r1', 'r2')),
+}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -396,36 +461,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

@@ -147,7 +147,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through D: -eta_D*eta_E*rp1**2 - eta_D*eta_E*rp1*rp2 - eta_D*eta_E*rp1*rs + 2*rp1*rp2 + rp2*rs > 0',
+            'power through E: eta_D*eta_E*rp1**2 + eta_D*eta_E*rp1*rp2 + eta_D*eta_E*rp1*rs - 2*rp1*rp2 - rp2*rs < 0',
+        ),
     },
     {
         'name': 'A_to_B_c1_neg',
@@ -173,7 +176,10 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through D: 2*eta_D*eta_E*rp1*rp2 + eta_D*eta_E*rp2*rs - rp1**2 - rp1*rp2 - rp1*rs < 0',
+            'power through E: -2*eta_D*eta_E*rp1*rp2 - eta_D*eta_E*rp2*rs + rp1**2 + rp1*rp2 + rp1*rs > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_pos',
@@ -199,7 +205,11 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            'power through C: (rp1 - rp2)*(2*eta_D*eta_E*rp1*rp2 + eta_D*eta_E*rp2*rs - rp1**2 - rp1*rp2 - rp1*rs) < 0',
+            'power through D: rp1 - rp2 < 0',
+            'power through E: -rp1 + rp2 > 0',
+        ),
     },
     {
         'name': 'B_to_A_c1_neg',
@@ -225,7 +235,14 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         ),
         'feasible': True,
         'reversed': (),
-        'forces': (),
+        'forces': (
+            (
+                'power through C: -(rp1 - rp2)*(eta_D*eta_E*rp1**2 + eta_D*eta_E*rp1*rp2 + eta_D*eta_E*rp1*rs - '
+                '2*rp1*rp2 - rp2*rs) < 0'
+            ),
+            'power through D: rp1 - rp2 > 0',
+            'power through E: -rp1 + rp2 < 0',
+        ),
     },
 )
 
@@ -296,6 +313,25 @@ def _losses_A_to_B_c1_pos(
     )
 
 
+def _forces_A_to_B_c1_pos(
+    *,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of D, E in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_D = _array(eta_D)
+    eta_E = _array(eta_E)
+    rp1 = _array(rp1)
+    rp2 = _array(rp2)
+    rs = _array(rs)
+    _t0 = eta_D * eta_E
+    _t1 = -_t0 * rp1 ** 2 - _t0 * rp1 * rp2 - _t0 * rp1 * rs + 2 * rp1 * rp2 + rp2 * rs
+    return (_array(_t1), _array(_t1))
+
+
 def A_to_B_c1_neg(
     *,
     eta_C: ArrayLike,
@@ -352,6 +388,26 @@ def _losses_A_to_B_c1_neg(
     )
 
 
+def _forces_A_to_B_c1_neg(
+    *,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of D, E in variant (2), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_D = _array(eta_D)
+    eta_E = _array(eta_E)
+    rp1 = _array(rp1)
+    rp2 = _array(rp2)
+    rs = _array(rs)
+    _t0 = rp1 * rp2
+    _t1 = eta_D * eta_E
+    _t2 = -2 * _t0 * _t1 + _t0 - _t1 * rp2 * rs + rp1 ** 2 + rp1 * rs
+    return (_array(_t2), _array(_t2))
+
+
 def B_to_A_c1_pos(
     *,
     eta_C: ArrayLike,
@@ -401,6 +457,27 @@ def _losses_B_to_A_c1_pos(
         _array(_t4 * (_t0 + _t1 * eta_E * rp2) * (eta_D - 1)),
         _array(_t3 * rp2 * (eta_E - 1)),
     )
+
+
+def _forces_B_to_A_c1_pos(
+    *,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D, E in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_D = _array(eta_D)
+    eta_E = _array(eta_E)
+    rp1 = _array(rp1)
+    rp2 = _array(rp2)
+    rs = _array(rs)
+    _t0 = rp1 - rp2
+    _t1 = -_t0
+    _t2 = -_t0
+    _t3 = 2 * eta_D * eta_E * rp1 * rp2 + eta_D * eta_E * rp2 * rs - rp1 ** 2 - rp1 * rp2 - rp1 * rs
+    return (_array(_t2 * _t3), _array(_t1), _array(_t1))
 
 
 def B_to_A_c1_neg(
@@ -460,6 +537,26 @@ def _losses_B_to_A_c1_neg(
     )
 
 
+def _forces_B_to_A_c1_neg(
+    *,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Loaded forces of C, D, E in variant (4), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_D = _array(eta_D)
+    eta_E = _array(eta_E)
+    rp1 = _array(rp1)
+    rp2 = _array(rp2)
+    rs = _array(rs)
+    _t0 = rp1 - rp2
+    _t1 = rp1 * rp2
+    _t2 = eta_D * eta_E
+    return (_array(_t0 * (_t1 * _t2 - 2 * _t1 + _t2 * rp1 ** 2 + _t2 * rp1 * rs - rp2 * rs)), _array(_t0), _array(_t0))
+
+
 def _dependent_rr1(*, rp1: ArrayLike, rs: ArrayLike) -> Array:
     """rr1 = 2*rp1 + rs (the geometric constraint rp1 + rs = -rp1 + rr1)."""
     rp1 = _array(rp1)
@@ -499,7 +596,12 @@ _LOSSES: Final[_Table] = {
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rp1', 'rp2', 'rs'))}
-_FORCES: Final[_Table] = {}
+_FORCES: Final[_Table] = {
+    'A_to_B_c1_pos': (_forces_A_to_B_c1_pos, ('eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'A_to_B_c1_neg': (_forces_A_to_B_c1_neg, ('eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'B_to_A_c1_pos': (_forces_B_to_A_c1_pos, ('eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'B_to_A_c1_neg': (_forces_B_to_A_c1_neg, ('eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+}
 
 
 def _array(value: ArrayLike) -> Array:
@@ -521,36 +623,42 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
 
 def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
-    its turning conditions hold and each of its loaded forces has the sign it needs (at
-    light load the losses reverse some); 0 where none does.  Where a force is zero two
-    variants agree and give the same value: the first is taken."""
+    its turning conditions hold and each of its loaded forces (the power each driving gear
+    gives, a bearing's reaction) has the sign it needs; where the losses move a turning
+    point past its lossless boundary, the variant of another region whose loaded forces
+    all agree; 0 where none does.  Where a force is zero two variants agree and give the
+    same value: the first is taken."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
     with np.errstate(all="ignore"):
         code = _region(values, shape)
-        for variant in VARIANTS:
-            if variant["input"] != input:
-                continue
+        mine = [v for v in VARIANTS if v["input"] == input]
+        for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            if mask.any() and variant["name"] in _FORCES:
-                function, names = _FORCES[variant["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape)[mask] for n in names
-                }
-                forces = function(**chosen)
-                # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
-                agree = np.all(
-                    [
-                        np.broadcast_to(np.asarray(f) >= 0, size)
-                        for f in (forces if isinstance(forces, tuple) else (forces,))
-                    ],
-                    axis=0,
-                )
-                mask[mask] = agree
-            numbers[mask] = variant["number"]
+            numbers[_agreeing(variant, values, mask)] = variant["number"]
+        for variant in mine:
+            if variant["name"] in _FORCES:
+                numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
+
+
+def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+    mask = np.array(mask, dtype=bool)
+    if not mask.any() or variant["name"] not in _FORCES:
+        return mask
+    function, names = _FORCES[variant["name"]]
+    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
+    forces = function(**chosen)
+    # A force that depends on none of the arrays comes back as a scalar.
+    size = (int(np.count_nonzero(mask)),)
+    agree = np.all(
+        [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
+        axis=0,
+    )
+    mask[mask] = agree
+    return mask
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

@@ -188,7 +188,7 @@ def state_section(variants: VariantSet, heading: str, figures: Sequence[Figure],
         if v.self_locking_point is not None:
             notes += "; self-locks at some designs"
         if v.reversed_forces:
-            notes += f"; light load: {', '.join(sorted(v.reversed_forces))} reversed"
+            notes += f"; the losses reverse {', '.join(sorted(v.reversed_forces))}"
         lines.append(
             f"| ({v.number}) | {v.input} → {v.output} | {'<br>'.join(where) or 'every design'} | {meshes} | {notes} |"
         )

@@ -1,22 +1,27 @@
-"""Variants of a one-input train at light load: the losses reverse a loaded force.
+"""Where a variant of a one-input train holds beyond its turning conditions: every mesh
+gives power the way the variant assumes, and every bearing's moment has its sense.
 
 A variant fixes which gear drives in each mesh from the lossless power flow (Laus eqs.
 (69)-(75)) and the sense of each bearing's Coulomb moment from the lossless reaction
-(eq. (21)).  A constant drag, viscous or bearing friction does not scale with the
-load: where the input torque is small against it (the planet's drag of a planetary
-larger than the ring's share of the load), a tooth force or a bearing reaction changes
-sign.  The mesh's driving gear, or the bearing moment's sense, is then the other one,
-and the formula is that of another case of the same derivation: the mesh takes the zeta
-of the other direction (eqs. (74)-(75)); the bearing's action null space is solved
+(eq. (21)).  Losses move both.  Near a turning condition the mesh power is small, and
+the friction in the other meshes can reverse it: the lossless rule says the first gear
+drives while, with losses, the power crosses the other way (the boundary between two
+variants moves with the mesh efficiencies).  A constant drag, viscous or bearing
+friction does not scale with the load: at light load it reverses a tooth force or a
+bearing reaction anywhere.  The formula is then that of another case: the mesh takes the
+zeta of its other direction (eqs. (74)-(75)); a bearing's action null space is solved
 again with its Coulomb sign reversed.
 
-Every case holds where each loaded force (the action solution of D_A, ``Analysis.
-action_solution``, at the operating point) has the sign it assumes: a closed form in
-the input torque, the speed and the losses.  Which cases admissible designs reach is
-found by sampling losses and input torque over decades at the variant's sampled
-geometries, starting from the lossless directions and following the forces that
-disagree.  A case missed here is never a wrong number: where no case's forces agree,
-the answer is refused.
+A case holds where its assumptions agree with its own solution: the power each driving
+gear gives in its carrier's frame (the tooth force and friction moment of the action
+solution of D_A, ``Analysis.action_solution``, on the driving side) is positive, and
+each bearing's reaction has the sign it assumes.  Both are closed forms in the geometry,
+the losses and the operating point.  The mesh conditions do not depend on the region,
+so the variant of a neighbouring region holds where the losses move a turning point past
+the lossless boundary.  Which bearing reversals admissible designs reach is found by
+sampling losses and input torque over decades at the variant's sampled geometries,
+starting from the lossless directions and following the forces that disagree.  A case
+missed here is never a wrong number: where no case agrees, the answer is refused.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ from davies_sym.efficiency.mesh_friction import is_mesh_law
 from davies_sym.efficiency.operating_point import INPUT_TORQUE, OPERATING_SYMBOLS, at_operating_point, substituted
 from davies_sym.efficiency.region_sampling import Draws, Point, needed_signs
 from davies_sym.efficiency.turning_conditions import MeshRole
+from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.matrices import FrictionLaw
 
@@ -51,6 +57,8 @@ class Derivation:
     analysis: Analysis
     form: RationalFunction
     zetas: Mapping[tuple[str, bool], RationalFunction]
+    #: Each mesh's carrier-frame powers in this derivation's ring.
+    flows: Mapping[str, MeshPowerFlow]
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,15 +90,41 @@ def loaded_laws(analysis: Analysis, roles: Sequence[MeshRole]) -> list[FrictionL
 
 
 def loaded_forces(
-    derivation: Derivation, roles: Sequence[MeshRole], first: Mapping[str, bool], reversed_forces: Collection[str]
+    derivation: Derivation,
+    roles: Sequence[MeshRole],
+    first: Mapping[str, bool],
+    reversed_forces: Collection[str],
+    swapped: bool = False,
 ) -> dict[str, tuple[RationalFunction, int]]:
-    """Each loaded force of a case at the operating point, with the sign the case needs:
-    that of its lossless value, the other for the couplings in ``reversed_forces``.  A
-    force whose lossless sign the geometry does not decide is given times that value."""
+    """Each loaded force of a case at the operating point, with the sign the case needs.
+
+    For a mesh, the sign of the power its driving gear gives (`mesh_power`): positive
+    where the first gear drives; given as the product of its factors the geometry does not
+    decide, which has the same sign.  For a bearing, the reaction: the sign of its
+    lossless value, the other for the couplings in ``reversed_forces``; a reaction whose
+    lossless sign the geometry does not decide is given times that value.  ``swapped``:
+    the derivation is the declared input's, read for the other input (only the meshes'
+    own friction, so one solution serves both inputs).
+    A mesh power whose sign the geometry and the losses' ranges decide as needed is left
+    out: it cannot disagree."""
     analysis = derivation.analysis
+    meshes = {r.coupling for r in roles if not r.idle}
     torque = analysis.ring.rational(analysis.input_action.symbol)
     out = {}
     for law in loaded_laws(analysis, roles):
+        if law.coupling in meshes:
+            power = mesh_power(derivation, roles, first, law)
+            if swapped:
+                # The solution has the declared input's power positive; the other input's
+                # power is -F times it (F the declared formula): scaled so that it is positive.
+                power = power * -substituted(derivation.form, roles, derivation.zetas, first)
+            needed = 1 if first[law.coupling] else -1
+            # Only the sign counts: the factors the geometry decides go (as for the
+            # turning conditions, Laus eq. (86)), and denominators count as factors.
+            sign, reduced = analysis.oracle.classify(*power.factor_list())
+            if sign != needed:
+                out[law.coupling] = (analysis.ring.rational(reduced), needed)
+            continue
         transmitted = law.transmitted or ""
         a, b = analysis.action_solution[transmitted]
         # Without dependent sources the force is proportional to the input torque: it is
@@ -106,6 +140,27 @@ def loaded_forces(
     return out
 
 
+def mesh_power(
+    derivation: Derivation, roles: Sequence[MeshRole], first: Mapping[str, bool], law: FrictionLaw
+) -> RationalFunction:
+    """The power the driving gear gives in the mesh whose own friction is ``law``, seen from the carrier, per unit input
+    power, at the operating point: U (w_U + zeta w_T) . ^c$_driver over the input power,
+    with the friction of every mesh in the directions ``first`` (Laus eqs. (69)-(73) with
+    the action of D_A in place of the lossless one).  Positive where the power crosses
+    from the first gear to the second; the lossless value is the mesh's flow ratio."""
+    analysis = derivation.analysis
+    mesh = law.coupling
+    flow = derivation.flows[mesh]
+    ring = analysis.ring
+    torque = ring.rational(analysis.input_action.symbol)
+    side = 0 if first[mesh] else 1
+    a, b = analysis.action_solution[law.transmitted or ""]
+    zeta = ring.rational(flow.friction_symbol)
+    on_driver = flow.transmitted_power[side] + zeta * flow.friction_power[side]
+    power = (a * torque + b) * on_driver / (torque * analysis.lossless_input_power())
+    return at_operating_point(substituted(power, roles, derivation.zetas, first), analysis)
+
+
 def reached_cases(
     first: Mapping[str, bool],
     derive: Callable[[frozenset[str]], Derivation],
@@ -113,10 +168,11 @@ def reached_cases(
     points: Sequence[Point],
     efficiencies: Collection[sympy.Symbol],
     seed: int,
+    swapped: bool = False,
 ) -> list[LoadCase]:
     """The variant's lossless case, then every reversal sampled losses and input torques
     reach at ``points`` (``derive``: the derivation with the named bearings' reactions
-    reversed)."""
+    reversed; ``swapped``: the declared input's derivation, read for the other input)."""
     bearings = {law.coupling for law in loaded_laws(derive(frozenset()).analysis, roles)} - {r.coupling for r in roles}
     draws = Draws(points, efficiencies, INPUT_TORQUE, seed, drawn=OPERATING_SYMBOLS) if points else None
     out: list[LoadCase] = []
@@ -126,12 +182,19 @@ def reached_cases(
         reversal = queue.pop(0)
         derivation = derive(reversal & bearings)
         case_first = {m: f != (m in reversal) for m, f in first.items()}
-        forces = loaded_forces(derivation, roles, case_first, reversal)
+        forces = loaded_forces(derivation, roles, case_first, reversal, swapped)
         efficiency = substituted(derivation.form, roles, derivation.zetas, case_first)
+        # Swapping input and output inverts the efficiency (Laus eqs. (78)-(79)).
+        efficiency = efficiency.inverse() if swapped else efficiency
         samples: tuple[Point, ...] = ()
         if draws is not None and forces:
             agree, finite, free = needed_signs(forces, draws)
             every = np.all(agree, axis=1) & finite
+            if reversal:
+                # A reversal the losses reach only where the train self-locks adds no formula:
+                # there the lossless case's value already says it locks.
+                working, _, _ = needed_signs({"efficiency": (efficiency, 1)}, draws)
+                every &= working[:, 0]
             used = set(free) | set(efficiency.to_expr().free_symbols)
             samples = tuple(draws.point(int(k), used) for k in np.flatnonzero(every)[:40])
             # Follow the forces that disagree, the most frequent pattern first.

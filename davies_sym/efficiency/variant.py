@@ -1,6 +1,6 @@
 """One formula of a train's overall efficiency and where it holds: the input port, the
-sign of every turning condition (Laus Tables 5 and 6), each mesh's driving gear, and at
-light load the loaded forces the losses reverse."""
+sign of every turning condition (Laus Tables 5 and 6), each mesh's driving gear, and the
+loaded forces the losses reverse."""
 
 from __future__ import annotations
 
@@ -37,11 +37,12 @@ class Variant:
     #: Product whose sign is that of the efficiency (positive factors removed); the
     #: variant self-locks where it is <= 0.  None when provably positive.
     locking_expression: sympy.Expr | None = None
-    #: Loaded forces (tooth forces, bearing reactions) the losses reverse in this variant:
-    #: empty for the lossless directions.
+    #: Couplings whose loaded force (mesh power, bearing reaction) the losses reverse in this
+    #: variant: empty for the lossless directions.
     reversed_forces: frozenset[str] = frozenset()
     #: Each loaded force at the operating point with the sign it needs where the variant
-    #: holds (empty when every force scales with the load: meshes' own friction only).
+    #: holds: the power through each mesh whose direction the losses can turn, each
+    #: bearing's reaction.
     loaded_forces: LoadedForces = field(default_factory=dict, repr=False)
 
     @property
@@ -56,7 +57,7 @@ class Variant:
         shown = expressions or {}
         out = [f"{shown.get(c) or latex(sympy.Symbol(c))} {'>' if s > 0 else '<'} 0" for c, s in self.signs.items()]
         if self.reversed_forces:
-            out.append(r"\text{light load: " + ", ".join(sorted(self.reversed_forces)) + " reversed}")
+            out.append(r"\text{the losses reverse " + ", ".join(sorted(self.reversed_forces)) + "}")
         return out
 
     def equation_latex(self, expressions: Mapping[str, str] | None = None) -> str:

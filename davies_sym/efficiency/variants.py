@@ -7,7 +7,10 @@ zeta is the solution of the ordinary-efficiency equation (eqs. (74)-(75), (92)-(
 substituting it gives the variant's formula, put over factored numerator and
 denominator (eq. (76)).  A variant is a choice of input port and a sign of every
 turning condition; swapping input and output reverses every mesh and inverts the
-efficiency (eqs. (78)-(79)).  Each variant is checked by the partial-derivative rule
+efficiency (eqs. (78)-(79)).  The losses can turn a small mesh power round near a
+turning condition, or any loaded force at light load: every variant carries the signs
+its mesh powers and bearing reactions need, and holds where they agree
+(`davies_sym.efficiency.variant_choice`).  Each variant is checked by the partial-derivative rule
 (section 3.6.2) at a sampled point of its region; regions no sampled geometry reaches
 are reported as infeasible, and sampled points where the efficiency is not positive
 as self-locking.
@@ -32,15 +35,15 @@ from davies_sym.efficiency.operating_point import (
     INPUT_TORQUE,
     OPERATING_SYMBOLS,
     at_operating_point,
-    substituted,
     zeta_forms,
 )
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
 from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
-from davies_sym.errors import DerivationError, InputError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.errors import InputError, MissingValuesError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
@@ -163,61 +166,7 @@ class VariantSet:
                 ],
                 self.train.path,
             )
-        signs = {}
-        for c in self.conditions:
-            value = sympy.sympify(c.expression.subs(values))
-            if not value.is_number:
-                missing = sorted(map(str, value.free_symbols))
-                raise MissingValuesError(
-                    [Problem("--eval", f"condition {c.name} needs values for {', '.join(missing)}")], self.train.path
-                )
-            signs[c.name] = 1 if value >= 0 else -1
-        candidates = [v for v in self.variants if v.input == port and dict(v.signs) == signs]
-        if not candidates:
-            raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
-        if len(candidates) == 1 and not candidates[0].loaded_forces:
-            return candidates[0]
-        agreeing = [v for v in candidates if self._forces_agree(v, values)]
-        if len(agreeing) == 1 or (agreeing and len({v.efficiency.subs(values) for v in agreeing}) == 1):
-            return agreeing[0]
-        base = candidates[0]
-        if not agreeing:
-            raise NotCoveredError(
-                f"the losses reverse loaded forces at these values as no derived variant "
-                f"covers (input {port}): the forces of variant ({base.number}) have the signs "
-                f"{self._force_signs(base, values)}"
-            )
-        numbers = ", ".join(f"({v.number})" for v in agreeing)
-        raise NotCoveredError(
-            f"the loaded forces of variants {numbers} all agree at these values, with different "
-            "efficiencies: the friction does not decide the power flow here"
-        )
-
-    def _force_values(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[str, sympy.Expr]:
-        out = {}
-        for coupling, (force, sign) in variant.loaded_forces.items():
-            value = sympy.sympify(force.to_expr().subs(values)) * sign
-            if not value.is_number:
-                missing = sorted(map(str, value.free_symbols))
-                raise MissingValuesError(
-                    [
-                        Problem(
-                            "--eval",
-                            f"the force in {coupling} (which variant holds) needs values for {', '.join(missing)}",
-                        )
-                    ],
-                    self.train.path,
-                )
-            out[coupling] = value
-        return out
-
-    def _forces_agree(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> bool:
-        """Whether every loaded force of ``variant`` has the sign it needs at ``values``."""
-        return all(v >= 0 for v in self._force_values(variant, values).values())
-
-    def _force_signs(self, variant: Variant, values: Mapping[sympy.Symbol, sympy.Expr]) -> str:
-        signs = self._force_values(variant, values)
-        return ", ".join(f"{c} {'as assumed' if v >= 0 else 'reversed'}" for c, v in signs.items())
+        return holding_variant(self.variants, self.conditions, port, values, self.train.path)
 
     def evaluate(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (keyed by symbol or name, e.g. ``{"r1": 40}``; exact
@@ -281,7 +230,9 @@ def derive_variants(
                 if side is analysis
                 else {r.coupling: named_mesh_power_flow(side, r.coupling) for r in roles}
             )
-            derivations[key] = Derivation(side, at_operating_point(side.efficiency_rf, side), zeta_forms(flows, roles))
+            derivations[key] = Derivation(
+                side, at_operating_point(side.efficiency_rf, side), zeta_forms(flows, roles), flows
+            )
         return derivations[key]
 
     declared = derive(True, frozenset())
@@ -316,20 +267,12 @@ def derive_variants(
             say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
             first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
-            if not resolve_again:
-                rf = substituted(declared.form, roles, declared.zetas, first)
-                variant = Variant(
-                    len(variants) + 1,
-                    port_in,
-                    port_out,
-                    signs,
-                    first,
-                    rf if declared_input else rf.inverse(),
-                    bool(region),
-                )
-                variants.append(_checked(variant, region, etas, analysis, conditions, rng))
-                continue
-            base, *reversals = reached_cases(first, partial(derive, declared_input), roles, region, etas, seed)
+            if resolve_again:
+                base, *reversals = reached_cases(first, partial(derive, declared_input), roles, region, etas, seed)
+            else:
+                # Only the meshes' own friction: one solution serves both inputs.
+                same = partial(_same, declared)
+                base, *reversals = reached_cases(first, same, roles, region, etas, seed, not declared_input)
             variant = Variant(
                 len(variants) + 1,
                 port_in,
@@ -343,7 +286,9 @@ def derive_variants(
             variants.append(_checked(variant, region, etas, base.derivation.analysis, conditions, rng))
             light += [(port_in, port_out, signs, case) for case in reversals]
     for port_in, port_out, signs, case in light:
-        say(f"light-load variant {len(variants) + 1}: input {port_in}, {', '.join(sorted(case.reversed))} reversed")
+        if _assumed_elsewhere(case, port_in, variants, roles):
+            continue
+        say(f"variant {len(variants) + 1}: input {port_in}, the losses reverse {', '.join(sorted(case.reversed))}")
         variant = Variant(
             len(variants) + 1,
             port_in,
@@ -357,6 +302,20 @@ def derive_variants(
         )
         variants.append(_checked(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
     return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared.form, derivations)
+
+
+def _same(derivation: Derivation, bearings: frozenset[str]) -> Derivation:
+    """``derivation`` whatever bearings are named (a train without bearing friction)."""
+    return derivation
+
+
+def _assumed_elsewhere(case: LoadCase, port: str, variants: Sequence[Variant], roles: Sequence[MeshRole]) -> bool:
+    """Whether ``case`` only reverses meshes into the driving gears of another region's
+    variant: that variant, with the same forces, holds where the case would."""
+    meshes = {r.coupling for r in roles}
+    return case.reversed <= meshes and any(
+        v.input == port and not v.reversed_forces and dict(v.first_drives) == dict(case.first_drives) for v in variants
+    )
 
 
 def _other_symbols(

@@ -30,6 +30,7 @@ so the eight steps are written once.  Other trains get a clear error.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -187,12 +188,32 @@ def _balance_result(
     port_in: str,
     port_out: str,
 ) -> BalanceResult:
-    """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency."""
+    """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency.
+
+    The lossless drivers (Chen's steps (ii)-(iii)) hold while the lossy solution keeps
+    every mesh's power crossing the way they assume.  Near a turning point the losses can
+    reverse a small mesh power: then every assignment of drivers is tried and the one
+    that agrees with its own solution is taken (a working one, with positive efficiency,
+    before a self-locking one); none or several different ones are refused."""
     # (ii-iii) lossless flow: the side delivering virtual power drives.
     lossless, _ = solve(None)
-    first = {m.name: bool(-lossless[m.name][0] * rel(m.links[0], carriers[m.name]) >= 0) for m in meshes}
+
+    def drives(torques: Torques, mesh: GearMesh) -> bool:
+        return bool(-torques[mesh.name][0] * rel(mesh.links[0], carriers[mesh.name]) >= 0)
+
+    def agrees(torques: Torques, first: Mapping[str, bool]) -> bool:
+        # The driver delivers virtual power in its carrier's frame (the driven side
+        # receives eta times it, so one side decides).
+        side = {m.name: 0 if first[m.name] else 1 for m in meshes}
+        return all(
+            exact(-torques[m.name][side[m.name]] * rel(m.links[side[m.name]], carriers[m.name])) >= 0 for m in meshes
+        )
+
+    first = {m.name: drives(lossless, m) for m in meshes}
     # (vii) with losses
     torques, t_out = solve(first)
+    if not agrees(torques, first):
+        first, torques, t_out = _agreeing_drivers(meshes, solve, agrees, w, train, port_in, port_out)
     pa, pb = train.coupling(port_in).links
     p_in = exact(w[pb] - w[pa])
     qa, qb = train.coupling(port_out).links
@@ -219,6 +240,39 @@ def _balance_result(
     return BalanceResult(
         efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first, {k: exact(v) for k, v in w.items()}
     )
+
+
+def _agreeing_drivers(
+    meshes: list[GearMesh],
+    solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
+    agrees: Callable[[Torques, Mapping[str, bool]], bool],
+    w: Mapping[str, sympy.Expr],
+    train: Train,
+    port_in: str,
+    port_out: str,
+) -> tuple[dict[str, bool], Torques, sympy.Expr]:
+    """The assignment of drivers that agrees with its own lossy solution (working first)."""
+    pa, pb = train.coupling(port_in).links
+    qa, qb = train.coupling(port_out).links
+    p_in = exact(w[pb] - w[pa])
+    found: list[tuple[sympy.Expr, dict[str, bool], Torques, sympy.Expr]] = []
+    for choice in itertools.product((True, False), repeat=len(meshes)):
+        first = {m.name: c for m, c in zip(meshes, choice, strict=True)}
+        try:
+            torques, t_out = solve(first)
+        except DerivationError:
+            continue  # this assignment leaves the torques undetermined
+        if agrees(torques, first):
+            found.append((exact(-t_out * (w[qb] - w[qa]) / p_in), first, torques, t_out))
+    working = [f for f in found if f[0] > 0] or found
+    if not working or len({f[0] for f in working}) > 1:
+        raise DerivationError(
+            "virtual-power balance: "
+            + ("no assignment of driving gears agrees" if not working else "several assignments agree")
+            + " with its own power flow"
+        )
+    _, first, torques, t_out = working[0]
+    return first, torques, t_out
 
 
 def _efficiency(mesh: GearMesh, index: int, values: Values) -> sympy.Expr:

@@ -1,7 +1,8 @@
 """Where a variant or region holds beyond its turning or speed conditions: each loaded
-force (a mesh's tooth force, a bearing's Coulomb reaction) with the sign it assumes, as
-text and as LaTeX.  At light load the losses reverse some of them, and the variant
-that holds is the one whose forces all have their signs."""
+force (the power through a mesh or its tooth force, a bearing's Coulomb reaction) with
+the sign it assumes, as text and as LaTeX.  The losses can reverse some of them (a small
+mesh power near a turning condition, any force at light load), and the variant that
+holds is the one whose forces all have their signs."""
 
 from __future__ import annotations
 
@@ -15,10 +16,12 @@ from davies_sym.algebra.polynomials import RationalFunction
 def force_conditions(
     loaded: Mapping[str, tuple[RationalFunction, int]], meshes: Collection[str], reversed_forces: Collection[str]
 ) -> list[tuple[str, sympy.Expr, int]]:
-    """(what the force is, the force, the sign it needs) for each loaded force."""
+    """(what the force is, the force, the sign it needs) for each loaded force: for a mesh
+    the power per unit input power crossing it from the first gear to the second, seen
+    from its carrier (its sign says which gear drives); for a bearing its reaction."""
     out = []
     for coupling, (force, sign) in loaded.items():
-        what = "tooth force of" if coupling in meshes else "reaction in"
+        what = "power through" if coupling in meshes else "reaction in"
         flipped = " (reversed by the losses)" if coupling in reversed_forces else ""
         out.append((f"{what} {coupling}{flipped}", force.to_expr(), sign))
     return out

@@ -16,7 +16,7 @@ import sympy
 from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.latex_lines import LINE_WIDTH, display, fits, numbered
-from davies_sym.emit.variant_report import load_dependent, variant_forces
+from davies_sym.emit.variant_report import variant_forces
 from davies_sym.topology.symbol_display import latex
 
 # "<" and ">" print as inverted punctuation in the default text font: they need commands.
@@ -145,7 +145,7 @@ def drivers_latex(variants: VariantSet, variant: Variant) -> str:
 def _status(variant: Variant) -> str:
     status = "infeasible" if not variant.feasible else ("self-locks" if variant.self_locking_point is not None else "")
     if variant.reversed_forces:
-        reversed_text = f"light load: {escape(', '.join(sorted(variant.reversed_forces)))} reversed"
+        reversed_text = f"the losses reverse {escape(', '.join(sorted(variant.reversed_forces)))}"
         status = ", ".join(filter(None, [reversed_text, status]))
     return status
 
@@ -243,9 +243,9 @@ def _section(variants: VariantSet) -> list[str]:
             + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions))
             + "."
         )
-        if load_dependent(variants):
-            # Variants of one input and turning-condition signs differ by the loaded forces' signs.
-            out += force_latex(variant_forces(variants, v))
+        # The losses' say beyond the lossless turning conditions: each mesh power (and
+        # bearing reaction) the losses can reverse, with the sign the variant needs.
+        out += force_latex(variant_forces(variants, v))
         out += numbered(r"\eta", v.efficiency, v.number)
         out += _latex_notes(v)
     out += definitions_latex([(d.symbol, d.expression, d.meaning, d.source) for d in train.definitions])

@@ -120,7 +120,7 @@ def _describe(module: ModuleType, number: int) -> str:
     v = next(v for v in module.VARIANTS if v["number"] == number)
     parts = list(v["conditions"])
     if v["reversed"]:
-        parts.append(f"light load, {', '.join(v['reversed'])} reversed")
+        parts.append(f"losses reverse {', '.join(v['reversed'])}")
     return f"({number}) " + (", ".join(parts) or "every design")
 
 

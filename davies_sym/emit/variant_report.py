@@ -21,14 +21,9 @@ def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
 
 
 def variant_forces(variants: VariantSet, variant: Variant) -> list[tuple[str, sympy.Expr, int]]:
-    """Where ``variant`` holds beyond its turning conditions: each loaded force with the
-    sign it needs (empty when every force scales with the load)."""
+    """Where ``variant`` holds beyond its turning conditions: each mesh power and bearing
+    reaction the losses can reverse, with the sign it needs."""
     return force_conditions(variant.loaded_forces, {r.coupling for r in variants.roles}, variant.reversed_forces)
-
-
-def load_dependent(variants: VariantSet) -> bool:
-    """Whether some variant holds at light load only (the losses reverse a loaded force)."""
-    return any(v.reversed_forces for v in variants.variants)
 
 
 def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
@@ -148,9 +143,8 @@ def variants_text(variants: VariantSet) -> str:
         where = "; ".join(condition_text(variants, v)) or "always"
         lines.append(f"  ({v.number}) input {v.input}, output {v.output}, where {where}:")
         lines.append(f"      eta = {sympy.sstr(v.efficiency)}")
-        if load_dependent(variants):
-            for f in force_text(variant_forces(variants, v)):
-                lines.append(f"      holds where the {f}")
+        for f in force_text(variant_forces(variants, v)):
+            lines.append(f"      holds where the {f}")
         for m in mesh_text(variants, v):
             lines.append(f"      {m}")
         for n in notes(v):

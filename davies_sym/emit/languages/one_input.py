@@ -177,6 +177,9 @@ def _port_choice(
         signs = [negative[c] if s < 0 else sympy.Not(negative[c]) for c, s in v.signs.items()]
         holds = sympy.And(sympy.Symbol(ok), *signs, *([agrees[v.name]] if v.name in agrees else []))
         branches.append((call(by_name[v.name]), holds))
+    # Where the losses move a turning point past its lossless boundary, the variant of
+    # another region whose loaded forces all agree holds.
+    branches += [(call(by_name[v.name]), sympy.And(sympy.Symbol(ok), agrees[v.name])) for v in mine if v.name in agrees]
     chosen = local("chosen")
     steps.append(Step(chosen, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
     eta = local("eta")

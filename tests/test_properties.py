@@ -14,8 +14,8 @@
   agree with the independent oracle (tests/oracle/balance.py).
 
 Examples are drawn by the ``davies`` profile (tests/conftest.py: deterministic); the
-functions marked slow draw more (``davies-slow``).  The last section keeps the cases the
-properties found, as plain tests.
+functions marked slow draw others, and more (``davies-slow``: a fixed seed).  The last
+section keeps the cases the properties found, as plain tests.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from __future__ import annotations
 import copy
 import re
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -31,10 +31,12 @@ from typing import Any
 import pytest
 import yaml
 from hostile.helpers import CATALOG, Result, assert_refused, rename_everywhere, run_main
-from hypothesis import event, given, settings
+from hypothesis import event, given, seed, settings
 from hypothesis import strategies as st
 from oracle.compare import LOCKING, OK, compare
 from oracle.random_trains import generate, spelling
+
+from conftest import SLOW_SEED
 
 TRAINS = tuple(sorted(p.stem for p in CATALOG.glob("*.yaml")))
 #: Trains whose harmless mutations derive for seconds (Humpage 5 s, Ravigneaux 15 s): only the slow
@@ -254,6 +256,12 @@ def assert_answered_or_refused(result: Result, path: Path, text: str, single: bo
         assert 1 <= int(found.group(1)) <= count, f"line {found.group(1)} is not a line of the file:\n{why}"
 
 
+def _seeded(check: Callable[[], None], profile: settings) -> Callable[[], None]:
+    """``check`` with the slow tests' fixed seed where ``profile`` is not derandomized: the
+    same examples every run, others than the fast test of the same check draws."""
+    return check if profile.derandomize else seed(SLOW_SEED)(check)
+
+
 def _check_mutations(train: str, profile: settings) -> None:
     data = _load(train)
     examples = profile.max_examples // COSTLY.get(train, 1)
@@ -269,7 +277,7 @@ def _check_mutations(train: str, profile: settings) -> None:
             event(f"{mutation.kind}: exit {result.returncode}")
             assert_answered_or_refused(result, path, text, single=mutation.kind in ONE_CAUSE)
 
-    check()
+    _seeded(check, profile)()
 
 
 @pytest.mark.parametrize("train", [t for t in TRAINS if t not in COSTLY])
@@ -320,7 +328,7 @@ def _check_oracle(families: tuple[str, ...], profile: settings, examples: int) -
             result = run_main([str(path), "--quiet"], timeout=120)
         assert result.returncode == 0 and result.stdout.strip(), f"{result.describe()}\n--- the file ---\n{sp.yaml}"
 
-    check()
+    _seeded(check, profile)()
 
 
 def test_planar_trains_derive_and_agree_with_the_oracle() -> None:
@@ -331,7 +339,7 @@ def test_planar_trains_derive_and_agree_with_the_oracle() -> None:
 @pytest.mark.slow
 def test_planar_trains_derive_and_agree_with_the_oracle_many() -> None:
     profile = settings.get_profile("davies-slow")
-    _check_oracle(SLOW_FAMILIES, profile, profile.max_examples // 2)
+    _check_oracle(SLOW_FAMILIES, profile, profile.max_examples)
 
 
 # --- what the properties found ------------------------------------------------------------------------------

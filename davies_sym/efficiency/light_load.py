@@ -27,7 +27,7 @@ missed here is never a wrong number: where no case agrees, the answer is refused
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import sympy
@@ -59,6 +59,16 @@ class Derivation:
     zetas: Mapping[tuple[str, bool], RationalFunction]
     #: Each mesh's carrier-frame powers in this derivation's ring.
     flows: Mapping[str, MeshPowerFlow]
+    #: Substitutions already made (what, driving gears) -> result: the other input's
+    #: variants ask for the same driving gears as the declared input's.
+    solved: dict[tuple[str, tuple[tuple[str, bool], ...]], RationalFunction] = field(default_factory=dict, repr=False)
+
+    def form_with(self, roles: Sequence[MeshRole], first: Mapping[str, bool]) -> RationalFunction:
+        """The efficiency form with each mesh's zeta of the direction ``first`` gives it."""
+        key = ("", tuple(sorted(first.items())))
+        if key not in self.solved:
+            self.solved[key] = substituted(self.form, roles, self.zetas, first)
+        return self.solved[key]
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,7 +127,7 @@ def loaded_forces(
             if swapped:
                 # The solution has the declared input's power positive; the other input's
                 # power is -F times it (F the declared formula): scaled so that it is positive.
-                power = power * -substituted(derivation.form, roles, derivation.zetas, first)
+                power = power * -derivation.form_with(roles, first)
             needed = 1 if first[law.coupling] else -1
             # Only the sign counts: the factors the geometry decides go (as for the
             # turning conditions, Laus eq. (86)), and denominators count as factors.
@@ -150,6 +160,9 @@ def mesh_power(
     from the first gear to the second; the lossless value is the mesh's flow ratio."""
     analysis = derivation.analysis
     mesh = law.coupling
+    key = (mesh, tuple(sorted(first.items())))
+    if key in derivation.solved:
+        return derivation.solved[key]
     flow = derivation.flows[mesh]
     ring = analysis.ring
     torque = ring.rational(analysis.input_action.symbol)
@@ -158,7 +171,8 @@ def mesh_power(
     zeta = ring.rational(flow.friction_symbol)
     on_driver = flow.transmitted_power[side] + zeta * flow.friction_power[side]
     power = (a * torque + b) * on_driver / (torque * analysis.lossless_input_power())
-    return at_operating_point(substituted(power, roles, derivation.zetas, first), analysis)
+    derivation.solved[key] = at_operating_point(substituted(power, roles, derivation.zetas, first), analysis)
+    return derivation.solved[key]
 
 
 def reached_cases(
@@ -183,7 +197,7 @@ def reached_cases(
         derivation = derive(reversal & bearings)
         case_first = {m: f != (m in reversal) for m, f in first.items()}
         forces = loaded_forces(derivation, roles, case_first, reversal, swapped)
-        efficiency = substituted(derivation.form, roles, derivation.zetas, case_first)
+        efficiency = derivation.form_with(roles, case_first)
         # Swapping input and output inverts the efficiency (Laus eqs. (78)-(79)).
         efficiency = efficiency.inverse() if swapped else efficiency
         samples: tuple[Point, ...] = ()

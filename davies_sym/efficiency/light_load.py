@@ -153,8 +153,9 @@ def loaded_forces(
 def mesh_power(
     derivation: Derivation, roles: Sequence[MeshRole], first: Mapping[str, bool], law: FrictionLaw
 ) -> RationalFunction:
-    """The power the driving gear gives in the mesh whose own friction is ``law``, seen from the carrier, per unit input
-    power, at the operating point: U (w_U + zeta w_T) . ^c$_driver over the input power,
+    """The power the driving gear gives in the mesh whose own friction is ``law``, seen
+    from the carrier, per unit input power, at the operating point: U (w_U + zeta w_T) .
+    ^c$_driver over the input power,
     with the friction of every mesh in the directions ``first`` (Laus eqs. (69)-(73) with
     the action of D_A in place of the lossless one).  Positive where the power crosses
     from the first gear to the second; the lossless value is the mesh's flow ratio."""

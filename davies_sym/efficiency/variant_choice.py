@@ -63,9 +63,15 @@ def assumption_values(variant: Variant, values: Values, path: str | None) -> dic
     return out
 
 
+def _holds(value: sympy.Expr) -> bool:
+    """Whether an assumption's value (force times its needed sign) is non-negative; a
+    pole's ``nan`` is not."""
+    return bool(value.is_extended_real and value >= 0)
+
+
 def agrees(variant: Variant, values: Values, path: str | None) -> bool:
     """Whether every assumption of ``variant`` holds at ``values`` (a pole does not)."""
-    return all(v.is_extended_real and v >= 0 for v in assumption_values(variant, values, path).values())
+    return all(_holds(v) for v in assumption_values(variant, values, path).values())
 
 
 def holding_variant(
@@ -120,5 +126,5 @@ def holding_variant(
 
 def _disagreeing(variant: Variant, values: Values, path: str | None) -> str:
     """Which assumptions of ``variant`` fail at ``values``, in words."""
-    failed = [c for c, v in assumption_values(variant, values, path).items() if not (v.is_extended_real and v >= 0)]
+    failed = [c for c, v in assumption_values(variant, values, path).items() if not _holds(v)]
     return ", ".join(f"the power flow or force in {c} is reversed by the losses" for c in failed) or "none fails"

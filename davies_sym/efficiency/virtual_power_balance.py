@@ -195,29 +195,27 @@ def _balance_result(
     reverse a small mesh power: then every assignment of drivers is tried and the one
     that agrees with its own solution is taken (a working one, with positive efficiency,
     before a self-locking one); none or several different ones are refused."""
-    # (ii-iii) lossless flow: the side delivering virtual power drives.
-    lossless, _ = solve(None)
-
-    def drives(torques: Torques, mesh: GearMesh) -> bool:
-        return bool(-torques[mesh.name][0] * rel(mesh.links[0], carriers[mesh.name]) >= 0)
-
-    def agrees(torques: Torques, first: Mapping[str, bool]) -> bool:
-        # The driver delivers virtual power in its carrier's frame (the driven side
-        # receives eta times it, so one side decides).
-        side = {m.name: 0 if first[m.name] else 1 for m in meshes}
-        return all(
-            exact(-torques[m.name][side[m.name]] * rel(m.links[side[m.name]], carriers[m.name])) >= 0 for m in meshes
-        )
-
-    first = {m.name: drives(lossless, m) for m in meshes}
-    # (vii) with losses
-    torques, t_out = solve(first)
-    if not agrees(torques, first):
-        first, torques, t_out = _agreeing_drivers(meshes, solve, agrees, w, train, port_in, port_out)
     pa, pb = train.coupling(port_in).links
     p_in = exact(w[pb] - w[pa])
     qa, qb = train.coupling(port_out).links
-    p_out = exact(t_out * (w[qb] - w[qa]))
+    out_speed = w[qb] - w[qa]
+
+    def delivered(torques: Torques, mesh: GearMesh, side: int) -> sympy.Expr:
+        """The virtual power gear ``side`` of ``mesh`` delivers in its carrier's frame."""
+        return exact(-torques[mesh.name][side] * rel(mesh.links[side], carriers[mesh.name]))
+
+    def agrees(torques: Torques, first: Mapping[str, bool]) -> bool:
+        # The driven side receives eta times what the driver delivers: one side decides.
+        return all(delivered(torques, m, 0 if first[m.name] else 1) >= 0 for m in meshes)
+
+    # (ii-iii) lossless flow: the side delivering virtual power drives.
+    lossless, _ = solve(None)
+    first = {m.name: bool(delivered(lossless, m, 0) >= 0) for m in meshes}
+    # (vii) with losses
+    torques, t_out = solve(first)
+    if not agrees(torques, first):
+        first, torques, t_out = _agreeing_drivers(meshes, solve, agrees, lambda t: exact(-t * out_speed / p_in))
+    p_out = exact(t_out * out_speed)
     losses = {
         m.name: sympy.Rational(
             exact(
@@ -246,15 +244,10 @@ def _agreeing_drivers(
     meshes: list[GearMesh],
     solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
     agrees: Callable[[Torques, Mapping[str, bool]], bool],
-    w: Mapping[str, sympy.Expr],
-    train: Train,
-    port_in: str,
-    port_out: str,
+    efficiency: Callable[[sympy.Expr], sympy.Expr],
 ) -> tuple[dict[str, bool], Torques, sympy.Expr]:
-    """The assignment of drivers that agrees with its own lossy solution (working first)."""
-    pa, pb = train.coupling(port_in).links
-    qa, qb = train.coupling(port_out).links
-    p_in = exact(w[pb] - w[pa])
+    """The assignment of drivers that agrees with its own lossy solution (working first);
+    ``efficiency`` of the output torque."""
     found: list[tuple[sympy.Expr, dict[str, bool], Torques, sympy.Expr]] = []
     for choice in itertools.product((True, False), repeat=len(meshes)):
         first = {m.name: c for m, c in zip(meshes, choice, strict=True)}
@@ -263,7 +256,7 @@ def _agreeing_drivers(
         except DerivationError:
             continue  # this assignment leaves the torques undetermined
         if agrees(torques, first):
-            found.append((exact(-t_out * (w[qb] - w[qa]) / p_in), first, torques, t_out))
+            found.append((efficiency(t_out), first, torques, t_out))
     working = [f for f in found if f[0] > 0] or found
     if not working or len({f[0] for f in working}) > 1:
         raise DerivationError(

@@ -5,7 +5,8 @@ from __future__ import annotations
 import sys
 
 from davies_sym.emit.atomic import write_atomic
-from davies_sym.topology.couplings import KINDS, coupling_fields
+from davies_sym.topology.coupling_kinds import KINDS
+from davies_sym.topology.couplings import coupling_fields
 from davies_sym.topology.schema import (
     BEARING,
     EXPECTED,

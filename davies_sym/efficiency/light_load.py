@@ -146,6 +146,8 @@ def loaded_forces(
         )
         sign, _ = analysis.oracle.classify(*lossless.factor_list())
         flip = -1 if law.coupling in reversed_forces else 1
+        if sign in (1, -1) and analysis.oracle.classify(*force.factor_list())[0] == sign * flip:
+            continue  # the force provably points as needed: no condition
         out[law.coupling] = (force, int(sign) * flip) if sign in (1, -1) else (force * lossless, flip)
     return out
 

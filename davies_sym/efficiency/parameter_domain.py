@@ -22,6 +22,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.geometry.layout import Layout, joint_substitution
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Train
+from davies_sym.topology.skew_mesh import AngleFunctions, SkewMesh
 
 Point = dict[sympy.Symbol, sympy.Rational]
 
@@ -49,6 +50,17 @@ def efficiency_symbols(train: Train) -> list[sympy.Symbol]:
     return out
 
 
+def angle_point(angle: AngleFunctions, rng: random.Random) -> Point:
+    """cos and sin of ``angle`` at a rational point of the unit circle: t = tan(angle / 2)
+    drawn in [1/100, 3/5] (an angle given as a number: t a close rational), cos =
+    (1 - t^2) / (1 + t^2), sin = 2 t / (1 + t^2), so that cos^2 + sin^2 = 1 holds exactly."""
+    if angle.angle.free_symbols:
+        t = sympy.Rational(rng.randint(1, 60), 100)
+    else:
+        t = sympy.Rational(str(sympy.tan(angle.angle / 2).evalf(20))).limit_denominator(10**9)
+    return {angle.cos: (1 - t**2) / (1 + t**2), angle.sin: 2 * t / (1 + t**2)}
+
+
 @dataclass(frozen=True, eq=False)
 class ParameterDomain:
     """Where the symbols of a train may lie."""
@@ -61,6 +73,16 @@ class ParameterDomain:
     @classmethod
     def of(cls, train: Train, layout: Layout) -> ParameterDomain:
         return cls(train, layout, joint_substitution(layout.constraints))
+
+    @cached_property
+    def _angles(self) -> list[AngleFunctions]:
+        """The angles of the skew meshes, whose cos and sin are drawn together."""
+        out: dict[sympy.Symbol, AngleFunctions] = {}
+        for c in self.train.couplings:
+            if isinstance(c, SkewMesh) and c.pressure is not None and c.helix is not None:
+                for angle in (c.pressure, *c.helix):
+                    out.setdefault(angle.cos, angle)
+        return [out[k] for k in sorted_symbols(out)]
 
     @cached_property
     def _ring(self) -> PolynomialRing:
@@ -115,6 +137,8 @@ class ParameterDomain:
                 continue
             for s in others:
                 point[s] = sympy.Rational(rng.randint(*extra_range), extra_scale)
+            for angle in self._angles:
+                point.update(angle_point(angle, rng))
             yield point
             produced += 1
             if produced == count or not free:

@@ -23,6 +23,7 @@ from davies_sym.losses.definitions import parameters_of
 from davies_sym.network.matrices import FrictionLaw
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
+from davies_sym.topology.skew_mesh import SkewMesh
 
 
 @dataclass(frozen=True)
@@ -78,8 +79,23 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
     for law in laws:
         for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = train.coupling(law.coupling)
+            if isinstance(coupling, SkewMesh):  # mu of a sliding contact: a plain number
+                out.setdefault(s, (f"sliding friction coefficient of mesh {law.coupling}", "1"))
+                continue
             what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
             out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}", units.get(law.law, "")))
+    return out
+
+
+def _angle_meanings(train: Train) -> dict[sympy.Symbol, str]:
+    """The angles of the skew meshes (lead, helix, normal pressure angle), in radians
+    strictly between 0 and pi/2."""
+    out: dict[sympy.Symbol, str] = {}
+    for c in train.couplings:
+        if isinstance(c, SkewMesh) and c.pressure is not None and c.helix is not None:
+            for angle in (c.pressure, *c.helix):
+                for s in sorted_symbols(angle.angle.free_symbols):
+                    out.setdefault(s, angle.meaning)
     return out
 
 
@@ -123,11 +139,13 @@ def parameters_of_train(
     efficiencies in (0, 1], lengths and friction coefficients, and the ``operating``
     quantities (speeds and torques at the ports) as given."""
     geometry, etas, law_meanings = _gear_meanings(train), _efficiency_meanings(train), _law_meanings(train, laws)
-    defined = _definition_meanings(train)
+    defined, angles = _definition_meanings(train), _angle_meanings(train)
     out = []
     for s in symbols:
         if s in operating:
             out.append(operating[s])
+        elif s in angles:
+            out.append(Parameter(str(s), angles[s], "rad", 0.0, math.pi / 2))
         elif s in defined:
             meaning, unit = defined[s]
             out.append(Parameter(str(s), meaning, unit, 0.0, math.inf))

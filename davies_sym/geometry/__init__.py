@@ -4,7 +4,8 @@ It owns the positions and directions the coupling screws need, the geometric
 constraints the loops of meshes imply (Laus section 3.4.1.6: r1 - r3 = r2 - r4) and
 the square roots a tilted axis brings (Laus App. C).  Three layouts: trains drawn on
 one line (Laus Figs. 5 and 7), planar trains in 2-D (`.plane`) and trains whose
-axes meet at one apex (`.cone`, Laus Fig. 9, Chen Fig. 4.10).
+axes meet at one apex (`.cone`, Laus Fig. 9, Chen Fig. 4.10); a worm or crossed
+helical mesh places its first gear across the parallel-axis part (`.skew`).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from davies_sym.geometry.cone import conical_layout
 from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
+from davies_sym.geometry.skew import skew_layout, skew_meshes
 from davies_sym.topology.model import Train
 
 __all__ = ["GeometricConstraint", "Layout", "train_layout"]
@@ -38,6 +40,8 @@ def train_layout(train: Train) -> Layout:
 
 
 def _layout(train: Train) -> Layout:
+    if skew_meshes(train):
+        return skew_layout(train, _layout)
     if any(g.axis is not None or g.tilted for g in train.gears):
         return conical_layout(train)
     if train.placement is not None:

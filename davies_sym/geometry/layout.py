@@ -58,6 +58,9 @@ class Layout:
     coupling_axes: Mapping[str, Vector] = field(default_factory=dict)
     #: Square roots the positions use, as symbols with their radicands (tilted axes).
     radicals: tuple[Radical, ...] = ()
+    #: The axes are not all parallel and do not meet at one point (a skew mesh): every
+    #: screw of space counts, so a spur mesh is a point contact with five freedoms.
+    spatial: bool = False
 
 
 def line_point(y: sympy.Expr) -> Vector:

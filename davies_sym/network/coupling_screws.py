@@ -1,9 +1,10 @@
 """The screws each coupling kind contributes to the network, for a given layout.
 
-One writer per kind of `davies_sym.topology.couplings` (Laus Tables 3-4, 12-13,
-14-15): a revolute is a rotation about its axis, a mesh a rotation about the pitch line
-with the tooth force along the common tangent (pressure angle zero, Laus section 3.3.1),
-a prismatic pair a translation, and the low-level kind its screws as written.  Adding
+One writer per coupling kind (Laus Tables 3-4, 12-13, 14-15): a revolute is a
+rotation about its axis, a mesh a rotation about the pitch line with the tooth force
+along the common tangent (pressure angle zero, Laus section 3.3.1), a skew mesh a point
+contact with its normal force and its sliding friction, a prismatic pair a
+translation, and the low-level kind its screws as written.  Adding
 a coupling kind means one writer here, registered in ``WRITERS``.
 """
 
@@ -33,6 +34,7 @@ from davies_sym.algebra.screws import (
 )
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
+from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
 
 
 @dataclass(frozen=True)
@@ -49,6 +51,9 @@ class CouplingScrews:
     motions: tuple[NamedScrew, ...]
     secondary: tuple[NamedScrew, ...]
     constraints: tuple[NamedScrew, ...]
+    #: The unit wrench of the coupling's friction where it is not the action along its
+    #: first motion (the sliding force of a skew mesh acts at the pitch point).
+    friction: NamedScrew | None = None
 
 
 def _point_constraints(
@@ -78,12 +83,39 @@ def _revolute(c: Revolute, layout: Layout) -> CouplingScrews:
 def _mesh(c: GearMesh, layout: Layout) -> CouplingScrews:
     """A mesh: rotation about the pitch line, tooth force along the common tangent first;
     the separating motion along the centre line is a secondary freedom (kept in planar
-    systems of order 3)."""
+    systems of order 3).  In a spatial layout the teeth touch at the pitch point only:
+    the translation along the axis and the tilts about the tangent and the centre line
+    are freedoms too, so the bearings alone hold the gears out of their plane."""
     point, axis = layout.coupling_points[c.name], layout.coupling_axes.get(c.name, layout.axis)
     tangent, normal = layout.mesh_tangents[c.name], layout.mesh_normals[c.name]
     motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
-    separating = NamedScrew(translation_magnitude_name(normal), translation_twist(normal))
-    return CouplingScrews((motion,), (separating,), _point_constraints(point, (tangent,)))
+    separating = [NamedScrew(translation_magnitude_name(normal), translation_twist(normal))]
+    if layout.spatial:
+        separating += [
+            NamedScrew(translation_magnitude_name(axis), translation_twist(axis)),
+            NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point)),
+            NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
+        ]
+    return CouplingScrews((motion,), tuple(separating), _point_constraints(point, (tangent,)))
+
+
+def _skew_mesh(c: SkewMesh, layout: Layout) -> CouplingScrews:
+    """A skew mesh: a point contact at the pitch point.  The sliding along the tooth line
+    is the first motion (the one its friction opposes); the sliding across it and the
+    rotations about lines through the pitch point are the other four freedoms; the normal
+    force is the action, and the friction force acts along the tooth line at the pitch
+    point."""
+    point, tooth_line, normal = (
+        layout.coupling_points[c.name],
+        layout.mesh_tangents[c.name],
+        layout.mesh_normals[c.name],
+    )
+    sliding = NamedScrew("q", translation_twist(tooth_line))
+    across = NamedScrew("q", translation_twist(cross(normal, tooth_line)))
+    tilts = tuple(NamedScrew(rotation_magnitude_name(UNIT[a]), rotation_twist(UNIT[a], point)) for a in AXES)
+    friction = NamedScrew("F", force_wrench(tooth_line, point))
+    pressing = NamedScrew("N", force_wrench(normal, point))
+    return CouplingScrews((sliding,), (across, *tilts), (pressing, *_point_constraints(point)), friction)
 
 
 def _prismatic(c: Prismatic, layout: Layout) -> CouplingScrews:
@@ -100,6 +132,8 @@ def _written(c: ScrewCoupling, layout: Layout) -> CouplingScrews:
 WRITERS: Mapping[type[Coupling], Callable[..., CouplingScrews]] = {
     Revolute: _revolute,
     GearMesh: _mesh,
+    WormMesh: _skew_mesh,
+    CrossedHelicalMesh: _skew_mesh,
     Prismatic: _prismatic,
     ScrewCoupling: _written,
 }

@@ -30,6 +30,7 @@ from davies_sym.network.screw_system import (
 )
 from davies_sym.topology.couplings import Coupling, GearMesh, ScrewCoupling
 from davies_sym.topology.model import Train
+from davies_sym.topology.skew_mesh import SkewMesh
 from davies_sym.topology.symbols import make_symbol
 
 #: Roles of the action variables a lossless network leaves out.
@@ -112,7 +113,12 @@ class Network:
             if not self.graph.is_spanning_tree(t):
                 raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
         full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
-        self.system: ScrewSystem = minimal_screw_system([m.screw for s in full.values() for m in s.motions])
+        essential = [m.screw for s in full.values() for m in s.motions]
+        if self.layout.spatial:
+            # Skew axes: every freedom of a point contact counts, so the system is space itself.
+            essential += [m.screw for s in full.values() for m in s.secondary]
+        self.system: ScrewSystem = minimal_screw_system(essential)
+        self._friction_wrenches = {name: s.friction for name, s in full.items() if s.friction is not None}
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:
             if isinstance(c, ScrewCoupling):
@@ -165,7 +171,7 @@ class Network:
             cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw) for n, m in zip(names, red.motions, strict=True)]
             motions += cm
             needs_axis = c.name in ports or not c.friction.lossless
-            if needs_axis and (len(cm) > 1 and not isinstance(c, GearMesh)):
+            if needs_axis and (len(cm) > 1 and not isinstance(c, (GearMesh, SkewMesh))):
                 raise DerivationError(
                     f"coupling {c.name}: ports and friction need a coupling with one "
                     f"freedom, it has {len(cm)} in this screw system"
@@ -173,14 +179,17 @@ class Network:
             if not needs_axis:
                 actions += self._constraint_actions(c, red)
                 continue
-            full_twist = _lift(self.system, cm[0].twist)
-            along = action_along_motion(full_twist)
+            given = self._friction_wrenches.get(c.name)
+            along = given.screw if given is not None else action_along_motion(_lift(self.system, cm[0].twist))
             wrench = self.system.reduce_wrench(along)
-            base = torque_magnitude_name(along[:3]) if any(v != 0 for v in along[:3]) else "F"
+            if given is not None:
+                base = given.name
+            else:
+                base = torque_magnitude_name(along[:3]) if any(v != 0 for v in along[:3]) else "F"
             has_port = c.name in ports
             if has_port:
                 actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
-            constraints = self._constraint_actions(c, red)
+            constraints = self._constraint_actions(c, red, base)
             load_law = (
                 "coulomb" if c.friction.coulomb is not None else "linear" if c.friction.linear is not None else None
             )
@@ -202,8 +211,11 @@ class Network:
             actions += constraints
         return tuple(motions), tuple(actions), tuple(laws)
 
-    def _constraint_actions(self, c: Coupling, red: ReducedCoupling) -> list[ActionVariable]:
-        names = _unique([w.name for w in red.constraints])
+    def _constraint_actions(self, c: Coupling, red: ReducedCoupling, taken: str = "") -> list[ActionVariable]:
+        """The constraint actions of ``c``, named apart from each other and from ``taken``
+        (the base name of its port or friction torque: a torque about a tilted axis is
+        ``P`` both as the port and as the bearing's torque across the axis)."""
+        names = _unique([taken, *(w.name for w in red.constraints)])[1:]
         return [
             ActionVariable(f"{n}_{c.name}", c.name, w.screw, "constraint")
             for n, w in zip(names, red.constraints, strict=True)
@@ -211,7 +223,7 @@ class Network:
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.
-        if isinstance(c, GearMesh) or len(constraints) == 1:
+        if isinstance(c, (GearMesh, SkewMesh)) or len(constraints) == 1:
             return constraints[0].name
         raise DerivationError(
             f"coupling {c.name}: a load-dependent friction law needs one reaction force, but this coupling "

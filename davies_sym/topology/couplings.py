@@ -2,7 +2,8 @@
 
 A coupling kind is a frozen dataclass with a ``from_entry`` constructor that reads its
 entry of the topology file and its ``FIELDS`` for the schema.  Adding a kind means a
-class here, registered in ``KINDS``, and its screws in
+class here (or in a module of its own, such as `davies_sym.topology.skew_mesh`),
+registered in `davies_sym.topology.coupling_kinds.KINDS`, and its screws in
 `davies_sym.network.coupling_screws` (Laus Tables 3-4, 12-13).
 """
 
@@ -361,9 +362,6 @@ def _read_screws(
         base = label.split("_")[0] if "_" in label else label
         out.append(NamedScrew(base, tuple(screw)))
     return tuple(out)
-
-
-KINDS: Mapping[str, type[Coupling]] = {k.kind: k for k in (Revolute, GearMesh, Prismatic, ScrewCoupling)}
 
 
 def coupling_fields(kind: type[Coupling]) -> tuple[Field, ...]:

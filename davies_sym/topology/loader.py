@@ -18,7 +18,8 @@ import sympy
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.topology.calibration_entry import read_calibrate
 from davies_sym.topology.checks import read_expected
-from davies_sym.topology.couplings import KINDS, Coupling, GearMesh, coupling_fields, read_direction
+from davies_sym.topology.coupling_kinds import KINDS
+from davies_sym.topology.couplings import Coupling, coupling_fields, read_direction
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.expressions import shortened
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
@@ -272,7 +273,7 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str], gears: Map
             continue
         for i, link in enumerate(coupling.links):
             # A mesh's links are its gears' links, whose entries report an unknown one.
-            if link not in links and kind is not GearMesh:
+            if link not in links and coupling.gears is None:
                 reader.unknown(f"{path}.links[{i}]", "link", link)
         couplings[name] = coupling
     if table and not couplings:
@@ -332,7 +333,7 @@ def _port(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Co
     if name not in couplings:
         reader.unknown(path, "coupling", name, f"port on a missing coupling {shortened(name)}")
         return None
-    if isinstance(couplings[name], GearMesh):
+    if couplings[name].gears is not None:
         reader.problem(
             path, f"coupling {name!r} is a gear mesh; a port sits on a revolute or prismatic coupling (a shaft)"
         )

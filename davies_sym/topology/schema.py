@@ -159,7 +159,9 @@ EXPECTED = (
 )
 
 COUPLING_COMMON = (
-    Field("type", "string", True, "Coupling kind: `revolute`, `mesh`, `prismatic` or `screws`."),
+    Field(
+        "type", "string", True, "Coupling kind: `revolute`, `mesh`, `worm`, `crossed_helical`, `prismatic` or `screws`."
+    ),
     Field("friction", "mapping or `none`", False, "Friction laws and coefficients; see *Friction*."),
 )
 

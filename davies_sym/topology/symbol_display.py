@@ -73,8 +73,18 @@ def display_symbol(symbol: sympy.Symbol) -> sympy.Symbol:
 
 
 def symbol_names(symbols: Iterable[sympy.Symbol]) -> dict[sympy.Symbol, str]:
-    """``symbol_names`` argument of `sympy.latex`: each symbol's LaTeX."""
-    return {s: sympy.latex(display_symbol(s)) for s in symbols}
+    """``symbol_names`` argument of `sympy.latex`: each symbol's LaTeX (``cos_gamma``, the
+    symbol a skew mesh defines as cos(gamma), is `\\cos\\gamma`)."""
+    return {s: _function_latex(s.name) or sympy.latex(display_symbol(s)) for s in symbols}
+
+
+def _function_latex(name: str) -> str | None:
+    """``\\cos\\gamma`` for ``cos_gamma``, ``\\sin\\alpha_{n}`` for ``sin_alpha_n``; None otherwise."""
+    function, _, rest = name.partition("_")
+    if function not in ("cos", "sin") or not rest:
+        return None
+    inner = sympy.latex(sympy.Symbol(display_name(rest)))
+    return f"\\{function}{{{inner}}}"
 
 
 def latex(expr: sympy.Basic, **settings: object) -> str:

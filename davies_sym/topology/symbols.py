@@ -31,6 +31,8 @@ ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType(
         "magnitude": {"real": True},
         "sign": {"nonzero": True, "integer": True},
         "angle": {"real": True},
+        # cos and sin of the angles of a skew mesh, which lie strictly between 0 and 90 degrees.
+        "angle function": {"positive": True},
     }
 )
 

@@ -1,0 +1,277 @@
+"""Meshes on skew axes: a worm and its wheel, a pair of crossed helical gears.
+
+Beyond the references (Laus leaves non-parallel, non-intersecting axes as future work):
+the two gears touch at the pitch point, where the teeth slide along the tooth line, so
+the Coulomb friction force ``mu N`` of the sliding contact acts along it.  The entry
+gives the angles the screws need: the helix angle of each gear (the lead angle of a
+worm is its complement), the normal pressure angle, and the coefficient ``mu``.  The
+trigonometric functions of the angles become symbols of their own (``cos_gamma``)
+defined as ``cos(gamma)``, so the derivation stays polynomial and the outputs state the
+definitions.  An angle written as a number is in degrees; a symbol stands for radians.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import sympy
+
+from davies_sym.losses.definitions import Definition
+from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.entries import describe
+from davies_sym.topology.expressions import shortened
+from davies_sym.topology.gear import Gear
+from davies_sym.topology.loss_entries import Friction, read_friction
+from davies_sym.topology.schema import Field
+from davies_sym.topology.symbols import train_symbol
+
+if TYPE_CHECKING:
+    from davies_sym.topology.entries import EntryReader
+
+#: Normal pressure angle of a skew mesh entry that gives none (degrees).
+DEFAULT_PRESSURE_ANGLE = 20
+
+PRESSURE_ANGLE = Field(
+    "pressure_angle",
+    "symbol or number",
+    False,
+    f"Normal pressure angle alpha_n. Default: {DEFAULT_PRESSURE_ANGLE} degrees.",
+)
+
+
+@dataclass(frozen=True)
+class AngleFunctions:
+    """cos and sin of one angle of a skew mesh, as symbols defined by the angle."""
+
+    angle: sympy.Expr
+    cos: sympy.Symbol
+    sin: sympy.Symbol
+    #: What the angle is, for the definitions ("the lead angle of worm w (mesh W)").
+    meaning: str = ""
+
+    @property
+    def definitions(self) -> tuple[Definition, Definition]:
+        units = tuple((str(s), "rad") for s in sorted(self.angle.free_symbols, key=str))
+        source = "skew-axis mesh geometry"
+        return (
+            Definition(self.cos, sympy.cos(self.angle), f"cosine of {self.meaning}", source, units),
+            Definition(self.sin, sympy.sin(self.angle), f"sine of {self.meaning}", source, units),
+        )
+
+
+@dataclass(frozen=True)
+class SkewMesh(Coupling):
+    """Two gears on skew axes touching at the pitch point (worm and wheel, crossed helical).
+
+    The first gear's axis crosses the second's at the shaft angle beta_1 + beta_2 (the
+    helix angles, same hand), at the centre distance r_1 + r_2.  The relative motion
+    keeps the tooth surfaces in contact at the pitch point: every motion but the one
+    along the common normal (five freedoms); the action is the normal force ``N``
+    (pressure angle ``alpha_n`` in the plane normal to the tooth line), and the
+    Coulomb friction ``mu |N|`` acts along the tooth line against the sliding.
+    """
+
+    mesh_gears: tuple[str, str] = ("", "")
+    #: cos and sin of the helix angle of each gear (first, second).
+    helix: tuple[AngleFunctions, AngleFunctions] | None = None
+    pressure: AngleFunctions | None = None
+
+    DOC: ClassVar[str] = ""
+
+    @property
+    def gears(self) -> tuple[str, str]:
+        return self.mesh_gears
+
+    @property
+    def right_shaft_angle(self) -> bool:
+        """Whether the axes cross at a right angle (a worm drive)."""
+        return False
+
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        assert self.helix is not None and self.pressure is not None
+        # A worm's helix angle is the complement of its lead angle: the same two symbols.
+        angles = (self.pressure, self.helix[1]) if self.right_shaft_angle else (self.pressure, *self.helix)
+        return self.friction.definitions + tuple(d for a in angles for d in a.definitions)
+
+    @classmethod
+    def _gear_pair(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> tuple[Gear, Gear] | None:
+        pair = entry.get("gears")
+        if pair is None:
+            return None  # reported as a missing required key
+        if not isinstance(pair, list) or len(pair) != 2:
+            reader.problem(f"{path}.gears", f"expected a list of two gear names [{cls._pair_words}]")
+            return None
+        read = [reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair)]
+        names = [n for n in read if n is not None]
+        if len(names) != 2:
+            return None
+        missing = [g for g in names if g not in gears]
+        for g in missing:
+            reader.unknown(f"{path}.gears", "gear", g)
+        if missing:
+            return None
+        g1, g2 = gears[names[0]], gears[names[1]]
+        if g1.link == g2.link:
+            reader.problem(
+                f"{path}.gears", f"gears {g1.name!r} and {g2.name!r} are both on link {g1.link!r}: they cannot mesh"
+            )
+            return None
+        internal = [g.name for g in (g1, g2) if g.internal]
+        if internal:
+            reader.problem(
+                f"{path}.gears",
+                f"gear {internal[0]!r} is internal: gears on skew axes are external; remove `internal: true`",
+            )
+            return None
+        return g1, g2
+
+    _pair_words: ClassVar[str] = "first gear, second gear"
+
+    @classmethod
+    def _common(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader
+    ) -> tuple[Friction, AngleFunctions | None]:
+        given = entry.get("friction")
+        default = Friction() if given is not None else Friction(coulomb=reader.quantity(f"mu_{name}", path, "friction"))
+        friction = read_friction(given, f"{path}.friction", reader, default, name)
+        if friction.coulomb is None or friction.linear is not None:
+            reader.problem(
+                f"{path}.friction",
+                "a sliding contact needs a Coulomb law (`coulomb: mu`), which its normal force loads",
+            )
+        pressure = _angle(
+            entry.get("pressure_angle", DEFAULT_PRESSURE_ANGLE),
+            f"{path}.pressure_angle",
+            reader,
+            name,
+            "alpha_n",
+            f"the normal pressure angle of mesh {name}",
+        )
+        return friction, pressure
+
+
+@dataclass(frozen=True)
+class WormMesh(SkewMesh):
+    """A worm (first gear) and its wheel on axes crossing at a right angle."""
+
+    kind: ClassVar[str] = "worm"
+    DOC: ClassVar[str] = (
+        "A worm (first gear) driving or driven by its wheel (second gear) on axes crossing at a right "
+        "angle, touching at the pitch point (r_1 is the worm's pitch radius). The teeth slide along the "
+        "thread; the Coulomb friction mu N acts along it. Angles written as numbers are in degrees, "
+        "symbols stand for radians."
+    )
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("gears", "[worm, wheel]", True, "The worm, then its wheel."),
+        Field(
+            "lead_angle",
+            "symbol or number",
+            True,
+            "Lead angle gamma of the worm's thread at the pitch radius, between 0 and 90 degrees "
+            "(the wheel's helix angle; the worm's is 90 degrees minus it).",
+        ),
+        PRESSURE_ANGLE,
+    )
+    _pair_words: ClassVar[str] = "worm, wheel"
+
+    @property
+    def right_shaft_angle(self) -> bool:
+        return True
+
+    @classmethod
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> WormMesh | None:
+        pair = cls._gear_pair(name, entry, path, reader, gears)
+        friction, pressure = cls._common(name, entry, path, reader)
+        worm_name = pair[0].name if pair is not None else "1"
+        lead = (
+            _angle(
+                entry["lead_angle"], f"{path}.lead_angle", reader, name, "gamma", f"the lead angle of worm {worm_name}"
+            )
+            if "lead_angle" in entry
+            else None
+        )
+        if pair is None or pressure is None or lead is None:
+            return None
+        # The worm's helix angle is 90 degrees - gamma: its cos is sin(gamma) and its sin cos(gamma).
+        worm = AngleFunctions(sympy.pi / 2 - lead.angle, lead.sin, lead.cos, lead.meaning)
+        return cls(name, (pair[0].link, pair[1].link), friction, (pair[0].name, pair[1].name), (worm, lead), pressure)
+
+
+@dataclass(frozen=True)
+class CrossedHelicalMesh(SkewMesh):
+    """Two helical gears of the same hand on axes crossing at the sum of their helix angles."""
+
+    kind: ClassVar[str] = "crossed_helical"
+    DOC: ClassVar[str] = (
+        "Two crossed helical gears of the same hand: the shaft angle is the sum of their helix angles, "
+        "they touch at the pitch point and slide along the tooth line; the Coulomb friction mu N acts "
+        "along it. Angles written as numbers are in degrees, symbols stand for radians."
+    )
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("gears", "[gear, gear]", True, "The two gears."),
+        Field(
+            "helix_angles",
+            "[symbol or number, symbol or number]",
+            True,
+            "Helix angle beta of each gear at its pitch radius, each between 0 and 90 degrees "
+            "(the shaft angle is their sum).",
+        ),
+        PRESSURE_ANGLE,
+    )
+
+    @classmethod
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> CrossedHelicalMesh | None:
+        pair = cls._gear_pair(name, entry, path, reader, gears)
+        friction, pressure = cls._common(name, entry, path, reader)
+        helix: list[AngleFunctions | None] = []
+        value = entry.get("helix_angles")
+        if value is not None and not (isinstance(value, list) and len(value) == 2):
+            reader.problem(f"{path}.helix_angles", f"expected a list of two angles, got {describe(value)}")
+        elif value is not None:
+            names = pair[0].name if pair is not None else "1", pair[1].name if pair is not None else "2"
+            helix = [
+                _angle(v, f"{path}.helix_angles[{i}]", reader, name, f"beta_{i + 1}", f"the helix angle of gear {g}")
+                for i, (v, g) in enumerate(zip(value, names, strict=True))
+            ]
+        if pair is None or pressure is None or len(helix) != 2 or helix[0] is None or helix[1] is None:
+            return None
+        return cls(
+            name, (pair[0].link, pair[1].link), friction, (pair[0].name, pair[1].name), (helix[0], helix[1]), pressure
+        )
+
+
+def _angle(value: Any, path: str, reader: EntryReader, coupling: str, what: str, meaning: str) -> AngleFunctions | None:
+    """An angle of the entry with its cos and sin symbols: a number in degrees (strictly
+    between 0 and 90), or a symbol or expression in radians."""
+    limit = 90
+    if isinstance(value, bool):
+        reader.problem(path, f"expected an angle, got {describe(value)}")
+        return None
+    read = reader.quantity(value, path, "angle")
+    if read is None:
+        return None
+    if read.is_number:
+        if not 0 < read < limit:
+            reader.problem(
+                path, f"expected a number of degrees strictly between 0 and {limit}, got {shortened(str(value), 40)}"
+            )
+            return None
+        angle = read * sympy.pi / 180
+        stem = f"{what}_{coupling}"
+    else:
+        angle = read
+        stem = str(read) if isinstance(read, sympy.Symbol) else f"{what}_{coupling}"
+    stem = re.sub(r"\W", "_", stem, flags=re.ASCII)
+    cos = train_symbol(f"cos_{stem}", "angle function", reader.symbols)
+    sin = train_symbol(f"sin_{stem}", "angle function", reader.symbols)
+    return AngleFunctions(angle, cos, sin, meaning)

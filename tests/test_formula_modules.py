@@ -27,7 +27,7 @@ from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, effic
 from davies_sym.efficiency.parameters import admissible_relations, formula_symbols, parameter_table
 from davies_sym.efficiency.power_losses import loss_fractions, lossy_couplings
 from davies_sym.efficiency.variants import VariantSet, derive_variants
-from davies_sym.losses.definitions import completed, parameters_of
+from davies_sym.losses.definitions import completed, parameters_of, substituted
 
 from conftest import ROOT, catalog_trains
 
@@ -71,6 +71,8 @@ def design_points(vs: VariantSet, count: int, seed: int) -> list[Point]:
     out = []
     # Parameters of loss models (a flank friction coefficient) are drawn small, like other coefficients.
     models = parameters_of([d.symbol for d in vs.train.definitions], vs.train.definitions)
+    # The sliding friction coefficient of a skew mesh too (a law's coefficient, not a model's).
+    models |= {s for law in vs.analysis.network.laws for s in law.coefficient.free_symbols if str(s).startswith("mu")}
     for point in domain.samples(count, seed=seed, extra=models, extra_range=(1, 100)):
         values = {**point, **{e: sympy.Rational(rng.randint(80, 100), 100) for e in efficiency_symbols(vs.train)}}
         out.append({s: values[s] for s in formula_symbols(vs)})
@@ -123,6 +125,7 @@ def test_module_efficiency_equals_the_exact_variant(name):
 #: than its sun), so one region only.
 TURNING_CONDITIONS = {
     "buckingham_pair": 0,
+    "crossed_helical": 0,
     "humpage": 1,
     "litvin_face_drive": 1,
     "planetary_simple": 0,
@@ -137,6 +140,8 @@ TURNING_CONDITIONS = {
     "simpson[reverse]": 0,
     "tuplin": 1,
     "wolfrom": 1,
+    "worm_drive": 0,
+    "worm_planetary": 0,
 }
 #: The trains whose admissible designs reach two condition regions.
 TWO_REGIONS = ("humpage", "litvin_face_drive", "tuplin", "wolfrom")
@@ -241,7 +246,7 @@ def test_losses_add_up_and_equal_the_exact_fractions(name):
                 for coupling, value in parts.items():
                     want = exact[coupling].to_expr().subs(completed(point, vs.train.definitions))
                     assert value[i] == pytest.approx(float(want), rel=1e-12, abs=1e-13)
-    ratio = vs.analysis.speed_ratio().to_expr()
+    ratio = substituted(vs.analysis.speed_ratio().to_expr(), vs.train.definitions)
     geometry = kwargs_of(points, sorted(ratio.free_symbols, key=str))
     got = module.speed_ratio(**geometry)
     want = [float(ratio.subs(p)) for p in points]

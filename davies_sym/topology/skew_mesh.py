@@ -267,11 +267,11 @@ def _angle(value: Any, path: str, reader: EntryReader, coupling: str, what: str,
             )
             return None
         angle = read * sympy.pi / 180
-        stem = f"{what}_{coupling}"
+        # No symbol names this angle: c_ and s_, so that no output shows cos of a symbol.
+        names = f"c_{what}_{coupling}", f"s_{what}_{coupling}"
     else:
         angle = read
         stem = str(read) if isinstance(read, sympy.Symbol) else f"{what}_{coupling}"
-    stem = re.sub(r"\W", "_", stem, flags=re.ASCII)
-    cos = train_symbol(f"cos_{stem}", "angle function", reader.symbols)
-    sin = train_symbol(f"sin_{stem}", "angle function", reader.symbols)
+        names = f"cos_{stem}", f"sin_{stem}"
+    cos, sin = (train_symbol(re.sub(r"\W", "_", n, flags=re.ASCII), "angle function", reader.symbols) for n in names)
     return AngleFunctions(angle, cos, sin, meaning)

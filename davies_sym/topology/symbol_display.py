@@ -96,7 +96,7 @@ def latex(expr: sympy.Basic, **settings: object) -> str:
 def mathml_body(expr: sympy.Basic) -> str:
     """Presentation MathML of the expression (the content of a ``<math>`` element,
     rendered natively by browsers), symbols under their display names."""
-    renamed = expr.xreplace({s: display_symbol(s) for s in expr.free_symbols if isinstance(s, sympy.Symbol)})
+    renamed = expr.xreplace({s: _mathml_symbol(s) for s in expr.free_symbols if isinstance(s, sympy.Symbol)})
     body = str(MathMLPresentationPrinter({"mul_symbol": None}).doprint(renamed))
     # The printer writes the relations' operators unescaped, which is not XML, and the
     # hyphen where typesetting has the minus sign.
@@ -105,6 +105,14 @@ def mathml_body(expr: sympy.Basic) -> str:
         .replace("<mo>></mo>", "<mo>&gt;</mo>")
         .replace("<mo>-</mo>", "<mo>&#8722;</mo>")
     )
+
+
+def _mathml_symbol(symbol: sympy.Symbol) -> sympy.Expr:
+    """The symbol under its display name; ``cos_gamma`` as the function cos(gamma) it stands for."""
+    function, _, rest = symbol.name.partition("_")
+    if function in ("cos", "sin") and rest:
+        return getattr(sympy, function)(sympy.Symbol(display_name(rest)), evaluate=False)
+    return display_symbol(symbol)
 
 
 def mathml(expr: sympy.Basic, display: bool = False) -> str:

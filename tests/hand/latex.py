@@ -85,6 +85,9 @@ _PARENTHESES = (("\\left(", "\\right)"), ("\\bigl(", "\\bigr)"), ("\\Bigl(", "\\
 def display_latex(name: str) -> str:
     """The LaTeX of a symbol under its display name: ``rp1`` -> ``r_{p1}``, ``eta_C`` ->
     ``\\eta_{C}``, ``eta_C_1_2`` -> ``\\eta_{C,1,2}``, ``mu`` -> ``\\mu``, ``r`` -> ``r``."""
+    function, _, argument = name.partition("_")
+    if function in ("cos", "sin") and argument:  # a skew mesh's cos_gamma is cos(gamma)
+        return f"\\{function}{{{display_latex(argument)}}}"
     match = _QUANTITY.match(name)
     quantity, rest = (f"\\{match.group(1)}", match.group(2)) if match else (name[:1], name[1:])
     rest = rest[1:] if rest.startswith("_") else rest
@@ -343,3 +346,14 @@ def equal_at_random_points(a: sympy.Expr, b: sympy.Expr, points: int = 3, seed: 
         if checked == points:
             return True
     raise ValueError("no random point where the expected formula is defined")
+
+
+def with_angle_symbols(expr: sympy.Expr, train: object) -> sympy.Expr:
+    """``expr`` with cos(gamma) and sin(gamma) written as the symbols a skew mesh defines
+    for them (``cos_gamma``), so that a formula read back compares with the derived one."""
+    table = {
+        d.expression: d.symbol
+        for d in getattr(train, "definitions", ())
+        if isinstance(d.expression, (sympy.cos, sympy.sin)) and d.expression.free_symbols
+    }
+    return sympy.sympify(expr).xreplace(table) if table else expr

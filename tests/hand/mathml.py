@@ -201,6 +201,12 @@ class _Reader:
             raise MathMLError("a factor is missing")
         node = self.items[self.pos]
         self.pos += 1
+        function = text_of(node) if node.tag == "mi" else ""
+        if function in ("cos", "sin") and self.pos < len(self.items):
+            # cos(gamma): the function's name, then its argument in parentheses.
+            argument = self.items[self.pos]
+            self.pos += 1
+            return getattr(sympy, function)(self.node(argument))
         return self.node(node)
 
 

@@ -77,11 +77,7 @@ class ParameterDomain:
     @cached_property
     def _angles(self) -> list[AngleFunctions]:
         """The angles of the skew meshes, whose cos and sin are drawn together."""
-        out: dict[sympy.Symbol, AngleFunctions] = {}
-        for c in self.train.couplings:
-            if isinstance(c, SkewMesh) and c.pressure is not None and c.helix is not None:
-                for angle in (c.pressure, *c.helix):
-                    out.setdefault(angle.cos, angle)
+        out = {a.cos: a for c in self.train.couplings if isinstance(c, SkewMesh) for a in c.angles}
         return [out[k] for k in sorted_symbols(out)]
 
     @cached_property

@@ -92,8 +92,8 @@ def _angle_meanings(train: Train) -> dict[sympy.Symbol, str]:
     strictly between 0 and pi/2."""
     out: dict[sympy.Symbol, str] = {}
     for c in train.couplings:
-        if isinstance(c, SkewMesh) and c.pressure is not None and c.helix is not None:
-            for angle in (c.pressure, *c.helix):
+        if isinstance(c, SkewMesh):
+            for angle in c.angles:
                 for s in sorted_symbols(angle.angle.free_symbols):
                     out.setdefault(s, angle.meaning)
     return out

@@ -168,29 +168,10 @@ class GearMesh(Coupling):
     def from_entry(
         cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
     ) -> GearMesh | None:
-        if "gears" not in entry:
-            return None  # reported as a missing required key
-        pair = entry["gears"]
-        if not isinstance(pair, list) or len(pair) != 2:
-            reader.problem(f"{path}.gears", "expected a list of two gear names")
+        pair = read_gear_pair(entry, path, reader, gears)
+        if pair is None:
             return None
-        first, second = (reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair))
-        if first is None or second is None:
-            return None
-        names = (first, second)
-        missing = [g for g in names if g not in gears]
-        for g in missing:
-            reader.unknown(f"{path}.gears", "gear", g)
-        if missing:
-            return None
-        g1, g2 = gears[names[0]], gears[names[1]]
-        if g1.link == g2.link:
-            reader.problem(
-                f"{path}.gears",
-                f"gears {g1.name!r} and {g2.name!r} are both on link "
-                f"{g1.link!r}: a mesh must join gears on different links",
-            )
-            return None
+        g1, g2 = pair
         if g1.internal and g2.internal:
             reader.problem(f"{path}.gears", "two internal gears cannot mesh")
             return None
@@ -215,6 +196,36 @@ class GearMesh(Coupling):
         else:
             efficiencies = _read_efficiencies(value, f"{path}.efficiency", reader)
         return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions)
+
+
+def read_gear_pair(
+    entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear], words: str = ""
+) -> tuple[Gear, Gear] | None:
+    """The two gears a mesh entry names in ``gears:``, on different links, or None with the
+    problem recorded (``words`` says what the two are, e.g. "worm, wheel")."""
+    if "gears" not in entry:
+        return None  # reported as a missing required key
+    pair = entry["gears"]
+    if not isinstance(pair, list) or len(pair) != 2:
+        reader.problem(f"{path}.gears", "expected a list of two gear names" + (f" [{words}]" if words else ""))
+        return None
+    first, second = (reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair))
+    if first is None or second is None:
+        return None
+    missing = [g for g in (first, second) if g not in gears]
+    for g in missing:
+        reader.unknown(f"{path}.gears", "gear", g)
+    if missing:
+        return None
+    g1, g2 = gears[first], gears[second]
+    if g1.link == g2.link:
+        reader.problem(
+            f"{path}.gears",
+            f"gears {g1.name!r} and {g2.name!r} are both on link "
+            f"{g1.link!r}: a mesh must join gears on different links",
+        )
+        return None
+    return g1, g2
 
 
 def _annulus_larger(annulus: Gear, pinion: Gear, path: str, reader: EntryReader) -> bool:

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.losses.definitions import Definition
-from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.couplings import Coupling, read_gear_pair
 from davies_sym.topology.entries import describe
 from davies_sym.topology.expressions import shortened
 from davies_sym.topology.gear import Gear
@@ -91,37 +91,25 @@ class SkewMesh(Coupling):
         return False
 
     @property
-    def definitions(self) -> tuple[Definition, ...]:
+    def angles(self) -> tuple[AngleFunctions, ...]:
+        """The independent angles: the normal pressure angle and the helix angles (a worm's
+        helix angle is the complement of its lead angle, with the same two symbols)."""
         assert self.helix is not None and self.pressure is not None
-        # A worm's helix angle is the complement of its lead angle: the same two symbols.
-        angles = (self.pressure, self.helix[1]) if self.right_shaft_angle else (self.pressure, *self.helix)
-        return self.friction.definitions + tuple(d for a in angles for d in a.definitions)
+        return (self.pressure, self.helix[1]) if self.right_shaft_angle else (self.pressure, *self.helix)
+
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        return self.friction.definitions + tuple(d for a in self.angles for d in a.definitions)
 
     @classmethod
     def _gear_pair(
-        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+        cls, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
     ) -> tuple[Gear, Gear] | None:
-        pair = entry.get("gears")
+        """The two gears, external (a skew mesh has no annulus)."""
+        pair = read_gear_pair(entry, path, reader, gears, cls._pair_words)
         if pair is None:
-            return None  # reported as a missing required key
-        if not isinstance(pair, list) or len(pair) != 2:
-            reader.problem(f"{path}.gears", f"expected a list of two gear names [{cls._pair_words}]")
             return None
-        read = [reader.name(g, f"{path}.gears[{i}]") for i, g in enumerate(pair)]
-        names = [n for n in read if n is not None]
-        if len(names) != 2:
-            return None
-        missing = [g for g in names if g not in gears]
-        for g in missing:
-            reader.unknown(f"{path}.gears", "gear", g)
-        if missing:
-            return None
-        g1, g2 = gears[names[0]], gears[names[1]]
-        if g1.link == g2.link:
-            reader.problem(
-                f"{path}.gears", f"gears {g1.name!r} and {g2.name!r} are both on link {g1.link!r}: they cannot mesh"
-            )
-            return None
+        g1, g2 = pair
         internal = [g.name for g in (g1, g2) if g.internal]
         if internal:
             reader.problem(
@@ -188,7 +176,7 @@ class WormMesh(SkewMesh):
     def from_entry(
         cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
     ) -> WormMesh | None:
-        pair = cls._gear_pair(name, entry, path, reader, gears)
+        pair = cls._gear_pair(entry, path, reader, gears)
         friction, pressure = cls._common(name, entry, path, reader)
         worm_name = pair[0].name if pair is not None else "1"
         lead = (
@@ -231,7 +219,7 @@ class CrossedHelicalMesh(SkewMesh):
     def from_entry(
         cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
     ) -> CrossedHelicalMesh | None:
-        pair = cls._gear_pair(name, entry, path, reader, gears)
+        pair = cls._gear_pair(entry, path, reader, gears)
         friction, pressure = cls._common(name, entry, path, reader)
         helix: list[AngleFunctions | None] = []
         value = entry.get("helix_angles")

@@ -112,7 +112,8 @@ def loaded_forces(
     where the first gear drives; given as the product of its factors the geometry does not
     decide, which has the same sign.  For a bearing, the reaction: the sign of its
     lossless value, the other for the couplings in ``reversed_forces``; a reaction whose
-    lossless sign the geometry does not decide is given times that value.  ``swapped``:
+    lossless sign the geometry does not decide is given times its relative motion, whose
+    product has the sign the analysis took.  ``swapped``:
     the derivation is the declared input's, read for the other input (only the meshes'
     own friction, so one solution serves both inputs).
     A mesh power whose sign the geometry and the losses' ranges decide as needed is left
@@ -148,7 +149,12 @@ def loaded_forces(
         flip = -1 if law.coupling in reversed_forces else 1
         if sign in (1, -1) and analysis.oracle.classify(*force.factor_list())[0] == sign * flip:
             continue  # the force provably points as needed: no condition
-        out[law.coupling] = (force, int(sign) * flip) if sign in (1, -1) else (force * lossless, flip)
+        if sign in (1, -1):
+            out[law.coupling] = (force, int(sign) * flip)
+        else:
+            # The geometry decides the lossless sense (opposed thrusts); the analysis took
+            # the Coulomb sign flip: reaction times relative motion must have it.
+            out[law.coupling] = (force * analysis.motion_coefficients[law.motion], flip)
     return out
 
 

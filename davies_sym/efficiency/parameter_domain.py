@@ -20,9 +20,9 @@ import sympy
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.geometry.layout import Layout, joint_substitution
+from davies_sym.topology.angles import AngleFunctions
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Train
-from davies_sym.topology.skew_mesh import AngleFunctions, SkewMesh
 
 Point = dict[sympy.Symbol, sympy.Rational]
 
@@ -76,8 +76,8 @@ class ParameterDomain:
 
     @cached_property
     def _angles(self) -> list[AngleFunctions]:
-        """The angles of the skew meshes, whose cos and sin are drawn together."""
-        out = {a.cos: a for c in self.train.couplings if isinstance(c, SkewMesh) for a in c.angles}
+        """The angles of the meshes (helix, lead, pressure), whose cos and sin are drawn together."""
+        out = {a.cos: a for c in self.train.couplings for a in c.angles}
         return [out[k] for k in sorted_symbols(out)]
 
     @cached_property

@@ -88,14 +88,13 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
 
 
 def _angle_meanings(train: Train) -> dict[sympy.Symbol, str]:
-    """The angles of the skew meshes (lead, helix, normal pressure angle), in radians
+    """The angles of the meshes (lead, helix, normal pressure angle), in radians
     strictly between 0 and pi/2."""
     out: dict[sympy.Symbol, str] = {}
     for c in train.couplings:
-        if isinstance(c, SkewMesh):
-            for angle in c.angles:
-                for s in sorted_symbols(angle.angle.free_symbols):
-                    out.setdefault(s, angle.meaning)
+        for angle in c.angles:
+            for s in sorted_symbols(angle.angle.free_symbols):
+                out.setdefault(s, angle.meaning)
     return out
 
 

@@ -16,11 +16,13 @@ from dataclasses import replace
 import sympy
 
 from davies_sym.algebra.screws import Vector
+from davies_sym.errors import GeometryError
 from davies_sym.geometry.cone import conical_layout
 from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
 from davies_sym.geometry.skew import skew_layout, skew_meshes
+from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
 __all__ = ["GeometricConstraint", "Layout", "train_layout"]
@@ -33,7 +35,7 @@ def train_layout(train: Train) -> Layout:
     clutches join members without moving an axis), restricted to what the state keeps."""
     if train.whole is not None:
         return _restricted(train_layout(train.whole), train)
-    layout = _layout(train)
+    layout = _helical(_layout(train), train)
     # A radius solved from a constraint is a length: its expression is positive.
     facts = tuple(r.expression for r in train.dependent or ())
     return replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
@@ -47,6 +49,25 @@ def _layout(train: Train) -> Layout:
     if train.placement is not None:
         return plane_layout(train, train.placement)
     return planar_line_layout(train)
+
+
+def _helical(layout: Layout, train: Train) -> Layout:
+    """``layout`` marked as carrying thrust when a mesh is helical (parallel axes only)."""
+    helical = [c for c in train.couplings if isinstance(c, GearMesh) and c.helix is not None]
+    if not helical:
+        return layout
+    if layout.gear_axes:
+        raise GeometryError(
+            [
+                train.problem(
+                    f"couplings.{helical[0].name}.helix_angle",
+                    "helical gears are covered on parallel axes; this train has intersecting axes (spiral "
+                    "bevel gears are not covered): remove `helix_angle`",
+                )
+            ],
+            train.path,
+        )
+    return replace(layout, thrust=True)
 
 
 def _restricted(layout: Layout, train: Train) -> Layout:

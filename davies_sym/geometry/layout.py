@@ -61,6 +61,9 @@ class Layout:
     #: The axes are not all parallel and do not meet at one point (a skew mesh): every
     #: screw of space counts, so a spur mesh is a point contact with five freedoms.
     spatial: bool = False
+    #: Some mesh is helical: the gears carry axial thrust, so every mesh may slide along
+    #: and tilt about its tangent where the screw system holds those motions.
+    thrust: bool = False
 
 
 def line_point(y: sympy.Expr) -> Vector:

@@ -263,6 +263,8 @@ class Analysis:
             flip = -1 if law.coupling in self.reversed_coulomb else 1
             if sign in (1, -1):
                 out[law.coupling] = sympy.Integer(sign * flip)
+            elif self.coulomb_signs == "mesh-linear":  # geometry decides: variants derive both senses
+                out[law.coupling] = sympy.Integer(flip)
             else:
                 out[law.coupling] = flip * symbol
                 conditions.append(SignCondition(law.coupling, symbol, undecided))

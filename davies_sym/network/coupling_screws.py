@@ -32,6 +32,7 @@ from davies_sym.algebra.screws import (
     translation_twist,
     vector,
 )
+from davies_sym.errors import DerivationError
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
 from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
@@ -54,6 +55,9 @@ class CouplingScrews:
     #: The unit wrench of the coupling's friction where it is not the action along its
     #: first motion (the sliding force of a skew mesh acts at the pitch point).
     friction: NamedScrew | None = None
+    #: Secondary freedoms the screw system must hold, whatever the other couplings do
+    #: (a helical mesh's sliding along its teeth: the thrust needs it).
+    spans: tuple[NamedScrew, ...] = ()
 
 
 def _point_constraints(
@@ -83,20 +87,67 @@ def _revolute(c: Revolute, layout: Layout) -> CouplingScrews:
 def _mesh(c: GearMesh, layout: Layout) -> CouplingScrews:
     """A mesh: rotation about the pitch line, tooth force along the common tangent first;
     the separating motion along the centre line is a secondary freedom (kept in planar
-    systems of order 3).  In a spatial layout the teeth touch at the pitch point only:
-    the translation along the axis and the tilts about the tangent and the centre line
-    are freedoms too, so the bearings alone hold the gears out of their plane."""
+    systems of order 3).  Where the gears carry thrust or the layout is spatial the teeth
+    touch at the pitch point only: the translation along the axis and the tilts about the
+    tangent and the centre line are freedoms too, so the bearings alone hold the gears
+    out of their plane.  Helical teeth (`_helical`) slide along the tooth line instead of
+    the axis."""
     point, axis = layout.coupling_points[c.name], layout.coupling_axes.get(c.name, layout.axis)
     tangent, normal = layout.mesh_tangents[c.name], layout.mesh_normals[c.name]
     motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
+    if c.helix is not None:
+        return _helical(c, layout, motion)
     separating = [NamedScrew(translation_magnitude_name(normal), translation_twist(normal))]
-    if layout.spatial:
+    if layout.spatial or layout.thrust:
         separating += [
             NamedScrew(translation_magnitude_name(axis), translation_twist(axis)),
             NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point)),
             NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
         ]
     return CouplingScrews((motion,), tuple(separating), _point_constraints(point, (tangent,)))
+
+
+def _helical(c: GearMesh, layout: Layout, motion: NamedScrew) -> CouplingScrews:
+    """A helical mesh on parallel axes, pressure angle zero as for spur gears.
+
+    On the first gear's pitch cylinder the tooth line of a right-hand helix runs along
+    ``sin(beta) e_theta + cos(beta) e_z`` (``e_theta`` the direction of the gear's
+    rotation about its axis at the pitch point); the tooth force is normal to it in the
+    pitch plane, ``cos(beta) e_theta - sin(beta) e_z``.  Its magnitude is counted by the
+    tangential part, so the wrench is the tangential unit force plus ``tan(beta)`` of it
+    along the axis: the mesh law and its efficiency keep their meaning, and the thrust
+    reaches the bearings.  Sliding along the tooth line and tilting about the tangent
+    are freedoms the screw system must hold, or the thrust would have nowhere to go."""
+    assert c.helix is not None
+    point, axis = layout.coupling_points[c.name], layout.coupling_axes.get(c.name, layout.axis)
+    tangent, normal = layout.mesh_tangents[c.name], layout.mesh_normals[c.name]
+    centre = layout.gear_centres[c.gears[0]]
+    # +1 when the tangent is the first gear's e_theta at the pitch point, -1 when opposite.
+    along = sympy.cancel(
+        sum(
+            a * b
+            for a, b in zip(
+                tangent, cross(axis, vector([p - q for p, q in zip(point, centre, strict=True)])), strict=True
+            )
+        )
+    )
+    orientation = sympy.sign(along)
+    if orientation not in (1, -1):
+        raise DerivationError(f"mesh {c.name}: the sense of its first gear's rotation at the pitch point is unknown")
+    lean = -int(orientation) * c.hand  # the axial part of e_theta-normal, per unit along the tangent
+    cos, sin = c.helix.cos, c.helix.sin
+    force = vector([t + lean * sin / cos * a for t, a in zip(tangent, axis, strict=True)])
+    tooth_line = vector([-lean * sin * t + cos * a for t, a in zip(tangent, axis, strict=True)])
+    sliding = NamedScrew("q", translation_twist(tooth_line))
+    tilt = NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point))
+    secondary = (
+        NamedScrew(translation_magnitude_name(normal), translation_twist(normal)),
+        sliding,
+        tilt,
+        NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
+    )
+    pressing = NamedScrew(force_magnitude_name(tangent), force_wrench(force, point))
+    return CouplingScrews((motion,), secondary, (pressing, *_point_constraints(point)), spans=(sliding, tilt))
 
 
 def _skew_mesh(c: SkewMesh, layout: Layout) -> CouplingScrews:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import sympy
 
 from davies_sym.algebra.radicals import RadicalTable, has_square_root
-from davies_sym.algebra.screws import NamedScrew, action_along_motion, power, torque_magnitude_name
+from davies_sym.algebra.screws import NamedScrew, action_along_motion, cross, power, torque_magnitude_name
 from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
@@ -28,7 +28,7 @@ from davies_sym.network.screw_system import (
     minimal_screw_system,
     reduce_coupling,
 )
-from davies_sym.topology.couplings import Coupling, GearMesh, ScrewCoupling
+from davies_sym.topology.couplings import Coupling, GearMesh, Revolute, ScrewCoupling
 from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
 from davies_sym.topology.symbols import make_symbol
@@ -113,7 +113,7 @@ class Network:
             if not self.graph.is_spanning_tree(t):
                 raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
         full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
-        essential = [m.screw for s in full.values() for m in s.motions]
+        essential = [m.screw for s in full.values() for m in (*s.motions, *s.spans)]
         if self.layout.spatial:
             # Skew axes: every freedom of a point contact counts, so the system is space itself.
             essential += [m.screw for s in full.values() for m in s.secondary]
@@ -148,7 +148,9 @@ class Network:
             return tuple(NamedScrew(n.name, tuple(table.absorb(sympy.sympify(x)) for x in n.screw)) for n in group)
 
         out = {
-            name: CouplingScrews(absorb(s.motions), absorb(s.secondary), absorb(s.constraints))
+            name: replace(
+                s, motions=absorb(s.motions), secondary=absorb(s.secondary), constraints=absorb(s.constraints)
+            )
             for name, s in full.items()
         }
         added = tuple(r for r in table.radicals if r not in self.layout.radicals)
@@ -223,13 +225,52 @@ class Network:
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.
-        if isinstance(c, (GearMesh, SkewMesh)) or len(constraints) == 1:
+        if isinstance(c, (GearMesh, SkewMesh)):
+            return constraints[0].name
+        what = "reaction force"
+        if isinstance(c, Revolute):
+            loads = self._bearing_loads(c, constraints)
+            if len(loads) == 1:
+                return loads[0].name
+            if c.friction.load == "radial" and len(constraints) == 1:
+                return constraints[0].name  # the one reaction the screw system leaves it
+            if not loads:
+                raise TopologyError([self._no_load(c)], self.train.path)
+            constraints, what = loads, f"{c.friction.load} reaction force"
+        elif len(constraints) == 1:
             return constraints[0].name
         raise DerivationError(
-            f"coupling {c.name}: a load-dependent friction law needs one reaction force, but this coupling "
+            f"coupling {c.name}: a load-dependent friction law needs one {what}, but this coupling "
             f"transmits {', '.join(a.name for a in constraints)} in the screw system of order "
             f"{self.system.order}; use a viscous law or describe the reaction with one force"
         )
+
+    def _no_load(self, c: Revolute) -> Problem:
+        """The problem of a bearing law whose load this train never exerts."""
+        if c.friction.load == "axial":
+            return self.train.problem(
+                f"couplings.{c.name}.friction.thrust",
+                "no gear of this train thrusts along the axes (spur gears), so a thrust face carries no "
+                "load: give the meshes a `helix_angle`, or remove `thrust`",
+            )
+        return self.train.problem(
+            f"couplings.{c.name}.friction",
+            "this bearing carries no radial force in this train, so its journal has no load: remove the law",
+        )
+
+    def _bearing_loads(self, c: Revolute, constraints: list[ActionVariable]) -> list[ActionVariable]:
+        """The reaction forces of bearing ``c`` that load its Coulomb law: the forces across
+        its axis (a journal) or the force along it (a thrust face)."""
+        axis = self.layout.coupling_axes.get(c.name, self.layout.axis)
+        loads = []
+        for action, wrench in zip(constraints, self.reduced[c.name].spatial, strict=True):
+            force = wrench[3:]
+            if all(sympy.expand(f) == 0 for f in force):
+                continue  # a torque: the bearing's tilting moment
+            axial = all(sympy.expand(v) == 0 for v in cross(force, axis))
+            if axial == (c.friction.load == "axial"):
+                loads.append(action)
+        return loads
 
     def _check_names(self) -> None:
         clash = {v.name for v in self.motions} | {v.name for v in self.actions}

@@ -100,10 +100,12 @@ class CouplingScrewError(DerivationError):
 
 @dataclass(frozen=True)
 class ReducedCoupling:
-    """A coupling's kept unit twists and its independent constraint wrenches."""
+    """A coupling's kept unit twists and its independent constraint wrenches (reduced),
+    with each constraint's wrench in full 6-D coordinates (``spatial``)."""
 
     motions: tuple[NamedScrew, ...]
     constraints: tuple[NamedScrew, ...]
+    spatial: tuple[Screw, ...] = ()
 
 
 def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> ReducedCoupling:
@@ -116,6 +118,7 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
             name, "its unit motion screws are not independent; give screws that span different motions"
         )
     chosen: list[NamedScrew] = []
+    spatial: list[Screw] = []
     rows: list[list[sympy.Expr]] = []
     for candidate in screws.constraints:
         if any(sympy.expand(power(candidate.screw, m.screw)) != 0 for m in motions):
@@ -124,6 +127,7 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
         if sympy.Matrix([*rows, row]).rank(simplify=True) > len(rows):
             rows.append(row)
             chosen.append(NamedScrew(candidate.name, tuple(row)))
+            spatial.append(candidate.screw)
         if len(chosen) == system.order - freedom:
             break
     if len(chosen) != system.order - freedom:
@@ -133,4 +137,4 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
             f"motions, need {system.order - freedom}",
         )
     kept = tuple(NamedScrew(m.name, system.reduce_twist(m.screw)) for m in motions)
-    return ReducedCoupling(kept, tuple(chosen))
+    return ReducedCoupling(kept, tuple(chosen), tuple(spatial))

@@ -17,6 +17,7 @@ import sympy
 
 from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
 from davies_sym.losses.definitions import Definition
+from davies_sym.topology.angles import AngleFunctions, read_angle
 from davies_sym.topology.entries import describe
 from davies_sym.topology.expressions import check_name, shortened
 from davies_sym.topology.gear import Gear
@@ -50,6 +51,11 @@ class Coupling:
     @property
     def gears(self) -> tuple[str, str] | None:
         return None
+
+    @property
+    def angles(self) -> tuple[AngleFunctions, ...]:
+        """The angles of its geometry whose cos and sin are symbols (a helix angle)."""
+        return ()
 
     @property
     def definitions(self) -> tuple[Definition, ...]:
@@ -109,7 +115,7 @@ class Revolute(Coupling):
     ) -> Revolute | None:
         links = _read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, bearing=True)
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
         if links is not None and axis is not None and axis not in links:
             reader.problem(f"{path}.axis", f"{shortened(axis)} is not one of the coupling's links {list(links)}")
@@ -126,6 +132,12 @@ class GearMesh(Coupling):
     point (pressure angle taken as zero, Laus section 3.3.1), and the friction is a
     torque about the pitch line (Theorem 1).  The separating motion along the centre
     line is a secondary freedom: it is kept in planar systems of order 3.
+
+    Helical gears (``helix``) on parallel axes: the tooth force is normal to the tooth
+    line, so besides its tangential part ``F`` it pushes the gears apart along their
+    axes by ``F tan(beta)``, the thrust the bearings take; the teeth may slide along the
+    tooth line.  ``hand`` is +1 when the first gear is right-handed (the second is then
+    left-handed on an external mesh, right-handed on an internal one).
     """
 
     mesh_gears: tuple[str, str] = ("", "")
@@ -134,6 +146,10 @@ class GearMesh(Coupling):
     efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
     #: The efficiencies as functions of the tooth geometry (Laus App. A), when given so.
     efficiency_definitions: tuple[Definition, ...] = ()
+    #: cos and sin of the helix angle at the pitch radius (helical gears), else None.
+    helix: AngleFunctions | None = None
+    #: +1: the first gear is right-handed, -1: left-handed.
+    hand: int = 1
 
     kind: ClassVar[str] = "mesh"
     DOC: ClassVar[str] = (
@@ -154,6 +170,21 @@ class GearMesh(Coupling):
             "`eta_<coupling>_<gear>_<gear>` (driver first), see *Tooth contact*. "
             "Default: `eta_<coupling>`.",
         ),
+        Field(
+            "helix_angle",
+            "symbol or number",
+            False,
+            "Helix angle beta of helical gears at the pitch radius, between 0 and 90 degrees (numbers are "
+            "degrees, symbols radians): the tooth force then thrusts along the axes by F tan(beta), which "
+            "the bearings take (see `thrust` friction). Default: spur gears.",
+        ),
+        Field(
+            "hand",
+            "`right` or `left`",
+            False,
+            "Hand of the first gear's helix (the second gear has the other hand on an external mesh, the "
+            "same on an internal one); it sets the direction of the thrust. Default: `right`.",
+        ),
     )
 
     @property
@@ -161,8 +192,13 @@ class GearMesh(Coupling):
         return self.mesh_gears
 
     @property
+    def angles(self) -> tuple[AngleFunctions, ...]:
+        return () if self.helix is None else (self.helix,)
+
+    @property
     def definitions(self) -> tuple[Definition, ...]:
-        return self.friction.definitions + self.efficiency_definitions
+        angles = tuple(d for a in self.angles for d in a.definitions)
+        return self.friction.definitions + self.efficiency_definitions + angles
 
     @classmethod
     def from_entry(
@@ -195,7 +231,26 @@ class GearMesh(Coupling):
             efficiencies = (definitions[0].symbol, definitions[1].symbol) if definitions else None
         else:
             efficiencies = _read_efficiencies(value, f"{path}.efficiency", reader)
-        return cls(name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions)
+        helix, hand = _read_helix(entry, path, reader, name, g1)
+        return cls(
+            name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions, helix, hand
+        )
+
+
+def _read_helix(
+    entry: Mapping[str, Any], path: str, reader: EntryReader, name: str, first: Gear
+) -> tuple[AngleFunctions | None, int]:
+    """The helix angle and hand of a mesh entry (None and +1 for spur gears)."""
+    hand = entry.get("hand", "right")
+    if hand not in ("right", "left"):
+        reader.problem(f"{path}.hand", f"expected `right` or `left`, got {describe(hand)}")
+    if "helix_angle" not in entry:
+        if "hand" in entry:
+            reader.problem(f"{path}.hand", "a hand needs helical gears: give `helix_angle` too, or remove `hand`")
+        return None, 1
+    meaning = f"the helix angle of mesh {name}"
+    helix = read_angle(entry["helix_angle"], f"{path}.helix_angle", reader, name, "beta", meaning)
+    return helix, -1 if hand == "left" else 1
 
 
 def read_gear_pair(

@@ -22,6 +22,7 @@ from davies_sym.topology.coupling_kinds import KINDS
 from davies_sym.topology.couplings import Coupling, coupling_fields, read_direction
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.expressions import shortened
+from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
 from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
 from davies_sym.topology.symbols import exact_number
@@ -79,6 +80,7 @@ def build_train(document: SourceDocument) -> Train:
     couplings = (
         _read_couplings(data["couplings"], reader, {link.name for link in links}, gears) if "couplings" in data else {}
     )
+    check_helices(couplings, reader)
     ports = _read_ports(data["ports"], reader, couplings) if "ports" in data else None
     if reader.problems:
         raise TopologyError(reader.problems, document.name)

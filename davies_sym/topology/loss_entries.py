@@ -16,7 +16,7 @@ from davies_sym.losses.journal_bearing import CONTACT_LAWS, friction_circle_radi
 from davies_sym.losses.tooth_contact import contact_lengths, spur_mesh_efficiency
 from davies_sym.topology.entries import describe
 from davies_sym.topology.gear import Gear
-from davies_sym.topology.schema import BEARING, FRICTION, TOOTH_CONTACT
+from davies_sym.topology.schema import BEARING, FRICTION, THRUST, TOOTH_CONTACT, Field
 from davies_sym.topology.symbols import train_symbol
 
 if TYPE_CHECKING:
@@ -34,15 +34,21 @@ class Friction:
     drag: sympy.Expr | None = None
     #: Coefficients a loss model defines (a journal's friction-circle radius, App. D).
     definitions: tuple[Definition, ...] = ()
+    #: The reaction of a bearing that loads its Coulomb law: ``radial`` (a journal) or
+    #: ``axial`` (a thrust face).
+    load: str = "radial"
 
     @property
     def lossless(self) -> bool:
         return self.coulomb is None and self.linear is None and self.viscous is None and self.drag is None
 
 
-def read_friction(value: Any, path: str, reader: EntryReader, default: Friction, name: str = "") -> Friction:
+def read_friction(
+    value: Any, path: str, reader: EntryReader, default: Friction, name: str = "", bearing: bool = False
+) -> Friction:
     """Read a ``friction`` entry of coupling ``name``: ``none``, or a mapping of laws to
-    coefficients (a ``bearing`` gives the Coulomb law of a journal, Laus App. D)."""
+    coefficients (on a ``bearing``, a revolute, the ``bearing`` key gives the Coulomb law of a
+    journal, Laus App. D, and ``thrust`` that of a thrust face)."""
     if value is None:
         return default
     if isinstance(value, str) and value.strip().lower() == "none":
@@ -53,42 +59,79 @@ def read_friction(value: Any, path: str, reader: EntryReader, default: Friction,
     reader.check_keys(entry, path, FRICTION)
     laws: dict[str, sympy.Expr | None] = {}
     for f in FRICTION:
-        if f.key in entry and f.key != "bearing":
+        if f.key in entry and f.key not in _BEARING_LAWS:
             role = "viscous" if f.key == "viscous" else "friction"
             laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
     definitions: tuple[Definition, ...] = ()
-    if "bearing" in entry:
+    given = [k for k in _BEARING_LAWS if k in entry]
+    if given and not bearing:
+        reader.problem(f"{path}.{given[0]}", f"`{given[0]}` is a law of a bearing: write it on a revolute coupling")
+        given = []
+    if len(given) == 2:
+        reader.problem(
+            path,
+            "one load-dependent law per bearing: `bearing` (loaded by the radial reaction) or `thrust` "
+            "(loaded by the axial reaction), not both",
+        )
+    elif given:
+        key = given[0]
         if "coulomb" in laws or "linear" in laws:
-            reader.problem(
-                path, "`bearing` gives the Coulomb law of the journal: write it without `coulomb` or `linear`"
-            )
-        journal = _read_bearing(entry["bearing"], f"{path}.bearing", reader, name)
-        if journal is not None:
-            laws["coulomb"], definitions = journal.symbol, (journal,)
+            reader.problem(path, f"`{key}` gives the bearing's Coulomb law: write it without `coulomb` or `linear`")
+        reading = _read_bearing if key == "bearing" else _read_thrust
+        law = reading(entry[key], f"{path}.{key}", reader, name)
+        if law is not None:
+            laws["coulomb"], definitions = law.symbol, (law,)
     if "coulomb" in laws and "linear" in laws:
         reader.problem(path, "choose one load-dependent law: `coulomb` or `linear`, not both")
-    return Friction(**laws, definitions=definitions)
+    return Friction(**laws, definitions=definitions, load="axial" if "thrust" in given else "radial")
 
 
-def _read_bearing(value: Any, path: str, reader: EntryReader, name: str) -> Definition | None:
-    """The friction-circle radius of a journal bearing as a definition (Laus App. D)."""
+#: The friction keys that give a bearing's Coulomb law through its own model.
+_BEARING_LAWS = ("bearing", "thrust")
+
+
+def _bearing_entry(
+    value: Any, path: str, reader: EntryReader, fields: tuple[Field, ...]
+) -> tuple[Mapping[str, Any], sympy.Expr, sympy.Expr] | None:
+    """A bearing law's mapping with its friction coefficient ``mu`` and its ``radius``."""
     entry = reader.mapping(value, path)
     if entry is None:
         return None
-    reader.check_keys(entry, path, BEARING)
+    reader.check_keys(entry, path, fields)
     if "mu" not in entry or "radius" not in entry:
         return None  # reported as missing required keys
     mu = reader.quantity(entry["mu"], f"{path}.mu", "friction")
     radius = reader.quantity(entry["radius"], f"{path}.radius", "length")
+    return None if mu is None or radius is None else (entry, mu, radius)
+
+
+def _read_thrust(value: Any, path: str, reader: EntryReader, name: str) -> Definition | None:
+    """The friction radius of a thrust face as a definition: its torque is mu r |F_axial|."""
+    read = _bearing_entry(value, path, reader, THRUST)
+    if read is None:
+        return None
+    _, mu, radius = read
+    return Definition(
+        _defined_symbol(f"zeta_{name}", "friction", reader),
+        mu * radius,
+        f"friction radius of the thrust face of bearing {name}",
+        "Coulomb friction of a thrust face",
+        _units((mu, "1"), (radius, "length (one unit for all)")),
+    )
+
+
+def _read_bearing(value: Any, path: str, reader: EntryReader, name: str) -> Definition | None:
+    """The friction-circle radius of a journal bearing as a definition (Laus App. D)."""
+    read = _bearing_entry(value, path, reader, BEARING)
+    if read is None:
+        return None
+    entry, mu, radius = read
     contact = entry.get("contact", "catalogue")
     if contact not in CONTACT_LAWS:
         reader.problem(f"{path}.contact", f"expected one of {', '.join(CONTACT_LAWS)}, got {describe(contact)}")
         return None
-    if mu is None or radius is None:
-        return None
-    zeta = _defined_symbol(f"zeta_{name}", "friction", reader)
     return Definition(
-        zeta,
+        _defined_symbol(f"zeta_{name}", "friction", reader),
         friction_circle_radius(mu, radius, contact),
         f"friction-circle radius of journal bearing {name} ({contact} contact)",
         "Laus App. D, Table 16",

@@ -203,8 +203,23 @@ FRICTION = (
         "and optionally `contact` (`catalogue`: mu is the bearing's own coefficient, the default; "
         "`new`: uniform pressure, mu times pi/2; `worn`: cosine pressure, mu times 4/pi). Gives the "
         "Coulomb law with the friction-circle radius zeta_<coupling> = k mu radius, loaded by the "
-        "bearing's reaction force.",
+        "bearing's radial reaction force.",
     ),
+    Field(
+        "thrust",
+        "mapping",
+        False,
+        "Thrust face of a bearing (a collar, a thrust washer, the axial side of a rolling bearing): "
+        "`mu` (friction coefficient) and `radius` (the friction radius of the face, e.g. the mean "
+        "radius of a worn-in collar). Gives the Coulomb law zeta_<coupling> = mu radius loaded by the "
+        "bearing's axial reaction, the thrust of helical gears. One load-dependent law per bearing: "
+        "not with `bearing`.",
+    ),
+)
+
+THRUST = (
+    Field("mu", "symbol or number", True, "Friction coefficient of the thrust face."),
+    Field("radius", "symbol or number", True, "Friction radius of the thrust face (the unit of the pitch radii)."),
 )
 
 BEARING = (

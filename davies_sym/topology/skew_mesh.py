@@ -3,16 +3,13 @@
 Beyond the references (Laus leaves non-parallel, non-intersecting axes as future work):
 the two gears touch at the pitch point, where the teeth slide along the tooth line, so
 the Coulomb friction force ``mu N`` of the sliding contact acts along it.  The entry
-gives the angles the screws need: the helix angle of each gear (the lead angle of a
-worm is its complement), the normal pressure angle, and the coefficient ``mu``.  The
-trigonometric functions of the angles become symbols of their own (``cos_gamma``)
-defined as ``cos(gamma)``, so the derivation stays polynomial and the outputs state the
-definitions.  An angle written as a number is in degrees; a symbol stands for radians.
+gives the angles the screws need (`davies_sym.topology.angles`): the helix angle of
+each gear (the lead angle of a worm is its complement), the normal pressure angle, and
+the coefficient ``mu``.
 """
 
 from __future__ import annotations
 
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -20,13 +17,12 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.losses.definitions import Definition
+from davies_sym.topology.angles import AngleFunctions, read_angle
 from davies_sym.topology.couplings import Coupling, read_gear_pair
 from davies_sym.topology.entries import describe
-from davies_sym.topology.expressions import shortened
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.loss_entries import Friction, read_friction
 from davies_sym.topology.schema import Field
-from davies_sym.topology.symbols import train_symbol
 
 if TYPE_CHECKING:
     from davies_sym.topology.entries import EntryReader
@@ -40,26 +36,6 @@ PRESSURE_ANGLE = Field(
     False,
     f"Normal pressure angle alpha_n. Default: {DEFAULT_PRESSURE_ANGLE} degrees.",
 )
-
-
-@dataclass(frozen=True)
-class AngleFunctions:
-    """cos and sin of one angle of a skew mesh, as symbols defined by the angle."""
-
-    angle: sympy.Expr
-    cos: sympy.Symbol
-    sin: sympy.Symbol
-    #: What the angle is, for the definitions ("the lead angle of worm w (mesh W)").
-    meaning: str = ""
-
-    @property
-    def definitions(self) -> tuple[Definition, Definition]:
-        units = tuple((str(s), "rad") for s in sorted(self.angle.free_symbols, key=str))
-        source = "skew-axis mesh geometry"
-        return (
-            Definition(self.cos, sympy.cos(self.angle), f"cosine of {self.meaning}", source, units),
-            Definition(self.sin, sympy.sin(self.angle), f"sine of {self.meaning}", source, units),
-        )
 
 
 @dataclass(frozen=True)
@@ -133,7 +109,7 @@ class SkewMesh(Coupling):
                 f"{path}.friction",
                 "a sliding contact needs a Coulomb law (`coulomb: mu`), which its normal force loads",
             )
-        pressure = _angle(
+        pressure = read_angle(
             entry.get("pressure_angle", DEFAULT_PRESSURE_ANGLE),
             f"{path}.pressure_angle",
             reader,
@@ -180,7 +156,7 @@ class WormMesh(SkewMesh):
         friction, pressure = cls._common(name, entry, path, reader)
         worm_name = pair[0].name if pair is not None else "1"
         lead = (
-            _angle(
+            read_angle(
                 entry["lead_angle"], f"{path}.lead_angle", reader, name, "gamma", f"the lead angle of worm {worm_name}"
             )
             if "lead_angle" in entry
@@ -228,7 +204,9 @@ class CrossedHelicalMesh(SkewMesh):
         elif value is not None:
             names = pair[0].name if pair is not None else "1", pair[1].name if pair is not None else "2"
             helix = [
-                _angle(v, f"{path}.helix_angles[{i}]", reader, name, f"beta_{i + 1}", f"the helix angle of gear {g}")
+                read_angle(
+                    v, f"{path}.helix_angles[{i}]", reader, name, f"beta_{i + 1}", f"the helix angle of gear {g}"
+                )
                 for i, (v, g) in enumerate(zip(value, names, strict=True))
             ]
         if pair is None or pressure is None or len(helix) != 2 or helix[0] is None or helix[1] is None:
@@ -236,30 +214,3 @@ class CrossedHelicalMesh(SkewMesh):
         return cls(
             name, (pair[0].link, pair[1].link), friction, (pair[0].name, pair[1].name), (helix[0], helix[1]), pressure
         )
-
-
-def _angle(value: Any, path: str, reader: EntryReader, coupling: str, what: str, meaning: str) -> AngleFunctions | None:
-    """An angle of the entry with its cos and sin symbols: a number in degrees (strictly
-    between 0 and 90), or a symbol or expression in radians."""
-    limit = 90
-    if isinstance(value, bool):
-        reader.problem(path, f"expected an angle, got {describe(value)}")
-        return None
-    read = reader.quantity(value, path, "angle")
-    if read is None:
-        return None
-    if read.is_number:
-        if not 0 < read < limit:
-            reader.problem(
-                path, f"expected a number of degrees strictly between 0 and {limit}, got {shortened(str(value), 40)}"
-            )
-            return None
-        angle = read * sympy.pi / 180
-        # No symbol names this angle: c_ and s_, so that no output shows cos of a symbol.
-        names = f"c_{what}_{coupling}", f"s_{what}_{coupling}"
-    else:
-        angle = read
-        stem = str(read) if isinstance(read, sympy.Symbol) else f"{what}_{coupling}"
-        names = f"cos_{stem}", f"sin_{stem}"
-    cos, sin = (train_symbol(re.sub(r"\W", "_", n, flags=re.ASCII), "angle function", reader.symbols) for n in names)
-    return AngleFunctions(angle, cos, sin, meaning)

@@ -24,9 +24,11 @@ variants.evaluate({"r1": 20, "r2": 50, "eta_C": "0.98"}, "A")  # 49/50, exact
 ```
 """
 
-from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variant import Variant
-from davies_sym.efficiency.variants import VariantSet, derive_variants
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from davies_sym.errors import (
     DaviesError,
     DerivationError,
@@ -38,17 +40,60 @@ from davies_sym.errors import (
     TopologyError,
     TopologySyntaxError,
 )
-from davies_sym.network.analysis import Analysis, analyse
-from davies_sym.network.sign_condition import SignCondition
-from davies_sym.topology.catalog_files import catalog_file, catalog_names
-from davies_sym.topology.loader import load, loads
-from davies_sym.topology.model import Gear, Link, Ports, State, Train
-from davies_sym.topology.states import train_in_state
 
-#: Every variant of a train's efficiency (Laus Tables 5 and 6); ``derive(train).evaluate(values, input)``.
-derive = derive_variants
+if TYPE_CHECKING:
+    from davies_sym.efficiency.turning_conditions import TurningCondition
+    from davies_sym.efficiency.variant import Variant
+    from davies_sym.efficiency.variants import VariantSet, derive_variants
+    from davies_sym.network.analysis import Analysis, analyse
+    from davies_sym.network.sign_condition import SignCondition
+    from davies_sym.topology.catalog_files import catalog_file, catalog_names
+    from davies_sym.topology.loader import load, loads
+    from davies_sym.topology.model import Gear, Link, Ports, State, Train
+    from davies_sym.topology.states import train_in_state
+
+    derive = derive_variants
 
 __version__ = "0.1.0"
+
+#: Where each public name lives.  They are imported on first use (PEP 562), so that
+#: ``import davies_sym.cli`` for ``derive --help`` does not load sympy and flint.
+_LAZY = {
+    "TurningCondition": "davies_sym.efficiency.turning_conditions",
+    "Variant": "davies_sym.efficiency.variant",
+    "VariantSet": "davies_sym.efficiency.variants",
+    "derive_variants": "davies_sym.efficiency.variants",
+    "Analysis": "davies_sym.network.analysis",
+    "analyse": "davies_sym.network.analysis",
+    "SignCondition": "davies_sym.network.sign_condition",
+    "catalog_file": "davies_sym.topology.catalog_files",
+    "catalog_names": "davies_sym.topology.catalog_files",
+    "load": "davies_sym.topology.loader",
+    "loads": "davies_sym.topology.loader",
+    "Gear": "davies_sym.topology.model",
+    "Link": "davies_sym.topology.model",
+    "Ports": "davies_sym.topology.model",
+    "State": "davies_sym.topology.model",
+    "Train": "davies_sym.topology.model",
+    "train_in_state": "davies_sym.topology.states",
+}
+#: Every variant of a train's efficiency (Laus Tables 5 and 6); ``derive(train).evaluate(values, input)``.
+_ALIASES = {"derive": "derive_variants"}
+
+
+def __getattr__(name: str) -> Any:
+    target = _ALIASES.get(name, name)
+    module = _LAZY.get(target)
+    if module is None:
+        raise AttributeError(f"module 'davies_sym' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), target)
+    globals()[name] = value  # later look-ups are plain attribute reads
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_LAZY, *_ALIASES})
+
 
 __all__ = [
     "Analysis",

@@ -119,3 +119,12 @@ class CalibrationError(DaviesError):
 
 class MissingDependencyError(DaviesError):
     """An optional dependency a requested output needs is not installed (exit status 2)."""
+
+
+def shortened(text: str, limit: int = 60) -> str:
+    """``text`` for a message: its repr, cut in the middle when long."""
+    shown = repr(text)
+    if len(shown) <= limit:
+        return shown
+    half = (limit - 5) // 2
+    return f"{shown[:half]} ... {shown[-half:]} ({len(text)} characters)"

@@ -9,17 +9,11 @@ import os
 import sys
 from collections.abc import Callable, Sequence
 
-from davies_sym.calibration.command import run as calibration_command
-from davies_sym.cli.arguments import parser
-from davies_sym.cli.catalog import catalog_listing, chosen_files
 from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import message, status_json
-from davies_sym.cli.one_input import one_input_outputs, write_derivations
-from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations, several_outputs
+from davies_sym.cli.parser import parser
 from davies_sym.emit.atomic import write_atomic
-from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem
-from davies_sym.topology.expressions import shortened
-from davies_sym.topology.loader import load
+from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
 
 Progress = Callable[[str], None]
 
@@ -28,6 +22,10 @@ def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> in
     """LaTeX and Python module of every train, named after its file (``derivations/``);
     a train with states gets one LaTeX file and a module per state.  A file that fails
     is reported and the others are still written."""
+    from davies_sym.cli.one_input import write_derivations
+    from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
+    from davies_sym.topology.loader import load
+
     os.makedirs(directory, exist_ok=True)
     status = 0
     for path in files:
@@ -102,6 +100,10 @@ def _path_text(path: str) -> str:
 
 
 def _one_file(args: argparse.Namespace, progress: Progress) -> int:
+    from davies_sym.cli.one_input import one_input_outputs
+    from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_outputs
+    from davies_sym.topology.loader import load
+
     path = args.files[0]
     for target, option in ((args.out, "-o"), (args.python, "--python")):
         if target:
@@ -141,8 +143,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["calibrate"]:
+        from davies_sym.calibration.command import run as calibration_command
+
         return calibration_command(argv[1:])
     args = parser().parse_args(argv)
+    # The derivation's modules (sympy, flint, matplotlib) load only now: --help and
+    # --version answer without them.
+    from davies_sym.cli.catalog import catalog_listing, chosen_files
+
     if args.completion:
         try:
             sys.stdout.write(completion_script(parser(), args.completion))

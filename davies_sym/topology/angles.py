@@ -14,9 +14,9 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from davies_sym.errors import shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.entries import describe
-from davies_sym.topology.expressions import shortened
 from davies_sym.topology.symbols import train_symbol
 
 if TYPE_CHECKING:

@@ -14,9 +14,10 @@ from typing import Any
 
 import sympy
 
+from davies_sym.errors import shortened
 from davies_sym.topology.couplings import Coupling, GearMesh
 from davies_sym.topology.entries import EntryReader, describe
-from davies_sym.topology.expressions import ExpressionError, check_name, parse_expression, shortened
+from davies_sym.topology.expressions import ExpressionError, check_name, parse_expression
 from davies_sym.topology.model import Expected
 from davies_sym.topology.schema import EXPECTED
 

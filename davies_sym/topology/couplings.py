@@ -16,10 +16,11 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.algebra.screws import TWIST_COORDINATES, UNIT, WRENCH_COORDINATES, NamedScrew, Vector, vector
+from davies_sym.errors import shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.angles import AngleFunctions, read_angle
 from davies_sym.topology.entries import describe
-from davies_sym.topology.expressions import check_name, shortened
+from davies_sym.topology.expressions import check_name
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.loss_entries import Friction, read_friction, tooth_contact
 from davies_sym.topology.schema import COUPLING_COMMON, Field

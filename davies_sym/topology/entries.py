@@ -9,8 +9,7 @@ from typing import Any
 
 import sympy
 
-from davies_sym.errors import Problem
-from davies_sym.topology.expressions import shortened
+from davies_sym.errors import Problem, shortened
 from davies_sym.topology.schema import Field
 from davies_sym.topology.symbols import QuantityError, parse_quantity
 from davies_sym.topology.yaml_source import SourceDocument

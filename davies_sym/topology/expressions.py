@@ -28,7 +28,7 @@ from fractions import Fraction
 
 import sympy
 
-from davies_sym.errors import InputError, Problem
+from davies_sym.errors import InputError, Problem, shortened
 
 #: Longest expression accepted (characters).
 MAX_LENGTH = 500
@@ -75,15 +75,6 @@ RESERVED_NAMES = frozenset(
 
 class ExpressionError(ValueError):
     """Text that is not an expression of the grammar (the message says why)."""
-
-
-def shortened(text: str, limit: int = 60) -> str:
-    """``text`` for a message: its repr, cut in the middle when long."""
-    shown = repr(text)
-    if len(shown) <= limit:
-        return shown
-    half = (limit - 5) // 2
-    return f"{shown[:half]} ... {shown[-half:]} ({len(text)} characters)"
 
 
 def check_name(name: str) -> str | None:

@@ -15,13 +15,12 @@ from typing import Any
 import networkx as nx
 import sympy
 
-from davies_sym.errors import Problem, TopologyError
+from davies_sym.errors import Problem, TopologyError, shortened
 from davies_sym.topology.calibration_entry import read_calibrate
 from davies_sym.topology.checks import read_expected
 from davies_sym.topology.coupling_kinds import KINDS
 from davies_sym.topology.couplings import Coupling, coupling_fields, read_direction
 from davies_sym.topology.entries import EntryReader, describe
-from davies_sym.topology.expressions import shortened
 from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
 from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL

@@ -15,7 +15,8 @@ from types import MappingProxyType
 
 import sympy
 
-from davies_sym.topology.expressions import MAX_BITS, ExpressionError, parse_expression, shortened
+from davies_sym.errors import shortened
+from davies_sym.topology.expressions import MAX_BITS, ExpressionError, parse_expression
 
 #: Assumptions per symbol role.
 ROLE_ASSUMPTIONS: Mapping[str, Mapping[str, bool]] = MappingProxyType(

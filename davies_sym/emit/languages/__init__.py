@@ -11,6 +11,7 @@ the frame: the opening comment, function heads, declarations.  The choice functi
 the variant exactly as the generated Python module does.
 """
 
-from davies_sym.emit.languages.registry import LANGUAGES, TARGETS, emit_code, program_of
+from davies_sym.emit.language_names import LANGUAGES
+from davies_sym.emit.languages.registry import TARGETS, emit_code, program_of
 
 __all__ = ["LANGUAGES", "TARGETS", "emit_code", "program_of"]

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from davies_sym.efficiency.several_inputs import SeveralInputs
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.language_names import LANGUAGES
 from davies_sym.emit.languages.c import C
 from davies_sym.emit.languages.julia import JULIA
 from davies_sym.emit.languages.modelica import MODELICA
@@ -16,8 +17,11 @@ from davies_sym.emit.languages.several_inputs import several_inputs_program
 from davies_sym.emit.languages.target import Target
 from davies_sym.emit.languages.text import module_name
 
-TARGETS: dict[str, Target] = {t.name: t for t in (C, JULIA, OCTAVE, RUST, MODELICA)}
-LANGUAGES: tuple[str, ...] = tuple(TARGETS)
+_BY_NAME = {t.name: t for t in (C, JULIA, OCTAVE, RUST, MODELICA)}
+if set(_BY_NAME) != set(LANGUAGES):  # the parser lists the names without importing the printers
+    raise ImportError(f"the --emit names {LANGUAGES} and the printers {tuple(_BY_NAME)} differ")
+#: Every target by its command-line name, in the order of the help.
+TARGETS: dict[str, Target] = {name: _BY_NAME[name] for name in LANGUAGES}
 
 
 def program_of(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> Program:

@@ -1,0 +1,120 @@
+"""The parser of ``derive``: every option with its help.  It imports nothing heavy (no
+sympy, no matplotlib), so ``derive --help`` and ``derive --version`` answer at once;
+what the options mean is read afterwards by `.arguments`."""
+
+from __future__ import annotations
+
+import argparse
+from importlib import metadata
+
+from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
+from davies_sym.emit.language_names import LANGUAGES
+
+
+def _version() -> str:
+    """The installed package's version."""
+    try:
+        return metadata.version("davies_sym")
+    except metadata.PackageNotFoundError:  # pragma: no cover - run from a checkout never installed
+        return "(not installed)"
+
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
+    p = argparse.ArgumentParser(
+        prog="derive",
+        description="Derive the efficiency of a gear train (or machine) described in a YAML "
+        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",
+    )
+    # ``.complete``: what shtab offers for the argument in a completion script (--completion).
+    files = p.add_argument(
+        "files", nargs="*", metavar="FILE", help="topology file (YAML); several files need --out DIR"
+    )
+    files.complete = YAML_FILES  # type: ignore[attr-defined]
+    catalog = p.add_argument(
+        "--catalog",
+        nargs="?",
+        const="",
+        metavar="NAME",
+        help="alone: list the catalog of literature trains that comes with the package; with a "
+        "NAME: derive that train in place of FILE (e.g. derive --catalog tuplin --latex)",
+    )
+    catalog.complete = catalog_completion()  # type: ignore[attr-defined]
+    p.add_argument("--version", action="version", version=f"%(prog)s (davies_sym) {_version()}")
+    form = p.add_mutually_exclusive_group()
+    form.add_argument("--json", action="store_true", help="print the JSON document")
+    form.add_argument(
+        "--latex",
+        action="store_true",
+        help="print a standalone LaTeX document of the variants (of "
+        "the power-flow regions for a train with several inputs)",
+    )
+    out = p.add_argument(
+        "-o",
+        "--out",
+        metavar="FILE|DIR",
+        help="write the document to FILE (atomically) instead of stdout; with a directory, write "
+        "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out "
+        "derivations/)",
+    )
+    out.complete = ANY_FILE  # type: ignore[attr-defined]
+    python = p.add_argument(
+        "--python",
+        metavar="OUT.py",
+        help="write a Python module with one function per variant "
+        "(per power-flow region for a train with several inputs)",
+    )
+    python.complete = ANY_FILE  # type: ignore[attr-defined]
+    p.add_argument(
+        "--emit",
+        choices=LANGUAGES,
+        metavar="LANG",
+        help=f"print (or with -o FILE write) the formulas as code in LANG ({', '.join(LANGUAGES)}): one "
+        "function per variant (per power-flow region for a train with several inputs) and per turning "
+        "condition, and the choice efficiency(...) that picks the one that holds; in place of the document",
+    )
+    p.add_argument(
+        "--completion",
+        choices=SHELLS,
+        metavar="SHELL",
+        help=f"print a completion script for SHELL ({', '.join(SHELLS)}), e.g. "
+        "derive --completion bash > ~/.local/share/bash-completion/completions/derive",
+    )
+    p.add_argument(
+        "--eval",
+        nargs="*",
+        metavar="NAME=VALUE",
+        help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
+        "(exact where possible; no values when every quantity of the train is a number); with --json "
+        "one JSON object",
+    )
+    p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
+    p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
+    p.add_argument(
+        "--state",
+        metavar="NAME",
+        help="operating state of a multi-speed set (default: every state; "
+        "--eval, --python, --emit and --plot need one)",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="NAME=START:STOP",
+        help="figure of the efficiency and the losses (the port torques for a train with several "
+        "inputs) against one parameter (PNG, -o FILE)",
+    )
+    p.add_argument(
+        "--vs",
+        metavar="NAME=START:STOP",
+        help="with --plot: a second parameter; the figure shows the variant regions, the turning-condition "
+        "curves and efficiency contours over both (e.g. the two input speeds of a differential: its "
+        "power-flow regions)",
+    )
+    p.add_argument(
+        "--at",
+        nargs="+",
+        metavar="NAME=VALUE",
+        default=[],
+        help="with --plot: values of the other parameters (default: the first published check of the file)",
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
+    return p

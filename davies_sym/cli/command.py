@@ -18,60 +18,6 @@ from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem,
 Progress = Callable[[str], None]
 
 
-def _derive_into(directory: str, files: Sequence[str], progress: Progress) -> int:
-    """LaTeX and Python module of every train, named after its file (``derivations/``);
-    a train with states gets one LaTeX file and a module per state.  A file that fails
-    is reported and the others are still written."""
-    from davies_sym.cli.one_input import write_derivations
-    from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
-    from davies_sym.topology.loader import load
-
-    os.makedirs(directory, exist_ok=True)
-    status = 0
-    for path in files:
-        stem = os.path.splitext(os.path.basename(path))[0]
-        outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py")]
-        clash = [
-            o for o in outputs if any(os.path.exists(o) and os.path.samefile(o, f) for f in files if os.path.exists(f))
-        ]
-        clash += [
-            o
-            for o in os.listdir(directory)
-            if o.startswith(f"{stem}_")
-            and any(os.path.samefile(os.path.join(directory, o), f) for f in files if os.path.exists(f))
-        ]
-        if clash:
-            print(f"input error: {path}: --out: refusing to overwrite the input file {clash[0]}", file=sys.stderr)
-            status = 2
-            continue
-        failures: list[str] = []
-        try:
-            train = load(path)
-            written = (
-                several_derivations(train, stem, progress)
-                if several_degrees_of_freedom(train)
-                else write_derivations(train, stem, progress, failures)
-            )
-        except DaviesError as exc:
-            print(message(exc, path), file=sys.stderr)
-            status = 2
-            continue
-        for line in failures:
-            print(line, file=sys.stderr)
-            status = 2
-        if not written:
-            print(
-                f"derive: {path}: {train.degrees_of_freedom} degrees of freedom and one input port: only its "
-                "kinematics is derived (list one input port per degree of freedom for formulas)",
-                file=sys.stderr,
-            )
-            continue
-        for name, content in written:
-            write_atomic(os.path.join(directory, name), content)
-        progress(f"wrote the derivations of {stem}")
-    return status
-
-
 def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
     """Before anything is derived: an output goes into an existing folder and never
     replaces an input file."""
@@ -136,7 +82,9 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
             file=sys.stderr,
         )
         return 2
-    return _derive_into(args.out, args.files, progress)
+    from davies_sym.cli.many_files import derive_into
+
+    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -173,7 +121,15 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"derive: {text}", file=sys.stderr, flush=True)
 
     if len(args.files) > 1 or (args.out and os.path.isdir(args.out)):
-        return _many_files(args, progress)
+        try:
+            return _many_files(args, progress)
+        except DaviesError as exc:  # the cluster cannot be reached, dask is missing
+            print(exc.report() if isinstance(exc, InputError) else f"derive: {exc}", file=sys.stderr)
+            return 2
+    if args.jobs != 1 or args.scheduler:
+        option = "--scheduler" if args.scheduler else "--jobs"
+        print(f"derive: {option} derives several files into a directory: add --out DIR", file=sys.stderr)
+        return 2
     try:
         return _one_file(args, progress)
     except NotCoveredError as exc:

@@ -5,6 +5,7 @@ what the options mean is read afterwards by `.arguments`."""
 from __future__ import annotations
 
 import argparse
+import os
 from importlib import metadata
 
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
@@ -17,6 +18,15 @@ def _version() -> str:
         return metadata.version("davies_sym")
     except metadata.PackageNotFoundError:  # pragma: no cover - run from a checkout never installed
         return "(not installed)"
+
+
+def _jobs(text: str) -> int:
+    """``--jobs N``: a whole number of processes, at least 1, or ``auto`` (every core)."""
+    if text == "auto":
+        return os.cpu_count() or 1
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a number of processes (1, 2, ...) or auto, got {text!r}")
+    return int(text)
 
 
 def parser() -> argparse.ArgumentParser:
@@ -115,6 +125,20 @@ def parser() -> argparse.ArgumentParser:
         metavar="NAME=VALUE",
         default=[],
         help="with --plot: values of the other parameters (default: the first published check of the file)",
+    )
+    p.add_argument(
+        "--jobs",
+        type=_jobs,
+        default=1,
+        metavar="N",
+        help="with --out DIR: derive the files on N processes at once (auto: one per core); a file that "
+        "fails is reported and the others go on",
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="with --out DIR: derive the files on the Dask cluster whose scheduler listens at ADDRESS "
+        "(e.g. tcp://10.0.0.5:8786; needs pip install 'davies_sym[dask]')",
     )
     p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
     return p

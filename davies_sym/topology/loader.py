@@ -39,6 +39,12 @@ def load(path: str | os.PathLike[str]) -> Train:
             data = handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], name) from None
+    return load_bytes(data, name)
+
+
+def load_bytes(data: bytes, name: str | None = None) -> Train:
+    """Parse and validate the bytes of a train file (read elsewhere, e.g. by the process
+    that hands the file to a cluster); ``name`` is used in messages."""
     if len(data) > MAX_FILE_BYTES:
         raise TopologyError(
             [Problem("", f"the file is larger than {MAX_FILE_BYTES // 1000} kB; a train file is a few kB")], name

@@ -1,0 +1,141 @@
+"""``derive FILES... --out DIR`` on several processes (``--jobs N``) and on a Dask cluster
+(``--scheduler ADDRESS``): the files written are byte for byte those of the serial run
+(the committed ``derivations/``), a file that fails is reported while the others are
+still written, and the options refuse what they cannot do with exit status 2."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from hostile.helpers import run_cli, run_main
+
+from conftest import ROOT
+
+CATALOG = Path(ROOT) / "catalog"
+DERIVATIONS = Path(ROOT) / "derivations"
+TRAINS = ["simple_pair", "tuplin", "wolfrom", "worm_drive"]
+
+
+def _same_as_committed(folder: Path, stems: list[str]) -> None:
+    written = sorted(p.name for p in folder.iterdir())
+    assert written == sorted(f"{s}{x}" for s in stems for x in (".py", ".tex")), written
+    for name in written:
+        assert (folder / name).read_bytes() == (DERIVATIONS / name).read_bytes(), name
+
+
+def test_jobs_write_what_the_serial_run_writes(tmp_path: Path) -> None:
+    result = run_cli([*(CATALOG / f"{t}.yaml" for t in TRAINS), "--out", tmp_path, "--jobs", "2"], timeout=300)
+    assert result.returncode == 0, result.describe()
+    _same_as_committed(tmp_path, TRAINS)
+    # Without a terminal, one progress line per finished file, counted.
+    assert sorted(line.split("] ")[-1] for line in result.stderr.splitlines() if "wrote" in line) == sorted(
+        f"wrote the derivations of {t}" for t in TRAINS
+    ), result.describe()
+    assert f"[{len(TRAINS)}/{len(TRAINS)}]" in result.stderr
+
+
+def test_a_bad_file_is_reported_and_the_others_are_written(tmp_path: Path) -> None:
+    bad = tmp_path / "in" / "broken.yaml"
+    bad.parent.mkdir()
+    bad.write_text("links: [0, 1]\ncouplings:\n  A: {type: revolute, links: [0, 9]}\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    files = [CATALOG / "simple_pair.yaml", bad, CATALOG / "tuplin.yaml"]
+    result = run_cli([*files, "--out", out, "--jobs", "2", "--quiet"], timeout=300)
+    assert result.returncode == 2, result.describe()
+    assert str(bad) in result.stderr and "error" in result.stderr, result.describe()
+    _same_as_committed(out, ["simple_pair", "tuplin"])
+
+
+def test_a_task_that_raises_is_reported_with_status_1(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An error past the refusals (here planted in the module writer for one train) does
+    not stop the run: the other files are written and the status says a task failed."""
+    from davies_sym.cli import many_files
+
+    real = many_files.write_derivations
+
+    def planted(train, stem, progress, failures):  # type: ignore[no-untyped-def]
+        if stem == "tuplin":
+            raise RuntimeError("planted failure")
+        return real(train, stem, progress, failures)
+
+    monkeypatch.setattr(many_files, "write_derivations", planted)
+    files = [CATALOG / "simple_pair.yaml", CATALOG / "tuplin.yaml", CATALOG / "wolfrom.yaml"]
+    result = run_main([*files, "--out", tmp_path, "--quiet"], timeout=300)
+    assert result.returncode == 1, result.describe()
+    assert "tuplin.yaml: failed: RuntimeError: planted failure" in result.stderr, result.describe()
+    assert "Traceback" not in result.stderr
+    _same_as_committed(tmp_path, ["simple_pair", "wolfrom"])
+
+
+def test_two_files_of_one_name_are_not_written_over_each_other(tmp_path: Path) -> None:
+    other = tmp_path / "copy" / "simple_pair.yaml"
+    other.parent.mkdir()
+    other.write_bytes((CATALOG / "simple_pair.yaml").read_bytes())
+    out = tmp_path / "out"
+    result = run_main([CATALOG / "simple_pair.yaml", other, "--out", out, "--jobs", "2", "--quiet"], timeout=300)
+    assert result.returncode == 2, result.describe()
+    assert f"{other}: --out:" in result.stderr and "rename one of the two files" in result.stderr
+    _same_as_committed(out, ["simple_pair"])
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "two", "1.5"])
+def test_jobs_must_be_a_count(value: str) -> None:
+    result = run_main([CATALOG / "simple_pair.yaml", "--jobs", value])
+    assert result.returncode == 2
+    assert "--jobs" in result.stderr and "number of processes" in result.stderr, result.describe()
+
+
+@pytest.mark.parametrize("option", [["--jobs", "2"], ["--scheduler", "tcp://127.0.0.1:9"]])
+def test_jobs_and_scheduler_need_a_directory(option: list[str]) -> None:
+    result = run_main([CATALOG / "simple_pair.yaml", *option])
+    assert result.returncode == 2, result.describe()
+    assert f"{option[0]} derives several files into a directory: add --out DIR" in result.stderr
+
+
+def test_jobs_auto_is_one_process_per_core(tmp_path: Path) -> None:
+    from davies_sym.cli import parser
+
+    assert parser().parse_args(["--jobs", "auto"]).jobs == (os.cpu_count() or 1)
+
+
+def test_dask_cluster_writes_what_the_serial_run_writes(tmp_path: Path) -> None:
+    """A local Dask cluster of two worker processes, as a user's cluster would be."""
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        files = [CATALOG / f"{t}.yaml" for t in TRAINS[:3]]
+        result = run_main([*files, "--out", tmp_path, "--scheduler", cluster.scheduler_address], timeout=300)
+    assert result.returncode == 0, result.describe()
+    _same_as_committed(tmp_path, TRAINS[:3])
+
+
+def test_an_unreachable_scheduler_is_named(tmp_path: Path) -> None:
+    pytest.importorskip("dask.distributed")
+    files = [CATALOG / "simple_pair.yaml", CATALOG / "tuplin.yaml"]
+    result = run_main([*files, "--out", tmp_path, "--scheduler", "tcp://127.0.0.1:9"], timeout=120)
+    assert result.returncode == 2, result.describe()
+    assert "--scheduler" in result.stderr and "cannot reach a Dask scheduler at 'tcp://127.0.0.1:9'" in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_terminal_gets_a_progress_bar(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """On a terminal the finished files show as a bar (tqdm) instead of one line each."""
+    import io
+    import sys
+
+    from davies_sym.cli.many_files import derive_into
+
+    class Terminal(io.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    screen = Terminal()
+    monkeypatch.setattr(sys, "stderr", screen)
+    lines: list[str] = []
+    files = [str(CATALOG / "simple_pair.yaml"), str(CATALOG / "wolfrom.yaml")]
+    assert derive_into(str(tmp_path), files, lines.append, jobs=2) == 0
+    assert "2/2" in screen.getvalue() and "file" in screen.getvalue(), screen.getvalue()
+    assert not [line for line in lines if "wrote the derivations" in line]
+    _same_as_committed(tmp_path, ["simple_pair", "wolfrom"])

@@ -10,9 +10,10 @@ whenever the system allows it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
+import sympy
 from flint import fmpz_mpoly
 
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
@@ -21,9 +22,25 @@ Row = dict[int, fmpz_mpoly]
 Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
 
 
+def polynomial_rows(ring: PolynomialRing, matrix: sympy.Matrix) -> list[Row]:
+    """The sparse polynomial rows of ``matrix``; a row with fractions (pitch points of
+    tilted bevel axes) is multiplied by the lcm of its denominators, which leaves its
+    equation."""
+    rows = []
+    for i in range(matrix.rows):
+        entries = {j: ring.rational(matrix[i, j]) for j in range(matrix.cols) if matrix[i, j] != 0}
+        common = ring.one
+        for rf in entries.values():
+            if not rf.den.is_one():
+                common = common * (rf.den / common.gcd(rf.den))
+        rows.append({j: rf.num * (common / rf.den) for j, rf in entries.items()})
+    return rows
+
+
 def _remove_content(row: Row) -> Row:
     g = None
-    for value in row.values():
+    # Smallest entries first: their gcd is cheap and is often 1 already.
+    for value in sorted(row.values(), key=len):
         g = value if g is None else g.gcd(value)
         if g.is_one():
             return row
@@ -71,17 +88,43 @@ class Elimination:
     def rank(self) -> int:
         return len(self.pivots)
 
-    def solution(self, ring: PolynomialRing) -> dict[int, dict[int, RationalFunction]]:
+    def solution(self, ring: PolynomialRing) -> Solution:
         """Every column as a linear combination of the free columns.
 
         ``x_c = sum_j coeff[c][j] x_j`` with j free; a free column maps to itself.
         """
-        one = RationalFunction.polynomial(ring, ring.one)
-        out: dict[int, dict[int, RationalFunction]] = {j: {j: one} for j in self.free}
-        for col, row in self.pivots.items():
-            pivot = row[col]
-            out[col] = {j: RationalFunction.make(ring, -v, pivot) for j, v in row.items() if j != col}
-        return out
+        return Solution(self, ring)
+
+
+class Solution(Mapping[int, dict[int, RationalFunction]]):
+    """The columns of an `Elimination` in the free ones, each column formed when first
+    read: its coefficients cost a gcd with the pivot each, and the efficiency needs the
+    port actions only, not every action of the network."""
+
+    def __init__(self, elimination: Elimination, ring: PolynomialRing):
+        self._elimination = elimination
+        self._ring = ring
+        self._columns: dict[int, dict[int, RationalFunction]] = {}
+
+    def __getitem__(self, col: int) -> dict[int, RationalFunction]:
+        known = self._columns.get(col)
+        if known is None:
+            if not 0 <= col < self._elimination.ncols:
+                raise KeyError(col)
+            row = self._elimination.pivots.get(col)
+            if row is None:
+                known = {col: RationalFunction.polynomial(self._ring, self._ring.one)}
+            else:
+                pivot = row[col]
+                known = {j: RationalFunction.make(self._ring, -v, pivot) for j, v in row.items() if j != col}
+            self._columns[col] = known
+        return known
+
+    def __iter__(self) -> Iterator[int]:
+        return iter(range(self._elimination.ncols))
+
+    def __len__(self) -> int:
+        return self._elimination.ncols
 
 
 def gauss_jordan(

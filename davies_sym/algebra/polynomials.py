@@ -11,29 +11,15 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from math import lcm
+from math import gcd
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
-from davies_sym.algebra.radicals import Radical
+from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
+from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
-
-
-def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
-    """Content and irreducible factors of ``p`` (flint), also where python-flint 0.9 cannot
-    order factors whose coefficients exceed a C long (OverflowError in its sort key):
-    then sympy factors the same polynomial, a rare and slower path."""
-    try:
-        content, factors = p.factor()
-    except OverflowError:
-        ctx = p.context()
-        gens = sympy.symbols([f"x{i}" for i in range(len(ctx.names()))])
-        poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens, domain="ZZ")
-        whole, parts = poly.factor_list()
-        return int(whole), [(ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts]
-    return int(content), [(f, int(e)) for f, e in factors]
 
 
 class PolynomialRing:
@@ -57,6 +43,7 @@ class PolynomialRing:
         names = tuple(s.name for s in self.symbols) or ("_one",)
         self.ctx = fmpz_mpoly_ctx.get(names, "degrevlex")
         self._gens: dict[sympy.Symbol, fmpz_mpoly] = dict(zip(self.symbols, self.ctx.gens(), strict=False))
+        self._converter = ExpressionConverter(self.ctx, self._gens)
         self.radicals = radicals
         # Radical symbols stay symbols (positive) in expressions: sign reasoning needs
         # polynomials; documents write them as square roots (RadicalTable.restore).
@@ -70,15 +57,16 @@ class PolynomialRing:
         for index, radicand in self._relations:
             if p.degrees()[index] < 2:
                 continue
-            parts: dict[int, dict[tuple[int, ...], int]] = {}
-            for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True):
-                k = monom[index]
-                stripped = (*monom[:index], k % 2, *monom[index + 1 :])
-                parts.setdefault(k // 2, {})[stripped] = int(coeff)
-            total = self.zero
-            for half, data in parts.items():
-                total += self.ctx.from_dict(data) * radicand**half
-            p = total
+            # p = E(s^2) + s O(s^2): the even and odd parts from p(s) and p(-s), then s^2
+            # read as one variable (deflate) and replaced by m (compose), all inside flint.
+            gens = list(self.ctx.gens())
+            s = gens[index]
+            mirrored = p.compose(*(-g if k == index else g for k, g in enumerate(gens)))
+            stride = [2 if k == index else 1 for k in range(len(gens))]
+            with_m = [radicand if k == index else g for k, g in enumerate(gens)]
+            even = ((p + mirrored) / 2).deflate(stride).compose(*with_m)
+            odd = ((p - mirrored) / (2 * s)).deflate(stride).compose(*with_m)
+            p = even + s * odd
         return p
 
     def rationalised(self, num: fmpz_mpoly, den: fmpz_mpoly) -> tuple[fmpz_mpoly, fmpz_mpoly]:
@@ -103,48 +91,35 @@ class PolynomialRing:
     def gen(self, symbol: sympy.Symbol) -> fmpz_mpoly:
         return self._gens[symbol]
 
+    def _fraction(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, fmpz_mpoly]:
+        return self._converter.fraction(expr)
+
     def _poly(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
-        """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d."""
-        if expr == 0:
-            return self.zero, 1
-        extra = expr.free_symbols - set(self.symbols)
-        if extra:
-            raise DerivationError(f"symbols {sorted(map(str, extra))} are not in the polynomial ring")
-        try:
-            poly = sympy.Poly(expr, *self.symbols, domain="QQ") if self.symbols else None
-        except sympy.PolynomialError as exc:
-            raise DerivationError(f"{expr} is not a polynomial in the train's symbols ({exc})") from None
-        if poly is None:
-            value = sympy.Rational(expr)
-            return self.ctx.constant(int(value.p)), int(value.q)
-        terms = poly.terms()
-        denominator = lcm(*(int(sympy.Rational(c).q) for _, c in terms))
-        data = {m: int(sympy.Rational(c) * denominator) for m, c in terms}
-        return self.ctx.from_dict(data), denominator
+        """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d,
+        ``d`` the least positive integer that makes ``p`` integral."""
+        num, den = self._fraction(sympy.sympify(expr))
+        if not den.is_constant():
+            raise DerivationError(f"{expr} is not a polynomial in the train's symbols (it divides by {den})")
+        d = int(den.leading_coefficient())
+        g = gcd(d, *map(int, num.coeffs()))
+        if d < 0:
+            g = -g
+        return (num / g if g != 1 else num), d // g
 
     def rational(self, expr: sympy.Expr) -> RationalFunction:
         """A sympy rational expression as a `RationalFunction`."""
-        expr = sympy.sympify(expr)
-        num, den = sympy.fraction(sympy.together(expr))
-        pn, dn = self._poly(sympy.expand(num))
-        pd, dd = self._poly(sympy.expand(den))
-        return RationalFunction.make(self, pn * dd, pd * dn)
+        num, den = self._fraction(sympy.sympify(expr))
+        if den.is_zero():
+            raise DerivationError(f"{expr} divides by zero")
+        return RationalFunction.make(self, num, den)
 
     def polynomial(self, expr: sympy.Expr) -> fmpz_mpoly:
         """A polynomial with integer coefficients (after clearing denominators)."""
-        return self._poly(sympy.expand(sympy.sympify(expr)))[0]
+        return self._poly(expr)[0]
 
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
-        # One Mul per term and one Add in all: repeated ``*=`` re-flattens every product.
-        terms = [
-            sympy.Mul(
-                sympy.Integer(int(coeff)),
-                *(sym ** int(exp) for sym, exp in zip(self._exprs, monom, strict=False) if exp),
-            )
-            for monom, coeff in zip(p.monoms(), p.coeffs(), strict=True)
-        ]
-        return sympy.Add(*terms)
+        return expanded_expr(p, self._exprs)
 
     def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """``p`` as a product of its irreducible factors (no expansion)."""

@@ -16,24 +16,16 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from davies_sym.algebra.polynomials import PolynomialRing
+from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.signs import SignOracle
+
+__all__ = ["Radical", "RadicalError", "RadicalTable", "has_square_root", "restore"]
 
 
 class RadicalError(ValueError):
     """A square root the table cannot write as ``q * s`` (nested roots, or a factor
     whose sign the known facts do not decide)."""
-
-
-@dataclass(frozen=True)
-class Radical:
-    """``symbol = sqrt(radicand)``; the radicand is positive where the design exists."""
-
-    symbol: sympy.Symbol
-    radicand: sympy.Expr
-
-    @property
-    def expression(self) -> sympy.Expr:
-        return sympy.sqrt(self.radicand)
 
 
 @dataclass
@@ -92,16 +84,13 @@ class RadicalTable:
     def reduce(self, expr: sympy.Expr) -> sympy.Expr:
         """``expr`` with every power ``s^k`` (k >= 2) replaced by ``m^(k // 2) s^(k % 2)``
         and denominators rationalised: zero exactly when ``expr`` vanishes."""
-        expr = sympy.together(sympy.expand(expr))
-        num, den = sympy.fraction(expr)
-        for radical in self.radicals:
-            s, m = radical.symbol, radical.radicand
-            if den.has(s):
-                conjugate = den.subs(s, -s)
-                num, den = sympy.expand(num * conjugate), sympy.expand(den * conjugate)
-            num = sympy.expand(sympy.rem(sympy.expand(num), s**2 - m, s)) if num.has(s) else num
-            den = sympy.expand(sympy.rem(sympy.expand(den), s**2 - m, s)) if den.has(s) else den
-        return sympy.cancel(num / den)
+        symbols = {*expr.free_symbols, *(x for r in self.radicals for x in r.radicand.free_symbols)}
+        symbols -= {r.symbol for r in self.radicals}
+        # The ring of these radicals reduces and rationalises inside flint; the quotient
+        # comes back in lowest terms, numerator and denominator expanded.
+        ring = PolynomialRing(symbols, self.radicals)
+        value = ring.rational(expr)
+        return ring.to_expr(value.num) / ring.to_expr(value.den)
 
     def restore(self, expr: sympy.Expr) -> sympy.Expr:
         """Radical symbols replaced by their square roots (for output)."""

@@ -11,6 +11,7 @@ from collections.abc import Iterable, Mapping
 
 import sympy
 
+from davies_sym.algebra.flint_conversion import factor_expression
 from davies_sym.algebra.symbol_order import sorted_symbols
 
 
@@ -23,12 +24,26 @@ def _poly_sign(expr: sympy.Expr) -> int | None:
         return 1 if expr > 0 else -1
     if not all(s.is_positive for s in expr.free_symbols):
         return None
-    coeffs = sympy.Poly(expr, *sorted_symbols(expr.free_symbols)).coeffs()
+    if not expr.is_polynomial(*expr.free_symbols):
+        return None
+    coeffs = list(expr.as_coefficients_dict().values())
     if all(c > 0 for c in coeffs):
         return 1
     if all(c < 0 for c in coeffs):
         return -1
     return None
+
+
+def _constant_ratio(a: sympy.Expr, b: sympy.Expr) -> sympy.Rational | None:
+    """``a / b`` when the expanded polynomials ``a`` and ``b`` are proportional by a
+    non-zero number, else None: compared term by term, no division."""
+    terms_a, terms_b = a.as_coefficients_dict(), b.as_coefficients_dict()
+    if terms_a.keys() != terms_b.keys() or not terms_a:
+        return None
+    if not all(c.is_Rational for c in (*terms_a.values(), *terms_b.values())):
+        return None
+    ratios = {sympy.Rational(terms_a[m]) / sympy.Rational(terms_b[m]) for m in terms_a}
+    return ratios.pop() if len(ratios) == 1 else None
 
 
 def _known_sign(base: sympy.Expr, known: Mapping[sympy.Expr, int]) -> int | None:
@@ -45,8 +60,8 @@ def without_positive_factors(expr: sympy.Expr) -> sympy.Expr:
     z1 - z3 > 0, and m (z1 - z3 - z2 + z4) = 0 says z1 - z3 - z2 + z4 = 0."""
     if sympy.expand(expr) == 0:
         return sympy.Integer(0)
-    content, parts = sympy.factor_list(sympy.expand(expr))
-    sign, kept = (1 if content > 0 else -1), []
+    sign, parts = factor_expression(expr)
+    kept = []
     for base, power in parts:
         s = _poly_sign(base)
         if s in (1, -1):
@@ -102,8 +117,8 @@ class SignOracle:
         expanded = sympy.expand(factor)
         for fact in self.facts:
             # The factor may be a positive multiple of a fact, or of its negative.
-            ratio = sympy.cancel(expanded / fact)
-            if ratio.is_number and ratio != 0:
+            ratio = _constant_ratio(expanded, fact)
+            if ratio is not None:
                 return 1 if ratio > 0 else -1
         for substitution in self.substitutions + self.slacks:
             # On the constraint the factor may have a plain sign (rr - rp - rs = rp).
@@ -140,8 +155,8 @@ class SignOracle:
         num, den = sympy.fraction(sympy.together(expr))
         sign, factors = 1, []
         for part in (num, den):
-            content, parts = sympy.factor_list(part)
-            sign *= 1 if content > 0 else -1
+            content_sign, parts = factor_expression(part)
+            sign *= content_sign
             factors += parts
         return sign, factors
 

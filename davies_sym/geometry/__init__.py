@@ -33,12 +33,18 @@ def train_layout(train: Train) -> Layout:
 
     A train in an operating state keeps the geometry of the whole train (its brakes and
     clutches join members without moving an axis), restricted to what the state keeps."""
+    known = train.memo.get("layout")
+    if isinstance(known, Layout):
+        return known
     if train.whole is not None:
-        return _restricted(train_layout(train.whole), train)
-    layout = _helical(_layout(train), train)
-    # A radius solved from a constraint is a length: its expression is positive.
-    facts = tuple(r.expression for r in train.dependent or ())
-    return replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
+        layout = _restricted(train_layout(train.whole), train)
+    else:
+        layout = _helical(_layout(train), train)
+        # A radius solved from a constraint is a length: its expression is positive.
+        facts = tuple(r.expression for r in train.dependent or ())
+        layout = replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
+    train.memo["layout"] = layout
+    return layout
 
 
 def _layout(train: Train) -> Layout:

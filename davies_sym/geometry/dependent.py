@@ -25,7 +25,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.axes import axis_structure
-from davies_sym.geometry.layout import GeometricConstraint
+from davies_sym.geometry.layout import GeometricConstraint, solve_linear
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Relation, Train
 
@@ -35,10 +35,16 @@ def resolved_train(train: Train) -> Train:
     into the gear radii (a state: the constraints of its whole train)."""
     if train.dependent is not None:
         return train
+    known = train.memo.get("resolved")
+    if isinstance(known, Train):
+        return known
     if train.whole is not None:
         whole = resolved_train(train.whole)
-        return _substituted(replace(train, whole=whole), whole.dependent or ())
-    return _substituted(train, _solve(train, train_layout(train).constraints))
+        resolved = _substituted(replace(train, whole=whole), whole.dependent or ())
+    else:
+        resolved = _substituted(train, _solve(train, train_layout(train).constraints))
+    train.memo["resolved"] = resolved
+    return resolved
 
 
 def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
@@ -75,7 +81,7 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
             )
             continue
         symbol = min(candidates, key=lambda s: _rank(s, expr, c.coupling, preferred))
-        solution = sympy.expand(sympy.solve(expr, symbol)[0])  # linear in symbol: one root
+        solution = solve_linear(expr, symbol)
         relations = [
             Relation(r.symbol, sympy.expand(r.expression.subs(symbol, solution)), r.constraint) for r in relations
         ]
@@ -103,7 +109,7 @@ def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
 def _rank(
     symbol: sympy.Symbol, expr: sympy.Expr, coupling: str, preferred: Mapping[str, list[sympy.Symbol]]
 ) -> tuple[int, int, str]:
-    solution = sympy.expand(sympy.solve(expr, symbol)[0])
+    solution = solve_linear(expr, symbol)
     positive_sum = solution.is_Add and all(t.as_coeff_Mul()[0] > 0 for t in solution.args)
     closing = preferred.get(coupling, [])
     return (0 if positive_sum else 1, closing.index(symbol) if symbol in closing else len(closing), str(symbol))

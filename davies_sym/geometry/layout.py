@@ -105,10 +105,16 @@ def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> li
         expr = c.expression
         for s in sorted_symbols(expr.free_symbols):
             if sympy.degree(expr, s) == 1:
-                solved = sympy.solve(expr, s)
-                if len(solved) == 1:
-                    out.append({s: sympy.expand(solved[0])})
+                out.append({s: solve_linear(expr, s)})
     return out
+
+
+def solve_linear(expr: sympy.Expr, symbol: sympy.Symbol) -> sympy.Expr:
+    """The root of ``expr = 0``, linear in ``symbol`` (a coefficient free of it, non-zero
+    where the radii are positive): -b / a of a symbol + b, expanded, without sympy's
+    general ``solve``."""
+    expr = sympy.expand(expr)
+    return sympy.expand(-expr.subs(symbol, 0) / expr.coeff(symbol, 1))
 
 
 def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sympy.Symbol, sympy.Expr]:

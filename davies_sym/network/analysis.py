@@ -8,12 +8,13 @@ actions, as in Laus eqs. (16) and (23).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from functools import cached_property
 
 import sympy
 
-from davies_sym.algebra.linalg import Reduce, Row, gauss_jordan
+from davies_sym.algebra.lazy import LazyMapping
+from davies_sym.algebra.linalg import Reduce, Row, gauss_jordan, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
@@ -97,17 +98,7 @@ class Analysis:
         return self.ring.rational(expr)
 
     def rows(self, matrix: sympy.Matrix) -> list[Row]:
-        """Sparse polynomial rows; a row with fractions (pitch points of tilted bevel
-        axes) is multiplied by the lcm of its denominators, which leaves its equation."""
-        rows = []
-        for i in range(matrix.rows):
-            entries = {j: self._rf(matrix[i, j]) for j in range(matrix.cols) if matrix[i, j] != 0}
-            common = self.ring.one
-            for rf in entries.values():
-                if not rf.den.is_one():
-                    common = common * (rf.den / common.gcd(rf.den))
-            rows.append({j: rf.num * (common / rf.den) for j, rf in entries.items()})
-        return rows
+        return polynomial_rows(self.ring, matrix)
 
     # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
     @cached_property
@@ -176,7 +167,7 @@ class Analysis:
 
     # -- lossless actions (eqs. (2), (60)-(62)) --------------------------------------
     @cached_property
-    def lossless_action_coefficients(self) -> dict[str, RationalFunction]:
+    def lossless_action_coefficients(self) -> Mapping[str, RationalFunction]:
         """Psi_alpha / T_in of the lossless network (friction columns removed)."""
         _ = self._motion_solution  # check the mobility before the actions
         self._progress("solving the lossless actions (null space of A_N)")
@@ -189,7 +180,8 @@ class Analysis:
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
-        return {v.name: solution[k].get(index, zero) for k, v in enumerate(cols)}
+        column = {v.name: k for k, v in enumerate(cols)}
+        return LazyMapping(list(column), lambda name: solution[column[name]].get(index, zero))
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
         if index not in free:
@@ -324,7 +316,7 @@ class Analysis:
         return int(sign)
 
     @cached_property
-    def action_solution(self) -> dict[str, tuple[RationalFunction, RationalFunction]]:
+    def action_solution(self) -> Mapping[str, tuple[RationalFunction, RationalFunction]]:
         """Every action magnitude as ``(a, b)`` with Psi = a T_in + b (b from sources)."""
         _ = self._coulomb_signs  # decide the signs before forming D_A
         self._progress("solving the actions with friction (null space of D_A)")
@@ -345,13 +337,18 @@ class Analysis:
             raise DerivationError("the dependent sources are inconsistent with the network")
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
-        return {v.name: (solution[k].get(index, zero), solution[k].get(const, zero)) for k, v in enumerate(net.actions)}
+        column = {v.name: k for k, v in enumerate(net.actions)}
+        return LazyMapping(
+            list(column), lambda n: (solution[column[n]].get(index, zero), solution[column[n]].get(const, zero))
+        )
 
     @cached_property
-    def action_magnitudes(self) -> dict[str, RationalFunction]:
-        """Every action magnitude in terms of the input torque (and speed, with sources)."""
+    def action_magnitudes(self) -> Mapping[str, RationalFunction]:
+        """Every action magnitude in terms of the input torque (and speed, with sources),
+        each formed when first read."""
         T_in = RationalFunction.polynomial(self.ring, self.ring.gen(self.input_action.symbol))
-        return {name: a * T_in + b for name, (a, b) in self.action_solution.items()}
+        pairs = self.action_solution
+        return LazyMapping(list(pairs), lambda n: pairs[n][0] * T_in + pairs[n][1])
 
     # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
     def coupling_twist(self, coupling: str) -> list[RationalFunction]:

@@ -345,15 +345,23 @@ class Network:
 
     def network_motion_matrix(self) -> sympy.Matrix:
         """M_N (dl x F), eq. (56): blocks M_D diag(B_M row i)."""
-        MD, BM = self.unit_motion_matrix(), self.motion_circuit_matrix()
-        blocks = [MD * sympy.diag(*BM.row(i)) for i in range(BM.rows)]
-        return sympy.Matrix.vstack(*blocks) if blocks else sympy.zeros(0, MD.cols)
+        return _circuit_blocks(self.unit_motion_matrix(), self.motion_circuit_matrix())
 
     def network_action_matrix(self, lossless: bool = False) -> sympy.Matrix:
         """A_N (dk x C), eq. (19): blocks A_D diag(Q_A row i)."""
-        AD, QA = self.unit_action_matrix(lossless), self.action_cutset_matrix(lossless)
-        blocks = [AD * sympy.diag(*QA.row(i)) for i in range(QA.rows)]
-        return sympy.Matrix.vstack(*blocks)
+        return _circuit_blocks(self.unit_action_matrix(lossless), self.action_cutset_matrix(lossless))
+
+
+def _circuit_blocks(unit: sympy.Matrix, incidence: sympy.Matrix) -> sympy.Matrix:
+    """The blocks ``unit diag(incidence row i)`` stacked (eqs. (19), (56)): each column of
+    the unit screws scaled by the row's entry, built entry by entry (the entries are 0 and
+    +-1, so no product of matrices is needed)."""
+    rows = [
+        [u * q if q != 0 and u != 0 else 0 for u, q in zip(unit.row(r), incidence.row(i), strict=True)]
+        for i in range(incidence.rows)
+        for r in range(unit.rows)
+    ]
+    return sympy.Matrix(rows) if rows else sympy.zeros(0, unit.cols)
 
 
 def _lift(system: ScrewSystem, reduced: tuple[sympy.Expr, ...]) -> tuple[sympy.Expr, ...]:

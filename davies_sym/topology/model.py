@@ -127,6 +127,10 @@ class Train:
     dependent: tuple[Relation, ...] | None = None
     #: What ``derive calibrate`` fits by default (the ``calibrate`` entry).
     calibrate: CalibrationDefaults | None = None
+    #: What the later stages derived from this very train (its layout, its resolved form),
+    #: kept with it: the train is immutable, so they hold for its lifetime, and the states
+    #: of one file share their whole train's.  Not copied by ``dataclasses.replace``.
+    memo: dict[object, object] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def definitions(self) -> tuple[Definition, ...]:

@@ -100,7 +100,17 @@ def train_in_state(train: Train, state: State) -> Train:
 def _without(train: Train, free: set[str], ports: Ports) -> Train:
     """``train`` without the ``free`` members and their gears and couplings: the geometry a
     state keeps (brakes and clutches join members without moving axes; free members take
-    no part, so no axis of the state depends on theirs)."""
+    no part, so no axis of the state depends on theirs).  Kept in ``train.memo``, so the
+    states that free the same members share one whole train, and its layout is solved once."""
+    key = ("without", frozenset(free), ports)
+    known = train.memo.get(key)
+    if isinstance(known, type(train)):
+        return known
+    train.memo[key] = reduced = _reduced(train, free, ports)
+    return reduced
+
+
+def _reduced(train: Train, free: set[str], ports: Ports) -> Train:
     if not free:
         return replace(train, ports=ports, states=())
     return replace(

@@ -356,10 +356,11 @@ def _circuit_blocks(unit: sympy.Matrix, incidence: sympy.Matrix) -> sympy.Matrix
     """The blocks ``unit diag(incidence row i)`` stacked (eqs. (19), (56)): each column of
     the unit screws scaled by the row's entry, built entry by entry (the entries are 0 and
     +-1, so no product of matrices is needed)."""
+    unit_rows, incidence_rows = unit.tolist(), incidence.tolist()
     rows = [
-        [u * q if q != 0 and u != 0 else 0 for u, q in zip(unit.row(r), incidence.row(i), strict=True)]
-        for i in range(incidence.rows)
-        for r in range(unit.rows)
+        [u * q if q != 0 and u != 0 else 0 for u, q in zip(unit_row, incidence_row, strict=True)]
+        for incidence_row in incidence_rows
+        for unit_row in unit_rows
     ]
     return sympy.Matrix(rows) if rows else sympy.zeros(0, unit.cols)
 

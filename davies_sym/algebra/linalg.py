@@ -10,16 +10,20 @@ whenever the system allows it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
+from typing import TypeVar
 
 import sympy
 from flint import fmpz_mpoly
 
+from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 
 Row = dict[int, fmpz_mpoly]
 Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
+#: The columns of a solved system in the free ones.
+Solution = LazyMapping[int, dict[int, RationalFunction]]
 
 
 def polynomial_rows(ring: PolynomialRing, matrix: sympy.Matrix) -> list[Row]:
@@ -89,42 +93,18 @@ class Elimination:
         return len(self.pivots)
 
     def solution(self, ring: PolynomialRing) -> Solution:
-        """Every column as a linear combination of the free columns.
-
-        ``x_c = sum_j coeff[c][j] x_j`` with j free; a free column maps to itself.
+        """Every column as a linear combination of the free columns, each formed when first
+        read (its coefficients cost a gcd with the pivot each; the efficiency needs the port
+        actions only): ``x_c = sum_j coeff[c][j] x_j`` with j free; a free column maps to itself.
         """
-        return Solution(self, ring)
 
-
-class Solution(Mapping[int, dict[int, RationalFunction]]):
-    """The columns of an `Elimination` in the free ones, each column formed when first
-    read: its coefficients cost a gcd with the pivot each, and the efficiency needs the
-    port actions only, not every action of the network."""
-
-    def __init__(self, elimination: Elimination, ring: PolynomialRing):
-        self._elimination = elimination
-        self._ring = ring
-        self._columns: dict[int, dict[int, RationalFunction]] = {}
-
-    def __getitem__(self, col: int) -> dict[int, RationalFunction]:
-        known = self._columns.get(col)
-        if known is None:
-            if not 0 <= col < self._elimination.ncols:
-                raise KeyError(col)
-            row = self._elimination.pivots.get(col)
+        def column(col: int) -> dict[int, RationalFunction]:
+            row = self.pivots.get(col)
             if row is None:
-                known = {col: RationalFunction.polynomial(self._ring, self._ring.one)}
-            else:
-                pivot = row[col]
-                known = {j: RationalFunction.make(self._ring, -v, pivot) for j, v in row.items() if j != col}
-            self._columns[col] = known
-        return known
+                return {col: RationalFunction.polynomial(ring, ring.one)}
+            return {j: RationalFunction.make(ring, -v, row[col]) for j, v in row.items() if j != col}
 
-    def __iter__(self) -> Iterator[int]:
-        return iter(range(self._elimination.ncols))
-
-    def __len__(self) -> int:
-        return self._elimination.ncols
+        return LazyMapping(range(self.ncols), column)
 
 
 def gauss_jordan(
@@ -139,6 +119,30 @@ def gauss_jordan(
     if reduce is not None:
         rows = [{c: v for c, v in ((c, reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
     work = [_remove_content(dict(r)) for r in rows if r]
+    pivots = eliminate_rows(
+        work,
+        prefer_free,
+        lambda v: (not v.is_constant(), len(v)),
+        lambda row, pivot, col: _eliminate(row, pivot, col, reduce),
+        progress,
+    )
+    return Elimination(ncols, pivots)
+
+
+Entry = TypeVar("Entry")
+
+
+def eliminate_rows(
+    work: list[dict[int, Entry]],
+    prefer_free: Iterable[int],
+    weight: Callable[[Entry], tuple[bool, int]],
+    eliminate: Callable[[dict[int, Entry], dict[int, Entry], int], dict[int, Entry]],
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[int, dict[int, Entry]]:
+    """The pivot rows of a Gauss-Jordan elimination of ``work`` (changed in place), by
+    column: Markowitz pivots, entries light by ``weight`` (constants, then few terms)
+    first, the ``prefer_free`` columns last; ``eliminate(row, pivot_row, col)`` clears a
+    column from a row."""
     late = set(prefer_free)
     pivot_row_of: dict[int, int] = {}
     pending = list(range(len(work)))
@@ -152,7 +156,8 @@ def gauss_jordan(
         for i in pending:
             row = work[i]
             for c, v in row.items():
-                score = (c in late, not v.is_constant(), (len(row) - 1) * (col_count[c] - 1), len(v), c)
+                heavy, size = weight(v)
+                score = (c in late, heavy, (len(row) - 1) * (col_count[c] - 1), size, c)
                 if best is None or score < best[0]:
                     best = (score, i, c)
         if best is None:
@@ -161,9 +166,9 @@ def gauss_jordan(
         pending.remove(i)
         for j, row in enumerate(work):
             if j != i and col in row:
-                work[j] = _eliminate(row, work[i], col, reduce)
+                work[j] = eliminate(row, work[i], col)
         pivot_row_of[col] = i
         pending = [j for j in pending if work[j]]
         if progress is not None:
             progress(total - len(pending), total)
-    return Elimination(ncols, {col: work[i] for col, i in pivot_row_of.items()})
+    return {col: work[i] for col, i in pivot_row_of.items()}

@@ -170,6 +170,22 @@ class PolynomialRing:
         return int(content), [(self.to_expr(f), int(e)) for f, e in factors]
 
 
+#: Content and irreducible factors with their exponents, as flint's ``factor`` gives them.
+Factorisation = tuple[int, list[tuple[fmpz_mpoly, int]]]
+
+
+def factor_sort_key(item: tuple[fmpz_mpoly, int]) -> tuple[int, list[tuple[tuple[int, ...], int]]]:
+    """The order python-flint lists the factors of ``factor()`` in (multiplicity, then the
+    terms in the ring's order), so that a factorisation put together from parts prints as
+    the factoring of the whole would."""
+    f, e = item
+    return e, [(tuple(m), int(c)) for m, c in zip(f.monoms(), f.coeffs(), strict=True)]
+
+
+#: A polynomial with at most this many terms is factored to multiply in factored form.
+SMALL = 40
+
+
 @dataclass(frozen=True, eq=False)
 class RationalFunction:
     """``num / den`` in lowest terms, ``den`` with a positive leading coefficient."""
@@ -197,10 +213,34 @@ class RationalFunction:
     def polynomial(cls, ring: PolynomialRing, p: fmpz_mpoly) -> RationalFunction:
         return cls.make(ring, p, ring.one)
 
+    @classmethod
+    def with_factorisation(
+        cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly, known: tuple[Factorisation, Factorisation]
+    ) -> RationalFunction:
+        """``num / den``, already in lowest terms, with the factorisations of both known
+        (from factored elimination or a product of known factorisations)."""
+        out = cls(ring, num, den)
+        out.__dict__["factorisation"] = known
+        return out
+
+    @cached_property
+    def factorisation(self) -> tuple[Factorisation, Factorisation]:
+        """Content and irreducible factors of the numerator and of the denominator."""
+        return factor(self.num), factor(self.den)
+
+    def _factored_enough(self) -> bool:
+        """Whether a product can be formed factor by factor: the factorisation is known, or
+        cheap (small numerator and denominator)."""
+        return "factorisation" in self.__dict__ or len(self.num) + len(self.den) <= SMALL
+
     def is_zero(self) -> bool:
         return bool(self.num.is_zero())
 
     def __add__(self, other: RationalFunction) -> RationalFunction:
+        if other.is_zero():
+            return self
+        if self.is_zero():
+            return other
         if self.den == other.den:
             return RationalFunction.make(self.ring, self.num + other.num, self.den)
         g = self.den.gcd(other.den)
@@ -208,12 +248,24 @@ class RationalFunction:
         return RationalFunction.make(self.ring, self.num * b + other.num * a, self.den * b)
 
     def __neg__(self) -> RationalFunction:
+        if "factorisation" in self.__dict__:
+            (cn, fn), den = self.factorisation
+            return RationalFunction.with_factorisation(self.ring, -self.num, self.den, ((-cn, fn), den))
         return RationalFunction(self.ring, -self.num, self.den)
 
     def __sub__(self, other: RationalFunction) -> RationalFunction:
         return self + (-other)
 
     def __mul__(self, other: RationalFunction) -> RationalFunction:
+        if self.is_zero() or other.is_zero():
+            return RationalFunction.polynomial(self.ring, self.ring.zero)
+        if (
+            not self.ring.radicals
+            and self._factored_enough()
+            and other._factored_enough()
+            and ("factorisation" in self.__dict__ or "factorisation" in other.__dict__)
+        ):
+            return _product(self, other)
         # Cross-cancel first so the products stay small.
         g1, g2 = self.num.gcd(other.den), other.num.gcd(self.den)
         num = (self.num / g1) * (other.num / g2)
@@ -223,11 +275,16 @@ class RationalFunction:
     def factor_list(self) -> tuple[int, list[tuple[sympy.Expr, int]]]:
         """Sign of the content and the factors of numerator and denominator together
         (denominator factors are listed too: only their parity matters for signs)."""
-        cn, fn = self.ring.factor_list(self.num)
-        cd, fd = self.ring.factor_list(self.den)
-        return (1 if cn * cd > 0 else -1), fn + fd
+        (cn, fn), (cd, fd) = self.factorisation
+        factors = [(self.ring.to_expr(f), int(e)) for f, e in (*fn, *fd)]
+        return (1 if cn * cd > 0 else -1), factors
 
     def inverse(self) -> RationalFunction:
+        if "factorisation" in self.__dict__ and not self.ring.radicals:
+            (cn, fn), (cd, fd) = self.factorisation
+            if cn < 0:  # the denominator keeps a positive leading coefficient
+                return RationalFunction.with_factorisation(self.ring, -self.den, -self.num, ((-cd, fd), (-cn, fn)))
+            return RationalFunction.with_factorisation(self.ring, self.den, self.num, ((cd, fd), (cn, fn)))
         return RationalFunction.make(self.ring, self.den, self.num)
 
     def __truediv__(self, other: RationalFunction) -> RationalFunction:
@@ -293,8 +350,42 @@ class RationalFunction:
 
     def to_expr(self, factored: bool = True) -> sympy.Expr:
         """Sympy expression: product of factors over product of factors (default)."""
-        convert = self.ring.factored_expr if factored else self.ring.to_expr
-        num = convert(self.num)
+        if not factored:
+            num = self.ring.to_expr(self.num)
+            return num if self.den.is_one() else num / self.ring.to_expr(self.den)
+        if self.num.is_zero():
+            return sympy.Integer(0)
+        (cn, fn), (cd, fd) = self.factorisation
+        num = sympy.Mul(sympy.Integer(cn), *(self.ring.to_expr(f) ** e for f, e in fn))
         if self.den.is_one():
             return num
-        return num / convert(self.den)
+        return num / sympy.Mul(sympy.Integer(cd), *(self.ring.to_expr(f) ** e for f, e in fd))
+
+
+def _product(a: RationalFunction, b: RationalFunction) -> RationalFunction:
+    """``a * b`` from the factorisations: identical irreducible factors cancel, the
+    contents divide by their gcd, and the expanded parts are products of the factors."""
+    (an, afn), (ad, afd) = a.factorisation
+    (bn, bfn), (bd, bfd) = b.factorisation
+    collected = [*afn, *bfn, *((f, -e) for f, e in (*afd, *bfd))]
+    merged: list[tuple[fmpz_mpoly, int]] = []
+    for f, e in collected:
+        for k, (h, d) in enumerate(merged):
+            if h == f:
+                merged[k] = (h, d + e)
+                break
+        else:
+            merged.append((f, e))
+    cn, cd = an * bn, ad * bd
+    shared = gcd(cn, cd)
+    cn, cd = cn // shared, cd // shared
+    if cd < 0:
+        cn, cd = -cn, -cd
+    fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
+    fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
+    numerator, denominator = a.ring.one * cn, a.ring.one * cd
+    for f, e in fn:
+        numerator = numerator * f**e
+    for f, e in fd:
+        denominator = denominator * f**e
+    return RationalFunction.with_factorisation(a.ring, numerator, denominator, ((cn, fn), (cd, fd)))

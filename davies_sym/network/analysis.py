@@ -13,8 +13,9 @@ from functools import cached_property
 
 import sympy
 
+from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Reduce, Row, gauss_jordan, polynomial_rows
+from davies_sym.algebra.linalg import Elimination, Reduce, Row, gauss_jordan, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
@@ -100,6 +101,13 @@ class Analysis:
     def rows(self, matrix: sympy.Matrix) -> list[Row]:
         return polynomial_rows(self.ring, matrix)
 
+    def _eliminate(self, rows: list[Row], ncols: int, prefer: list[int]) -> Elimination | FactoredElimination:
+        """Stages in series multiply: factored entries keep them apart (not with radicals,
+        whose relations the factors would not respect)."""
+        if self.ring.radicals:
+            return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=self._reduce)
+        return factored_gauss_jordan(rows, ncols, self.ring.one, prefer_free=prefer)
+
     # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
     @cached_property
     def motion_coefficients(self) -> dict[str, RationalFunction]:
@@ -111,9 +119,8 @@ class Analysis:
         """The mobility (nullity of M_N) and psi_alpha / t_in; raises on a mismatch."""
         self._progress("solving the motions (null space of M_N)")
         net = self.network
-        M_N = net.network_motion_matrix()
         index = net.motions.index(self.input_motion)
-        elimination = gauss_jordan(self.rows(M_N), len(net.motions), prefer_free=[index], reduce=self._reduce)
+        elimination = self._eliminate(self.rows(net.network_motion_matrix()), len(net.motions), [index])
         free = elimination.free
         problems = mobility_problems(self.train, net, free, index)
         if problems:
@@ -143,9 +150,7 @@ class Analysis:
         among ``preferred`` (motion names) first: eq. (1) for any mobility."""
         net = self.network
         prefer = [net.motions.index(net.motion(name)) for name in preferred]
-        elimination = gauss_jordan(
-            self.rows(net.network_motion_matrix()), len(net.motions), prefer_free=prefer, reduce=self._reduce
-        )
+        elimination = self._eliminate(self.rows(net.network_motion_matrix()), len(net.motions), prefer)
         solution = elimination.solution(self.ring)
         return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
 
@@ -174,9 +179,7 @@ class Analysis:
         net = self.network
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
-        elimination = gauss_jordan(
-            self.rows(net.network_action_matrix(lossless=True)), len(cols), prefer_free=[index], reduce=self._reduce
-        )
+        elimination = self._eliminate(self.rows(net.network_action_matrix(lossless=True)), len(cols), [index])
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -330,7 +333,7 @@ class Analysis:
             sources[D.rows - nu.rows + k] = -nu[k]
         rows = self.rows(D.row_join(sources))
         index = net.actions.index(self.input_action)
-        elimination = gauss_jordan(rows, ncols + 1, prefer_free=[index, const], reduce=self._reduce)
+        elimination = self._eliminate(rows, ncols + 1, [index, const])
         free = [j for j in elimination.free if j != const]
         self._check_action_nullity(tuple(free), index, list(net.actions))
         if const in elimination.pivots:

@@ -1,0 +1,230 @@
+"""Polynomials kept as products of factors through the elimination of D_A.
+
+The efficiency of stages in series is a product of stage terms; expanded, its numerator
+and denominator grow exponentially with the number of stages (4^k and 8^k terms for
+chained two-annulus stages) and factoring them back dominates the derivation.  Here an
+entry is ``c * prod f_i^e_i`` with flint-irreducible factors, so products and exact
+divisions are bookkeeping, and only the sums the elimination forms are expanded: their
+common factors are taken out first and the rest is factored while it is small (larger
+rests stay one factor, as expanded elimination would keep them).  The solution leaves
+as rational functions whose factorisation is known, so nothing is factored twice.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from functools import reduce
+from math import gcd
+
+from flint import fmpz_mpoly
+
+from davies_sym.algebra.flint_conversion import factor
+from davies_sym.algebra.lazy import LazyMapping
+from davies_sym.algebra.linalg import Solution, eliminate_rows
+from davies_sym.algebra.polynomials import Factorisation, PolynomialRing, RationalFunction, factor_sort_key
+
+#: Sums up to this many terms are factored at once; larger ones stay a single factor
+#: until the solution needs them irreducible.
+SMALL_SUM = 400
+
+Factors = tuple[tuple[fmpz_mpoly, int], ...]
+
+
+@dataclass(frozen=True, eq=False)
+class Product:
+    """``content * prod(f**e)``; each ``f`` primitive with a positive leading coefficient."""
+
+    content: int
+    factors: Factors
+
+    def expand_in(self, one: fmpz_mpoly) -> fmpz_mpoly:
+        """The expanded polynomial (``one``: the ring's 1, for a constant product)."""
+        out = one * self.content
+        for f, e in self.factors:
+            out = out * f**e
+        return out
+
+    @property
+    def size(self) -> int:
+        return sum(len(f) * e for f, e in self.factors)
+
+    def is_constant(self) -> bool:
+        return not self.factors
+
+
+def product_of(p: fmpz_mpoly) -> Product:
+    """``p`` as a product: factored by flint when small, else its content and primitive part."""
+    if len(p) <= SMALL_SUM:
+        content, factors = factor(p)
+        return Product(content, tuple(factors))
+    content = reduce(gcd, map(int, p.coeffs()))
+    if p.leading_coefficient() < 0:
+        content = -content
+    return Product(content, ((p / content, 1),))
+
+
+def _merge(a: Factors, b: Factors, sign: int = 1) -> Factors:
+    """The factors of a * b (``sign`` = 1) or a / b (-1, b dividing a)."""
+    out = list(a)
+    for f, e in b:
+        for k, (g, d) in enumerate(out):
+            if g == f:
+                out[k] = (g, d + sign * e)
+                break
+        else:
+            if sign < 0:
+                raise ArithmeticError("inexact division of factored polynomials")
+            out.append((f, e))
+    return tuple((f, e) for f, e in out if e)
+
+
+def multiply(a: Product, b: Product) -> Product:
+    return Product(a.content * b.content, _merge(a.factors, b.factors))
+
+
+def divide(a: Product, b: Product) -> Product:
+    """``a / b`` for ``b`` a common divisor found by `common`."""
+    return Product(a.content // b.content, _merge(a.factors, b.factors, -1))
+
+
+def common(a: Product, b: Product) -> Product:
+    """The factors ``a`` and ``b`` share (a divisor of their gcd, the whole gcd when every
+    factor is irreducible), with the gcd of the contents."""
+    shared = []
+    for f, e in a.factors:
+        for g, d in b.factors:
+            if f == g:
+                shared.append((f, min(e, d)))
+                break
+    return Product(gcd(a.content, b.content) or 1, tuple(shared))
+
+
+def difference(t: Product, u: Product, one: fmpz_mpoly) -> Product | None:
+    """``t - u`` with their shared factors kept out of the expansion; None when zero."""
+    g = common(t, u)
+    rest = divide(t, g).expand_in(one) - divide(u, g).expand_in(one)
+    if rest.is_zero():
+        return None
+    return multiply(g, product_of(rest))
+
+
+Row = dict[int, Product]
+
+
+def _content(row: Row) -> Row:
+    """``row`` divided by the factors and content all its entries share."""
+    entries = iter(row.values())
+    shared = next(entries)
+    shared = Product(abs(shared.content), shared.factors)
+    for value in entries:
+        if shared.content == 1 and not shared.factors:
+            return row
+        shared = common(shared, value)
+    if shared.content == 1 and not shared.factors:
+        return row
+    return {c: divide(v, shared) for c, v in row.items()}
+
+
+def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly) -> Row:
+    g = common(pivot_row[col], target[col])
+    p, a = divide(pivot_row[col], g), divide(target[col], g)
+    out: Row = {}
+    for c in target.keys() | pivot_row.keys():
+        if c == col:
+            continue
+        t = multiply(p, target[c]) if c in target else None
+        u = multiply(a, pivot_row[c]) if c in pivot_row else None
+        if t is None and u is not None:
+            value: Product | None = Product(-u.content, u.factors)
+        elif u is None:
+            value = t
+        else:
+            value = difference(t, u, one)  # type: ignore[arg-type]
+        if value is not None:
+            out[c] = value
+    return _content(out) if out else out
+
+
+def _irreducible(p: Product) -> Factorisation:
+    """Content and irreducible factors of ``p`` (its large factors factored now)."""
+    content, factors = p.content, list[tuple[fmpz_mpoly, int]]()
+    for f, e in p.factors:
+        c, parts = factor(f) if len(f) > SMALL_SUM else (1, [(f, 1)])
+        content *= c**e
+        factors.extend((g, d * e) for g, d in parts)
+    merged: Factors = ()
+    for f, e in factors:
+        merged = _merge(merged, ((f, e),))
+    return content, list(merged)
+
+
+def quotient(ring: PolynomialRing, num: Product, den: Product) -> RationalFunction:
+    """``num / den`` in lowest terms with its factorisation known (identical irreducible
+    factors cancelled, the contents divided by their gcd)."""
+    cn, fn = _irreducible(num)
+    cd, fd = _irreducible(den)
+    g = gcd(cn, cd)
+    cn, cd = cn // g, cd // g
+    if cd < 0:
+        cn, cd = -cn, -cd
+    fn_left, fd_left = list(fn), []
+    for f, e in fd:
+        for k, (h, d) in enumerate(fn_left):
+            if h == f:
+                cancel = min(d, e)
+                fn_left[k] = (h, d - cancel)
+                e -= cancel
+                break
+        if e:
+            fd_left.append((f, e))
+    fn_left = [(f, e) for f, e in fn_left if e]
+    known: Factorisation = (cn, sorted(fn_left, key=factor_sort_key))
+    known_den: Factorisation = (cd, sorted(fd_left, key=factor_sort_key))
+    numerator = Product(cn, tuple(fn_left)).expand_in(ring.one) if cn else ring.zero
+    denominator = Product(cd, tuple(fd_left)).expand_in(ring.one)
+    return RationalFunction.with_factorisation(ring, numerator, denominator, (known, known_den))
+
+
+@dataclass(frozen=True)
+class FactoredElimination:
+    """Reduced row echelon form with factored entries: ``pivots[col]`` solves for ``col``."""
+
+    ncols: int
+    pivots: Mapping[int, Row]
+
+    @property
+    def free(self) -> tuple[int, ...]:
+        return tuple(c for c in range(self.ncols) if c not in self.pivots)
+
+    def solution(self, ring: PolynomialRing) -> Solution:
+        """The columns in the free ones, ``x_c = -entry / pivot``, each formed when read."""
+
+        def column(col: int) -> dict[int, RationalFunction]:
+            row = self.pivots.get(col)
+            if row is None:
+                return {col: RationalFunction.polynomial(ring, ring.one)}
+            return {j: quotient(ring, Product(-v.content, v.factors), row[col]) for j, v in row.items() if j != col}
+
+        return LazyMapping(range(self.ncols), column)
+
+
+def factored_gauss_jordan(
+    rows: Iterable[dict[int, fmpz_mpoly]],
+    ncols: int,
+    one: fmpz_mpoly,
+    prefer_free: Iterable[int] = (),
+    progress: Callable[[int, int], None] | None = None,
+) -> FactoredElimination:
+    """Fraction-free Gauss-Jordan elimination as `davies_sym.algebra.linalg.gauss_jordan`
+    (the same pivot order: constants first, Markowitz, ``prefer_free`` last), on
+    factored entries."""
+    work = [_content({c: product_of(v) for c, v in r.items()}) for r in rows if r]
+    pivots = eliminate_rows(
+        work,
+        prefer_free,
+        lambda v: (not v.is_constant(), v.size),
+        lambda row, pivot, col: _eliminate(row, pivot, col, one),
+        progress,
+    )
+    return FactoredElimination(ncols, pivots)

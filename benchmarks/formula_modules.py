@@ -60,27 +60,33 @@ def _best(function, repeat: int = 3) -> float:
 
 def main(points: int) -> None:
     rng = np.random.default_rng(0)
-    print(f"| module | variants | efficiency, {points:,} points | losses |")
-    print("| --- | --- | --- | --- |")
+    print(f"| module | variants | efficiency, {points:,} points | losses | design points per second |")
+    print("| --- | --- | --- | --- | --- |")
     for stem, train in _trains():
         vs = derive_variants(train)
         module = _module(stem)
-        names = {str(s) for s in vs.symbols}
         domain = ParameterDomain.of(train, vs.analysis.network.layout)
         samples = list(domain.samples(500, seed=1))
+        sampled = {str(s): s for s in samples[0]} if samples else {}
         kwargs = {}
         for s in formula_symbols(vs):
-            if str(s) not in names:
-                continue
-            if str(s).startswith("eta"):
-                kwargs[str(s)] = rng.uniform(0.9, 1.0, points)
-            else:
-                kwargs[str(s)] = np.resize(np.array([float(p[s]) for p in samples]), points)
+            name = str(s)
+            if name.startswith("eta"):
+                kwargs[name] = rng.uniform(0.9, 1.0, points)
+            elif name.startswith("mu"):  # sliding friction coefficients (worm, crossed helical)
+                kwargs[name] = rng.uniform(0.02, 0.1, points)
+            elif name in sampled:
+                kwargs[name] = np.resize(np.array([float(p[sampled[name]]) for p in samples]), points)
+            elif f"cos_{name}" in sampled:  # an angle, sampled by its cosine and sine
+                cos, sin = sampled[f"cos_{name}"], sampled[f"sin_{name}"]
+                angles = [np.arctan2(float(p[sin]), float(p[cos])) for p in samples]
+                kwargs[name] = np.resize(np.array(angles), points)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             t_eff = _best(lambda: module.efficiency(errors="ignore", **kwargs))  # noqa: B023
             t_loss = _best(lambda: module.losses(errors="ignore", **kwargs))  # noqa: B023
-        print(f"| {stem} | {len(vs.variants)} | {t_eff:.3f} s | {t_loss:.3f} s |", flush=True)
+        rate = points / t_eff
+        print(f"| {stem} | {len(vs.variants)} | {t_eff:.3f} s | {t_loss:.3f} s | {rate:.2e} |", flush=True)
 
 
 if __name__ == "__main__":

@@ -236,6 +236,12 @@ class RationalFunction:
     def is_zero(self) -> bool:
         return bool(self.num.is_zero())
 
+    @property
+    def free_symbols(self) -> set[sympy.Symbol]:
+        """The symbols the function depends on, read off the degrees (no sympy expression)."""
+        degrees = zip(self.num.degrees(), self.den.degrees(), strict=True)
+        return {s for s, (a, b) in zip(self.ring.symbols, degrees, strict=False) if a or b}
+
     def __add__(self, other: RationalFunction) -> RationalFunction:
         if other.is_zero():
             return self

@@ -324,7 +324,7 @@ def _other_symbols(
 ) -> list[sympy.Symbol]:
     """Symbols left in the formulas besides geometry and efficiencies (bearing
     friction, viscous coefficients, input torque and speed)."""
-    out = set(form.to_expr().free_symbols) - set(etas)
+    out = form.free_symbols - set(etas)
     out -= {r.flow.friction_symbol for r in roles}
     return sorted_symbols(out)
 

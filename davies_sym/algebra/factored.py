@@ -22,7 +22,7 @@ from flint import fmpz_mpoly
 from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.linalg import Solution, eliminate_rows
-from davies_sym.algebra.polynomials import Factorisation, PolynomialRing, RationalFunction, factor_sort_key
+from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 
 #: Sums up to this many terms are factored at once; larger ones stay a single factor
 #: until the solution needs them irreducible.
@@ -146,44 +146,21 @@ def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly) -> Row:
     return _content(out) if out else out
 
 
-def _irreducible(p: Product) -> Factorisation:
-    """Content and irreducible factors of ``p`` (its large factors factored now)."""
+def _irreducible(p: Product) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
+    """Content and irreducible factors of ``p`` (its large factors factored now; a factor
+    may repeat, `RationalFunction.from_factors` merges them)."""
     content, factors = p.content, list[tuple[fmpz_mpoly, int]]()
     for f, e in p.factors:
         c, parts = factor(f) if len(f) > SMALL_SUM else (1, [(f, 1)])
         content *= c**e
         factors.extend((g, d * e) for g, d in parts)
-    merged: Factors = ()
-    for f, e in factors:
-        merged = _merge(merged, ((f, e),))
-    return content, list(merged)
+    return content, factors
 
 
 def quotient(ring: PolynomialRing, num: Product, den: Product) -> RationalFunction:
-    """``num / den`` in lowest terms with its factorisation known (identical irreducible
-    factors cancelled, the contents divided by their gcd)."""
-    cn, fn = _irreducible(num)
-    cd, fd = _irreducible(den)
-    g = gcd(cn, cd)
-    cn, cd = cn // g, cd // g
-    if cd < 0:
-        cn, cd = -cn, -cd
-    fn_left, fd_left = list(fn), []
-    for f, e in fd:
-        for k, (h, d) in enumerate(fn_left):
-            if h == f:
-                cancel = min(d, e)
-                fn_left[k] = (h, d - cancel)
-                e -= cancel
-                break
-        if e:
-            fd_left.append((f, e))
-    fn_left = [(f, e) for f, e in fn_left if e]
-    known: Factorisation = (cn, sorted(fn_left, key=factor_sort_key))
-    known_den: Factorisation = (cd, sorted(fd_left, key=factor_sort_key))
-    numerator = Product(cn, tuple(fn_left)).expand_in(ring.one) if cn else ring.zero
-    denominator = Product(cd, tuple(fd_left)).expand_in(ring.one)
-    return RationalFunction.with_factorisation(ring, numerator, denominator, (known, known_den))
+    """``num / den`` in lowest terms with its factorisation known."""
+    (cn, fn), (cd, fd) = _irreducible(num), _irreducible(den)
+    return RationalFunction.from_factors(ring, cn, cd, fn, fd)
 
 
 @dataclass(frozen=True)

@@ -91,13 +91,10 @@ class PolynomialRing:
     def gen(self, symbol: sympy.Symbol) -> fmpz_mpoly:
         return self._gens[symbol]
 
-    def _fraction(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, fmpz_mpoly]:
-        return self._converter.fraction(expr)
-
     def _poly(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
         """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d,
         ``d`` the least positive integer that makes ``p`` integral."""
-        num, den = self._fraction(sympy.sympify(expr))
+        num, den = self._converter.fraction(sympy.sympify(expr))
         if not den.is_constant():
             raise DerivationError(f"{expr} is not a polynomial in the train's symbols (it divides by {den})")
         d = int(den.leading_coefficient())
@@ -108,7 +105,7 @@ class PolynomialRing:
 
     def rational(self, expr: sympy.Expr) -> RationalFunction:
         """A sympy rational expression as a `RationalFunction`."""
-        num, den = self._fraction(sympy.sympify(expr))
+        num, den = self._converter.fraction(sympy.sympify(expr))
         if den.is_zero():
             raise DerivationError(f"{expr} divides by zero")
         return RationalFunction.make(self, num, den)
@@ -120,14 +117,6 @@ class PolynomialRing:
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
         return expanded_expr(p, self._exprs)
-
-    def factored_expr(self, p: fmpz_mpoly) -> sympy.Expr:
-        """``p`` as a product of its irreducible factors (no expansion)."""
-        if p.is_zero():
-            return sympy.Integer(0)
-        content, factors = factor(p)
-        parts = [self.to_expr(f) ** int(e) for f, e in factors]
-        return sympy.Mul(sympy.Integer(int(content)), *parts)
 
     def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq | None, ...]:
         """The generators' values at ``point`` (absent symbols: None), for `evaluate`."""
@@ -163,11 +152,6 @@ class PolynomialRing:
     def to_rational(self, p: fmpz_mpoly) -> fmpq_mpoly:
         """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
         return fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex").from_dict(p.to_dict())
-
-    def factor_list(self, p: fmpz_mpoly) -> tuple[int, list[tuple[sympy.Expr, int]]]:
-        """Integer content and irreducible factors (as sympy expressions) of ``p``."""
-        content, factors = factor(p)
-        return int(content), [(self.to_expr(f), int(e)) for f, e in factors]
 
 
 #: Content and irreducible factors with their exponents, as flint's ``factor`` gives them.
@@ -222,6 +206,42 @@ class RationalFunction:
         out = cls(ring, num, den)
         out.__dict__["factorisation"] = known
         return out
+
+    @classmethod
+    def from_factors(
+        cls,
+        ring: PolynomialRing,
+        num_content: int,
+        den_content: int,
+        num_factors: Iterable[tuple[fmpz_mpoly, int]],
+        den_factors: Iterable[tuple[fmpz_mpoly, int]],
+    ) -> RationalFunction:
+        """``num_content prod(num_factors) / (den_content prod(den_factors))`` from
+        irreducible factors (flint-normalised, repeats allowed): identical factors merge
+        and cancel, the contents divide by their gcd, the denominator's sign goes to the
+        numerator, and the expanded parts are the products of what is left."""
+        if num_content == 0:
+            return cls.polynomial(ring, ring.zero)
+        merged: list[tuple[fmpz_mpoly, int]] = []
+        for f, e in (*num_factors, *((f, -e) for f, e in den_factors)):
+            for k, (h, d) in enumerate(merged):
+                if h == f:
+                    merged[k] = (h, d + e)
+                    break
+            else:
+                merged.append((f, e))
+        shared = gcd(num_content, den_content)
+        cn, cd = num_content // shared, den_content // shared
+        if cd < 0:
+            cn, cd = -cn, -cd
+        fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
+        fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
+        numerator, denominator = ring.one * cn, ring.one * cd
+        for f, e in fn:
+            numerator = numerator * f**e
+        for f, e in fd:
+            denominator = denominator * f**e
+        return cls.with_factorisation(ring, numerator, denominator, ((cn, fn), (cd, fd)))
 
     @cached_property
     def factorisation(self) -> tuple[Factorisation, Factorisation]:
@@ -369,29 +389,7 @@ class RationalFunction:
 
 
 def _product(a: RationalFunction, b: RationalFunction) -> RationalFunction:
-    """``a * b`` from the factorisations: identical irreducible factors cancel, the
-    contents divide by their gcd, and the expanded parts are products of the factors."""
+    """``a * b`` from the factorisations (`RationalFunction.from_factors`)."""
     (an, afn), (ad, afd) = a.factorisation
     (bn, bfn), (bd, bfd) = b.factorisation
-    collected = [*afn, *bfn, *((f, -e) for f, e in (*afd, *bfd))]
-    merged: list[tuple[fmpz_mpoly, int]] = []
-    for f, e in collected:
-        for k, (h, d) in enumerate(merged):
-            if h == f:
-                merged[k] = (h, d + e)
-                break
-        else:
-            merged.append((f, e))
-    cn, cd = an * bn, ad * bd
-    shared = gcd(cn, cd)
-    cn, cd = cn // shared, cd // shared
-    if cd < 0:
-        cn, cd = -cn, -cd
-    fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
-    fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
-    numerator, denominator = a.ring.one * cn, a.ring.one * cd
-    for f, e in fn:
-        numerator = numerator * f**e
-    for f, e in fd:
-        denominator = denominator * f**e
-    return RationalFunction.with_factorisation(a.ring, numerator, denominator, ((cn, fn), (cd, fd)))
+    return RationalFunction.from_factors(a.ring, an * bn, ad * bd, (*afn, *bfn), (*afd, *bfd))

@@ -16,8 +16,8 @@ from davies_sym.cli.messages import message
 from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
 from davies_sym.emit.atomic import write_atomic
-from davies_sym.errors import DaviesError, InputError, MissingDependencyError, Problem
-from davies_sym.topology.loader import MAX_FILE_BYTES, load_bytes
+from davies_sym.errors import DaviesError, InputError, MissingDependencyError, Problem, TopologyError
+from davies_sym.topology.loader import load_bytes, read_train_file
 
 Progress = Callable[[str], None]
 
@@ -142,10 +142,9 @@ def _tasks(directory: str, files: Sequence[str]) -> tuple[list[Task], list[str]]
             )
             continue
         try:
-            with open(path, "rb") as handle:
-                data = handle.read(MAX_FILE_BYTES + 1)
-        except OSError as exc:
-            refused.append(f"topology error: {path}: cannot read the file: {exc.strerror}")
+            data = read_train_file(path)
+        except TopologyError as exc:
+            refused.append(exc.report())
             continue
         stems[stem] = path
         tasks.append(Task(path, data, stem))

@@ -33,13 +33,17 @@ MAX_FILE_BYTES = 1_000_000
 
 def load(path: str | os.PathLike[str]) -> Train:
     """Read, parse and validate the train file at ``path``."""
-    name = os.fspath(path)
+    return load_bytes(read_train_file(path), os.fspath(path))
+
+
+def read_train_file(path: str | os.PathLike[str]) -> bytes:
+    """The bytes of a train file, at most one byte past the size limit (`load_bytes`
+    refuses the rest); `TopologyError` when it cannot be read."""
     try:
-        with open(name, "rb") as handle:
-            data = handle.read(MAX_FILE_BYTES + 1)
+        with open(path, "rb") as handle:
+            return handle.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
-        raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], name) from None
-    return load_bytes(data, name)
+        raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], os.fspath(path)) from None
 
 
 def load_bytes(data: bytes, name: str | None = None) -> Train:

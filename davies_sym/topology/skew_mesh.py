@@ -18,10 +18,11 @@ import sympy
 
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.angles import AngleFunctions, read_angle
-from davies_sym.topology.couplings import Coupling, read_gear_pair
+from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.entries import describe
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.loss_entries import Friction, read_friction
+from davies_sym.topology.mesh_entries import read_gear_pair
 from davies_sym.topology.schema import Field
 
 if TYPE_CHECKING:

@@ -40,6 +40,7 @@ from davies_sym.efficiency.turning_conditions import MeshRole
 from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.matrices import FrictionLaw
+from davies_sym.topology.couplings import Revolute
 
 #: A loaded force at the operating point and the sign a case needs it to have.
 LoadedForces = Mapping[str, tuple[RationalFunction, int]]
@@ -234,3 +235,20 @@ def reached_cases(
         if not reversal or samples:
             out.append(LoadCase(reversal, case_first, derivation, efficiency, forces, samples))
     return out
+
+
+def bearings_agree(
+    loaded_forces: Mapping[str, tuple[RationalFunction, int]], analysis: Analysis, values: Mapping[sympy.Symbol, object]
+) -> bool:
+    """Whether each bearing reaction of a variant (its ``loaded_forces``) has the sense the
+    variant takes at ``values``: where the geometry reverses one (opposed helical thrusts)
+    another variant holds, and the value there says nothing of self-locking."""
+    for name, (force, needed) in loaded_forces.items():
+        if not isinstance(analysis.train.coupling(name), Revolute):
+            continue
+        try:
+            if (force.evaluate(values) > 0) != (needed > 0):
+                return False
+        except ZeroDivisionError:
+            continue
+    return True

@@ -28,7 +28,7 @@ import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
+from davies_sym.efficiency.light_load import Derivation, LoadCase, bearings_agree, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
     INPUT_SPEED,
@@ -48,7 +48,6 @@ from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
 from davies_sym.network.analysis import Analysis
-from davies_sym.topology.couplings import Revolute
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
@@ -354,22 +353,6 @@ def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:
     return rf.num.degrees()[index] > 0 or rf.den.degrees()[index] > 0
 
 
-def _bearings_agree(variant: Variant, analysis: Analysis, point: Point, etas: Sequence[sympy.Symbol]) -> bool:
-    """Whether each bearing reaction has the sense the variant takes at ``point`` (at the
-    nominal mesh efficiencies): where the geometry reverses one (opposed helical thrusts)
-    another variant holds, and the value there says nothing of self-locking."""
-    values = {**point, **{e: NOMINAL_EFFICIENCY for e in etas}}
-    for name, (force, needed) in variant.loaded_forces.items():
-        if not isinstance(analysis.train.coupling(name), Revolute):
-            continue
-        try:
-            if (force.evaluate(values) > 0) != (needed > 0):
-                return False
-        except ZeroDivisionError:
-            continue
-    return True
-
-
 def _checked(
     variant: Variant,
     region: Sequence[Point],
@@ -385,7 +368,11 @@ def _checked(
     locked: Point | None = None
     # Laus 3.6.2 applies where the formula describes a working train: check it at a
     # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
-    region = [p for p in region if _bearings_agree(variant, analysis, p, etas)]
+    region = [
+        p
+        for p in region
+        if bearings_agree(variant.loaded_forces, analysis, {**p, **{e: NOMINAL_EFFICIENCY for e in etas}})
+    ]
     working = [p for p in region[:40] if 0 < _nominal(rf, p, etas) <= 1]
     if region and not working:
         derivative_check = "not checked: the train self-locks at every sampled point"

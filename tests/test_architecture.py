@@ -24,6 +24,7 @@ STAGES = (
     "geometry",
     "network",
     "efficiency",
+    "machines",
     "emit",
     "calibration",
     "cli",

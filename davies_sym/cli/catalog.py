@@ -1,4 +1,4 @@
-"""``derive --catalog``: the catalog of literature trains that comes with the package,
+"""``derive --catalog``: the catalog of literature trains and machines that comes with the package,
 listed, or one of them chosen by name in place of a topology file."""
 
 from __future__ import annotations
@@ -6,8 +6,10 @@ from __future__ import annotations
 import argparse
 
 from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.machines.loader import build_machine, is_machine
 from davies_sym.topology.catalog_files import catalog_file, catalog_folder, catalog_names
-from davies_sym.topology.loader import load
+from davies_sym.topology.documents import read_document
+from davies_sym.topology.loader import build_train
 
 
 def catalog_listing() -> str:
@@ -18,8 +20,9 @@ def catalog_listing() -> str:
     width = max(map(len, names), default=0)
     for name in names:
         try:
-            train = load(str(folder / f"{name}.yaml"))
-            about = train.name + (f" ({train.source})" if train.source else "")
+            document = read_document(folder / f"{name}.yaml")
+            entry = build_machine(document) if is_machine(document.data) else build_train(document)
+            about = entry.name + (f" ({entry.source})" if entry.source else "")
         except DaviesError as exc:  # pragma: no cover - the catalog is tested to load
             about = f"does not load: {exc}"
         lines.append(f"  {name:<{width}}  {about}")

@@ -48,19 +48,32 @@ def _path_text(path: str) -> str:
 def _one_file(args: argparse.Namespace, progress: Progress) -> int:
     from davies_sym.cli.one_input import one_input_outputs
     from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_outputs
-    from davies_sym.topology.loader import load
+    from davies_sym.machines.loader import build_machine, is_machine
+    from davies_sym.topology.documents import read_document
+    from davies_sym.topology.loader import build_train
 
     path = args.files[0]
     for target, option in ((args.out, "-o"), (args.python, "--python")):
         if target:
             _check_target(target, option, [path])
-    train = load(path)
+    document = read_document(path)
     failures: list[str] = []
-    outputs = (
-        several_outputs(train, args, progress)
-        if several_degrees_of_freedom(train)
-        else one_input_outputs(train, args, progress, failures)
-    )
+    if is_machine(document.data):
+        from davies_sym.cli.machine_input import machine_outputs
+
+        outputs = machine_outputs(build_machine(document), args, progress)
+    else:
+        train = build_train(document)
+        if args.task or args.plot == "":
+            option = "--task" if args.task else "--plot"
+            raise InputError(
+                [Problem(option, "--task is for machines; for a gear train write --plot NAME=START:STOP")], path
+            )
+        outputs = (
+            several_outputs(train, args, progress)
+            if several_degrees_of_freedom(train)
+            else one_input_outputs(train, args, progress, failures)
+        )
     for target, content in outputs:
         if target is None:
             sys.stdout.write(content if isinstance(content, str) else content.decode())

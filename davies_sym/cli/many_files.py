@@ -12,12 +12,15 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
+from davies_sym.cli.machine_input import machine_document
 from davies_sym.cli.messages import message
 from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.errors import DaviesError, InputError, MissingDependencyError, Problem, TopologyError
-from davies_sym.topology.loader import load_bytes, read_train_file
+from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.topology.documents import document_from_bytes, read_train_file
+from davies_sym.topology.loader import build_train
 
 Progress = Callable[[str], None]
 
@@ -51,7 +54,11 @@ def derive_task(task: Task, progress: Progress = _silent) -> Derived:
     """Derive one train file (run by a worker process or in this one); a refusal is a
     message in the result, never an exception, so one bad file stops nothing else."""
     try:
-        train = load_bytes(task.data, task.path)
+        document = document_from_bytes(task.data, task.path)
+        if is_machine(document.data):
+            text = machine_document(build_machine(document), False, progress)
+            return Derived(task.path, 0, (), ((f"{task.stem}.txt", text),))
+        train = build_train(document)
         failures: list[str] = []
         written = (
             several_derivations(train, task.stem, progress)

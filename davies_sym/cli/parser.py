@@ -108,9 +108,17 @@ def parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--plot",
+        nargs="?",
+        const="",
         metavar="NAME=START:STOP",
         help="figure of the efficiency and the losses (the port torques for a train with several "
-        "inputs) against one parameter (PNG, -o FILE)",
+        "inputs) against one parameter (PNG, -o FILE); with --task (no value): the power curves of the task",
+    )
+    p.add_argument(
+        "--task",
+        metavar="NAME",
+        help="a machine's task defined in its file (e.g. lift): the powers at every time step, the energy "
+        "lost in every coupling and, as the last line, the task efficiency",
     )
     p.add_argument(
         "--vs",

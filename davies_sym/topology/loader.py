@@ -15,11 +15,12 @@ from typing import Any
 import networkx as nx
 import sympy
 
-from davies_sym.errors import Problem, TopologyError, shortened
+from davies_sym.errors import TopologyError, shortened
 from davies_sym.topology.calibration_entry import read_calibrate
 from davies_sym.topology.checks import read_expected
 from davies_sym.topology.coupling_kinds import KINDS
 from davies_sym.topology.couplings import Coupling, coupling_fields, read_direction
+from davies_sym.topology.documents import document_from_bytes, read_document
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
@@ -27,39 +28,16 @@ from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE,
 from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
 
-#: Largest train file read (bytes).
-MAX_FILE_BYTES = 1_000_000
-
 
 def load(path: str | os.PathLike[str]) -> Train:
     """Read, parse and validate the train file at ``path``."""
-    return load_bytes(read_train_file(path), os.fspath(path))
-
-
-def read_train_file(path: str | os.PathLike[str]) -> bytes:
-    """The bytes of a train file, at most one byte past the size limit (`load_bytes`
-    refuses the rest); `TopologyError` when it cannot be read."""
-    try:
-        with open(path, "rb") as handle:
-            return handle.read(MAX_FILE_BYTES + 1)
-    except OSError as exc:
-        raise TopologyError([Problem("", f"cannot read the file: {exc.strerror}")], os.fspath(path)) from None
+    return build_train(read_document(path))
 
 
 def load_bytes(data: bytes, name: str | None = None) -> Train:
     """Parse and validate the bytes of a train file (read elsewhere, e.g. by the process
     that hands the file to a cluster); ``name`` is used in messages."""
-    if len(data) > MAX_FILE_BYTES:
-        raise TopologyError(
-            [Problem("", f"the file is larger than {MAX_FILE_BYTES // 1000} kB; a train file is a few kB")], name
-        )
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise TopologyError(
-            [Problem("", f"the file is not UTF-8 text (byte {exc.start}); save it as UTF-8")], name
-        ) from None
-    return loads(text, name)
+    return build_train(document_from_bytes(data, name))
 
 
 def loads(text: str, name: str | None = None) -> Train:

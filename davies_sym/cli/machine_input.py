@@ -1,0 +1,230 @@
+"""``derive`` on a machine file (Laus ch. 4): the closed forms per friction mode, an
+evaluation at a position or over a cycle (``--eval``), or a task (``--task``)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable
+from typing import Any
+
+import sympy
+
+from davies_sym.cli.arguments import figure_suffix
+from davies_sym.emit.machine_report import closed_form_json, closed_form_text, task_json, task_text
+from davies_sym.errors import InputError, NotCoveredError, Problem
+from davies_sym.machines.closed_form import ClosedForms, derive_closed_forms
+from davies_sym.machines.cycle import CycleEfficiency, cycle_efficiency
+from davies_sym.machines.model import Machine
+from davies_sym.machines.numeric import NumericMachine, solve_position
+from davies_sym.machines.task import run_task
+from davies_sym.topology.expressions import assignments
+
+Outputs = list[tuple[str | None, str | bytes]]
+Progress = Callable[[str], None]
+#: Options of gear trains that a machine does not take, and what to write instead.
+_TRAIN_ONLY = {
+    "latex": "--latex",
+    "python": "--python",
+    "emit": "--emit",
+    "state": "--state",
+    "vs": "--vs",
+    "at": "--at",
+    "output": "--output",
+}
+
+
+def _refuse_train_options(machine: Machine, args: argparse.Namespace) -> None:
+    for attribute, option in _TRAIN_ONLY.items():
+        if getattr(args, attribute, None):
+            raise InputError(
+                [
+                    Problem(
+                        option,
+                        f"{option} is for gear trains; for a machine write --eval, --task NAME, --json or --plot "
+                        "with --task",
+                    )
+                ],
+                machine.path,
+            )
+
+
+def _symbols(machine: Machine) -> dict[str, sympy.Symbol]:
+    found: set[sympy.Symbol] = set(machine.values) | set(machine.position)
+    for c in machine.couplings:
+        for vec in (c.at, c.axis, c.normal):
+            if vec is not None:
+                found |= set().union(*(e.free_symbols for e in vec))
+        if c.friction is not None:
+            found |= c.friction.mu.free_symbols
+            if c.friction.pin_radius is not None:
+                found |= c.friction.pin_radius.free_symbols
+    return {s.name: s for s in found}
+
+
+def _values(machine: Machine, pairs: list[str]) -> dict[sympy.Symbol, sympy.Expr]:
+    named = _symbols(machine)
+    given = assignments(pairs, "--eval", machine.path)
+    unknown = [n for n in given if n not in named]
+    if unknown:
+        raise InputError(
+            [Problem("--eval", f"{unknown[0]!r} is not a name of the machine (its names: {', '.join(sorted(named))})")],
+            machine.path,
+        )
+    return {**machine.values, **{named[n]: v for n, v in given.items()}}
+
+
+def _sample(machine: Machine) -> dict[sympy.Symbol, sympy.Expr]:
+    """Values at which the friction modes' regions over a cycle are found: the file's
+    values, else its first published check's."""
+    named = _symbols(machine)
+    sample = dict(machine.values)
+    if machine.expected:
+        sample.update({named[k]: v for k, v in machine.expected[0].values.items() if k in named})
+    return sample
+
+
+def _input_port(machine: Machine, args: argparse.Namespace) -> str:
+    port = args.input or machine.input
+    if port not in [p.name for p in machine.ports]:
+        raise InputError(
+            [Problem("--input", f"{port!r} is not a port (ports: {', '.join(p.name for p in machine.ports)})")],
+            machine.path,
+        )
+    return port
+
+
+def _closed(machine: Machine) -> tuple[ClosedForms | None, str | None]:
+    try:
+        return derive_closed_forms(machine), None
+    except NotCoveredError as exc:
+        return None, str(exc)
+
+
+def _missing(expr: sympy.Expr, values: dict[sympy.Symbol, sympy.Expr], path: str | None) -> None:
+    left = sorted(s.name for s in expr.subs(values).free_symbols)
+    if left:
+        raise InputError([Problem("--eval", f"give {', '.join(f'{n}=...' for n in left)}")], path)
+
+
+def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | None) -> tuple[str, dict[str, Any]]:
+    values = _values(machine, args.eval)
+    port = _input_port(machine, args)
+    at_position = all(s in values for s in machine.position)
+    if forms is not None and at_position:
+        direction = forms.direction(port)
+        for variant in direction.variants:
+            for c in variant.conditions:
+                _missing(c, values, machine.path)
+            if all(sympy.N(c.subs(values)) > 0 for c in variant.conditions):
+                _missing(variant.efficiency, values, machine.path)
+                eta = float(sympy.N(variant.efficiency.subs(values), 20))
+                signs = ", ".join(f"{s} = {v:+d}" for s, v in variant.signs)
+                return _checked(eta, f"input {port}, output {direction.output}; friction mode {signs}", port)
+        raise NotCoveredError("no friction mode is consistent here: the machine locks (self-locking)")
+    if forms is not None and machine.cycle is not None:
+        cycle = cycle_efficiency(forms.direction(port), machine.cycle, values)
+        _missing(
+            cycle.closed if cycle.closed is not None else cycle.pieces[0][0], {**values, machine.cycle.variable: 0}
+        )
+        eta = cycle.evaluate(values)
+        return _checked(eta, f"input {port}; efficiency over one cycle ({_cycle_source(cycle)})", port)
+    if not at_position:
+        raise InputError(
+            [Problem("--eval", f"give the position: {', '.join(f'{s.name}=...' for s in machine.position)}")],
+            machine.path,
+        )
+    return _numeric(machine, values, port)
+
+
+def _cycle_source(cycle: CycleEfficiency) -> str:
+    return "Laus eq. (120)" if cycle.steady_is_input else "Laus eq. (123)"
+
+
+def _numeric(machine: Machine, values: dict[sympy.Symbol, sympy.Expr], port: str) -> tuple[str, dict[str, Any]]:
+    if len(machine.ports) != 2:
+        raise NotCoveredError("--eval evaluates a machine with two ports; run one of its tasks with --task")
+    numeric = NumericMachine(machine)
+    floats = {s: float(sympy.N(v)) for s, v in values.items()}
+    network = numeric.network(floats)
+    into = network.ports[port]
+    other = next(n for n in network.ports if n != port)
+    solution = solve_position(numeric, floats, {into.power_terms[0][1]: 1.0}, {into.action: 1.0})
+    p_in, p_out = solution.port_power[port], solution.port_power[other]
+    return _checked(-p_out / p_in, f"input {port}, output {other}; friction solved numerically", port)
+
+
+def _checked(eta: float, what: str, port: str) -> tuple[str, dict[str, Any]]:
+    if not eta > 0:
+        raise NotCoveredError(f"the efficiency with input {port} is {eta:.6g} here: the machine locks (self-locking)")
+    return f"{what}\n{eta!r}\n", {"status": "ok", "input": port, "description": what, "efficiency": eta}
+
+
+def _task(machine: Machine, args: argparse.Namespace, progress: Progress) -> Outputs:
+    if args.task not in machine.tasks:
+        names = ", ".join(machine.tasks) or "none"
+        raise InputError(
+            [Problem("--task", f"{args.task!r} is not a task of the machine (tasks: {names})")], machine.path
+        )
+    if args.plot:
+        raise InputError(
+            [Problem("--plot", "with --task, --plot takes no value (it draws the task's powers)")], machine.path
+        )
+    marks = set()
+
+    def report(done: int, total: int) -> None:
+        quarter = 4 * done // total
+        if quarter not in marks:
+            marks.add(quarter)
+            progress(f"task {args.task}: {done}/{total} time steps")
+
+    result = run_task(machine, args.task, report)
+    if args.plot is not None:
+        from davies_sym.emit.machine_plots import task_figure
+
+        if not args.out:
+            raise InputError([Problem("--plot", "write the figure to a file: -o FIG.png (.svg, .pdf)")], machine.path)
+        return [(args.out, task_figure(machine, result, figure_suffix(args.out, machine.path)))]
+    text = json.dumps(task_json(machine, result), indent=1) + "\n" if args.json else task_text(machine, result)
+    return [(args.out, text)]
+
+
+def machine_outputs(machine: Machine, args: argparse.Namespace, progress: Progress) -> Outputs:
+    """What ``derive`` writes for a machine file."""
+    _refuse_train_options(machine, args)
+    if args.task:
+        return _task(machine, args, progress)
+    if args.plot is not None:
+        raise InputError([Problem("--plot", "for a machine, draw a task: --task NAME --plot -o FIG.png")], machine.path)
+    if args.eval is not None:
+        progress("closed forms per friction mode")
+        forms, _ = _closed(machine)
+        text, document = _evaluate(machine, args, forms)
+        return [(None, json.dumps(document, indent=2) + "\n" if args.json else text)]
+    return [(args.out, machine_document(machine, args.json, progress))]
+
+
+def machine_document(machine: Machine, as_json: bool, progress: Progress) -> str:
+    """The derivation of a machine file: its closed forms per friction mode and cycle
+    efficiencies, or its summary and why it has none (then its tasks)."""
+    progress("closed forms per friction mode")
+    forms, reason = _closed(machine)
+    if forms is None:
+        lines = [f"machine: {machine.name}" + (f" ({machine.source})" if machine.source else "")]
+        lines.append(f"efficiency: no closed form ({reason})")
+        if machine.tasks:
+            lines.append(f"tasks: {', '.join(machine.tasks)} (derive FILE --task NAME)")
+        else:
+            lines.append("evaluate it at a position: derive FILE --eval NAME=VALUE ...")
+        body = {"status": "ok", "machine": machine.name, "closed_form": None, "reason": reason}
+        return (
+            json.dumps({**body, "tasks": list(machine.tasks)}, indent=2) + "\n" if as_json else "\n".join(lines) + "\n"
+        )
+    cycles = {}
+    if machine.cycle is not None:
+        sample = _sample(machine)
+        for direction in forms.directions:
+            cycles[direction.input] = cycle_efficiency(direction, machine.cycle, sample)
+    if as_json:
+        return json.dumps(closed_form_json(forms, cycles), indent=2) + "\n"
+    return closed_form_text(forms, cycles)

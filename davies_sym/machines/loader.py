@@ -1,0 +1,295 @@
+"""Read a machine file (YAML) into a `Machine`; every problem is reported with its line.
+
+A machine file is told from a gear-train file by its ``machine:`` entry (the name).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import sympy
+
+from davies_sym.errors import Problem, TopologyError
+from davies_sym.machines.model import KINDS, Coupling, Cycle, Expected, Friction, Machine, Port, Task
+from davies_sym.machines.vectors import AXES, Vector, parse_scalar, parse_vector
+from davies_sym.topology.expressions import ExpressionError
+from davies_sym.topology.yaml_source import SourceDocument
+
+_TOP = {
+    "format",
+    "machine",
+    "source",
+    "links",
+    "reference",
+    "position",
+    "values",
+    "vectors",
+    "couplings",
+    "ports",
+    "input",
+    "cycle",
+    "tasks",
+    "expected",
+    "positive",
+}
+_COUPLING_KEYS = {"type", "links", "at", "axis", "normal", "axes", "friction"}
+_NEEDS_AXIS = {"revolute", "prismatic", "cylindrical", "square_annulus", "round_annulus"}
+
+
+def is_machine(data: object) -> bool:
+    """Whether a parsed YAML document describes a general machine."""
+    return isinstance(data, dict) and "machine" in data
+
+
+class _Reader:
+    def __init__(self, doc: SourceDocument):
+        self.doc = doc
+        self.problems: list[Problem] = []
+        self.symbols: dict[str, sympy.Symbol] = {}
+        self.vectors: dict[str, Vector] = {}
+
+    def symbol(self, name: str) -> sympy.Symbol:
+        return self.symbols.setdefault(name, sympy.Symbol(name, real=True))
+
+    def declare_positive(self, names: list[str]) -> None:
+        """Lengths and coefficients the user declares positive (they let conditions and
+        cycle integrals drop factors of known sign)."""
+        for name in names:
+            self.symbols[name] = sympy.Symbol(name, positive=True)
+
+    def problem(self, entry: str, message: str) -> None:
+        self.problems.append(Problem(entry, message, self.doc.line(entry)))
+
+    def guarded(self, entry: str, read: Callable[[], Any]) -> Any:
+        try:
+            return read()
+        except ExpressionError as exc:
+            self.problem(entry, str(exc))
+            return None
+
+    def scalar(self, entry: str, written: object) -> sympy.Expr | None:
+        return self.guarded(entry, lambda: parse_scalar(written, self.vectors, self.symbol))  # type: ignore[no-any-return]
+
+    def vector(self, entry: str, written: object) -> Vector | None:
+        return self.guarded(entry, lambda: parse_vector(written, self.vectors, self.symbol))  # type: ignore[no-any-return]
+
+    def mapping(self, entry: str, value: object) -> dict[str, Any]:
+        if value is None:
+            return {}
+        if not isinstance(value, dict):
+            self.problem(entry, f"expected a mapping (name: value, ...), got {type(value).__name__}")
+            return {}
+        return {str(k): v for k, v in value.items()}
+
+    def names(self, entry: str, value: object) -> list[str]:
+        if isinstance(value, str):
+            return [value]
+        if not isinstance(value, list) or not all(isinstance(v, (str, int)) for v in value):
+            self.problem(entry, "expected a list of names")
+            return []
+        return [str(v) for v in value]
+
+
+def build_machine(doc: SourceDocument) -> Machine:
+    """Validate the document of a machine file; raises `TopologyError` with every problem."""
+    r = _Reader(doc)
+    data = r.mapping("", doc.data)
+    for key in data:
+        if key not in _TOP:
+            r.problem(key, f"unknown entry {key!r} (a machine file has {', '.join(sorted(_TOP))})")
+    if data.get("format", 1) != 1:
+        r.problem("format", "only format 1 is known; write format: 1")
+    r.declare_positive(r.names("positive", data.get("positive", [])))
+    links = r.names("links", data.get("links"))
+    reference = str(data.get("reference", links[0] if links else ""))
+    if links and reference not in links:
+        r.problem("reference", f"the reference link {reference!r} is not among the links {links}")
+    position = tuple(r.symbol(n) for n in r.names("position", data.get("position", [])))
+    values: dict[sympy.Symbol, sympy.Expr] = {}
+    for name, written in r.mapping("values", data.get("values")).items():
+        value = r.scalar(f"values.{name}", written)
+        if value is not None:
+            values[r.symbol(name)] = value
+    for name, written in r.mapping("vectors", data.get("vectors")).items():
+        if name in AXES:
+            r.problem(f"vectors.{name}", f"{name!r} is the coordinate axis; name the vector otherwise")
+            continue
+        vec = r.vector(f"vectors.{name}", written)
+        if vec is not None:
+            r.vectors[name] = vec
+    couplings = tuple(
+        c
+        for name, written in r.mapping("couplings", data.get("couplings")).items()
+        if (c := _coupling(r, name, written, links))
+    )
+    names = {c.name for c in couplings}
+    ports = tuple(
+        p for name, written in r.mapping("ports", data.get("ports")).items() if (p := _port(r, name, written, names))
+    )
+    port_names = [p.name for p in ports]
+    chosen = str(data.get("input", port_names[0] if port_names else ""))
+    if port_names and chosen not in port_names:
+        r.problem("input", f"the input {chosen!r} is not a port; write one of {', '.join(port_names)}")
+    tasks = {
+        name: t
+        for name, written in r.mapping("tasks", data.get("tasks")).items()
+        if (t := _task(r, name, written, ports))
+    }
+    cycle = _cycle(r, data.get("cycle"), port_names) if "cycle" in data else None
+    expected = tuple(e for i, written in enumerate(data.get("expected") or []) if (e := _expected(r, i, written)))
+    if not couplings and not r.problems:
+        r.problem("couplings", "a machine needs couplings")
+    if r.problems:
+        raise TopologyError(r.problems, doc.name)
+    return Machine(
+        name=str(data.get("machine")),
+        source=str(data.get("source", "")),
+        links=tuple(links),
+        reference=reference,
+        position=position,
+        values=values,
+        couplings=couplings,
+        ports=ports,
+        input=chosen,
+        tasks=tasks,
+        cycle=cycle,
+        expected=expected,
+        vectors=dict(r.vectors),
+        path=doc.name,
+    )
+
+
+def _coupling(r: _Reader, name: str, written: object, links: list[str]) -> Coupling | None:
+    entry = f"couplings.{name}"
+    spec = r.mapping(entry, written)
+    for key in spec:
+        if key not in _COUPLING_KEYS:
+            r.problem(f"{entry}.{key}", f"unknown entry {key!r} (write {', '.join(sorted(_COUPLING_KEYS))})")
+    kind = spec.get("type")
+    if kind not in KINDS:
+        r.problem(f"{entry}.type", f"unknown coupling type {kind!r}; write one of {', '.join(KINDS)}")
+        return None
+    ends = r.names(f"{entry}.links", spec.get("links"))
+    if len(ends) != 2 or ends[0] == ends[1] or any(e not in links for e in ends):
+        r.problem(f"{entry}.links", f"write the two different links it connects, among {links}")
+        return None
+    at = r.vector(f"{entry}.at", spec.get("at", [0, 0, 0]))
+    axis = normal = None
+    if "axes" in spec:
+        pair = spec["axes"]
+        if kind != "universal" or not isinstance(pair, list) or len(pair) != 2:
+            r.problem(f"{entry}.axes", "axes: [first, second] is for a universal joint (its two pin axes)")
+            return None
+        axis, normal = r.vector(f"{entry}.axes", pair[0]), r.vector(f"{entry}.axes", pair[1])
+    else:
+        if "axis" in spec:
+            axis = r.vector(f"{entry}.axis", spec["axis"])
+        elif kind in _NEEDS_AXIS:
+            r.problem(entry, f"a {kind} coupling needs axis: (a direction, e.g. z or [0, 0, 1])")
+        if "normal" in spec:
+            normal = r.vector(f"{entry}.normal", spec["normal"])
+    if kind == "universal" and "axes" not in spec:
+        r.problem(entry, "a universal joint needs axes: [first, second] (its two pin axes)")
+    friction = _friction(r, f"{entry}.friction", spec["friction"], kind) if "friction" in spec else None
+    if at is None:
+        return None
+    return Coupling(name, str(kind), (ends[0], ends[1]), at, axis, normal, friction, r.doc.line(entry))
+
+
+def _friction(r: _Reader, entry: str, written: object, kind: str) -> Friction | None:
+    spec = r.mapping(entry, written)
+    if "mu" not in spec:
+        r.problem(entry, "friction needs mu: (the Coulomb coefficient)")
+        return None
+    if kind in ("spherical", "free"):
+        r.problem(entry, f"friction of a {kind} coupling is not modelled; leave it out")
+        return None
+    mu = r.scalar(f"{entry}.mu", spec["mu"])
+    radius = r.scalar(f"{entry}.pin_radius", spec["pin_radius"]) if "pin_radius" in spec else None
+    if kind in ("revolute", "universal") and radius is None:
+        r.problem(entry, f"a {kind} joint's friction needs pin_radius: (the Coulomb moment arm, Laus App. D)")
+    surfaces, load = str(spec.get("surfaces", "worn")), str(spec.get("load", "sum"))
+    if surfaces not in ("worn", "new", "clearance"):
+        r.problem(
+            f"{entry}.surfaces",
+            "write worn (cosine pressure law) or new (uniform law), Laus App. D, or clearance (line contact)",
+        )
+    if load not in ("sum", "resultant"):
+        r.problem(f"{entry}.load", "write sum (Laus eqs. (127)-(129)) or resultant (eq. (133))")
+    return Friction(mu, radius, surfaces, load) if mu is not None else None
+
+
+def _port(r: _Reader, name: str, written: object, couplings: set[str]) -> Port | None:
+    entry = f"ports.{name}"
+    spec = r.mapping(entry, written)
+    coupling = str(spec.get("coupling", ""))
+    if coupling not in couplings:
+        r.problem(f"{entry}.coupling", f"name the coupling of the port, one of {', '.join(sorted(couplings))}")
+        return None
+    for action in ("force", "torque"):
+        if action in spec:
+            direction = r.vector(f"{entry}.{action}", spec[action])
+            return Port(name, coupling, action, direction) if direction is not None else None
+    return Port(name, coupling)
+
+
+def _task(r: _Reader, name: str, written: object, ports: tuple[Port, ...]) -> Task | None:
+    entry = f"tasks.{name}"
+    spec = r.mapping(entry, written)
+    time = spec.get("time")
+    if not isinstance(time, list) or len(time) != 2:
+        r.problem(f"{entry}.time", "write time: [start, stop] in seconds")
+        return None
+    start, stop = r.scalar(f"{entry}.time", time[0]), r.scalar(f"{entry}.time", time[1])
+    step = r.scalar(f"{entry}.step", spec.get("step", "0.005"))
+    path = {
+        r.symbol(k): v
+        for k, w in r.mapping(f"{entry}.path", spec.get("path")).items()
+        if (v := r.scalar(f"{entry}.path.{k}", w)) is not None
+    }
+    loads = {
+        k: v
+        for k, w in r.mapping(f"{entry}.loads", spec.get("loads")).items()
+        if (v := r.scalar(f"{entry}.loads.{k}", w)) is not None
+    }
+    for port in loads:
+        if port not in {p.name for p in ports}:
+            r.problem(f"{entry}.loads.{port}", f"{port!r} is not a port")
+    if None in (start, stop, step):
+        return None
+    return Task(name, start, stop, step, path, str(spec.get("drive", "")), loads)  # type: ignore[arg-type]
+
+
+def _cycle(r: _Reader, written: object, ports: list[str]) -> Cycle | None:
+    spec = r.mapping("cycle", written)
+    variable = r.symbol(str(spec.get("variable", "theta")))
+    start, stop = r.scalar("cycle.from", spec.get("from", "-pi")), r.scalar("cycle.to", spec.get("to", "pi"))
+    steady = str(spec.get("steady", ""))
+    if steady not in ports:
+        r.problem("cycle.steady", f"name the port whose power stays constant over the cycle, one of {ports}")
+    if start is None or stop is None:
+        return None
+    return Cycle(variable, start, stop, steady)
+
+
+def _expected(r: _Reader, index: int, written: object) -> Expected | None:
+    entry = f"expected.{index}"
+    spec = r.mapping(entry, written)
+    try:
+        return Expected(
+            quantity=str(spec["quantity"]),
+            value=float(spec["value"]),
+            tolerance=float(spec.get("tolerance", 1e-12)),
+            source=str(spec.get("source", "")),
+            values={
+                k: v
+                for k, w in r.mapping(f"{entry}.values", spec.get("values")).items()
+                if (v := r.scalar(f"{entry}.values.{k}", w)) is not None
+            },
+            input=spec.get("input"),
+            task=spec.get("task"),
+        )
+    except (KeyError, TypeError, ValueError):
+        r.problem(entry, "an expected number needs quantity:, value: (a number) and source:")
+        return None

@@ -1,0 +1,117 @@
+"""The plain data of a machine file, as frozen dataclasses (read by `loader`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy
+
+from davies_sym.machines.vectors import Vector
+
+#: Coupling kinds and the freedoms they allow (Laus sec. 4.1.1 and 4.3.2).
+KINDS = ("revolute", "prismatic", "cylindrical", "universal", "spherical", "square_annulus", "round_annulus", "free")
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction of a coupling (Laus eqs. (98), (127)-(129), (133) and App. D).
+
+    ``load`` says how the normal load is formed from the transmitted forces: ``sum`` of
+    their magnitudes (eqs. (127)-(129)) or their ``resultant`` (eq. (133)).  ``surfaces``
+    picks the multipliers of App. D for pins: ``worn`` (cosine law, 4/pi on a half
+    cylinder, eq. (146) on a flat face) or ``new`` (uniform law, pi/2 and eq. (145)).
+    """
+
+    mu: sympy.Expr
+    pin_radius: sympy.Expr | None = None
+    surfaces: str = "worn"
+    load: str = "sum"
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """One joint: its kind, the links it connects (tail -> head), where, along what."""
+
+    name: str
+    kind: str
+    links: tuple[str, str]
+    at: Vector
+    axis: Vector | None = None
+    normal: Vector | None = None
+    friction: Friction | None = None
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class Port:
+    """Where power enters or leaves: along a coupling's freedom, or a force or torque
+    along a direction on a (free) coupling."""
+
+    name: str
+    coupling: str
+    action: str = "freedom"  # freedom | force | torque
+    direction: Vector | None = None
+
+
+@dataclass(frozen=True)
+class Task:
+    """A prescribed motion over time (Laus sec. 4.3.4): the position variables as
+    functions of ``t``, the coupling whose point they move, and the port loads."""
+
+    name: str
+    start: sympy.Expr
+    stop: sympy.Expr
+    step: sympy.Expr
+    path: dict[sympy.Symbol, sympy.Expr]
+    drive: str
+    loads: dict[str, sympy.Expr]
+
+
+@dataclass(frozen=True)
+class Cycle:
+    """One cycle of a one-freedom machine: the position variable runs from ``start`` to
+    ``stop`` while the ``steady`` port's power stays constant (Laus eqs. (118)-(123))."""
+
+    variable: sympy.Symbol
+    start: sympy.Expr
+    stop: sympy.Expr
+    steady: str
+
+
+@dataclass(frozen=True)
+class Expected:
+    """A published number the machine must reproduce (regression-checked)."""
+
+    quantity: str
+    value: float
+    tolerance: float
+    source: str
+    values: dict[str, sympy.Expr] = field(default_factory=dict)
+    input: str | None = None
+    task: str | None = None
+
+
+@dataclass(frozen=True)
+class Machine:
+    """A machine file, read: links, couplings, ports and what to derive."""
+
+    name: str
+    source: str
+    links: tuple[str, ...]
+    reference: str
+    position: tuple[sympy.Symbol, ...]
+    values: dict[sympy.Symbol, sympy.Expr]
+    couplings: tuple[Coupling, ...]
+    ports: tuple[Port, ...]
+    input: str
+    tasks: dict[str, Task]
+    cycle: Cycle | None
+    expected: tuple[Expected, ...]
+    vectors: dict[str, Vector] = field(default_factory=dict)
+    path: str | None = None
+
+    def coupling(self, name: str) -> Coupling:
+        return next(c for c in self.couplings if c.name == name)
+
+    def port(self, name: str) -> Port:
+        return next(p for p in self.ports if p.name == name)

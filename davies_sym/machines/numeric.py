@@ -1,0 +1,217 @@
+"""A machine at one position, in floating point (Laus sec. 4.3.3, Algorithm 2).
+
+The geometry's expressions are compiled once; at each position the couplings get
+numbers, the network matrices are assembled, the motions are solved from the given
+ones (eq. (1)) and the actions from the given loads with the friction constitutive
+equations appended (eq. (2)).  Coulomb friction makes those equations depend on the
+signs (eqs. (127)-(129)) or directions (eq. (133)) of the loads: they are frozen at the
+last solution and the linear system solved again until they stop changing; if that
+does not settle, the friction coefficients are raised from zero in steps, each from the
+previous solution, as Laus's homotopy continuation does (sec. 4.3.3.4).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+
+import numpy as np
+import sympy
+
+from davies_sym.errors import DerivationError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.machines.linear import solve_numeric
+from davies_sym.machines.model import Coupling, Friction, Machine
+from davies_sym.machines.network import GraphMatrices, Network, build_network, graph_matrices
+
+#: Fixed-point rounds before the friction is continued from zero, and its steps.
+ROUNDS = 40
+CONTINUATION_STEPS = 20
+
+
+@dataclass(frozen=True)
+class PositionSolution:
+    """Motions, actions and powers at one position (powers: positive into the machine)."""
+
+    network: Network
+    motions: dict[str, float]
+    actions: dict[str, float]
+    port_power: dict[str, float]
+    friction_power: dict[str, float]
+    rounds: int
+
+
+class NumericMachine:
+    """The machine's geometry compiled to floating point."""
+
+    def __init__(self, machine: Machine):
+        self.machine = machine
+        self.graph: GraphMatrices = graph_matrices(machine)
+        expressions: list[sympy.Expr] = []
+        for c in machine.couplings:
+            for vec in (c.at, c.axis, c.normal):
+                if vec is not None:
+                    expressions.extend(vec)
+            if c.friction is not None:
+                expressions.append(c.friction.mu)
+                expressions.append(c.friction.pin_radius if c.friction.pin_radius is not None else sympy.Integer(0))
+        for p in machine.ports:
+            if p.direction is not None:
+                expressions.extend(p.direction)
+        self.symbols = tuple(sorted(set().union(*(e.free_symbols for e in expressions)), key=str))
+        self._evaluate = sympy.lambdify(self.symbols, expressions, modules="math", cse=True)
+
+    def missing(self, values: Mapping[sympy.Symbol, float]) -> list[str]:
+        return [s.name for s in self.symbols if s not in values]
+
+    def couplings(self, values: Mapping[sympy.Symbol, float]) -> tuple[Coupling, ...]:
+        """The couplings with numbers in place of expressions."""
+        missing = self.missing(values)
+        if missing:
+            raise MissingValuesError(
+                [Problem("values", f"give {', '.join(missing)} (in values: of the file, a task's path, or --eval)")],
+                self.machine.path,
+            )
+        try:
+            numbers = iter(self._evaluate(*(float(values[s]) for s in self.symbols)))
+        except (ValueError, ZeroDivisionError) as exc:
+            raise NotCoveredError(f"the linkage cannot be assembled here ({exc})") from None
+        out = []
+        for c in self.machine.couplings:
+            vecs = [tuple(next(numbers) for _ in range(3)) if v is not None else None for v in (c.at, c.axis, c.normal)]
+            friction = None
+            if c.friction is not None:
+                mu, radius = next(numbers), next(numbers)
+                pin = radius if c.friction.pin_radius is not None else None
+                friction = Friction(mu, pin, c.friction.surfaces, c.friction.load)
+            out.append(replace(c, at=vecs[0], axis=vecs[1], normal=vecs[2], friction=friction))
+        if any(isinstance(x, complex) for c in out for v in (c.at, c.axis, c.normal) if v for x in v):
+            raise NotCoveredError("the linkage cannot be assembled here")
+        return tuple(out)
+
+    def ports(self, values: Mapping[sympy.Symbol, float]) -> Machine:
+        """The machine with numeric port directions."""
+        args = [float(values[s]) for s in self.symbols]
+        numbers = self._evaluate(*args)
+        k = sum(
+            sum(3 for v in (c.at, c.axis, c.normal) if v is not None) + (2 if c.friction else 0)
+            for c in self.machine.couplings
+        )
+        ports = []
+        for p in self.machine.ports:
+            if p.direction is not None:
+                ports.append(replace(p, direction=tuple(numbers[k : k + 3])))
+                k += 3
+            else:
+                ports.append(p)
+        return replace(self.machine, ports=tuple(ports))
+
+    def network(self, values: Mapping[sympy.Symbol, float]) -> Network:
+        couplings = self.couplings(values)
+        return build_network(self.ports(values), couplings, self.graph, numeric=True)
+
+
+def _friction_rows(
+    network: Network, motions: Mapping[str, float], guess: Mapping[str, float], scale: float, weight: float
+) -> np.ndarray:
+    """Laus eqs. (127)-(129) (sums) or (133) (resultants) with the loads' signs or
+    directions frozen at ``guess``."""
+    rows = np.zeros((len(network.friction), len(network.actions)))
+    motion_scale = max((abs(v) for v in motions.values()), default=0.0)
+    for r, f in enumerate(network.friction):
+        rows[r, network.action_index(f.name)] = 1.0
+        speed = motions[f.freedom]
+        sense = 0.0 if abs(speed) <= 1e-12 * motion_scale else float(np.sign(speed))
+        loads = [(name, float(w), guess.get(name, 0.0)) for name, w in f.load]
+        if f.resultant:
+            size = float(np.sqrt(sum((w * q) ** 2 for _, w, q in loads)))
+            parts = [(name, w * w * q / size if size > 0 else 0.0) for name, w, q in loads]
+        else:
+            parts = [(name, w * (0.0 if abs(q) <= 1e-12 * scale else float(np.sign(q)))) for name, w, q in loads]
+        for name, part in parts:
+            rows[r, network.action_index(name)] += weight * float(f.coefficient) * sense * part
+    return rows
+
+
+def _settled(network: Network, old: Mapping[str, float], new: Mapping[str, float], scale: float) -> bool:
+    for f in network.friction:
+        for name, _ in f.load:
+            a, b = old.get(name, 0.0), new[name]
+            if f.resultant:
+                if abs(a - b) > 1e-11 * scale:
+                    return False
+            elif np.sign(a) != np.sign(b) and max(abs(a), abs(b)) > 1e-12 * scale:
+                return False
+    return True
+
+
+def _actions(
+    network: Network,
+    motions: Mapping[str, float],
+    known: Mapping[str, float],
+    start: Mapping[str, float] | None,
+) -> tuple[dict[str, float], int]:
+    scale = max(1.0, *(abs(v) for v in known.values()))
+
+    def settle(guess: Mapping[str, float], weight: float) -> tuple[dict[str, float] | None, int]:
+        for round_ in range(1, ROUNDS + 1):
+            rows = _friction_rows(network, motions, guess, scale, weight)
+            matrix = np.vstack([network.action_matrix, rows])
+            solution = solve_numeric(matrix, network.actions, known, "actions")
+            if _settled(network, guess, solution, scale):
+                return solution, round_
+            guess = solution
+        return None, ROUNDS
+
+    frictionless = solve_numeric(
+        np.vstack([network.action_matrix, _friction_rows(network, motions, {}, scale, 0.0)]),
+        network.actions,
+        known,
+        "actions",
+    )
+    solution, rounds = settle(start or frictionless, 1.0)
+    if solution is not None:
+        return solution, rounds
+    guess, total = frictionless, rounds
+    for step in range(1, CONTINUATION_STEPS + 1):
+        reached, rounds = settle(guess, step / CONTINUATION_STEPS)
+        total += rounds
+        if reached is None:
+            raise NotCoveredError(
+                "the friction signs do not settle here (a load passes through zero, or the machine locks)"
+            )
+        guess = reached
+    return guess, total
+
+
+def solve_position(
+    numeric: NumericMachine,
+    values: Mapping[sympy.Symbol, float],
+    known_motions: Mapping[str, float],
+    known_actions: Mapping[str, float],
+    start: Mapping[str, float] | None = None,
+) -> PositionSolution:
+    """Motions and actions at one position; ``start``: the actions of a neighbouring
+    position, the known problem the continuation starts from."""
+    network = numeric.network(values)
+    motions = solve_numeric(network.motion_matrix, network.motions, known_motions, "motions")
+    actions, rounds = _actions(network, motions, known_actions, start)
+    port_power = {
+        name: actions[port.action] * sum(float(c) * motions[m] for c, m in port.power_terms)
+        for name, port in network.ports.items()
+    }
+    friction_power: dict[str, float] = {}
+    for joint in network.joints:
+        for f in (f for f in network.friction if f.coupling == joint.coupling):
+            power = actions[f.name] * sum(float(np.dot(f.screw, twist)) * motions[m] for m, twist in joint.freedoms)
+            friction_power[joint.coupling] = friction_power.get(joint.coupling, 0.0) + power
+    _check_balance(port_power, friction_power)
+    return PositionSolution(network, motions, actions, port_power, friction_power, rounds)
+
+
+def _check_balance(port_power: Mapping[str, float], friction_power: Mapping[str, float]) -> None:
+    """Tellegen's theorem on the network: the powers of all couplings add up to zero;
+    friction powers are never positive."""
+    total = sum(port_power.values()) + sum(friction_power.values())
+    scale = max([1e-300, *(abs(v) for v in port_power.values())])
+    if abs(total) > 1e-8 * scale or any(v > 1e-9 * scale for v in friction_power.values()):
+        raise DerivationError(f"the power balance fails ({total:.3g} W left over): please report this machine")

@@ -16,6 +16,17 @@ from davies_sym.topology.symbols import make_symbol
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CATALOG = os.path.join(ROOT, "catalog")
+
+
+def _is_machine_file(path: str) -> bool:
+    """A machine file (Laus ch. 4) has a ``machine:`` entry; the rest are gear trains."""
+    with open(path, encoding="utf-8") as handle:
+        return any(line.startswith("machine:") for line in handle)
+
+
+#: The catalog's gear-train files and its machine files (paths, sorted).
+TRAIN_FILES = tuple(p for p in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))) if not _is_machine_file(p))
+MACHINE_FILES = tuple(p for p in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))) if _is_machine_file(p))
 MALFORMED = os.path.join(ROOT, "tests", "malformed")
 # The documentation tools and the literature's printed layouts live beside the package.
 sys.path.insert(0, os.path.join(ROOT, "tools"))
@@ -84,7 +95,7 @@ def catalog_trains(parallel_axes_only: bool = False) -> list[tuple[str, davies_s
     from davies_sym.topology.states import train_in_state
 
     out = []
-    for path in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))):
+    for path in TRAIN_FILES:
         train = davies_sym.load(path)
         stem = os.path.splitext(os.path.basename(path))[0]
         if (train.degrees_of_freedom or 1) > 1:

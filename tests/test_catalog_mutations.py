@@ -28,6 +28,8 @@ from typing import Any
 import pytest
 from hostile.helpers import CATALOG, MAX_STDERR, dump, full_run, load_yaml, rename_everywhere, run_main
 
+from conftest import TRAIN_FILES
+
 SHADOWING = ["lambda", "E", "I", "pi", "N", "S", "oo", "zoo", "nan"]
 NON_ASCII = "Ωμέγα"
 
@@ -104,7 +106,7 @@ def _default(train: str, depth: int, position: int, kind: str) -> bool:
 
 def _cases(full: bool) -> list[Any]:
     cases = []
-    for file in sorted(CATALOG.glob("*.yaml")):
+    for file in sorted(Path(p) for p in TRAIN_FILES):
         train = file.stem
         data = load_yaml(file)
         for position, path in enumerate(_paths(data)):

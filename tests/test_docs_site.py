@@ -29,7 +29,7 @@ from davies_sym.efficiency.several_inputs import LOAD_TORQUE, derive_several_inp
 from davies_sym.efficiency.variants import derive_variants
 from davies_sym.topology.states import train_in_state
 
-from conftest import CATALOG, ROOT
+from conftest import CATALOG, ROOT, TRAIN_FILES
 
 pytestmark = pytest.mark.slow
 
@@ -106,7 +106,7 @@ def test_every_catalog_page_shows_every_variant_as_math(site):
     """Each variant's formula is read back twice from the page: from the presentation
     MathML (what the browser draws) and from its LaTeX annotation; both equal the
     variant's efficiency at random points."""
-    for path in sorted(glob.glob(os.path.join(CATALOG, "*.yaml"))):
+    for path in TRAIN_FILES:
         stem = os.path.splitext(os.path.basename(path))[0]
         page = (site / "catalog" / f"{stem}.html").read_text(encoding="utf-8")
         train = davies_sym.load(path)
@@ -171,7 +171,7 @@ def test_reference_pages(site):
     """The command line page carries the parser's help; the API page is rendered from the
     docstrings by mkdocstrings (no reStructuredText roles left, signatures shown)."""
     cli = (site / "cli.html").read_text(encoding="utf-8")
-    assert "--plot NAME=START:STOP" in cli and "--python OUT.py" in cli
+    assert "--plot [NAME=START:STOP]" in cli and "--task NAME" in cli and "--python OUT.py" in cli
     api = (site / "api.html").read_text(encoding="utf-8")
     assert 'id="davies_sym.efficiency.variants.derive_variants"' in api
     assert 'id="davies_sym.efficiency.variants.VariantSet.evaluate"' in api

@@ -13,7 +13,6 @@ The pdflatex tests are skipped when pdflatex is not installed.
 from __future__ import annotations
 
 import functools
-import glob
 import os
 import random
 import re
@@ -48,7 +47,7 @@ from davies_sym.emit.variant_report import variant_forces
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 
-from conftest import CATALOG, ROOT, catalog_path
+from conftest import ROOT, TRAIN_FILES, catalog_path
 
 PDFLATEX = shutil.which("pdflatex")
 needs_pdflatex = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not installed")
@@ -56,7 +55,7 @@ needs_pdflatex = pytest.mark.skipif(PDFLATEX is None, reason="pdflatex is not in
 #: Overfull boxes up to this width are rounding at the margin, not a formula past it.
 TOLERANCE_PT = 3.0
 
-STEMS = sorted(os.path.splitext(os.path.basename(p))[0] for p in glob.glob(os.path.join(CATALOG, "*.yaml")))
+STEMS = sorted(os.path.splitext(os.path.basename(p))[0] for p in TRAIN_FILES)
 
 #: A Wolfrom train with long radius names and viscous bearings: the formulas depend on
 #: the input torque and speed and run to a page, so every kind of line break is needed

@@ -36,9 +36,9 @@ from hypothesis import strategies as st
 from oracle.compare import LOCKING, OK, compare
 from oracle.random_trains import generate, spelling
 
-from conftest import SLOW_SEED
+from conftest import SLOW_SEED, TRAIN_FILES
 
-TRAINS = tuple(sorted(p.stem for p in CATALOG.glob("*.yaml")))
+TRAINS = tuple(sorted(Path(p).stem for p in TRAIN_FILES))
 #: Trains whose harmless mutations derive for seconds (Humpage 5 s, Ravigneaux 15 s): only the slow
 #: run mutates them, with this fraction of its examples.
 COSTLY = {"humpage": 20, "simpson": 10, "ravigneaux": 50}

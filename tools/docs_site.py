@@ -16,6 +16,7 @@ from collections.abc import Callable
 from types import ModuleType
 
 from docs_pages import Figure, api_page, catalog_page, cli_page, several_inputs_section, states_body
+from machine_pages import machine_page
 from published_layouts import laus_humpage_layout
 
 from davies_sym.cli import parser
@@ -33,7 +34,9 @@ from davies_sym.emit.plots import (
     region_figure,
     turning_surface_figure,
 )
+from davies_sym.machines.loader import build_machine, is_machine
 from davies_sym.network.analysis import Analysis
+from davies_sym.topology.documents import read_document
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
@@ -160,9 +163,19 @@ def catalog_pages(root: str, write: Write, progress: Progress) -> list[str]:
     """``catalog/<stem>.md`` (and its images) for every catalog file, and the catalog
     index; the stems."""
     stems = []
+    names = {}
     for path in sorted(glob.glob(os.path.join(root, "catalog", "*.yaml"))):
         stem = os.path.splitext(os.path.basename(path))[0]
+        document = read_document(path)
+        if is_machine(document.data):
+            progress(f"catalog {stem}: machine")
+            machine = build_machine(document)
+            write(f"catalog/{stem}.md", machine_page(machine, stem, write).encode())
+            stems.append(stem)
+            names[stem] = machine.name
+            continue
         train = load(path)
+        names[stem] = train.name
         write(f"catalog/img/{stem}_graph.png", figure_bytes(coupling_graph_figure(train)))
         if (train.degrees_of_freedom or 1) > 1:
             progress(f"catalog {stem}: power-flow regions")
@@ -184,15 +197,13 @@ def catalog_pages(root: str, write: Write, progress: Progress) -> list[str]:
     index = [
         "# Catalog",
         "",
-        "Literature trains, each regression-checked against its published numbers.",
+        "Literature trains and machines, each regression-checked against its published numbers.",
         "",
         "| train | file |",
         "| --- | --- |",
     ]
     for stem in stems:
-        index.append(
-            f"| [{load(os.path.join(root, 'catalog', f'{stem}.yaml')).name}]({stem}.md) | `catalog/{stem}.yaml` |"
-        )
+        index.append(f"| [{names[stem]}]({stem}.md) | `catalog/{stem}.yaml` |")
     write("catalog/index.md", ("\n".join(index) + "\n").encode())
     return stems
 

@@ -49,21 +49,8 @@ def _refuse_train_options(machine: Machine, args: argparse.Namespace) -> None:
             )
 
 
-def _symbols(machine: Machine) -> dict[str, sympy.Symbol]:
-    found: set[sympy.Symbol] = set(machine.values) | set(machine.position)
-    for c in machine.couplings:
-        for vec in (c.at, c.axis, c.normal):
-            if vec is not None:
-                found |= set().union(*(e.free_symbols for e in vec))
-        if c.friction is not None:
-            found |= c.friction.mu.free_symbols
-            if c.friction.pin_radius is not None:
-                found |= c.friction.pin_radius.free_symbols
-    return {s.name: s for s in found}
-
-
 def _values(machine: Machine, pairs: list[str]) -> dict[sympy.Symbol, sympy.Expr]:
-    named = _symbols(machine)
+    named = machine.symbols()
     given = assignments(pairs, "--eval", machine.path)
     unknown = [n for n in given if n not in named]
     if unknown:
@@ -72,16 +59,6 @@ def _values(machine: Machine, pairs: list[str]) -> dict[sympy.Symbol, sympy.Expr
             machine.path,
         )
     return {**machine.values, **{named[n]: v for n, v in given.items()}}
-
-
-def _sample(machine: Machine) -> dict[sympy.Symbol, sympy.Expr]:
-    """Values at which the friction modes' regions over a cycle are found: the file's
-    values, else its first published check's."""
-    named = _symbols(machine)
-    sample = dict(machine.values)
-    if machine.expected:
-        sample.update({named[k]: v for k, v in machine.expected[0].values.items() if k in named})
-    return sample
 
 
 def _input_port(machine: Machine, args: argparse.Namespace) -> str:
@@ -123,10 +100,9 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
                 return _checked(eta, f"input {port}, output {direction.output}; friction mode {signs}", port)
         raise NotCoveredError("no friction mode is consistent here: the machine locks (self-locking)")
     if forms is not None and machine.cycle is not None:
+        needed = sympy.Add(*(v.efficiency for v in forms.direction(port).variants))
+        _missing(needed, {**values, machine.cycle.variable: 0}, machine.path)
         cycle = cycle_efficiency(forms.direction(port), machine.cycle, values)
-        _missing(
-            cycle.closed if cycle.closed is not None else cycle.pieces[0][0], {**values, machine.cycle.variable: 0}
-        )
         eta = cycle.evaluate(values)
         return _checked(eta, f"input {port}; efficiency over one cycle ({_cycle_source(cycle)})", port)
     if not at_position:
@@ -222,7 +198,7 @@ def machine_document(machine: Machine, as_json: bool, progress: Progress) -> str
         )
     cycles = {}
     if machine.cycle is not None:
-        sample = _sample(machine)
+        sample = machine.sample()
         for direction in forms.directions:
             cycles[direction.input] = cycle_efficiency(direction, machine.cycle, sample)
     if as_json:

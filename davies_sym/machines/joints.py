@@ -44,6 +44,7 @@ PIN_MULTIPLIERS = {
     "new": {"across": sympy.pi / 2, "along": sympy.Rational(2, 3)},
     "clearance": {"across": sympy.Integer(1), "along": sympy.Integer(1)},
 }
+_FLOAT_MULTIPLIERS = {law: {k: float(v) for k, v in m.items()} for law, m in PIN_MULTIPLIERS.items()}
 _ROTATION_LETTERS = {"x": "r", "y": "s", "z": "t"}
 _TRANSLATION_LETTERS = {"x": "u", "y": "v", "z": "w"}
 _NEXT_AXIS = {"x": "y", "y": "z", "z": "x"}
@@ -208,14 +209,15 @@ def _friction(
     turning = [(name, d) for (k, d), (name, _) in zip(free, freedoms, strict=True) if k == "R"]
     resultant = law.load == "resultant"
     for freedom, d in sliding:
-        load = tuple((name, sympy.Integer(1)) for name, fd in forces if not _parallel(fd, d, zero))
+        load = tuple((name, 1) for name, fd in forces if not _parallel(fd, d, zero))
         out.append(
             FrictionAction(
                 _friction_name(freedom), coupling.name, force(d, coupling.at), freedom, law.mu, load, resultant
             )
         )
     if law.pin_radius is not None and coupling.kind in ("revolute", "universal", "cylindrical"):
-        multipliers = PIN_MULTIPLIERS[law.surfaces]
+        exact = zero is exactly_zero
+        multipliers = (PIN_MULTIPLIERS if exact else _FLOAT_MULTIPLIERS)[law.surfaces]
         for freedom, d in turning:
             load = tuple(
                 (name, multipliers["along"] if _parallel(fd, d, zero) else multipliers["across"]) for name, fd in forces

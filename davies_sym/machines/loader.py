@@ -69,10 +69,11 @@ class _Reader:
             return None
 
     def scalar(self, entry: str, written: object) -> sympy.Expr | None:
-        return self.guarded(entry, lambda: parse_scalar(written, self.vectors, self.symbol))  # type: ignore[no-any-return]
+        return self.guarded(entry, lambda: parse_scalar(written, self.vectors, self.symbol))
 
     def vector(self, entry: str, written: object) -> Vector | None:
-        return self.guarded(entry, lambda: parse_vector(written, self.vectors, self.symbol))  # type: ignore[no-any-return]
+        found: Vector | None = self.guarded(entry, lambda: parse_vector(written, self.vectors, self.symbol))
+        return found
 
     def mapping(self, entry: str, value: object) -> dict[str, Any]:
         if value is None:
@@ -258,7 +259,7 @@ def _task(r: _Reader, name: str, written: object, ports: tuple[Port, ...]) -> Ta
             r.problem(f"{entry}.loads.{port}", f"{port!r} is not a port")
     if None in (start, stop, step):
         return None
-    return Task(name, start, stop, step, path, str(spec.get("drive", "")), loads)  # type: ignore[arg-type]
+    return Task(name, start, stop, step, path, str(spec.get("drive", "")), loads)
 
 
 def _cycle(r: _Reader, written: object, ports: list[str]) -> Cycle | None:

@@ -110,6 +110,28 @@ class Machine:
     vectors: dict[str, Vector] = field(default_factory=dict)
     path: str | None = None
 
+    def symbols(self) -> dict[str, sympy.Symbol]:
+        """Every name the machine's expressions use, by name."""
+        found: set[sympy.Symbol] = set(self.values) | set(self.position)
+        for c in self.couplings:
+            for vec in (c.at, c.axis, c.normal):
+                if vec is not None:
+                    found |= set().union(*(e.free_symbols for e in vec))
+            if c.friction is not None:
+                found |= c.friction.mu.free_symbols
+                if c.friction.pin_radius is not None:
+                    found |= c.friction.pin_radius.free_symbols
+        return {s.name: s for s in found}
+
+    def sample(self) -> dict[sympy.Symbol, sympy.Expr]:
+        """Values at which the friction modes' regions over a cycle are found: the file's
+        values, completed by its first published check's."""
+        named = self.symbols()
+        out = dict(self.values)
+        if self.expected:
+            out.update({named[k]: v for k, v in self.expected[0].values.items() if k in named})
+        return out
+
     def coupling(self, name: str) -> Coupling:
         return next(c for c in self.couplings if c.name == name)
 

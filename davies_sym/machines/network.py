@@ -95,6 +95,32 @@ def graph_matrices(machine: Machine) -> GraphMatrices:
     return GraphMatrices(tuple(tree), rows(graph.circuit_matrix(tree)), rows(graph.cutset_matrix(tree)))
 
 
+def _floating(joint: JointScrews) -> JointScrews:
+    """The joint's screws, coefficients and load weights as floats (the numeric solution
+    never touches a sympy number in its loops)."""
+
+    def screw(values: Screw) -> Screw:
+        return tuple(float(v) for v in values)
+
+    return JointScrews(
+        joint.coupling,
+        tuple((name, screw(s)) for name, s in joint.freedoms),
+        tuple((name, screw(s)) for name, s in joint.constraints),
+        tuple(
+            FrictionAction(
+                f.name,
+                f.coupling,
+                screw(f.screw),
+                f.freedom,
+                float(f.coefficient),
+                tuple((n, float(w)) for n, w in f.load),
+                f.resultant,
+            )
+            for f in joint.friction
+        ),
+    )
+
+
 def _planar(joints: list[JointScrews], zero: ZeroTest) -> bool:
     return all(zero(twist[i]) for j in joints for _, twist in j.freedoms for i in (0, 1, 5))
 
@@ -103,8 +129,8 @@ def _port_wrench(port: Port, joint: JointScrews, at: tuple[sympy.Expr, ...]) -> 
     if port.action == "freedom":
         name, twist = joint.freedoms[0]
         if twist[:3] == (0, 0, 0):
-            return name, force(tuple(twist[3:]), at)  # type: ignore[arg-type]
-        return name, torque(tuple(twist[:3]))  # type: ignore[arg-type]
+            return name, force(tuple(twist[3:]), at)
+        return name, torque(tuple(twist[:3]))
     assert port.direction is not None
     wrench = force(port.direction, at) if port.action == "force" else torque(port.direction)
     axis = axis_name(port.direction)
@@ -130,6 +156,8 @@ def build_network(
     planar = _planar(joints, zero)
     if planar:
         joints = [joint_screws(c, coordinate_names=True, zero=zero) for c in couplings]
+    if numeric:
+        joints = [_floating(j) for j in joints]
     coords = PLANAR if planar else SPATIAL
     d = len(coords)
 

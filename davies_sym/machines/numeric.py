@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 import sympy
@@ -74,10 +75,16 @@ class NumericMachine:
         try:
             numbers = iter(self._evaluate(*(float(values[s]) for s in self.symbols)))
         except (ValueError, ZeroDivisionError) as exc:
-            raise NotCoveredError(f"the linkage cannot be assembled here ({exc})") from None
+            raise NotCoveredError(
+                f"the linkage cannot be assembled here ({exc}: a square root of a negative number "
+                "or a division by zero in its geometry)"
+            ) from None
         out = []
         for c in self.machine.couplings:
-            vecs = [tuple(next(numbers) for _ in range(3)) if v is not None else None for v in (c.at, c.axis, c.normal)]
+            vecs: list[Any] = [
+                (next(numbers), next(numbers), next(numbers)) if v is not None else None
+                for v in (c.at, c.axis, c.normal)
+            ]
             friction = None
             if c.friction is not None:
                 mu, radius = next(numbers), next(numbers)

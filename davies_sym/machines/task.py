@@ -67,7 +67,7 @@ def _time_samples(task: Task, values: Mapping[sympy.Symbol, float]) -> np.ndarra
 
 
 def _known_motions(
-    machine: Machine, task: Task, values: Mapping[sympy.Symbol, float]
+    machine: Machine, task: Task, values: Mapping[sympy.Symbol, float], drive_freedoms: list[str]
 ) -> Callable[[float], tuple[dict[sympy.Symbol, float], dict[str, float]]]:
     """Position values and the drive coupling's known motions at a time."""
     path = {s: e.subs(values) for s, e in task.path.items()}
@@ -75,21 +75,28 @@ def _known_motions(
     if missing:
         raise TopologyError([Problem(f"tasks.{task.name}.path", f"give {', '.join(missing)} as functions of t")], None)
     rates = {s: sympy.diff(e, TIME) for s, e in path.items()}
-    drive = next((c for c in machine.couplings if c.name == task.drive), None)
-    if drive is None:
-        raise TopologyError([Problem(f"tasks.{task.name}.drive", "name the coupling the path moves")], machine.path)
+    drive = next(c for c in machine.couplings if c.name == task.drive)
     if drive.kind == "free":
         # The velocity of the drive's point: its coordinates' derivatives along the path.
-        point = [sympy.diff(c.subs(values), s) for c in drive.at for s in machine.position]
         velocity = [
-            sum((point[3 * i + j] * rates[s] for j, s in enumerate(machine.position)), sympy.Integer(0))
-            for i in range(3)
+            sum((sympy.diff(c.subs(values), s) * rates[s] for s in machine.position), sympy.Integer(0))
+            for c in drive.at
         ]
-        names = [f"{letter}_{drive.name}" for letter in "uvw"]
-        speeds = velocity
+        names, speeds = [f"{letter}_{drive.name}" for letter in "uvw"], velocity
     else:
-        names = []
-        speeds = [rates[s] for s in machine.position]
+        # The drive's freedoms turn or slide at the rates of the position variables.
+        if len(drive_freedoms) != len(machine.position):
+            raise TopologyError(
+                [
+                    Problem(
+                        f"tasks.{task.name}.drive",
+                        f"{drive.name} has {len(drive_freedoms)} freedoms for {len(machine.position)} position "
+                        "variables; drive a free coupling or one with a freedom per variable",
+                    )
+                ],
+                machine.path,
+            )
+        names, speeds = drive_freedoms, [rates[s] for s in machine.position]
     positions = sympy.lambdify(TIME, [path[s] for s in machine.position], "math")
     speed_fn = sympy.lambdify([TIME, *machine.position], speeds, "math")
 
@@ -97,8 +104,6 @@ def _known_motions(
         where = dict(zip(machine.position, (float(v) for v in positions(t)), strict=True))
         return where, dict(zip(names, (float(v) for v in speed_fn(t, *where.values())), strict=True))
 
-    if not names:
-        raise NotCoveredError("a task drives a free coupling (the platform's point); other drives are not covered yet")
     return at
 
 
@@ -108,17 +113,21 @@ def run_task(machine: Machine, task_name: str, progress: Callable[[int, int], No
     numeric = NumericMachine(machine)
     values = {s: float(sympy.N(v)) for s, v in machine.values.items()}
     times = _time_samples(task, values)
-    state = _known_motions(machine, task, values)
+    if task.drive not in {c.name for c in machine.couplings}:
+        raise TopologyError([Problem(f"tasks.{task.name}.drive", "name the coupling the path moves")], machine.path)
+    first = {**values, **{s: float(sympy.N(e.subs(values).subs(TIME, times[0]))) for s, e in task.path.items()}}
+    try:
+        network = numeric.network(first)
+    except NotCoveredError as exc:
+        raise NotCoveredError(f"task {task_name}, step 0 (t = {times[0]:.6g} s): {exc}") from None
+    joint = next(j for j in network.joints if j.coupling == task.drive)
+    state = _known_motions(machine, task, values, [m for m, _ in joint.freedoms])
     loads = {port: sympy.lambdify(TIME, e.subs(values), "math") for port, e in task.loads.items()}
     steps: list[TaskStep] = []
     previous: PositionSolution | None = None
     for k, t in enumerate(times):
         where, motions = state(float(t))
-        network = None if previous is None else previous.network
-        known_actions = {}
-        for port, load in loads.items():
-            action = (network or numeric.network({**values, **where})).ports[port].action
-            known_actions[action] = float(load(float(t)))
+        known_actions = {network.ports[port].action: float(load(float(t))) for port, load in loads.items()}
         try:
             solution = solve_position(
                 numeric, {**values, **where}, motions, known_actions, previous.actions if previous else None
@@ -143,7 +152,8 @@ def run_task(machine: Machine, task_name: str, progress: Callable[[int, int], No
 
 def _energies(task: str, steps: list[TaskStep], loads: tuple[str, ...], times: np.ndarray) -> TaskResult:
     def integral(series: list[float]) -> float:
-        return float(np.trapezoid(series, times)) if hasattr(np, "trapezoid") else float(np.trapz(series, times))
+        values = np.asarray(series)
+        return float(np.sum((values[1:] + values[:-1]) * np.diff(times)) / 2)  # the trapezoid rule
 
     ports = tuple(steps[0].port_power)
     drivers = tuple(p for p in ports if p not in loads)

@@ -11,13 +11,15 @@ from __future__ import annotations
 
 import ast
 from collections.abc import Callable, Mapping
+from typing import Any
 
 import sympy
 
 from davies_sym.topology.expressions import MAX_LENGTH, ExpressionError, parse_expression
 
 Vector = tuple[sympy.Expr, sympy.Expr, sympy.Expr]
-Value = sympy.Expr | Vector
+#: A scalar (sympy expression) or a vector (a tuple of three).
+Value = Any
 
 #: The coordinate unit vectors, always available by name.
 AXES: dict[str, Vector] = {
@@ -67,7 +69,7 @@ class _VectorBuilder:
             value = self.build(node.operand)
             if isinstance(node.op, ast.UAdd):
                 return value
-            return tuple(-c for c in value) if isinstance(value, tuple) else -value  # type: ignore[return-value]
+            return tuple(-c for c in value) if isinstance(value, tuple) else -value
         if isinstance(node, ast.BinOp):
             return self.binary(node)
         if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and not node.keywords:
@@ -81,14 +83,14 @@ class _VectorBuilder:
             return self.scalar_leaf(node) if not self.has_vector(node) else self.scalar_op(node.op, left, right)
         if isinstance(node.op, (ast.Add, ast.Sub)) and lv and rv:
             sign = 1 if isinstance(node.op, ast.Add) else -1
-            return tuple(a + sign * b for a, b in zip(left, right, strict=True))  # type: ignore[return-value,arg-type]
+            return tuple(a + sign * b for a, b in zip(left, right, strict=True))
         if isinstance(node.op, ast.Mult) and lv != rv:
             vec, factor = (left, right) if lv else (right, left)
-            return tuple(factor * c for c in vec)  # type: ignore[return-value,union-attr,operator]
+            return tuple(factor * c for c in vec)
         if isinstance(node.op, ast.Div) and lv and not rv:
             if right == 0:
                 raise ExpressionError(f"{self.text} divides by zero")
-            return tuple(c / right for c in left)  # type: ignore[return-value,union-attr,operator]
+            return tuple(c / right for c in left)
         raise ExpressionError(
             f"{self.text}: cannot combine a vector and a scalar with {type(node.op).__name__} "
             "(add vectors to vectors; multiply or divide a vector by a scalar)"
@@ -139,7 +141,7 @@ def parse_vector(written: object, vectors: Mapping[str, Vector], symbol: Callabl
     if isinstance(written, list):
         if len(written) != 3:
             raise ExpressionError(f"a vector has three coordinates [x, y, z], got {len(written)}")
-        return tuple(parse_expression(str(c), symbol) for c in written)  # type: ignore[return-value]
+        return tuple(parse_expression(str(c), symbol) for c in written)
     if not isinstance(written, str):
         raise ExpressionError(f"expected a vector ([x, y, z] or an expression of vectors), got {written!r}")
     if len(written) > MAX_LENGTH:

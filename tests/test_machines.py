@@ -430,3 +430,75 @@ def test_machine_file_parses_the_same_from_text_and_from_disk():
     a = build_machine(parse_yaml(text, "x"))
     b = machine(SLIDER_CRANK)
     assert [c.at for c in a.couplings] == [c.at for c in b.couplings]
+
+
+# --- loop closure -----------------------------------------------------------------------
+
+CLOSED_SLIDER_CRANK = """
+format: 1
+machine: Slider-crank, the slider's position from loop closure
+source: "Laus 2011, sec. 4.2 (eq. (97) solved by the engine)"
+links: [frame, crank, rod, slider]
+reference: frame
+position: theta
+positive: [a1, a2, mu_D]
+values: {a1: 1, a2: 3, mu_D: 0.1}
+unknowns: {C_x: a1 + a2}
+closure:
+  - norm(C - B) = a2
+vectors:
+  B: [a1*cos(theta), a1*sin(theta), 0]
+  C: [C_x, 0, 0]
+couplings:
+  A: {type: revolute, links: [frame, crank], at: [0, 0, 0], axis: z}
+  B: {type: revolute, links: [crank, rod], at: B, axis: z}
+  C: {type: revolute, links: [rod, slider], at: C, axis: z}
+  D: {type: prismatic, links: [slider, frame], at: C, axis: x, friction: {mu: mu_D}}
+ports:
+  crank: {coupling: A}
+  slider: {coupling: D}
+cycle: {variable: theta, from: -pi, to: pi, steady: crank}
+"""
+
+
+@pytest.mark.parametrize("port", ["crank", "slider"])
+def test_loop_closure_solved_exactly_gives_laus_cycle_efficiency(tmp_path, port):
+    """The slider's position left unknown, fixed by |C - B| = a2: the engine solves eq. (97)
+    itself (the root nearest the guess) and the cycle efficiency is eq. (120) or (123)."""
+    path = tmp_path / "closure.yaml"
+    path.write_text(CLOSED_SLIDER_CRANK, encoding="utf-8")
+    result = run_main([path, "--quiet", "--eval", "a1=0.4", "a2=1.3", "mu_D=0.15", "--input", port])
+    assert result.returncode == 0, result.describe()
+    log = math.log((0.4 + 1.3) / (1.3 - 0.4))
+    laus = 1 - 0.15 / math.pi * log if port == "crank" else math.pi / (math.pi + 0.15 * log)
+    assert abs(float(result.stdout.splitlines()[-1]) - laus) < 1e-13
+
+
+def test_loop_closure_solved_numerically_follows_one_assembly(tmp_path):
+    """The four-bar's coupler point from two circles (no exact step): Newton at every
+    position, from the guess; the efficiency equals the free-body solution."""
+    text = FOUR_BAR.read_text(encoding="utf-8")
+    start, end = text.index("vectors:"), text.index("couplings:")
+    text = (
+        text[:start]
+        + "unknowns: {C_x: d, C_y: c}\nclosure:\n  - norm(C - B) = b\n  - norm(C - D) = c\n"
+        + "vectors:\n  B: [a*cos(theta), a*sin(theta), 0]\n  D: [d, 0, 0]\n  C: [C_x, C_y, 0]\n"
+        + text[end:]
+    )
+    path = tmp_path / "four_bar.yaml"
+    path.write_text(text, encoding="utf-8")
+    for theta in (1.0, -2.0, 2.5):
+        result = run_main([path, "--quiet", "--eval", f"theta={theta}"])
+        assert result.returncode == 0, result.describe()
+        expected = four_bar(1, 3, 2.5, 3, theta, 0.2, (0.05,) * 4, driver="crank").efficiency
+        assert abs(float(result.stdout.splitlines()[-1]) - expected) < 1e-10
+
+
+def test_loop_closure_without_solution_is_exit_3_and_miscounted_is_exit_2(tmp_path):
+    path = tmp_path / "closure.yaml"
+    path.write_text(CLOSED_SLIDER_CRANK.replace("values: {a1: 1, a2: 3", "values: {a1: 3, a2: 1"), encoding="utf-8")
+    result = run_main([path, "--quiet", "--eval", "theta=1.2"])
+    assert result.returncode == 3, result.describe()
+    path.write_text(CLOSED_SLIDER_CRANK.replace("  - norm(C - B) = a2\n", ""), encoding="utf-8")
+    result = run_main([path, "--quiet"])
+    assert result.returncode == 2 and "closure" in result.stderr, result.describe()

@@ -12,7 +12,7 @@ import sympy
 
 from davies_sym.cli.arguments import figure_suffix
 from davies_sym.emit.machine_report import closed_form_json, closed_form_text, task_json, task_text
-from davies_sym.errors import InputError, NotCoveredError, Problem
+from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import ClosedForms, derive_closed_forms
 from davies_sym.machines.cycle import CycleEfficiency, cycle_efficiency
 from davies_sym.machines.model import Machine
@@ -199,8 +199,12 @@ def machine_document(machine: Machine, as_json: bool, progress: Progress) -> str
     cycles = {}
     if machine.cycle is not None:
         sample = machine.sample()
-        for direction in forms.directions:
-            cycles[direction.input] = cycle_efficiency(direction, machine.cycle, sample)
+        try:
+            for direction in forms.directions:
+                cycles[direction.input] = cycle_efficiency(direction, machine.cycle, sample)
+        except MissingValuesError as exc:
+            progress(f"no cycle efficiency: {exc.problems[0].message}")
+            cycles = {}
     if as_json:
         return json.dumps(closed_form_json(forms, cycles), indent=2) + "\n"
     return closed_form_text(forms, cycles)

@@ -17,6 +17,7 @@ from itertools import product
 import sympy
 
 from davies_sym.errors import NotCoveredError
+from davies_sym.machines.closure import solve_closure
 from davies_sym.machines.linear import solve_exact
 from davies_sym.machines.model import Machine
 from davies_sym.machines.network import Network, build_network
@@ -146,6 +147,12 @@ def sign_free(expr: sympy.Expr) -> sympy.Expr:
 
 def derive_closed_forms(machine: Machine) -> ClosedForms:
     """Every friction mode's efficiency, each port taken as the input in turn."""
+    machine = solve_closure(machine)
+    if machine.unknowns:
+        names = ", ".join(u.name for u in machine.unknowns)
+        raise NotCoveredError(
+            f"the loop closure for {names} has no closed form here; evaluate at a position (--eval) or a task"
+        )
     short, abbreviations = _abbreviate(machine)
     network = build_network(short)
     if len(machine.ports) != 2:

@@ -17,7 +17,7 @@ import mpmath
 import sympy
 from sympy.integrals.manualintegrate import manualintegrate
 
-from davies_sym.errors import NotCoveredError
+from davies_sym.errors import MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import DirectionForms, ModeVariant
 from davies_sym.machines.model import Cycle
 
@@ -58,7 +58,18 @@ def _boundaries(variant: ModeVariant, cycle: Cycle, sample: dict[sympy.Symbol, s
         for factor in sympy.Mul.make_args(numerator) + sympy.Mul.make_args(denominator):
             if not factor.has(x):
                 continue
-            f = sympy.lambdify(x, factor.subs(sample), "mpmath")
+            at_sample = factor.subs(sample)
+            if at_sample.free_symbols - {x}:
+                names = ", ".join(sorted(s.name for s in at_sample.free_symbols - {x}))
+                raise MissingValuesError(
+                    [
+                        Problem(
+                            "values", f"give {names} in values: to find where the friction modes hold over the cycle"
+                        )
+                    ],
+                    None,
+                )
+            f = sympy.lambdify(x, at_sample, "mpmath")
             lo, hi = float(cycle.start.subs(sample)), float(cycle.stop.subs(sample))
             grid = [f(lo + (hi - lo) * (k + 0.5) / 400) for k in range(400)]
             if min(grid) > 0 or max(grid) < 0:

@@ -209,7 +209,7 @@ def _friction(
     turning = [(name, d) for (k, d), (name, _) in zip(free, freedoms, strict=True) if k == "R"]
     resultant = law.load == "resultant"
     for freedom, d in sliding:
-        load = tuple((name, 1) for name, fd in forces if not _parallel(fd, d, zero))
+        load: tuple[tuple[str, Any], ...] = tuple((name, 1) for name, fd in forces if not _parallel(fd, d, zero))
         out.append(
             FrictionAction(
                 _friction_name(freedom), coupling.name, force(d, coupling.at), freedom, law.mu, load, resultant

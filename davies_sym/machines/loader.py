@@ -32,6 +32,8 @@ _TOP = {
     "tasks",
     "expected",
     "positive",
+    "unknowns",
+    "closure",
 }
 _COUPLING_KEYS = {"type", "links", "at", "axis", "normal", "axes", "friction"}
 _NEEDS_AXIS = {"revolute", "prismatic", "cylindrical", "square_annulus", "round_annulus"}
@@ -119,6 +121,12 @@ def build_machine(doc: SourceDocument) -> Machine:
         vec = r.vector(f"vectors.{name}", written)
         if vec is not None:
             r.vectors[name] = vec
+    unknowns: dict[sympy.Symbol, sympy.Expr] = {}
+    for name, written in r.mapping("unknowns", data.get("unknowns")).items():
+        guess = r.scalar(f"unknowns.{name}", written)
+        if guess is not None:
+            unknowns[r.symbol(name)] = guess
+    closure = _closure(r, data.get("closure"), unknowns)
     couplings = tuple(
         c
         for name, written in r.mapping("couplings", data.get("couplings")).items()
@@ -157,8 +165,33 @@ def build_machine(doc: SourceDocument) -> Machine:
         cycle=cycle,
         expected=expected,
         vectors=dict(r.vectors),
+        unknowns=unknowns,
+        closure=closure,
         path=doc.name,
     )
+
+
+def _closure(r: _Reader, written: object, unknowns: dict[sympy.Symbol, sympy.Expr]) -> tuple[sympy.Expr, ...]:
+    """``closure:``: equations ``LHS = RHS`` of scalars (``norm(C - B) = a2``), one per unknown."""
+    if written is None:
+        if unknowns:
+            r.problem("unknowns", "unknowns need closure: equations that fix them (e.g. - norm(C - B) = a2)")
+        return ()
+    if not isinstance(written, list):
+        r.problem("closure", "write a list of equations, e.g. - norm(C - B) = a2")
+        return ()
+    out = []
+    for i, text in enumerate(written):
+        left, sep, right = str(text).partition("=")
+        if not sep or "=" in right:
+            r.problem(f"closure.{i}", f"write one equation LEFT = RIGHT, got {str(text)[:60]!r}")
+            continue
+        a, b = r.scalar(f"closure.{i}", left), r.scalar(f"closure.{i}", right)
+        if a is not None and b is not None:
+            out.append(a - b)
+    if len(out) == len(written) and len(out) != len(unknowns):
+        r.problem("closure", f"{len(out)} closure equations for {len(unknowns)} unknowns: give one per unknown")
+    return tuple(out)
 
 
 def _coupling(r: _Reader, name: str, written: object, links: list[str]) -> Coupling | None:

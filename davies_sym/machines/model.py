@@ -108,6 +108,10 @@ class Machine:
     cycle: Cycle | None
     expected: tuple[Expected, ...]
     vectors: dict[str, Vector] = field(default_factory=dict)
+    #: Joint coordinates left unknown, with a guess (which assembly branch), and the
+    #: loop-closure equations (expressions equal to zero) that fix them.
+    unknowns: dict[sympy.Symbol, sympy.Expr] = field(default_factory=dict)
+    closure: tuple[sympy.Expr, ...] = ()
     path: str | None = None
 
     def symbols(self) -> dict[str, sympy.Symbol]:

@@ -20,6 +20,7 @@ import numpy as np
 import sympy
 
 from davies_sym.errors import DerivationError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.machines.closure import NumericClosure, solve_closure
 from davies_sym.machines.linear import solve_numeric
 from davies_sym.machines.model import Coupling, Friction, Machine
 from davies_sym.machines.network import GraphMatrices, Network, build_network, graph_matrices
@@ -45,6 +46,7 @@ class NumericMachine:
     """The machine's geometry compiled to floating point."""
 
     def __init__(self, machine: Machine):
+        machine = solve_closure(machine)
         self.machine = machine
         self.graph: GraphMatrices = graph_matrices(machine)
         expressions: list[sympy.Expr] = []
@@ -60,9 +62,20 @@ class NumericMachine:
                 expressions.extend(p.direction)
         self.symbols = tuple(sorted(set().union(*(e.free_symbols for e in expressions)), key=str))
         self._evaluate = sympy.lambdify(self.symbols, expressions, modules="math", cse=True)
+        self.closure: NumericClosure | None = None
+        if machine.unknowns:
+            used = set().union(*(e.free_symbols for e in (*machine.closure, *machine.unknowns.values())))
+            self.closure = NumericClosure(machine, tuple(sorted(used | set(self.symbols), key=str)))
 
     def missing(self, values: Mapping[sympy.Symbol, float]) -> list[str]:
-        return [s.name for s in self.symbols if s not in values]
+        needed = set(self.symbols) | (set(self.closure.parameters) if self.closure else set())
+        return sorted(s.name for s in needed if s not in values and s not in self.machine.unknowns)
+
+    def assembled(self, values: Mapping[sympy.Symbol, float]) -> dict[sympy.Symbol, float]:
+        """``values`` with the loop closure's unknowns solved (from the last position's)."""
+        if self.closure is None:
+            return dict(values)
+        return {**values, **self.closure.solve(values)}
 
     def couplings(self, values: Mapping[sympy.Symbol, float]) -> tuple[Coupling, ...]:
         """The couplings with numbers in place of expressions."""
@@ -72,6 +85,7 @@ class NumericMachine:
                 [Problem("values", f"give {', '.join(missing)} (in values: of the file, a task's path, or --eval)")],
                 self.machine.path,
             )
+        values = self.assembled(values)
         try:
             numbers = iter(self._evaluate(*(float(values[s]) for s in self.symbols)))
         except (ValueError, ZeroDivisionError) as exc:
@@ -97,6 +111,7 @@ class NumericMachine:
 
     def ports(self, values: Mapping[sympy.Symbol, float]) -> Machine:
         """The machine with numeric port directions."""
+        values = self.assembled(values)
         args = [float(values[s]) for s in self.symbols]
         numbers = self._evaluate(*args)
         k = sum(

@@ -502,3 +502,31 @@ def test_loop_closure_without_solution_is_exit_3_and_miscounted_is_exit_2(tmp_pa
     path.write_text(CLOSED_SLIDER_CRANK.replace("  - norm(C - B) = a2\n", ""), encoding="utf-8")
     result = run_main([path, "--quiet"])
     assert result.returncode == 2 and "closure" in result.stderr, result.describe()
+
+
+def test_slider_height_moves_the_friction_to_the_pressed_face_and_leaves_eq_120(tmp_path):
+    """Laus sec. 4.2.5: the friction force placed on the guide face the normal force presses
+    (half the slider's height off the axis, Fig. 14) changes the torque T_D the pair carries,
+    by (h/2)|U_DF| (the slider's moment balance), and not the efficiency (eqs. (117), (120))."""
+    text = SLIDER_CRANK.read_text(encoding="utf-8").replace("friction: {mu: mu_D}", "friction: {mu: mu_D, height: h}")
+    path = tmp_path / "tall.yaml"
+    path.write_text(text, encoding="utf-8")
+    tall = machine(path)
+    forms = derive_closed_forms(tall)
+    assert {m.symbol.name for m in forms.modes} == {"a_D", "s_D"}
+    plain = derive_closed_forms(machine(SLIDER_CRANK))
+    for port in ("crank", "slider"):
+        reference = {v.efficiency for v in plain.direction(port).variants}
+        assert {v.efficiency for v in forms.direction(port).variants} == reference
+    numeric = NumericMachine(tall)
+    named = {s.name: s for s in numeric.symbols}
+    for theta in (1.0, -2.0, 2.9):
+        values = {named["a1"]: 1.0, named["a2"]: 3.0, named["mu_D"]: 0.1, named["h"]: 0.3, named["theta"]: theta}
+        into = numeric.network(values).ports["crank"]
+        solution = solve_position(numeric, values, {into.power_terms[0][1]: 1.0}, {into.action: 1.0})
+        assert abs(abs(solution.actions["T_D"]) - 0.15 * abs(solution.actions["U_DF"])) < 1e-12
+        eta = -solution.port_power["slider"] / solution.port_power["crank"]
+        by, root = math.sin(theta), math.sqrt(9 - math.sin(theta) ** 2)
+        assert abs(eta - (1 - 0.1 * abs(by) / root)) < 1e-12  # Laus eq. (117), a = sign(theta)
+    result = run_main([path, "--quiet", "--eval", "a1=1", "a2=3", "mu_D=0.1", "h=0.3"])
+    assert abs(float(result.stdout.splitlines()[-1]) - (1 - 0.1 / math.pi * math.log(2))) < 1e-13

@@ -78,8 +78,15 @@ def _closed(machine: Machine) -> tuple[ClosedForms | None, str | None]:
         return None, str(exc)
 
 
-def _missing(expr: sympy.Expr, values: dict[sympy.Symbol, sympy.Expr], path: str | None) -> None:
-    left = sorted(s.name for s in expr.subs(values).free_symbols)
+def _missing(
+    expr: sympy.Expr,
+    values: dict[sympy.Symbol, sympy.Expr],
+    path: str | None,
+    free: frozenset[sympy.Symbol] = frozenset(),
+) -> None:
+    """Refuse an evaluation that leaves names of ``expr`` without values (``free``: those
+    that vary, as the cycle's variable)."""
+    left = sorted(s.name for s in expr.free_symbols - set(values) - free)
     if left:
         raise InputError([Problem("--eval", f"give {', '.join(f'{n}=...' for n in left)}")], path)
 
@@ -100,8 +107,8 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
                 return _checked(eta, f"input {port}, output {direction.output}; friction mode {signs}", port)
         raise NotCoveredError("no friction mode is consistent here: the machine locks (self-locking)")
     if forms is not None and machine.cycle is not None:
-        needed = sympy.Add(*(v.efficiency for v in forms.direction(port).variants))
-        _missing(needed, {**values, machine.cycle.variable: 0}, machine.path)
+        for variant in forms.direction(port).variants:
+            _missing(variant.efficiency, values, machine.path, frozenset({machine.cycle.variable}))
         cycle = cycle_efficiency(forms.direction(port), machine.cycle, values)
         eta = cycle.evaluate(values)
         return _checked(eta, f"input {port}; efficiency over one cycle ({_cycle_source(cycle)})", port)

@@ -75,7 +75,12 @@ def closed_form_text(forms: ClosedForms, cycles: Mapping[str, CycleEfficiency]) 
         lines.append("geometry: " + ", ".join(f"{k} = {v}" for k, v in forms.abbreviations.items()))
     lines.append(
         "friction modes: "
-        + ", ".join(f"{m.symbol} = sign({m.motion}) sign({m.load})" for m in forms.modes)
+        + ", ".join(
+            f"{m.symbol} = sign({m.motion}) sign({m.load})"
+            if m.motion is not None
+            else f"{m.symbol} = sign({m.load}) (the face it presses)"
+            for m in forms.modes
+        )
         + " (Laus eqs. (98) and (107))"
     )
     for direction in forms.directions:

@@ -26,11 +26,12 @@ from davies_sym.machines.vectors import Vector
 
 @dataclass(frozen=True)
 class FrictionMode:
-    """One sign product: ``symbol = sign(motion) * sign(load)``."""
+    """One sign product: ``symbol = sign(motion) * sign(load)``; with no motion, the sign
+    of the load alone (which face of a slider it presses, Laus Fig. 14)."""
 
     symbol: sympy.Symbol
     friction: str
-    motion: str
+    motion: str | None
     load: str
 
 
@@ -103,17 +104,13 @@ def _modes(network: Network) -> tuple[FrictionMode, ...]:
         for load, _ in f.load:
             modes.append((f.coupling, f, load))
     per_coupling = {c: sum(1 for m in modes if m[0] == c) for c, _, _ in modes}
-    return tuple(
-        FrictionMode(
-            sympy.Symbol(
-                f"a_{c}" if per_coupling[c] == 1 else f"a_{f.name.split('_', 1)[1]}_{load.split('_', 1)[1]}", real=True
-            ),
-            f.name,
-            f.freedom,
-            load,
-        )
-        for c, f, load in modes
-    )
+    out = []
+    for c, f, load in modes:
+        suffix = c if per_coupling[c] == 1 else f"{f.name.split('_', 1)[1]}_{load.split('_', 1)[1]}"
+        out.append(FrictionMode(sympy.Symbol(f"a_{suffix}", real=True), f.name, f.freedom, load))
+        if f.shift is not None:
+            out.append(FrictionMode(sympy.Symbol(f"s_{suffix}", real=True), f.name, None, load))
+    return tuple(out)
 
 
 def constitutive_rows(network: Network, modes: tuple[FrictionMode, ...]) -> sympy.Matrix:
@@ -122,9 +119,19 @@ def constitutive_rows(network: Network, modes: tuple[FrictionMode, ...]) -> symp
     for r, f in enumerate(network.friction):
         rows[r, network.action_index(f.name)] = 1
         for load, weight in f.load:
-            mode = next(m for m in modes if m.friction == f.name and m.load == load)
+            mode = next(m for m in modes if m.friction == f.name and m.load == load and m.motion is not None)
             rows[r, network.action_index(load)] += f.coefficient * weight * mode.symbol
     return rows
+
+
+def shifted_actions(network: Network, modes: tuple[FrictionMode, ...]) -> sympy.Matrix:
+    """A_N with each slider face's friction on the face its load's sign presses."""
+    matrix = network.action_matrix.copy()
+    for f in network.friction:
+        if f.name in network.shifts:
+            face = next(m for m in modes if m.friction == f.name and m.motion is None)
+            matrix[:, network.action_index(f.name)] += face.symbol * network.shifts[f.name]
+    return matrix
 
 
 def sign_free(expr: sympy.Expr) -> sympy.Expr:
@@ -158,7 +165,7 @@ def derive_closed_forms(machine: Machine) -> ClosedForms:
     if len(machine.ports) != 2:
         raise NotCoveredError("a closed form is derived for machines with two ports (an input and an output)")
     modes = _modes(network)
-    d_a = network.action_matrix.col_join(constitutive_rows(network, modes))
+    d_a = shifted_actions(network, modes).col_join(constitutive_rows(network, modes))
     directions = []
     for port in machine.ports:
         other = next(p for p in machine.ports if p.name != port.name)
@@ -176,7 +183,12 @@ def derive_closed_forms(machine: Machine) -> ClosedForms:
         for signs in product((1, -1), repeat=len(modes)):
             chosen = {m.symbol: s for m, s in zip(modes, signs, strict=True)}
             conditions = tuple(
-                sign_free((s * motions[m.motion] * actions[m.load]).subs(unit).subs(chosen).subs(abbreviations))
+                sign_free(
+                    (s * (motions[m.motion] if m.motion is not None else 1) * actions[m.load])
+                    .subs(unit)
+                    .subs(chosen)
+                    .subs(abbreviations)
+                )
                 for m, s in zip(modes, signs, strict=True)
             )
             if any(c.is_number and c <= 0 for c in conditions):

@@ -86,6 +86,10 @@ class FrictionAction:
     coefficient: sympy.Expr
     load: tuple[tuple[str, sympy.Expr], ...]
     resultant: bool
+    #: A slider of some height: the friction acts on the face its one load presses, half
+    #: the height off the axis (Laus sec. 4.1.1, Fig. 14); the wrench is ``screw +
+    #: sign(load) * shift``.
+    shift: Screw | None = None
 
 
 @dataclass(frozen=True)
@@ -210,11 +214,19 @@ def _friction(
     resultant = law.load == "resultant"
     for freedom, d in sliding:
         load: tuple[tuple[str, Any], ...] = tuple((name, 1) for name, fd in forces if not _parallel(fd, d, zero))
-        out.append(
-            FrictionAction(
-                _friction_name(freedom), coupling.name, force(d, coupling.at), freedom, law.mu, load, resultant
-            )
-        )
+        base = force(d, coupling.at)
+        if law.height is None:
+            out.append(FrictionAction(friction_name(freedom), coupling.name, base, freedom, law.mu, load, resultant))
+            continue
+        # One friction force per pressed face: the normal force along n_k presses the face
+        # at sign(Q_k) h/2 along n_k, where the friction force acts (Laus Fig. 14).
+        normals = {name: fd for name, fd in forces}
+        for i, (name, weight) in enumerate(load, start=1):
+            half = law.height / 2
+            moment = cross(normals[name], d)
+            shift = (half * moment[0], half * moment[1], half * moment[2], 0, 0, 0)
+            label = friction_name(freedom) + (str(i) if len(load) > 1 else "")
+            out.append(FrictionAction(label, coupling.name, base, freedom, law.mu, ((name, weight),), resultant, shift))
     if law.pin_radius is not None and coupling.kind in ("revolute", "universal", "cylindrical"):
         exact = zero is exactly_zero
         multipliers = (PIN_MULTIPLIERS if exact else _FLOAT_MULTIPLIERS)[law.surfaces]
@@ -224,13 +236,13 @@ def _friction(
             )
             out.append(
                 FrictionAction(
-                    _friction_name(freedom), coupling.name, torque(d), freedom, law.mu * law.pin_radius, load, resultant
+                    friction_name(freedom), coupling.name, torque(d), freedom, law.mu * law.pin_radius, load, resultant
                 )
             )
     return tuple(out)
 
 
-def _friction_name(freedom: str) -> str:
+def friction_name(freedom: str) -> str:
     """``t_A`` -> ``T_AF``, ``p_A1`` -> ``P_AF1`` (Laus Table 10)."""
     letter, _, rest = freedom.partition("_")
     digits = rest[len(rest.rstrip("0123456789")) :]

@@ -241,6 +241,12 @@ def _friction(r: _Reader, entry: str, written: object, kind: str) -> Friction | 
         return None
     mu = r.scalar(f"{entry}.mu", spec["mu"])
     radius = r.scalar(f"{entry}.pin_radius", spec["pin_radius"]) if "pin_radius" in spec else None
+    height = r.scalar(f"{entry}.height", spec["height"]) if "height" in spec else None
+    if height is not None and kind in ("revolute", "universal"):
+        r.problem(f"{entry}.height", "height: is a slider's (prismatic, cylindrical, annulus); a pin has pin_radius:")
+    for key in spec:
+        if key not in ("mu", "pin_radius", "surfaces", "load", "height"):
+            r.problem(f"{entry}.{key}", f"unknown entry {key!r} (write mu, pin_radius, surfaces, load, height)")
     if kind in ("revolute", "universal") and radius is None:
         r.problem(entry, f"a {kind} joint's friction needs pin_radius: (the Coulomb moment arm, Laus App. D)")
     surfaces, load = str(spec.get("surfaces", "worn")), str(spec.get("load", "sum"))
@@ -251,7 +257,9 @@ def _friction(r: _Reader, entry: str, written: object, kind: str) -> Friction | 
         )
     if load not in ("sum", "resultant"):
         r.problem(f"{entry}.load", "write sum (Laus eqs. (127)-(129)) or resultant (eq. (133))")
-    return Friction(mu, radius, surfaces, load) if mu is not None else None
+    if height is not None and load == "resultant":
+        r.problem(f"{entry}.height", "a slider's height places one friction force per pressed face: use load: sum")
+    return Friction(mu, radius, surfaces, load, height) if mu is not None else None
 
 
 def _port(r: _Reader, name: str, written: object, couplings: set[str]) -> Port | None:

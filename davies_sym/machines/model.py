@@ -19,13 +19,16 @@ class Friction:
     ``load`` says how the normal load is formed from the transmitted forces: ``sum`` of
     their magnitudes (eqs. (127)-(129)) or their ``resultant`` (eq. (133)).  ``surfaces``
     picks the multipliers of App. D for pins: ``worn`` (cosine law, 4/pi on a half
-    cylinder, eq. (146) on a flat face) or ``new`` (uniform law, pi/2 and eq. (145)).
+    cylinder, eq. (146) on a flat face), ``new`` (uniform law, pi/2 and eq. (145)) or
+    ``clearance`` (line contact, 1).
     """
 
     mu: sympy.Expr
     pin_radius: sympy.Expr | None = None
     surfaces: str = "worn"
     load: str = "sum"
+    #: A slider's height: its friction forces act on the pressed faces, not on the axis.
+    height: sympy.Expr | None = None
 
 
 @dataclass(frozen=True)
@@ -122,10 +125,12 @@ class Machine:
                 if vec is not None:
                     found |= set().union(*(e.free_symbols for e in vec))
             if c.friction is not None:
-                found |= c.friction.mu.free_symbols
-                if c.friction.pin_radius is not None:
-                    found |= c.friction.pin_radius.free_symbols
-        return {s.name: s for s in found}
+                for value in (c.friction.mu, c.friction.pin_radius, c.friction.height):
+                    if value is not None:
+                        found |= value.free_symbols
+        for e in (*self.closure, *self.unknowns.values()):
+            found |= e.free_symbols
+        return {s.name: s for s in found if s not in self.unknowns}
 
     def sample(self) -> dict[sympy.Symbol, sympy.Expr]:
         """Values at which the friction modes' regions over a cycle are found: the file's

@@ -11,7 +11,7 @@ neglects (sec. 4.2) and are dropped with the friction loads they would carry.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import networkx as nx
@@ -27,6 +27,7 @@ from davies_sym.machines.joints import (
     axis_name,
     exactly_zero,
     force,
+    friction_name,
     joint_screws,
     numerically_zero,
     torque,
@@ -63,6 +64,9 @@ class Network:
     friction: tuple[FrictionAction, ...]
     joints: tuple[JointScrews, ...]
     tree: tuple[str, ...]
+    #: For a slider's face friction: the A_N column to add times sign(load) (its wrench's
+    #: moment moves with the pressed face).
+    shifts: dict[str, Any]
 
     def action_index(self, name: str) -> int:
         return self.actions.index(name)
@@ -115,6 +119,7 @@ def _floating(joint: JointScrews) -> JointScrews:
                 float(f.coefficient),
                 tuple((n, float(w)) for n, w in f.load),
                 f.resultant,
+                None if f.shift is None else screw(f.shift),
             )
             for f in joint.friction
         ),
@@ -167,6 +172,7 @@ def build_network(
     wrench_columns: list[tuple[int, Screw]] = []
     ports: dict[str, PortAction] = {}
     friction: list[FrictionAction] = []
+    shift_columns: dict[str, tuple[int, Screw]] = {}
     for j, (coupling, joint) in enumerate(zip(couplings, joints, strict=True)):
         for name, twist in joint.freedoms:
             motions.append(name)
@@ -184,11 +190,18 @@ def build_network(
             wrench_columns.append((j, wrench))
             terms = tuple((sympy.expand(sum(wrench[i] * twist[i] for i in range(6))), m) for m, twist in joint.freedoms)
             ports[port.name] = PortAction(port.name, name, coupling.name, tuple(t for t in terms if t[0] != 0))
+        faces = [f for f in joint.friction if f.shift is not None and any(n in kept for n, _ in f.load)]
         for f in joint.friction:
             load = tuple((name, w) for name, w in f.load if name in kept)
-            friction.append(FrictionAction(f.name, f.coupling, f.screw, f.freedom, f.coefficient, load, f.resultant))
+            if f.shift is not None and not load:
+                continue  # the face of a force the screw system drops carries nothing
+            if f.shift is not None and sum(1 for g in faces if g.freedom == f.freedom) == 1:
+                f = replace(f, name=friction_name(f.freedom))  # one face left: no number
+            friction.append(replace(f, load=load))
             actions.append(f.name)
             wrench_columns.append((j, f.screw))
+            if f.shift is not None:
+                shift_columns[f.name] = (j, f.shift)
 
     def blocks(matrix: tuple[tuple[int, ...], ...], columns: list[tuple[int, Screw]]) -> Any:
         out = np.zeros((len(matrix) * d, len(columns))) if numeric else sympy.zeros(len(matrix) * d, len(columns))
@@ -210,4 +223,5 @@ def build_network(
         friction=tuple(friction),
         joints=tuple(joints),
         tree=graph.tree,
+        shifts={name: blocks(graph.cutsets, [column]) for name, column in shift_columns.items()},
     )

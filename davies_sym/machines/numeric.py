@@ -21,6 +21,7 @@ import sympy
 
 from davies_sym.errors import DerivationError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closure import NumericClosure, solve_closure
+from davies_sym.machines.joints import FrictionAction
 from davies_sym.machines.linear import solve_numeric
 from davies_sym.machines.model import Coupling, Friction, Machine
 from davies_sym.machines.network import GraphMatrices, Network, build_network, graph_matrices
@@ -57,6 +58,7 @@ class NumericMachine:
             if c.friction is not None:
                 expressions.append(c.friction.mu)
                 expressions.append(c.friction.pin_radius if c.friction.pin_radius is not None else sympy.Integer(0))
+                expressions.append(c.friction.height if c.friction.height is not None else sympy.Integer(0))
         for p in machine.ports:
             if p.direction is not None:
                 expressions.extend(p.direction)
@@ -101,9 +103,10 @@ class NumericMachine:
             ]
             friction = None
             if c.friction is not None:
-                mu, radius = next(numbers), next(numbers)
+                mu, radius, height = next(numbers), next(numbers), next(numbers)
                 pin = radius if c.friction.pin_radius is not None else None
-                friction = Friction(mu, pin, c.friction.surfaces, c.friction.load)
+                tall = height if c.friction.height is not None else None
+                friction = Friction(mu, pin, c.friction.surfaces, c.friction.load, tall)
             out.append(replace(c, at=vecs[0], axis=vecs[1], normal=vecs[2], friction=friction))
         if any(isinstance(x, complex) for c in out for v in (c.at, c.axis, c.normal) if v for x in v):
             raise NotCoveredError("the linkage cannot be assembled here")
@@ -115,7 +118,7 @@ class NumericMachine:
         args = [float(values[s]) for s in self.symbols]
         numbers = self._evaluate(*args)
         k = sum(
-            sum(3 for v in (c.at, c.axis, c.normal) if v is not None) + (2 if c.friction else 0)
+            sum(3 for v in (c.at, c.axis, c.normal) if v is not None) + (3 if c.friction else 0)
             for c in self.machine.couplings
         )
         ports = []
@@ -154,6 +157,24 @@ def _friction_rows(
     return rows
 
 
+def _face_sign(f: FrictionAction, guess: Mapping[str, float], scale: float) -> float:
+    """sign(load) of a slider face's friction: which face the one load presses."""
+    value = guess.get(f.load[0][0], 0.0)
+    return 0.0 if abs(value) <= 1e-12 * scale else float(np.sign(value))
+
+
+def _shifted(network: Network, guess: Mapping[str, float], scale: float) -> np.ndarray:
+    """A_N with each slider face's friction on the face its load presses at ``guess``."""
+    if not network.shifts:
+        return np.asarray(network.action_matrix)
+    matrix = np.array(network.action_matrix, dtype=float)
+    for f in network.friction:
+        if f.name in network.shifts:
+            column = network.action_index(f.name)
+            matrix[:, column] += _face_sign(f, guess, scale) * np.asarray(network.shifts[f.name])[:, 0]
+    return matrix
+
+
 def _settled(network: Network, old: Mapping[str, float], new: Mapping[str, float], scale: float) -> bool:
     for f in network.friction:
         for name, _ in f.load:
@@ -177,7 +198,7 @@ def _actions(
     def settle(guess: Mapping[str, float], weight: float) -> tuple[dict[str, float] | None, int]:
         for round_ in range(1, ROUNDS + 1):
             rows = _friction_rows(network, motions, guess, scale, weight)
-            matrix = np.vstack([network.action_matrix, rows])
+            matrix = np.vstack([_shifted(network, guess, scale), rows])
             solution = solve_numeric(matrix, network.actions, known, "actions")
             if _settled(network, guess, solution, scale):
                 return solution, round_

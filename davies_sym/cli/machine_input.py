@@ -14,7 +14,7 @@ from davies_sym.cli.arguments import figure_suffix
 from davies_sym.emit.machine_report import closed_form_json, closed_form_text, task_json, task_text
 from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import ClosedForms, derive_closed_forms
-from davies_sym.machines.cycle import CycleEfficiency, cycle_efficiency
+from davies_sym.machines.cycle import CycleEfficiency, check_assembles, cycle_efficiency
 from davies_sym.machines.model import Machine
 from davies_sym.machines.numeric import NumericMachine, solve_position
 from davies_sym.machines.task import run_task
@@ -96,6 +96,7 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
     port = _input_port(machine, args)
     at_position = all(s in values for s in machine.position)
     if forms is not None and at_position:
+        _assembles(machine, values)
         direction = forms.direction(port)
         for variant in direction.variants:
             for c in variant.conditions:
@@ -109,6 +110,7 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
     if forms is not None and machine.cycle is not None:
         for variant in forms.direction(port).variants:
             _missing(variant.efficiency, values, machine.path, frozenset({machine.cycle.variable}))
+        check_assembles(machine, machine.cycle, values)
         cycle = cycle_efficiency(forms.direction(port), machine.cycle, values)
         eta = cycle.evaluate(values)
         return _checked(eta, f"input {port}; efficiency over one cycle ({_cycle_source(cycle)})", port)
@@ -118,6 +120,14 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
             machine.path,
         )
     return _numeric(machine, values, port)
+
+
+def _assembles(machine: Machine, values: dict[sympy.Symbol, sympy.Expr]) -> None:
+    """Refuse a position where the linkage cannot be assembled (or leaves its limits)."""
+    numeric = NumericMachine(machine)
+    missing = numeric.missing(values)
+    if not missing:
+        numeric.couplings({s: float(sympy.N(v)) for s, v in values.items()})
 
 
 def _cycle_source(cycle: CycleEfficiency) -> str:

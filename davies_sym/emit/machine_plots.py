@@ -27,6 +27,11 @@ def task_figure(machine: Machine, result: TaskResult, suffix: str) -> bytes:
     axes.axhline(0.0, color="grey", linewidth=0.5)
     axes.set_xlabel("time (s)")
     axes.set_ylabel("power (W)")
-    axes.set_title(f"{machine.name}: task {result.task}, efficiency {result.efficiency:.4f}")
+    summary = (
+        f"efficiency {result.efficiency:.4f}"
+        if result.delivered != 0
+        else f"closed path, {sum(result.lost.values()):.0f} J lost"
+    )
+    axes.set_title(f"{machine.name}: task {result.task}, {summary}")
     axes.legend(loc="best", fontsize="small")
     return figure_bytes(figure, suffix)

@@ -153,9 +153,27 @@ def task_text(machine: Machine, result: TaskResult) -> str:
     for coupling, lost in result.lost.items():
         share = lost / total_lost if total_lost > 0 else 0.0
         lines.append(f"  {coupling}: {lost:.3f} J ({100 * share:.2f} %)")
-    lines.append(f"task efficiency (delivered over supplied): {result.efficiency:.6g}")
+    by_kind = lost_by_kind(machine, result)
+    if len(by_kind) > 1 and total_lost > 0:
+        lines.append(
+            "lost by coupling type: "
+            + ", ".join(f"{kind} {100 * lost / total_lost:.2f} %" for kind, lost in by_kind.items())
+        )
+    closed = " (a closed path: the loads end where they started, all the energy supplied is lost)"
+    note = closed if result.delivered == 0 else ""
+    lines.append(f"task efficiency (delivered over supplied): {result.efficiency:.6g}{note}")
     lines.append(repr(result.efficiency))
     return "\n".join(lines) + "\n"
+
+
+def lost_by_kind(machine: Machine, result: TaskResult) -> dict[str, float]:
+    """The energy lost per coupling type (Laus sec. 4.3.4.2 gives the prismatic share),
+    largest first."""
+    out: dict[str, float] = {}
+    for coupling, lost in result.lost.items():
+        kind = machine.coupling(coupling).kind
+        out[kind] = out.get(kind, 0.0) + lost
+    return dict(sorted(out.items(), key=lambda item: -item[1]))
 
 
 def task_json(machine: Machine, result: TaskResult) -> dict[str, Any]:
@@ -168,6 +186,7 @@ def task_json(machine: Machine, result: TaskResult) -> dict[str, Any]:
         "supplied_energy": result.supplied,
         "delivered_energy": result.delivered,
         "lost_energy": result.lost,
+        "lost_energy_by_type": lost_by_kind(machine, result),
         "efficiency": result.efficiency,
         "steps": [
             {

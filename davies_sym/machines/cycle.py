@@ -19,7 +19,11 @@ from sympy.integrals.manualintegrate import manualintegrate
 
 from davies_sym.errors import MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import DirectionForms, ModeVariant
-from davies_sym.machines.model import Cycle
+from davies_sym.machines.model import Cycle, Machine
+from davies_sym.machines.numeric import NumericMachine
+
+#: Positions of a cycle at which the linkage must assemble before its efficiency is given.
+ASSEMBLY_SAMPLES = 721
 
 
 @dataclass(frozen=True)
@@ -37,7 +41,13 @@ class CycleEfficiency:
 
     def evaluate(self, values: dict[sympy.Symbol, sympy.Expr]) -> float:
         if self.closed is not None:
-            return float(sympy.N(self.closed.subs(values), 30))
+            value = sympy.N(self.closed.subs(values), 30)
+            if not (value.is_real and value.is_finite):
+                raise NotCoveredError(
+                    f"the cycle efficiency is not a finite real number here ({value}): "
+                    "the cycle passes through a singular position"
+                )
+            return float(value)
         total = mpmath.mpf(0)
         for integrand, interval in self.pieces:
             f = sympy.lambdify(self.variable, integrand.subs(values), "mpmath")
@@ -45,6 +55,20 @@ class CycleEfficiency:
             total += mpmath.quad(f, [lo, hi])
         length = float(sympy.N(self.length.subs(values)))
         return float(total / length if self.steady_is_input else length / total)
+
+
+def check_assembles(machine: Machine, cycle: Cycle, values: dict[sympy.Symbol, sympy.Expr]) -> None:
+    """Refuse a cycle the linkage cannot run through: it must assemble, within its
+    limits, at every sampled position (a crank longer than its rod has no full turn)."""
+    numeric = NumericMachine(machine)
+    floats = {s: float(sympy.N(v)) for s, v in values.items() if s != cycle.variable}
+    lo, hi = (float(sympy.N(e.subs(values))) for e in (cycle.start, cycle.stop))
+    for k in range(ASSEMBLY_SAMPLES):
+        at = lo + (hi - lo) * k / (ASSEMBLY_SAMPLES - 1)
+        try:
+            numeric.couplings({**floats, cycle.variable: at})
+        except NotCoveredError as exc:
+            raise NotCoveredError(f"no cycle efficiency: at {cycle.variable} = {at:.6g} {exc}") from None
 
 
 def _boundaries(variant: ModeVariant, cycle: Cycle, sample: dict[sympy.Symbol, sympy.Expr]) -> list[sympy.Expr]:

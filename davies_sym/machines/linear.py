@@ -60,3 +60,15 @@ def solve_numeric(matrix: np.ndarray, names: Sequence[str], known: Mapping[str, 
     for i, value in zip(unknown, x, strict=True):
         out[names[i]] = float(value)
     return out
+
+
+def orientation(matrix: np.ndarray, names: Sequence[str], known: Mapping[str, float]) -> float:
+    """The sign of the determinant of the square system ``solve_numeric`` solves (0 when
+    it is not square).  Along a path it changes only where the system is singular: two
+    neighbouring positions of opposite sign have a singular position between them."""
+    unknown = [i for i, n in enumerate(names) if n not in known]
+    system = np.asarray(matrix, dtype=float)[:, unknown]
+    if system.shape[0] != system.shape[1]:
+        return 0.0
+    sign, _ = np.linalg.slogdet(system)
+    return float(sign)

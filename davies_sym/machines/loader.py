@@ -5,13 +5,14 @@ A machine file is told from a gear-train file by its ``machine:`` entry (the nam
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from typing import Any
 
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
-from davies_sym.machines.model import KINDS, Coupling, Cycle, Expected, Friction, Machine, Port, Task
+from davies_sym.machines.model import KINDS, Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
 from davies_sym.machines.vectors import AXES, Vector, parse_scalar, parse_vector
 from davies_sym.topology.expressions import ExpressionError
 from davies_sym.topology.yaml_source import SourceDocument
@@ -34,6 +35,7 @@ _TOP = {
     "positive",
     "unknowns",
     "closure",
+    "limits",
 }
 _COUPLING_KEYS = {"type", "links", "at", "axis", "normal", "axes", "friction"}
 _NEEDS_AXIS = {"revolute", "prismatic", "cylindrical", "square_annulus", "round_annulus"}
@@ -127,6 +129,7 @@ def build_machine(doc: SourceDocument) -> Machine:
         if guess is not None:
             unknowns[r.symbol(name)] = guess
     closure = _closure(r, data.get("closure"), unknowns)
+    limits = _limits(r, data.get("limits"))
     couplings = tuple(
         c
         for name, written in r.mapping("couplings", data.get("couplings")).items()
@@ -167,6 +170,7 @@ def build_machine(doc: SourceDocument) -> Machine:
         vectors=dict(r.vectors),
         unknowns=unknowns,
         closure=closure,
+        limits=limits,
         path=doc.name,
     )
 
@@ -191,6 +195,23 @@ def _closure(r: _Reader, written: object, unknowns: dict[sympy.Symbol, sympy.Exp
             out.append(a - b)
     if len(out) == len(written) and len(out) != len(unknowns):
         r.problem("closure", f"{len(out)} closure equations for {len(unknowns)} unknowns: give one per unknown")
+    return tuple(out)
+
+
+def _limits(r: _Reader, written: object) -> tuple[Limit, ...]:
+    """``limits:``: named inequalities ``LEFT < RIGHT`` (or ``>``) of scalars that hold
+    wherever the machine is assembled as modelled (``stroke: norm(d1) < l_B + l_C``)."""
+    out = []
+    for name, text in r.mapping("limits", written).items():
+        entry = f"limits.{name}"
+        parts = re.split(r"(<=|>=|<|>)", str(text))
+        if len(parts) != 3:
+            r.problem(entry, f"write one inequality LEFT < RIGHT or LEFT > RIGHT, got {str(text)[:60]!r}")
+            continue
+        left, sign, right = parts
+        a, b = r.scalar(entry, left), r.scalar(entry, right)
+        if a is not None and b is not None:
+            out.append(Limit(name, " ".join(str(text).split()), b - a if sign in ("<", "<=") else a - b))
     return tuple(out)
 
 

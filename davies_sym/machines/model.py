@@ -95,6 +95,17 @@ class Expected:
 
 
 @dataclass(frozen=True)
+class Limit:
+    """A bound of the workspace: ``margin`` > 0 wherever the machine is assembled as
+    modelled (a slider's stroke, a joint's range).  Outside it the network's equations
+    may still have a solution, but not one of this machine."""
+
+    name: str
+    text: str
+    margin: sympy.Expr
+
+
+@dataclass(frozen=True)
 class Machine:
     """A machine file, read: links, couplings, ports and what to derive."""
 
@@ -115,6 +126,7 @@ class Machine:
     #: loop-closure equations (expressions equal to zero) that fix them.
     unknowns: dict[sympy.Symbol, sympy.Expr] = field(default_factory=dict)
     closure: tuple[sympy.Expr, ...] = ()
+    limits: tuple[Limit, ...] = ()
     path: str | None = None
 
     def symbols(self) -> dict[str, sympy.Symbol]:

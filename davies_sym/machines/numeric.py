@@ -13,13 +13,14 @@ previous solution, as Laus's homotopy continuation does (sec. 4.3.3.4).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 import sympy
 
 from davies_sym.errors import DerivationError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.machines import passages
 from davies_sym.machines.closure import NumericClosure, solve_closure
 from davies_sym.machines.joints import FrictionAction
 from davies_sym.machines.linear import solve_numeric
@@ -41,6 +42,8 @@ class PositionSolution:
     port_power: dict[str, float]
     friction_power: dict[str, float]
     rounds: int
+    #: Signs that change only through a singular position (`passages.signs`).
+    orientation: dict[str, float] = field(default_factory=dict)
 
 
 class NumericMachine:
@@ -62,8 +65,10 @@ class NumericMachine:
         for p in machine.ports:
             if p.direction is not None:
                 expressions.extend(p.direction)
-        self.symbols = tuple(sorted(set().union(*(e.free_symbols for e in expressions)), key=str))
+        margins = [limit.margin for limit in machine.limits]
+        self.symbols = tuple(sorted(set().union(*(e.free_symbols for e in [*expressions, *margins])), key=str))
         self._evaluate = sympy.lambdify(self.symbols, expressions, modules="math", cse=True)
+        self._margins = sympy.lambdify(self.symbols, margins, modules="math", cse=True)
         self.closure: NumericClosure | None = None
         if machine.unknowns:
             used = set().union(*(e.free_symbols for e in (*machine.closure, *machine.unknowns.values())))
@@ -88,13 +93,20 @@ class NumericMachine:
                 self.machine.path,
             )
         values = self.assembled(values)
+        args = [float(values[s]) for s in self.symbols]
         try:
-            numbers = iter(self._evaluate(*(float(values[s]) for s in self.symbols)))
+            numbers = iter(self._evaluate(*args))
+            margins = self._margins(*args)
         except (ValueError, ZeroDivisionError) as exc:
             raise NotCoveredError(
                 f"the linkage cannot be assembled here ({exc}: a square root of a negative number "
                 "or a division by zero in its geometry)"
             ) from None
+        for limit, margin in zip(self.machine.limits, margins, strict=True):
+            if not float(margin) > 0:
+                raise NotCoveredError(
+                    f"outside the workspace: the limit {limit.name} ({limit.text}) does not hold here"
+                )
         out = []
         for c in self.machine.couplings:
             vecs: list[Any] = [
@@ -130,8 +142,8 @@ class NumericMachine:
                 ports.append(p)
         return replace(self.machine, ports=tuple(ports))
 
-    def network(self, values: Mapping[sympy.Symbol, float]) -> Network:
-        couplings = self.couplings(values)
+    def network(self, values: Mapping[sympy.Symbol, float], couplings: tuple[Coupling, ...] | None = None) -> Network:
+        couplings = couplings if couplings is not None else self.couplings(values)
         return build_network(self.ports(values), couplings, self.graph, numeric=True)
 
 
@@ -235,7 +247,8 @@ def solve_position(
 ) -> PositionSolution:
     """Motions and actions at one position; ``start``: the actions of a neighbouring
     position, the known problem the continuation starts from."""
-    network = numeric.network(values)
+    couplings = numeric.couplings(values)
+    network = numeric.network(values, couplings)
     motions = solve_numeric(network.motion_matrix, network.motions, known_motions, "motions")
     actions, rounds = _actions(network, motions, known_actions, start)
     port_power = {
@@ -248,7 +261,9 @@ def solve_position(
             power = actions[f.name] * sum(float(np.dot(f.screw, twist)) * motions[m] for m, twist in joint.freedoms)
             friction_power[joint.coupling] = friction_power.get(joint.coupling, 0.0) + power
     _check_balance(port_power, friction_power)
-    return PositionSolution(network, motions, actions, port_power, friction_power, rounds)
+    frictionless = np.vstack([network.action_matrix, _friction_rows(network, motions, {}, 1.0, 0.0)])
+    orientation = passages.signs(network, couplings, frictionless, known_motions, known_actions)
+    return PositionSolution(network, motions, actions, port_power, friction_power, rounds, orientation)
 
 
 def _check_balance(port_power: Mapping[str, float], friction_power: Mapping[str, float]) -> None:

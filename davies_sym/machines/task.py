@@ -18,6 +18,7 @@ import numpy as np
 import sympy
 
 from davies_sym.errors import NotCoveredError, Problem, TopologyError
+from davies_sym.machines import passages
 from davies_sym.machines.model import Machine, Task
 from davies_sym.machines.numeric import NumericMachine, PositionSolution, solve_position
 
@@ -134,6 +135,12 @@ def run_task(machine: Machine, task_name: str, progress: Callable[[int, int], No
             )
         except NotCoveredError as exc:
             raise NotCoveredError(f"task {task_name}, step {k} (t = {t:.6g} s): {exc}") from None
+        changed = passages.passed(previous.orientation, solution.orientation) if previous else []
+        if changed:
+            raise NotCoveredError(
+                f"task {task_name}, between step {k - 1} (t = {times[k - 1]:.6g} s) and step {k} (t = {t:.6g} s): "
+                f"the path passes through a singular position: {'; '.join(changed)}"
+            )
         ports = solution.network.ports
         steps.append(
             TaskStep(

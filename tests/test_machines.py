@@ -421,8 +421,8 @@ def test_bad_machine_files_are_named_with_line_and_exit_2(tmp_path, change, word
 
 
 def test_gear_train_options_are_refused_for_machines():
-    result = run_main([SLIDER_CRANK, "--latex"])
-    assert result.returncode == 2 and "--latex is for gear trains" in result.stderr
+    result = run_main([SLIDER_CRANK, "--python", "out.py"])
+    assert result.returncode == 2 and "--python is for gear trains" in result.stderr
     result = run_main([Path(CATALOG) / "tuplin.yaml", "--task", "lift"])
     assert result.returncode == 2 and "--task is for machines" in result.stderr
 

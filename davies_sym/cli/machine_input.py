@@ -11,6 +11,7 @@ from typing import Any
 import sympy
 
 from davies_sym.cli.arguments import figure_suffix
+from davies_sym.emit.machine_latex import machine_latex_document
 from davies_sym.emit.machine_report import closed_form_json, closed_form_text, task_json, task_text
 from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import ClosedForms, derive_closed_forms
@@ -24,7 +25,6 @@ Outputs = list[tuple[str | None, str | bytes]]
 Progress = Callable[[str], None]
 #: Options of gear trains that a machine does not take, and what to write instead.
 _TRAIN_ONLY = {
-    "latex": "--latex",
     "python": "--python",
     "emit": "--emit",
     "state": "--state",
@@ -194,27 +194,16 @@ def machine_outputs(machine: Machine, args: argparse.Namespace, progress: Progre
         forms, _ = _closed(machine)
         text, document = _evaluate(machine, args, forms)
         return [(None, json.dumps(document, indent=2) + "\n" if args.json else text)]
-    return [(args.out, machine_document(machine, args.json, progress))]
+    chosen = "json" if args.json else "latex" if args.latex else "text"
+    return [(args.out, machine_document(machine, chosen, progress))]
 
 
-def machine_document(machine: Machine, as_json: bool, progress: Progress) -> str:
-    """The derivation of a machine file: its closed forms per friction mode and cycle
-    efficiencies, or its summary and why it has none (then its tasks)."""
+def _derived(machine: Machine, progress: Progress) -> tuple[ClosedForms | None, str | None, dict[str, CycleEfficiency]]:
+    """The closed forms (or why there are none) and the cycle efficiencies."""
     progress("closed forms per friction mode")
     forms, reason = _closed(machine)
-    if forms is None:
-        lines = [f"machine: {machine.name}" + (f" ({machine.source})" if machine.source else "")]
-        lines.append(f"efficiency: no closed form ({reason})")
-        if machine.tasks:
-            lines.append(f"tasks: {', '.join(machine.tasks)} (derive FILE --task NAME)")
-        else:
-            lines.append("evaluate it at a position: derive FILE --eval NAME=VALUE ...")
-        body = {"status": "ok", "machine": machine.name, "closed_form": None, "reason": reason}
-        return (
-            json.dumps({**body, "tasks": list(machine.tasks)}, indent=2) + "\n" if as_json else "\n".join(lines) + "\n"
-        )
-    cycles = {}
-    if machine.cycle is not None:
+    cycles: dict[str, CycleEfficiency] = {}
+    if forms is not None and machine.cycle is not None:
         sample = machine.sample()
         try:
             for direction in forms.directions:
@@ -222,6 +211,47 @@ def machine_document(machine: Machine, as_json: bool, progress: Progress) -> str
         except MissingValuesError as exc:
             progress(f"no cycle efficiency: {exc.problems[0].message}")
             cycles = {}
-    if as_json:
-        return json.dumps(closed_form_json(forms, cycles), indent=2) + "\n"
-    return closed_form_text(forms, cycles)
+    return forms, reason, cycles
+
+
+def _render(
+    machine: Machine, derived: tuple[ClosedForms | None, str | None, dict[str, CycleEfficiency]], kind: str
+) -> str:
+    """One format (``text``, ``json``, ``latex``) of a machine's derivation: its closed
+    forms per friction mode and cycle efficiencies, or its summary and why it has none
+    (then its tasks; LaTeX is then refused)."""
+    forms, reason, cycles = derived
+    if forms is not None:
+        if kind == "json":
+            return json.dumps(closed_form_json(forms, cycles), indent=2) + "\n"
+        return machine_latex_document(forms, cycles) if kind == "latex" else closed_form_text(forms, cycles)
+    if kind == "latex":
+        raise InputError(
+            [Problem("--latex", f"the machine has no closed form to typeset ({reason}); use --eval or --task")],
+            machine.path,
+        )
+    if kind == "json":
+        body = {"status": "ok", "machine": machine.name, "closed_form": None, "reason": reason}
+        return json.dumps({**body, "tasks": list(machine.tasks)}, indent=2) + "\n"
+    lines = [f"machine: {machine.name}" + (f" ({machine.source})" if machine.source else "")]
+    lines.append(f"efficiency: no closed form ({reason})")
+    if machine.tasks:
+        lines.append(f"tasks: {', '.join(machine.tasks)} (derive FILE --task NAME)")
+    else:
+        lines.append("evaluate it at a position: derive FILE --eval NAME=VALUE ...")
+    return "\n".join(lines) + "\n"
+
+
+def machine_document(machine: Machine, kind: str, progress: Progress) -> str:
+    """The derivation of a machine file as ``text``, ``json`` or ``latex``."""
+    return _render(machine, _derived(machine, progress), kind)
+
+
+def machine_derivations(machine: Machine, stem: str, progress: Progress) -> list[tuple[str, str]]:
+    """What ``derive --out DIR`` writes of a machine: ``STEM.txt``, and ``STEM.tex``
+    where it has closed forms."""
+    derived = _derived(machine, progress)
+    written = [(f"{stem}.txt", _render(machine, derived, "text"))]
+    if derived[0] is not None:
+        written.append((f"{stem}.tex", _render(machine, derived, "latex")))
+    return written

@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
-from davies_sym.cli.machine_input import machine_document
+from davies_sym.cli.machine_input import machine_derivations
 from davies_sym.cli.messages import message
 from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
@@ -56,8 +56,7 @@ def derive_task(task: Task, progress: Progress = _silent) -> Derived:
     try:
         document = document_from_bytes(task.data, task.path)
         if is_machine(document.data):
-            text = machine_document(build_machine(document), False, progress)
-            return Derived(task.path, 0, (), ((f"{task.stem}.txt", text),))
+            return Derived(task.path, 0, (), tuple(machine_derivations(build_machine(document), task.stem, progress)))
         train = build_train(document)
         failures: list[str] = []
         written = (
@@ -125,7 +124,7 @@ def _on_cluster(tasks: Sequence[Task], address: str) -> Iterator[Derived]:
 def _clash(directory: str, stem: str, files: Sequence[str]) -> str | None:
     """An output of ``stem`` in ``directory`` that is one of the input files, if any."""
     inputs = [f for f in files if os.path.exists(f)]
-    outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py")]
+    outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py", ".txt")]
     outputs += [os.path.join(directory, o) for o in os.listdir(directory) if o.startswith(f"{stem}_")]
     return next((o for o in outputs if os.path.exists(o) and any(os.path.samefile(o, f) for f in inputs)), None)
 

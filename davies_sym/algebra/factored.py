@@ -14,8 +14,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
-from functools import reduce
-from math import gcd
 
 from flint import fmpz_mpoly
 
@@ -23,81 +21,7 @@ from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.linalg import Solution, eliminate_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
-
-#: Sums up to this many terms are factored at once; larger ones stay a single factor
-#: until the solution needs them irreducible.
-SMALL_SUM = 400
-
-Factors = tuple[tuple[fmpz_mpoly, int], ...]
-
-
-@dataclass(frozen=True, eq=False)
-class Product:
-    """``content * prod(f**e)``; each ``f`` primitive with a positive leading coefficient."""
-
-    content: int
-    factors: Factors
-
-    def expand_in(self, one: fmpz_mpoly) -> fmpz_mpoly:
-        """The expanded polynomial (``one``: the ring's 1, for a constant product)."""
-        out = one * self.content
-        for f, e in self.factors:
-            out = out * f**e
-        return out
-
-    @property
-    def size(self) -> int:
-        return sum(len(f) * e for f, e in self.factors)
-
-    def is_constant(self) -> bool:
-        return not self.factors
-
-
-def product_of(p: fmpz_mpoly) -> Product:
-    """``p`` as a product: factored by flint when small, else its content and primitive part."""
-    if len(p) <= SMALL_SUM:
-        content, factors = factor(p)
-        return Product(content, tuple(factors))
-    content = reduce(gcd, map(int, p.coeffs()))
-    if p.leading_coefficient() < 0:
-        content = -content
-    return Product(content, ((p / content, 1),))
-
-
-def _merge(a: Factors, b: Factors, sign: int = 1) -> Factors:
-    """The factors of a * b (``sign`` = 1) or a / b (-1, b dividing a)."""
-    out = list(a)
-    for f, e in b:
-        for k, (g, d) in enumerate(out):
-            if g == f:
-                out[k] = (g, d + sign * e)
-                break
-        else:
-            if sign < 0:
-                raise ArithmeticError("inexact division of factored polynomials")
-            out.append((f, e))
-    return tuple((f, e) for f, e in out if e)
-
-
-def multiply(a: Product, b: Product) -> Product:
-    return Product(a.content * b.content, _merge(a.factors, b.factors))
-
-
-def divide(a: Product, b: Product) -> Product:
-    """``a / b`` for ``b`` a common divisor found by `common`."""
-    return Product(a.content // b.content, _merge(a.factors, b.factors, -1))
-
-
-def common(a: Product, b: Product) -> Product:
-    """The factors ``a`` and ``b`` share (a divisor of their gcd, the whole gcd when every
-    factor is irreducible), with the gcd of the contents."""
-    shared = []
-    for f, e in a.factors:
-        for g, d in b.factors:
-            if f == g:
-                shared.append((f, min(e, d)))
-                break
-    return Product(gcd(a.content, b.content) or 1, tuple(shared))
+from davies_sym.algebra.products import SMALL_SUM, Product, common, divide, multiply, product_of
 
 
 def difference(t: Product, u: Product, one: fmpz_mpoly) -> Product | None:

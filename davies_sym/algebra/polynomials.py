@@ -9,7 +9,6 @@ factors directly, so no sympy simplification runs in the pipeline.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
 from functools import cached_property
 from math import gcd
 
@@ -17,6 +16,7 @@ import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
 from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
+from davies_sym.algebra.products import Product, fraction_sum, lowest_terms
 from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
@@ -158,25 +158,46 @@ class PolynomialRing:
 Factorisation = tuple[int, list[tuple[fmpz_mpoly, int]]]
 
 
-def factor_sort_key(item: tuple[fmpz_mpoly, int]) -> tuple[int, list[tuple[tuple[int, ...], int]]]:
-    """The order python-flint lists the factors of ``factor()`` in (multiplicity, then the
-    terms in the ring's order), so that a factorisation put together from parts prints as
-    the factoring of the whole would."""
-    f, e = item
-    return e, [(tuple(m), int(c)) for m, c in zip(f.monoms(), f.coeffs(), strict=True)]
-
-
 #: A polynomial with at most this many terms is factored to multiply in factored form.
 SMALL = 40
 
 
-@dataclass(frozen=True, eq=False)
 class RationalFunction:
-    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient."""
+    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient.
 
-    ring: PolynomialRing
-    num: fmpz_mpoly
-    den: fmpz_mpoly
+    Built from known factors (`from_factors`), it keeps them and expands ``num`` and
+    ``den`` only when they are read: products, quotients, negation, sums of factored
+    terms (past their shared factors), evaluation and conversion to sympy work on the
+    factors, so nothing grows with the expanded size of a product of stage terms.
+    """
+
+    def __init__(self, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly):
+        self.ring = ring
+        self.__dict__["num"] = num
+        self.__dict__["den"] = den
+
+    def __repr__(self) -> str:
+        return f"RationalFunction({self.to_expr(factored=False)})"
+
+    @classmethod
+    def _from_factorisation(cls, ring: PolynomialRing, known: tuple[Factorisation, Factorisation]) -> RationalFunction:
+        out = cls.__new__(cls)
+        out.ring = ring
+        out.__dict__["factorisation"] = known
+        return out
+
+    @cached_property
+    def num(self) -> fmpz_mpoly:
+        content, factors = self.factorisation[0]
+        return Product(content, tuple(factors)).expand_in(self.ring.one)
+
+    @cached_property
+    def den(self) -> fmpz_mpoly:
+        content, factors = self.factorisation[1]
+        return Product(content, tuple(factors)).expand_in(self.ring.one)
+
+    def _expanded_known(self) -> bool:
+        return "num" in self.__dict__
 
     @classmethod
     def make(cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly) -> RationalFunction:
@@ -217,31 +238,11 @@ class RationalFunction:
         den_factors: Iterable[tuple[fmpz_mpoly, int]],
     ) -> RationalFunction:
         """``num_content prod(num_factors) / (den_content prod(den_factors))`` from
-        irreducible factors (flint-normalised, repeats allowed): identical factors merge
-        and cancel, the contents divide by their gcd, the denominator's sign goes to the
-        numerator, and the expanded parts are the products of what is left."""
+        irreducible factors (`davies_sym.algebra.products.lowest_terms`); the expanded
+        numerator and denominator are formed only when read."""
         if num_content == 0:
             return cls.polynomial(ring, ring.zero)
-        merged: list[tuple[fmpz_mpoly, int]] = []
-        for f, e in (*num_factors, *((f, -e) for f, e in den_factors)):
-            for k, (h, d) in enumerate(merged):
-                if h == f:
-                    merged[k] = (h, d + e)
-                    break
-            else:
-                merged.append((f, e))
-        shared = gcd(num_content, den_content)
-        cn, cd = num_content // shared, den_content // shared
-        if cd < 0:
-            cn, cd = -cn, -cd
-        fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
-        fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
-        numerator, denominator = ring.one * cn, ring.one * cd
-        for f, e in fn:
-            numerator = numerator * f**e
-        for f, e in fd:
-            denominator = denominator * f**e
-        return cls.with_factorisation(ring, numerator, denominator, ((cn, fn), (cd, fd)))
+        return cls._from_factorisation(ring, lowest_terms(num_content, den_content, num_factors, den_factors))
 
     @cached_property
     def factorisation(self) -> tuple[Factorisation, Factorisation]:
@@ -254,19 +255,34 @@ class RationalFunction:
         return "factorisation" in self.__dict__ or len(self.num) + len(self.den) <= SMALL
 
     def is_zero(self) -> bool:
-        return bool(self.num.is_zero())
+        if self._expanded_known():
+            return bool(self.num.is_zero())
+        return self.factorisation[0][0] == 0
+
+    def _is_polynomial(self) -> bool:
+        if self._expanded_known():
+            return bool(self.den.is_one())
+        cd, fd = self.factorisation[1]
+        return cd == 1 and not fd
 
     @property
     def free_symbols(self) -> set[sympy.Symbol]:
         """The symbols the function depends on, read off the degrees (no sympy expression)."""
-        degrees = zip(self.num.degrees(), self.den.degrees(), strict=True)
-        return {s for s, (a, b) in zip(self.ring.symbols, degrees, strict=False) if a or b}
+        if self._expanded_known():
+            parts = [self.num, self.den]
+        else:
+            (_, fn), (_, fd) = self.factorisation
+            parts = [f for f, _ in (*fn, *fd)]
+        used = [any(d) for d in zip(*(p.degrees() for p in parts), strict=True)] if parts else []
+        return {s for s, u in zip(self.ring.symbols, used, strict=False) if u}
 
     def __add__(self, other: RationalFunction) -> RationalFunction:
         if other.is_zero():
             return self
         if self.is_zero():
             return other
+        if not self.ring.radicals and _factored(self, other):
+            return _sum(self, other)
         if self.den == other.den:
             return RationalFunction.make(self.ring, self.num + other.num, self.den)
         g = self.den.gcd(other.den)
@@ -276,7 +292,10 @@ class RationalFunction:
     def __neg__(self) -> RationalFunction:
         if "factorisation" in self.__dict__:
             (cn, fn), den = self.factorisation
-            return RationalFunction.with_factorisation(self.ring, -self.num, self.den, ((-cn, fn), den))
+            out = RationalFunction._from_factorisation(self.ring, ((-cn, fn), den))
+            if self._expanded_known():
+                out.__dict__.update(num=-self.num, den=self.den)
+            return out
         return RationalFunction(self.ring, -self.num, self.den)
 
     def __sub__(self, other: RationalFunction) -> RationalFunction:
@@ -309,8 +328,8 @@ class RationalFunction:
         if "factorisation" in self.__dict__ and not self.ring.radicals:
             (cn, fn), (cd, fd) = self.factorisation
             if cn < 0:  # the denominator keeps a positive leading coefficient
-                return RationalFunction.with_factorisation(self.ring, -self.den, -self.num, ((-cd, fd), (-cn, fn)))
-            return RationalFunction.with_factorisation(self.ring, self.den, self.num, ((cd, fd), (cn, fn)))
+                return RationalFunction._from_factorisation(self.ring, ((-cd, fd), (-cn, fn)))
+            return RationalFunction._from_factorisation(self.ring, ((cd, fd), (cn, fn)))
         return RationalFunction.make(self.ring, self.den, self.num)
 
     def __truediv__(self, other: RationalFunction) -> RationalFunction:
@@ -354,6 +373,15 @@ class RationalFunction:
         """Exact value at a rational point (a mapping, or the ring's ``point_args``);
         ZeroDivisionError on a pole."""
         args = point if isinstance(point, tuple) else self.ring.point_args(point)
+        if not self._expanded_known():
+            (cn, fn), (cd, fd) = self.factorisation
+            value = fmpq(cn)
+            for f, e in fn:
+                value *= self.ring.evaluate(f, args) ** e
+            denominator = fmpq(cd)
+            for f, e in fd:
+                denominator *= self.ring.evaluate(f, args) ** e
+            return value / denominator
         num_q, den_q = self._rational_parts
         return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
 
@@ -379,13 +407,32 @@ class RationalFunction:
         if not factored:
             num = self.ring.to_expr(self.num)
             return num if self.den.is_one() else num / self.ring.to_expr(self.den)
-        if self.num.is_zero():
+        if self.is_zero():
             return sympy.Integer(0)
         (cn, fn), (cd, fd) = self.factorisation
         num = sympy.Mul(sympy.Integer(cn), *(self.ring.to_expr(f) ** e for f, e in fn))
-        if self.den.is_one():
+        if cd == 1 and not fd:
             return num
         return num / sympy.Mul(sympy.Integer(cd), *(self.ring.to_expr(f) ** e for f, e in fd))
+
+
+def _factored(a: RationalFunction, b: RationalFunction) -> bool:
+    """Whether ``a + b`` is best formed factor by factor: one of them was never expanded,
+    or the factors of both are known or cheap to find."""
+
+    def known(x: RationalFunction) -> bool:
+        return "factorisation" in x.__dict__ or len(x.num) + len(x.den) <= SMALL
+
+    return not (a._expanded_known() and b._expanded_known()) or (known(a) and known(b))
+
+
+def _sum(a: RationalFunction, b: RationalFunction) -> RationalFunction:
+    """``a + b`` from the factorisations (`davies_sym.algebra.products.fraction_sum`)."""
+    found = fraction_sum(a.ring.one, a.factorisation, b.factorisation)
+    if found is None:
+        return RationalFunction.polynomial(a.ring, a.ring.zero)
+    (cn, fn), (cd, fd) = found
+    return RationalFunction.from_factors(a.ring, cn, cd, fn, fd)
 
 
 def _product(a: RationalFunction, b: RationalFunction) -> RationalFunction:

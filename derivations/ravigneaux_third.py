@@ -214,16 +214,26 @@ def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_
     if not mask.any() or variant["name"] not in _FORCES:
         return mask
     function, names = _FORCES[variant["name"]]
-    chosen = {n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names}
-    forces = function(**chosen)
+    index = np.flatnonzero(mask)
+    forces = function(**_at(values, names, index, mask.shape))
     # A force that depends on none of the arrays comes back as a scalar.
-    size = (int(np.count_nonzero(mask)),)
+    size = (len(index),)
     agree = np.all(
         [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
         axis=0,
     )
-    mask[mask] = agree
+    mask.reshape(-1)[index] = agree
     return mask
+
+
+def _at(
+    values: dict[str, Array], names: tuple[str, ...], index: NDArray[np.intp], shape: tuple[int, ...]
+) -> dict[str, Array]:
+    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
+    by index: a boolean mask would be counted again for every argument)."""
+    return {
+        n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape).reshape(-1)[index] for n in names
+    }
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
@@ -242,12 +252,11 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     result[k, ...] = part
             else:
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
-                }
-                parts = function(**chosen)
+                index = np.flatnonzero(mask)
+                parts = function(**_at(values, names, index, mask.shape))
+                flat = result.reshape(width, -1)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
-                    result[k, mask] = part
+                    flat[k, index] = part
     return result
 
 

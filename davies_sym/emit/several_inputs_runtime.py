@@ -122,12 +122,10 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
             mask = np.array((code == region["code"]) & ~boundary, dtype=bool)
             if mask.any() and region["name"] in _FORCES:
                 function, names = _FORCES[region["name"]]
-                chosen = {
-                    n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
-                }
-                forces = function(**chosen)
+                index = np.flatnonzero(mask)
+                forces = function(**_at(values, names, index, mask.shape))
                 # A force that depends on none of the arrays comes back as a scalar.
-                size = (int(np.count_nonzero(mask)),)
+                size = (len(index),)
                 agree = np.all(
                     [
                         np.broadcast_to(np.asarray(f) >= 0, size)
@@ -135,11 +133,21 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
                     ],
                     axis=0,
                 )
-                mask[mask] = agree
+                mask.reshape(-1)[index] = agree
             numbers[mask] = region["number"]
             count += mask
     numbers[count > 1] = -1
     return numbers, boundary
+
+
+def _at(
+    values: dict[str, Array], names: tuple[str, ...], index: NDArray[np.intp], shape: tuple[int, ...]
+) -> dict[str, Array]:
+    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
+    by index: a boolean mask would be counted again for every argument)."""
+    return {
+        n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape).reshape(-1)[index] for n in names
+    }
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
@@ -152,12 +160,11 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
             if not mask.any() or region["name"] not in table:
                 continue
             function, names = table[region["name"]]
-            chosen = {
-                n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], mask.shape)[mask] for n in names
-            }
-            parts = function(**chosen)
+            index = np.flatnonzero(mask)
+            parts = function(**_at(values, names, index, mask.shape))
+            flat = result.reshape(width, -1)
             for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
-                result[k, mask] = part
+                flat[k, index] = part
     return result
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import sympy
 
@@ -51,15 +51,16 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
 
 
 def derive_sets(
-    train: Train, state: str | None, progress: Progress, failures: list[str]
+    train: Train, state: str | None, progress: Progress, failures: list[str], inputs: Sequence[str] | None = None
 ) -> list[tuple[str, VariantSet]]:
-    """The variants of the train, or of each of its states (only ``state`` if given).  A
-    state that cannot be derived is reported in ``failures`` (its message names the state)
-    and the others are still derived; when none can be, the first error is raised."""
+    """The variants of the train, or of each of its states (only ``state`` if given;
+    only those with the ``inputs`` ports if given).  A state that cannot be derived is
+    reported in ``failures`` (its message names the state) and the others are still
+    derived; when none can be, the first error is raised."""
     if not train.states:
         if state is not None:
             raise InputError([Problem("--state", "the train has no states")], train.path)
-        return [("", derive_variants(train, progress=progress))]
+        return [("", derive_variants(train, progress=progress, inputs=inputs))]
     names = [st.name for st in train.states]
     if state is not None and state not in names:
         raise InputError([Problem("--state", f"unknown state {state!r} (states: {', '.join(names)})")], train.path)
@@ -68,7 +69,7 @@ def derive_sets(
     for st in chosen:
         progress(f"state {st.name}")
         try:
-            out.append((st.name, derive_variants(train_in_state(train, st), progress=progress)))
+            out.append((st.name, derive_variants(train_in_state(train, st), progress=progress, inputs=inputs)))
         except DaviesError as exc:
             first = first or exc
             failures += [f"{line} (state {st.name})" for line in message(exc, train.path or "").splitlines()]
@@ -121,6 +122,18 @@ def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, p
     return "\n".join(parts) + "\n"
 
 
+def _eval_inputs(train: Train, args: argparse.Namespace) -> list[str] | None:
+    """The input port an evaluation asks for (of the chosen state), or None when it is
+    not a port (the full derivation then refuses it as usual)."""
+    chosen = train
+    if train.states and args.state is not None:
+        chosen = next((train_in_state(train, st) for st in train.states if st.name == args.state), train)
+    try:
+        return [eval_port(chosen, args)]
+    except DaviesError:
+        return None
+
+
 def one_input_outputs(
     train: Train, args: argparse.Namespace, progress: Progress, failures: list[str]
 ) -> list[tuple[str | None, str | bytes]]:
@@ -129,7 +142,9 @@ def one_input_outputs(
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
     check_emit(args, train.path)
-    sets = derive_sets(train, args.state, progress, failures)
+    # An evaluation alone needs only the variants of its input port.
+    alone = args.eval is not None and not (args.python or args.emit or args.plot or args.out or args.latex)
+    sets = derive_sets(train, args.state, progress, failures, _eval_inputs(train, args) if alone else None)
     if (args.python or args.emit or args.eval is not None or args.plot) and len(sets) > 1:
         raise InputError(
             [
@@ -147,10 +162,6 @@ def one_input_outputs(
         code = emit_code(sets[0][1], args.emit, args.state)
         module = [(args.python, python_module(sets[0][1], file_parameters(train)))] if args.python else []
         return [*module, (args.out, code)]
-    if args.latex:
-        text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
-    else:
-        text = _document(train, sets, args.json, progress)
     # Everything is computed (and every value checked) before anything is written.
     chosen = sets[0][1].train  # the state's train: its own ports and symbols
     operating = operating_symbols(sets[0][1])
@@ -162,10 +173,13 @@ def one_input_outputs(
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
-    if args.out:
+    # The document only where it is written: an evaluation alone prints its value.
+    if args.out or evaluation is None or args.latex:
+        if args.latex:
+            text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
+        else:
+            text = _document(train, sets, args.json, progress)
         outputs.append((args.out, text))
-    elif evaluation is None or args.latex:
-        outputs.append((None, text))
     if evaluation is not None:
         state = {"state": args.state} if args.state else {}
         outputs.append(

@@ -182,10 +182,16 @@ class VariantSet:
 
 
 def derive_variants(
-    train: Train, progress: Progress | None = None, samples: int = 200, seed: int = 0, layout: Layout | None = None
+    train: Train,
+    progress: Progress | None = None,
+    samples: int = 200,
+    seed: int = 0,
+    layout: Layout | None = None,
+    inputs: Sequence[str] | None = None,
 ) -> VariantSet:
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
-    (``layout``: a geometry other than the one derived from the train)."""
+    (``layout``: a geometry other than the one derived from the train; ``inputs``: only
+    the variants with these input ports, e.g. for one evaluation)."""
     say = progress or (lambda message: None)
     check_mesh_friction(train)
     if layout is None:
@@ -257,14 +263,18 @@ def derive_variants(
         key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
         regions.setdefault(key, []).append(point)
     variants: list[Variant] = []
+    skipped = 0
     light: list[tuple[str, str, dict[str, int], LoadCase]] = []
     combos = condition_signs(conditions)
     rng = random.Random(seed)
     for declared_input in (True, False):
         port_in = train.ports.input if declared_input else train.ports.output
         port_out = train.ports.output if declared_input else train.ports.input
+        if inputs is not None and port_in not in inputs:
+            skipped += len(combos)  # their numbers stay taken: a variant keeps its number
+            continue
         for signs in combos:
-            say(f"variant {len(variants) + 1} of {2 * len(combos)}: input {port_in}")
+            say(f"variant {len(variants) + skipped + 1} of {2 * len(combos)}: input {port_in}")
             first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
             region = regions.get(tuple(signs[c.name] for c in conditions), [])
             if resolve_again:
@@ -274,7 +284,7 @@ def derive_variants(
                 same = partial(_same, declared)
                 base, *reversals = reached_cases(first, same, roles, region, etas, seed, not declared_input)
             variant = Variant(
-                len(variants) + 1,
+                len(variants) + skipped + 1,
                 port_in,
                 port_out,
                 signs,
@@ -285,12 +295,15 @@ def derive_variants(
             )
             variants.append(_checked(variant, region, etas, base.derivation.analysis, conditions, rng))
             light += [(port_in, port_out, signs, case) for case in reversals]
+    light = [item for item in light if not _assumed_elsewhere(item[3], item[0], variants, roles)]
+    if light and skipped and train.ports.input not in (inputs or ()):
+        # The light-load variants are numbered after the declared input's: derive those too.
+        return derive_variants(train, progress, samples, seed, layout)
     for port_in, port_out, signs, case in light:
-        if _assumed_elsewhere(case, port_in, variants, roles):
-            continue
-        say(f"variant {len(variants) + 1}: input {port_in}, the losses reverse {', '.join(sorted(case.reversed))}")
+        reversed_ = ", ".join(sorted(case.reversed))
+        say(f"variant {len(variants) + skipped + 1}: input {port_in}, the losses reverse {reversed_}")
         variant = Variant(
-            len(variants) + 1,
+            len(variants) + skipped + 1,
             port_in,
             port_out,
             signs,

@@ -89,3 +89,73 @@ def test_products_by_factors_equal_expanded_products(seed: int) -> None:
         assert product.to_expr() == plain.to_expr()
         assert (a / b) * b == a
         assert (-a).factorisation == (factor(-a.num), factor(a.den))
+
+
+def _lazy(ring: PolynomialRing, rng: random.Random) -> RationalFunction:
+    """A rational function built from factors and never expanded (as a stage product)."""
+    num, den = _random_entry(ring, rng), _random_entry(ring, rng)
+    if num.is_zero() or den.is_zero():
+        num, den = ring.one, ring.one
+    (cn, fn), (cd, fd) = factor(num), factor(den)
+    out = RationalFunction.from_factors(ring, cn, cd, fn, fd)
+    assert "num" not in out.__dict__
+    return out
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_sums_by_factors_equal_expanded_sums_in_lowest_terms(seed: int) -> None:
+    """a + b formed over the common denominator of the factors equals the sum of the
+    expanded fractions reduced by their gcd (`RationalFunction.make`), with the
+    factorisation flint gives for that sum; negation, inverse and evaluation at a point
+    work on the factors without expanding them."""
+    rng = random.Random(seed)
+    ring = PolynomialRing(SYMBOLS)
+    a, b = _lazy(ring, rng), _lazy(ring, rng)
+    if rng.random() < 0.5:  # shared factors in the numerators and denominators
+        c = _lazy(ring, rng)
+        a, b = a * c, b * c
+    point = {s: sympy.Rational(rng.randint(1, 9), rng.randint(1, 9)) for s in SYMBOLS}
+    values = []
+    for x in (a, b, -a, a.inverse() if not a.is_zero() else a):
+        try:
+            values.append(x.evaluate(point))
+        except ZeroDivisionError:
+            values.append(None)
+        assert "num" not in x.__dict__ or x.is_zero()
+    total = a + b
+    plain = RationalFunction.make(ring, a.num * b.den + b.num * a.den, a.den * b.den)
+    assert total.num == plain.num and total.den == plain.den
+    if not plain.is_zero():
+        assert total.factorisation == (factor(plain.num), factor(plain.den))
+    expected = [RationalFunction.make(ring, a.num, a.den), RationalFunction.make(ring, b.num, b.den)]
+    for got, want in zip(values, [*expected, -expected[0], expected[0].inverse()], strict=True):
+        if got is not None:
+            assert got == want.evaluate(point)
+
+
+def test_a_large_sum_is_divided_by_the_denominator_factors_it_holds() -> None:
+    """A numerator sum of more than SMALL_SUM terms stays one factor; where it is divisible
+    by a factor of the common denominator, that factor cancels (lowest terms as make)."""
+    ring = PolynomialRing(SYMBOLS)
+    x = [ring.gen(s) for s in SYMBOLS]
+    g = x[0] + 1
+    big = (x[0] + x[1] + x[2] + x[3] + x[4] + 1) ** 6 * g  # 462 terms times g
+    second = x[1] * x[2] + 3
+    first = big - second * g  # first + second * g = big
+    a = RationalFunction.from_factors(ring, *_parts(first), *_den(g))
+    b = RationalFunction.from_factors(ring, 1, 1, [(second, 1)], [])
+    total = a + b
+    assert len(first) > 400
+    assert total.den == ring.one and total.num == big / g
+    assert total == RationalFunction.make(ring, first + second * g, g)
+
+
+def _parts(p):
+    content, factors = factor(p)
+    return content, 1, factors
+
+
+def _den(p):
+    content, factors = factor(p)
+    assert content == 1
+    return ([(f, e) for f, e in factors],)

@@ -21,6 +21,8 @@ from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
 
+_ZERO = fmpq(0)
+
 
 class PolynomialRing:
     """Z[x1, ..., xn] over the given sympy symbols (ordered by name)."""
@@ -125,6 +127,8 @@ class PolynomialRing:
             value = point.get(symbol)
             if value is None:
                 out.append(None)
+            elif isinstance(value, (sympy.Rational, int)):  # the common case, without sympy's constructor
+                out.append(fmpq(int(value.p), int(value.q)) if isinstance(value, sympy.Rational) else fmpq(value))
             else:
                 r = sympy.Rational(value)
                 out.append(fmpq(int(r.p), int(r.q)))
@@ -142,11 +146,13 @@ class PolynomialRing:
         symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
         if not self.symbols:
             return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
-        if None in args:
-            for symbol, value, degree in zip(self.symbols, args, p.degrees(), strict=True):
-                if value is None and degree > 0:
-                    raise KeyError(symbol)
-        values = tuple(fmpq(0) if a is None else a for a in args)
+        values: tuple[fmpq | None, ...] | list[fmpq | None] = args
+        if None in args:  # absent symbols: 0 where p does not use them
+            values, degrees = list(args), p.degrees()
+            for i in (i for i, v in enumerate(args) if v is None):
+                if degrees[i] > 0:
+                    raise KeyError(self.symbols[i])
+                values[i] = _ZERO
         return (rational if rational is not None else self.to_rational(p))(*values)
 
     def to_rational(self, p: fmpz_mpoly) -> fmpq_mpoly:
@@ -176,9 +182,6 @@ class RationalFunction:
         self.__dict__["num"] = num
         self.__dict__["den"] = den
 
-    def __repr__(self) -> str:
-        return f"RationalFunction({self.to_expr(factored=False)})"
-
     @classmethod
     def _from_factorisation(cls, ring: PolynomialRing, known: tuple[Factorisation, Factorisation]) -> RationalFunction:
         out = cls.__new__(cls)
@@ -197,7 +200,7 @@ class RationalFunction:
         return Product(content, tuple(factors)).expand_in(self.ring.one)
 
     def _expanded_known(self) -> bool:
-        return "num" in self.__dict__
+        return "num" in self.__dict__  # read or given: the expanded parts exist
 
     @classmethod
     def make(cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly) -> RationalFunction:
@@ -217,16 +220,6 @@ class RationalFunction:
     @classmethod
     def polynomial(cls, ring: PolynomialRing, p: fmpz_mpoly) -> RationalFunction:
         return cls.make(ring, p, ring.one)
-
-    @classmethod
-    def with_factorisation(
-        cls, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly, known: tuple[Factorisation, Factorisation]
-    ) -> RationalFunction:
-        """``num / den``, already in lowest terms, with the factorisations of both known
-        (from factored elimination or a product of known factorisations)."""
-        out = cls(ring, num, den)
-        out.__dict__["factorisation"] = known
-        return out
 
     @classmethod
     def from_factors(
@@ -374,16 +367,23 @@ class RationalFunction:
         ZeroDivisionError on a pole."""
         args = point if isinstance(point, tuple) else self.ring.point_args(point)
         if not self._expanded_known():
-            (cn, fn), (cd, fd) = self.factorisation
+            (cn, fn), (cd, fd) = self._rational_factors
             value = fmpq(cn)
-            for f, e in fn:
-                value *= self.ring.evaluate(f, args) ** e
+            for f, q, e in fn:
+                value *= self.ring.evaluate(f, args, q) ** e
             denominator = fmpq(cd)
-            for f, e in fd:
-                denominator *= self.ring.evaluate(f, args) ** e
+            for f, q, e in fd:
+                denominator *= self.ring.evaluate(f, args, q) ** e
             return value / denominator
         num_q, den_q = self._rational_parts
         return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
+
+    @cached_property
+    def _rational_factors(self) -> tuple[tuple[int, list[tuple[fmpz_mpoly, fmpq_mpoly, int]]], ...]:
+        """The factors with their ``fmpq_mpoly`` forms, for evaluation factor by factor."""
+        return tuple(
+            (content, [(f, self.ring.to_rational(f), e) for f, e in factors]) for content, factors in self.factorisation
+        )
 
     @cached_property
     def _rational_parts(self) -> tuple[fmpq_mpoly, fmpq_mpoly]:

@@ -17,6 +17,7 @@ from davies_sym.algebra.factored import factored_gauss_jordan
 from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.linalg import gauss_jordan
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.errors import DerivationError
 
 SYMBOLS = sympy.symbols("a b c d e", positive=True)
 
@@ -159,3 +160,27 @@ def _den(p):
     content, factors = factor(p)
     assert content == 1
     return ([(f, e) for f, e in factors],)
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_substitution_by_factors_equals_the_expanded_substitution(seed: int) -> None:
+    """x -> n/d in a factored function (each factor f(n/d) d^k factored on its own) equals
+    the substitution of the expanded numerator and denominator, reduced (`make`), with
+    flint's factorisation of that result."""
+    rng = random.Random(seed)
+    ring = PolynomialRing(SYMBOLS)
+    a = _lazy(ring, rng) * _lazy(ring, rng)
+    value = _lazy(ring, rng)
+    symbol = rng.choice(SYMBOLS)
+    expr = a.to_expr(factored=False).subs(symbol, value.to_expr(factored=False))
+    try:
+        plain = ring.rational(sympy.together(expr))
+    except DerivationError:  # the substitution divides by zero
+        with pytest.raises(ZeroDivisionError):
+            a.substitute(symbol, value)
+        return
+    got = a.substitute(symbol, value)
+    assert got == plain
+    assert got.num == plain.num and got.den == plain.den
+    if not plain.is_zero():
+        assert got.factorisation == (factor(plain.num), factor(plain.den))

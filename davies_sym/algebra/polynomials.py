@@ -16,7 +16,7 @@ import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
 
 from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
-from davies_sym.algebra.products import Product, fraction_sum, lowest_terms
+from davies_sym.algebra.products import Product, fraction_substituted, fraction_sum, homogenised, lowest_terms
 from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
@@ -51,6 +51,8 @@ class PolynomialRing:
         # polynomials; documents write them as square roots (RadicalTable.restore).
         self._exprs = tuple(self.symbols)
         #: (generator index, radicand) of every radical symbol: s^2 = m.
+        #: The last point filled for evaluation: (args, values with 0 for None, mask of the None).
+        self._filled: tuple[tuple[fmpq | None, ...] | None, tuple[fmpq | None, ...], int] = (None, (), 0)
         self._relations = tuple((self.symbols.index(r.symbol), self.polynomial(r.radicand)) for r in radicals)
 
     def reduce(self, p: fmpz_mpoly) -> fmpz_mpoly:
@@ -141,19 +143,26 @@ class PolynomialRing:
                     out[index] = fmpq(int(root.p), int(root.q))
         return tuple(out)
 
-    def evaluate(self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None) -> fmpq:
+    def evaluate(
+        self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None, used: int | None = None
+    ) -> fmpq:
         """Exact value of ``p`` at ``args`` (from `point_args`); KeyError names a
         symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
         if not self.symbols:
             return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
-        values: tuple[fmpq | None, ...] | list[fmpq | None] = args
+        values: tuple[fmpq | None, ...] = args
         if None in args:  # absent symbols: 0 where p does not use them
-            values, degrees = list(args), p.degrees()
-            for i in (i for i, v in enumerate(args) if v is None):
-                if degrees[i] > 0:
-                    raise KeyError(self.symbols[i])
-                values[i] = _ZERO
-        return (rational if rational is not None else self.to_rational(p))(*values)
+            if args is not self._filled[0]:  # one point is evaluated in many polynomials
+                missing = sum(1 << i for i, v in enumerate(args) if v is None)
+                self._filled = (args, tuple(_ZERO if v is None else v for v in args), missing)
+            _, values, missing = self._filled
+            if absent := (self.used(p) if used is None else used) & missing:
+                raise KeyError(self.symbols[(absent & -absent).bit_length() - 1])
+        return (rational if rational is not None else self.to_rational(p))(*values)  # type: ignore[arg-type]
+
+    def used(self, p: fmpz_mpoly) -> int:
+        """The generators ``p`` depends on, as a bit mask."""
+        return sum(1 << i for i, d in enumerate(p.degrees()) if d > 0)  # the zero polynomial has -1
 
     def to_rational(self, p: fmpz_mpoly) -> fmpq_mpoly:
         """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
@@ -338,29 +347,20 @@ class RationalFunction:
 
     def substitute(self, symbol: sympy.Symbol, value: RationalFunction) -> RationalFunction:
         """``self`` with ``symbol`` replaced by ``value = n / d``, without expanding the
-        whole fraction: N(n/d) d^K / (D(n/d) d^K), K the larger degree in ``symbol``."""
-        name = symbol.name
-        index = self.ring.symbols.index(symbol)
+        whole fraction: factor by factor where the factors are known (each f(n/d) d^k,
+        k its degree, factored on its own), else N(n/d) d^K / (D(n/d) d^K), K the larger
+        degree in ``symbol``."""
+        name, index = symbol.name, self.ring.symbols.index(symbol)
+        if not self.ring.radicals and self._factored_enough() and value._factored_enough():
+            if not any(f.degrees()[index] > 0 for part in self.factorisation for f, _ in part[1]):
+                return self
+            found = fraction_substituted(self.factorisation, name, index, value.num, value.den, value.factorisation[1])
+            return RationalFunction.from_factors(self.ring, found[0][0], found[1][0], found[0][1], found[1][1])
         degree = max(self.num.degrees()[index], self.den.degrees()[index])
         if degree == 0:
             return self
-        n, d = value.num, value.den
-
-        def homogenise(p: fmpz_mpoly) -> fmpz_mpoly:
-            # p = sum_k c_k x^k, c_k = (d^k p / dx^k)(0) / k!; multilinear p needs two terms.
-            total, derivative, factorial = self.ring.zero, p, 1
-            for k in range(degree + 1):
-                if k:
-                    derivative = derivative.derivative(name)
-                    factorial *= k
-                    if derivative.is_zero():
-                        break
-                coefficient = derivative.subs({name: 0})
-                if not coefficient.is_zero():
-                    total += (coefficient / factorial) * n**k * d ** (degree - k)
-            return total
-
-        return RationalFunction.make(self.ring, homogenise(self.num), homogenise(self.den))
+        num = homogenised(self.num, name, value.num, value.den, degree)
+        return RationalFunction.make(self.ring, num, homogenised(self.den, name, value.num, value.den, degree))
 
     def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq | None, ...]) -> fmpq:
         """Exact value at a rational point (a mapping, or the ring's ``point_args``);
@@ -369,25 +369,28 @@ class RationalFunction:
         if not self._expanded_known():
             (cn, fn), (cd, fd) = self._rational_factors
             value = fmpq(cn)
-            for f, q, e in fn:
-                value *= self.ring.evaluate(f, args, q) ** e
+            for f, q, used, e in fn:
+                value *= self.ring.evaluate(f, args, q, used) ** e
             denominator = fmpq(cd)
-            for f, q, e in fd:
-                denominator *= self.ring.evaluate(f, args, q) ** e
+            for f, q, used, e in fd:
+                denominator *= self.ring.evaluate(f, args, q, used) ** e
             return value / denominator
-        num_q, den_q = self._rational_parts
-        return self.ring.evaluate(self.num, args, num_q) / self.ring.evaluate(self.den, args, den_q)
+        (num_q, num_used), (den_q, den_used) = self._rational_parts
+        return self.ring.evaluate(self.num, args, num_q, num_used) / self.ring.evaluate(self.den, args, den_q, den_used)
 
     @cached_property
-    def _rational_factors(self) -> tuple[tuple[int, list[tuple[fmpz_mpoly, fmpq_mpoly, int]]], ...]:
-        """The factors with their ``fmpq_mpoly`` forms, for evaluation factor by factor."""
+    def _rational_factors(self) -> tuple[tuple[int, list[tuple[fmpz_mpoly, fmpq_mpoly, int, int]]], ...]:
+        """The factors with their ``fmpq_mpoly`` forms and used generators, for evaluation."""
+        ring = self.ring
         return tuple(
-            (content, [(f, self.ring.to_rational(f), e) for f, e in factors]) for content, factors in self.factorisation
+            (content, [(f, ring.to_rational(f), ring.used(f), e) for f, e in factors])
+            for content, factors in self.factorisation
         )
 
     @cached_property
-    def _rational_parts(self) -> tuple[fmpq_mpoly, fmpq_mpoly]:
-        return self.ring.to_rational(self.num), self.ring.to_rational(self.den)
+    def _rational_parts(self) -> tuple[tuple[fmpq_mpoly, int], tuple[fmpq_mpoly, int]]:
+        ring = self.ring
+        return (ring.to_rational(self.num), ring.used(self.num)), (ring.to_rational(self.den), ring.used(self.den))
 
     def derivative_at(self, symbol: sympy.Symbol, point: Mapping[sympy.Symbol, object]) -> fmpq:
         """Value of the partial derivative at ``point``, without forming it
@@ -396,8 +399,8 @@ class RationalFunction:
             return fmpq(0)
         args = self.ring.point_args(point)
         name = symbol.name
-        num_q, den_q = self._rational_parts
-        n, d = self.ring.evaluate(self.num, args, num_q), self.ring.evaluate(self.den, args, den_q)
+        (num_q, num_used), (den_q, den_used) = self._rational_parts
+        n, d = self.ring.evaluate(self.num, args, num_q, num_used), self.ring.evaluate(self.den, args, den_q, den_used)
         dn = self.ring.evaluate(self.num.derivative(name), args)
         dd = self.ring.evaluate(self.den.derivative(name), args)
         return (dn * d - n * dd) / (d * d)

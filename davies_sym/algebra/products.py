@@ -179,3 +179,50 @@ def lowest_terms(
     fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
     fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
     return (cn, fn), (cd, fd)
+
+
+def homogenised(p: fmpz_mpoly, name: str, n: fmpz_mpoly, d: fmpz_mpoly, degree: int) -> fmpz_mpoly:
+    """``p(x = n/d) d^degree`` for ``degree`` at least p's degree in ``x`` (named
+    ``name``): p = sum_k c_k x^k with c_k = (d^k p / dx^k)(0) / k!."""
+    total, derivative, factorial = p * 0, p, 1
+    for k in range(degree + 1):
+        if k:
+            derivative = derivative.derivative(name)
+            factorial *= k
+            if derivative.is_zero():
+                break
+        coefficient = derivative.subs({name: 0})
+        if not coefficient.is_zero():
+            total += (coefficient / factorial) * n**k * d ** (degree - k)
+    return total
+
+
+def fraction_substituted(
+    fraction: Fraction, name: str, index: int, n: fmpz_mpoly, d: fmpz_mpoly, value_den: tuple[int, FactorList]
+) -> Fraction:
+    """``fraction`` with the variable ``name`` (generator ``index``) replaced by ``n / d``,
+    factor by factor: each factor f of degree k becomes f(n/d) d^k, factored on its own,
+    and the powers of d (``value_den``: its content and factors) are put back on the side
+    they fall on.  ZeroDivisionError when the denominator vanishes."""
+    sides: dict[int, tuple[int, FactorList]] = {1: (fraction[0][0], []), -1: (fraction[1][0], [])}
+    exponent = 0  # of d in the result
+    for side, factors in ((1, fraction[0][1]), (-1, fraction[1][1])):
+        for f, e in factors:
+            content, found = sides[side]
+            k = int(f.degrees()[index])
+            if k <= 0:
+                found.append((f, e))
+                continue
+            c, parts = factor(homogenised(f, name, n, d, k))
+            sides[side] = (content * c**e, found + [(g, m * e) for g, m in parts])
+            exponent -= side * k * e
+    if sides[-1][0] == 0:
+        raise ZeroDivisionError("the substitution makes the denominator zero")
+    side = 1 if exponent > 0 else -1
+    content, found = sides[side]
+    dc, df = value_den
+    sides[side] = (content * dc ** abs(exponent), found + [(g, m * abs(exponent)) for g, m in df])
+    (cn, fn), (cd, fd) = sides[1], sides[-1]
+    if cn == 0:
+        return (0, []), (1, [])
+    return lowest_terms(cn, cd, fn, fd)

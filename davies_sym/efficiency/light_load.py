@@ -219,7 +219,7 @@ def reached_cases(
                 # there the lossless case's value already says it locks.
                 working, _, _ = needed_signs({"efficiency": (efficiency, 1)}, draws)
                 every &= working[:, 0]
-            used = set(free) | set(efficiency.to_expr().free_symbols)
+            used = set(free) | efficiency.free_symbols
             samples = tuple(draws.point(int(k), used) for k in np.flatnonzero(every)[:40])
             # Follow the forces that disagree, the most frequent pattern first.
             names = list(forces)

@@ -118,16 +118,29 @@ def needed_signs(
 ) -> tuple[np.ndarray, np.ndarray, list[sympy.Symbol]]:
     """Per draw: whether each force has the sign it needs (rows: draws), whether every
     force is finite, and the symbols drawn."""
-    signed = [f.to_expr() * s for f, s in forces.values()]
-    free = sorted({x for f in signed for x in f.free_symbols}, key=str)
-    function = sympy.lambdify(free, signed, "numpy")
+    free = sorted({x for f, _ in forces.values() for x in f.free_symbols}, key=str)
     with np.errstate(all="ignore"):
-        values = [
-            np.broadcast_to(np.asarray(v, dtype=float), (draws.rows,))
-            for v in function(*(draws.column(s) for s in free))
-        ]
-    table = np.array(values).T
+        table = np.array([sign * float_values(f, draws) for f, sign in forces.values()]).T
     return table > 0, np.all(np.isfinite(table), axis=1), free
+
+
+def float_values(rf: RationalFunction, draws: Draws) -> np.ndarray:
+    """``rf`` at every draw in floating point, factor by factor (no compiled function:
+    the factors are small, and forming one would print the whole expression)."""
+    ring = rf.ring
+    (cn, fn), (cd, fd) = rf.factorisation
+    out = np.full(draws.rows, float(cn) / float(cd))
+    for factors, power in ((fn, 1), (fd, -1)):
+        for f, e in factors:
+            value = np.zeros(draws.rows)
+            for exponents, coefficient in zip(f.monoms(), f.coeffs(), strict=True):
+                term = np.full(draws.rows, float(int(coefficient)))
+                for symbol, k in zip(ring.symbols, exponents, strict=True):
+                    if k:
+                        term *= draws.column(symbol) ** int(k)
+                value += term
+            out *= value ** (power * e)
+    return out
 
 
 def holds_somewhere(

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from functools import cached_property
-from math import gcd
+from math import factorial, gcd
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
@@ -57,20 +57,19 @@ class PolynomialRing:
 
     def reduce(self, p: fmpz_mpoly) -> fmpz_mpoly:
         """``p`` modulo ``s^2 - m`` for every radical: degree at most one in each ``s``
-        (a canonical form, so ``is_zero`` is exact)."""
+        (a canonical form, so ``is_zero`` is exact).  The top power s^k at a time: its
+        coefficient c (the k-th derivative over k!, free of s) turns c s^k into c m s^(k-2);
+        linear in the size of ``p``, unlike a composition."""
+        gens, names = self.ctx.gens(), self.ctx.names()
         for index, radicand in self._relations:
-            if p.degrees()[index] < 2:
-                continue
-            # p = E(s^2) + s O(s^2): the even and odd parts from p(s) and p(-s), then s^2
-            # read as one variable (deflate) and replaced by m (compose), all inside flint.
-            gens = list(self.ctx.gens())
-            s = gens[index]
-            mirrored = p.compose(*(-g if k == index else g for k, g in enumerate(gens)))
-            stride = [2 if k == index else 1 for k in range(len(gens))]
-            with_m = [radicand if k == index else g for k, g in enumerate(gens)]
-            even = ((p + mirrored) / 2).deflate(stride).compose(*with_m)
-            odd = ((p - mirrored) / (2 * s)).deflate(stride).compose(*with_m)
-            p = even + s * odd
+            k = p.degrees()[index]
+            while k >= 2:
+                top = p
+                for _ in range(k):
+                    top = top.derivative(names[index])
+                s = gens[index]
+                p = p + (top / factorial(k)) * (radicand * s ** (k - 2) - s**k)
+                k = p.degrees()[index]
         return p
 
     def rationalised(self, num: fmpz_mpoly, den: fmpz_mpoly) -> tuple[fmpz_mpoly, fmpz_mpoly]:

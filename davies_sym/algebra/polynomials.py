@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from functools import cached_property
-from math import factorial, gcd
+from math import factorial, gcd, isqrt
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
@@ -133,14 +133,21 @@ class PolynomialRing:
             else:
                 r = sympy.Rational(value)
                 out.append(fmpq(int(r.p), int(r.q)))
-        for radical in self.radicals:
+        for index, radicand in self._radicands:
             # A radical has a rational value only where its radicand is a square.
-            index = self.symbols.index(radical.symbol)
             if out[index] is None:
-                root = sympy.sqrt(radical.radicand.xreplace(dict(point)))
-                if root.is_Rational:
-                    out[index] = fmpq(int(root.p), int(root.q))
+                try:  # KeyError: the point does not give the radicand
+                    square = radicand.evaluate(tuple(out))
+                except (KeyError, ZeroDivisionError):
+                    continue
+                n, d = int(square.p), int(square.q)
+                if n >= 0 and isqrt(n) ** 2 == n and isqrt(d) ** 2 == d:
+                    out[index] = fmpq(isqrt(n), isqrt(d))
         return tuple(out)
+
+    @cached_property
+    def _radicands(self) -> tuple[tuple[int, RationalFunction], ...]:
+        return tuple((self.symbols.index(r.symbol), self.rational(r.radicand)) for r in self.radicals)
 
     def evaluate(
         self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None, used: int | None = None
@@ -238,9 +245,8 @@ class RationalFunction:
         num_factors: Iterable[tuple[fmpz_mpoly, int]],
         den_factors: Iterable[tuple[fmpz_mpoly, int]],
     ) -> RationalFunction:
-        """``num_content prod(num_factors) / (den_content prod(den_factors))`` from
-        irreducible factors (`davies_sym.algebra.products.lowest_terms`); the expanded
-        numerator and denominator are formed only when read."""
+        """``num_content prod(num_factors) / (den_content prod(den_factors))`` from irreducible
+        factors (`davies_sym.algebra.products.lowest_terms`), expanded only when read."""
         if num_content == 0:
             return cls.polynomial(ring, ring.zero)
         return cls._from_factorisation(ring, lowest_terms(num_content, den_content, num_factors, den_factors))

@@ -30,6 +30,9 @@ Array = NDArray[np.float64]
 _Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
 
 
+_Gathered = dict[int, tuple[NDArray[np.intp], dict[str, Array]]]
+
+
 class Parameter(TypedDict):
     """A parameter of the formulas and its admissible range (low excluded unless closed_low)."""
 
@@ -257,13 +260,14 @@ def _region(values: dict[str, Array], shape: tuple[int, ...]) -> NDArray[np.int6
     return code
 
 
-def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
+def _variant_numbers(input: str, values: dict[str, Array], gathered: _Gathered | None = None) -> NDArray[np.int64]:
     """The number of the variant that holds at each point with ``input`` as input port:
     its turning conditions hold and each of its loaded forces (the power each driving gear
     gives, a bearing's reaction) has the sign it needs; where the losses move a turning
     point past its lossless boundary, the variant of another region whose loaded forces
     all agree; 0 where none does.  Where a force is zero two variants agree and give the
-    same value: the first is taken."""
+    same value: the first is taken.  ``gathered`` keeps each variant's arguments at its
+    points for `_select`."""
     _check_input(input)
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     numbers = np.zeros(shape, dtype=np.int64)
@@ -272,45 +276,62 @@ def _variant_numbers(input: str, values: dict[str, Array]) -> NDArray[np.int64]:
         mine = [v for v in VARIANTS if v["input"] == input]
         for variant in mine:
             mask = np.array((code == variant["region"]) & (numbers == 0), dtype=bool)
-            numbers[_agreeing(variant, values, mask)] = variant["number"]
+            numbers[_agreeing(variant, values, mask, gathered)] = variant["number"]
         for variant in mine:
             if variant["name"] in _FORCES:
                 numbers[_agreeing(variant, values, numbers == 0)] = variant["number"]
     return numbers
 
 
-def _agreeing(variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_]) -> NDArray[np.bool_]:
-    """``mask`` where each loaded force of ``variant`` has the sign it needs."""
+def _agreeing(
+    variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_], gathered: _Gathered | None = None
+) -> NDArray[np.bool_]:
+    """``mask`` where each loaded force of ``variant`` has the sign it needs (its
+    arguments kept in ``gathered`` where every point agrees)."""
     mask = np.array(mask, dtype=bool)
     if not mask.any() or variant["name"] not in _FORCES:
         return mask
     function, names = _FORCES[variant["name"]]
     index = np.flatnonzero(mask)
-    forces = function(**_at(values, names, index, mask.shape))
+    kept: dict[str, Array] = {}
+    forces = function(**_at(values, names, index, mask.shape, kept))
     # A force that depends on none of the arrays comes back as a scalar.
     size = (len(index),)
     agree = np.all(
         [np.broadcast_to(np.asarray(f) >= 0, size) for f in (forces if isinstance(forces, tuple) else (forces,))],
         axis=0,
     )
+    if gathered is not None and agree.all():
+        gathered[variant["number"]] = (index, kept)
     mask.reshape(-1)[index] = agree
     return mask
 
 
 def _at(
-    values: dict[str, Array], names: tuple[str, ...], index: NDArray[np.intp], shape: tuple[int, ...]
+    values: dict[str, Array],
+    names: tuple[str, ...],
+    index: NDArray[np.intp],
+    shape: tuple[int, ...],
+    kept: dict[str, Array] | None = None,
 ) -> dict[str, Array]:
     """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
-    by index: a boolean mask would be counted again for every argument)."""
-    return {
-        n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape).reshape(-1)[index] for n in names
-    }
+    by index: a boolean mask would be counted again for every argument), taken from
+    ``kept`` where gathered before at the same points, and kept there."""
+    kept = {} if kept is None else kept
+    for n in names:
+        if n not in kept:
+            v = values[n]
+            kept[n] = v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1)[index]
+    return {n: kept[n] for n in names}
 
 
-def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:
+def _select(
+    numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int, gathered: _Gathered | None = None
+) -> Array:
     """The function of the variant that holds (``numbers``, from `_variant_numbers`),
-    evaluated element by element (each variant only on its own points); shape (width,
-    *broadcast shape), NaN where none holds."""
+    evaluated element by element (each variant only on its own points, their arguments
+    from ``gathered`` where it holds them); shape (width, *broadcast shape), NaN where
+    none holds."""
     result = np.full((width, *numbers.shape), np.nan)
     with np.errstate(all="ignore"):
         for variant in VARIANTS:
@@ -324,7 +345,10 @@ def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table,
                     result[k, ...] = part
             else:
                 index = np.flatnonzero(mask)
-                parts = function(**_at(values, names, index, mask.shape))
+                # Points are only ever added to a variant: as many points are the same points.
+                known = (gathered or {}).get(variant["number"])
+                kept = known[1] if known is not None and len(known[0]) == len(index) else None
+                parts = function(**_at(values, names, index, mask.shape, kept))
                 flat = result.reshape(width, -1)
                 for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
                     flat[k, index] = part
@@ -407,17 +431,19 @@ def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    numbers = _variant_numbers(input, values)
-    (result,) = _select(numbers, values, _EFFICIENCY, 1)
+    gathered: _Gathered = {}
+    numbers = _variant_numbers(input, values, gathered)
+    (result,) = _select(numbers, values, _EFFICIENCY, 1, gathered)
     return _screened(result, numbers, values, errors)
 
 
 def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
-    numbers = _variant_numbers(input, values)
-    (result,) = _select(numbers, values, _EFFICIENCY, 1)
+    gathered: _Gathered = {}
+    numbers = _variant_numbers(input, values, gathered)
+    (result,) = _select(numbers, values, _EFFICIENCY, 1, gathered)
     bad = np.isnan(_screened(result, numbers, values, errors))
-    parts = _select(numbers, values, _LOSSES, len(LOSSY))
+    parts = _select(numbers, values, _LOSSES, len(LOSSY), gathered)
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 

@@ -184,24 +184,23 @@ SMALL = 40
 
 
 class RationalFunction:
-    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient.
+    """``num / den`` in lowest terms, ``den`` with a positive leading coefficient; a value
+    (nothing can be set).  Built from known factors (`from_factors`), it keeps them and
+    expands ``num`` and ``den`` only when read: products, quotients, sums, substitutions,
+    evaluation and conversion to sympy work on the factors."""
 
-    Built from known factors (`from_factors`), it keeps them and expands ``num`` and
-    ``den`` only when they are read: products, quotients, negation, sums of factored
-    terms (past their shared factors), evaluation and conversion to sympy work on the
-    factors, so nothing grows with the expanded size of a product of stage terms.
-    """
+    ring: PolynomialRing
 
     def __init__(self, ring: PolynomialRing, num: fmpz_mpoly, den: fmpz_mpoly):
-        self.ring = ring
-        self.__dict__["num"] = num
-        self.__dict__["den"] = den
+        self.__dict__.update(ring=ring, num=num, den=den)
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"a RationalFunction is a value: {name} cannot be set")
 
     @classmethod
     def _from_factorisation(cls, ring: PolynomialRing, known: tuple[Factorisation, Factorisation]) -> RationalFunction:
         out = cls.__new__(cls)
-        out.ring = ring
-        out.__dict__["factorisation"] = known
+        out.__dict__.update(ring=ring, factorisation=known)
         return out
 
     @cached_property

@@ -84,8 +84,9 @@ class NumericMachine:
             return dict(values)
         return {**values, **self.closure.solve(values)}
 
-    def couplings(self, values: Mapping[sympy.Symbol, float]) -> tuple[Coupling, ...]:
-        """The couplings with numbers in place of expressions."""
+    def _numbers(self, values: Mapping[sympy.Symbol, float]) -> list[Any]:
+        """Every compiled geometry expression at ``values`` (the loop closed once), after
+        the workspace limits are checked."""
         missing = self.missing(values)
         if missing:
             raise MissingValuesError(
@@ -95,7 +96,7 @@ class NumericMachine:
         values = self.assembled(values)
         args = [float(values[s]) for s in self.symbols]
         try:
-            numbers = iter(self._evaluate(*args))
+            numbers = list(self._evaluate(*args))
             margins = self._margins(*args)
         except (ValueError, ZeroDivisionError) as exc:
             raise NotCoveredError(
@@ -107,6 +108,14 @@ class NumericMachine:
                 raise NotCoveredError(
                     f"outside the workspace: the limit {limit.name} ({limit.text}) does not hold here"
                 )
+        return numbers
+
+    def couplings(self, values: Mapping[sympy.Symbol, float]) -> tuple[Coupling, ...]:
+        """The couplings with numbers in place of expressions."""
+        return self._couplings(self._numbers(values))
+
+    def _couplings(self, evaluated: list[Any]) -> tuple[Coupling, ...]:
+        numbers = iter(evaluated)
         out = []
         for c in self.machine.couplings:
             vecs: list[Any] = [
@@ -124,11 +133,8 @@ class NumericMachine:
             raise NotCoveredError("the linkage cannot be assembled here")
         return tuple(out)
 
-    def ports(self, values: Mapping[sympy.Symbol, float]) -> Machine:
-        """The machine with numeric port directions."""
-        values = self.assembled(values)
-        args = [float(values[s]) for s in self.symbols]
-        numbers = self._evaluate(*args)
+    def _ported(self, numbers: list[Any]) -> Machine:
+        """The machine with numeric port directions (they follow the couplings' numbers)."""
         k = sum(
             sum(3 for v in (c.at, c.axis, c.normal) if v is not None) + (3 if c.friction else 0)
             for c in self.machine.couplings
@@ -142,9 +148,14 @@ class NumericMachine:
                 ports.append(p)
         return replace(self.machine, ports=tuple(ports))
 
-    def network(self, values: Mapping[sympy.Symbol, float], couplings: tuple[Coupling, ...] | None = None) -> Network:
-        couplings = couplings if couplings is not None else self.couplings(values)
-        return build_network(self.ports(values), couplings, self.graph, numeric=True)
+    def position(self, values: Mapping[sympy.Symbol, float]) -> tuple[tuple[Coupling, ...], Network]:
+        """The numeric couplings and the network at ``values``, from one evaluation."""
+        numbers = self._numbers(values)
+        couplings = self._couplings(numbers)
+        return couplings, build_network(self._ported(numbers), couplings, self.graph, numeric=True)
+
+    def network(self, values: Mapping[sympy.Symbol, float]) -> Network:
+        return self.position(values)[1]
 
 
 def _friction_rows(
@@ -204,6 +215,7 @@ def _actions(
     motions: Mapping[str, float],
     known: Mapping[str, float],
     start: Mapping[str, float] | None,
+    frictionless_system: np.ndarray,
 ) -> tuple[dict[str, float], int]:
     scale = max(1.0, *(abs(v) for v in known.values()))
 
@@ -217,12 +229,7 @@ def _actions(
             guess = solution
         return None, ROUNDS
 
-    frictionless = solve_numeric(
-        np.vstack([network.action_matrix, _friction_rows(network, motions, {}, scale, 0.0)]),
-        network.actions,
-        known,
-        "actions",
-    )
+    frictionless = solve_numeric(frictionless_system, network.actions, known, "actions")
     solution, rounds = settle(start or frictionless, 1.0)
     if solution is not None:
         return solution, rounds
@@ -247,10 +254,11 @@ def solve_position(
 ) -> PositionSolution:
     """Motions and actions at one position; ``start``: the actions of a neighbouring
     position, the known problem the continuation starts from."""
-    couplings = numeric.couplings(values)
-    network = numeric.network(values, couplings)
+    couplings, network = numeric.position(values)
     motions = solve_numeric(network.motion_matrix, network.motions, known_motions, "motions")
-    actions, rounds = _actions(network, motions, known_actions, start)
+    # The friction rows at weight 0 only pin each friction action to zero.
+    frictionless = np.vstack([network.action_matrix, _friction_rows(network, motions, {}, 1.0, 0.0)])
+    actions, rounds = _actions(network, motions, known_actions, start, frictionless)
     port_power = {
         name: actions[port.action] * sum(float(c) * motions[m] for c, m in port.power_terms)
         for name, port in network.ports.items()
@@ -261,7 +269,6 @@ def solve_position(
             power = actions[f.name] * sum(float(np.dot(f.screw, twist)) * motions[m] for m, twist in joint.freedoms)
             friction_power[joint.coupling] = friction_power.get(joint.coupling, 0.0) + power
     _check_balance(port_power, friction_power)
-    frictionless = np.vstack([network.action_matrix, _friction_rows(network, motions, {}, 1.0, 0.0)])
     orientation = passages.signs(network, couplings, frictionless, known_motions, known_actions)
     return PositionSolution(network, motions, actions, port_power, friction_power, rounds, orientation)
 

@@ -205,12 +205,14 @@ class RationalFunction:
 
     @cached_property
     def num(self) -> fmpz_mpoly:
-        content, factors = self.factorisation[0]
-        return Product(content, tuple(factors)).expand_in(self.ring.one)
+        return self._expanded(0)
 
     @cached_property
     def den(self) -> fmpz_mpoly:
-        content, factors = self.factorisation[1]
+        return self._expanded(1)
+
+    def _expanded(self, side: int) -> fmpz_mpoly:
+        content, factors = self.factorisation[side]
         return Product(content, tuple(factors)).expand_in(self.ring.one)
 
     def _expanded_known(self) -> bool:
@@ -426,11 +428,7 @@ class RationalFunction:
 def _factored(a: RationalFunction, b: RationalFunction) -> bool:
     """Whether ``a + b`` is best formed factor by factor: one of them was never expanded,
     or the factors of both are known or cheap to find."""
-
-    def known(x: RationalFunction) -> bool:
-        return "factorisation" in x.__dict__ or len(x.num) + len(x.den) <= SMALL
-
-    return not (a._expanded_known() and b._expanded_known()) or (known(a) and known(b))
+    return not (a._expanded_known() and b._expanded_known()) or (a._factored_enough() and b._factored_enough())
 
 
 def _sum(a: RationalFunction, b: RationalFunction) -> RationalFunction:

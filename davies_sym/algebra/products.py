@@ -122,12 +122,8 @@ def fraction_sum(one: fmpz_mpoly, a: Fraction, b: Fraction) -> Fraction | None:
 
     def over_common(content: int, factors: FactorList, own: FactorList, d: int) -> Product:
         """A numerator over the common denominator: times the denominator factors it lacks."""
-        lacking = []
-        for g, e in den_factors:
-            have = next((k for f, k in own if f == g), 0)
-            if e > have:
-                lacking.append((g, e - have))
-        return multiply(Product(content, tuple(factors)), Product(den_content // d, tuple(lacking)))
+        lacking = _merge(tuple(den_factors), tuple(own), -1)
+        return multiply(Product(content, tuple(factors)), Product(den_content // d, lacking))
 
     ta, tb = over_common(an, afn, afd, ad), over_common(bn, bfn, bfd, bd)
     shared = common(ta, tb)
@@ -164,14 +160,7 @@ def lowest_terms(
     (flint-normalised) factors, repeats allowed: identical factors merge and cancel, the
     contents divide by their gcd, the denominator's sign goes to the numerator, and each
     side lists its factors in python-flint's own order (`factor_sort_key`)."""
-    merged: FactorList = []
-    for f, e in (*num_factors, *((f, -e) for f, e in den_factors)):
-        for k, (h, d) in enumerate(merged):
-            if h == f:
-                merged[k] = (h, d + e)
-                break
-        else:
-            merged.append((f, e))
+    merged = _merge((), (*num_factors, *((f, -e) for f, e in den_factors)))
     shared = gcd(num_content, den_content)
     cn, cd = num_content // shared, den_content // shared
     if cd < 0:

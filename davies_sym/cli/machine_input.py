@@ -113,7 +113,7 @@ def _evaluate(machine: Machine, args: argparse.Namespace, forms: ClosedForms | N
         check_assembles(machine, machine.cycle, values)
         cycle = cycle_efficiency(forms.direction(port), machine.cycle, values)
         eta = cycle.evaluate(values)
-        return _checked(eta, f"input {port}; efficiency over one cycle ({_cycle_source(cycle)})", port)
+        return _checked(eta, f"input {port}; efficiency over one cycle ({cycle.equation})", port)
     if not at_position:
         raise InputError(
             [Problem("--eval", f"give the position: {', '.join(f'{s.name}=...' for s in machine.position)}")],
@@ -128,10 +128,6 @@ def _assembles(machine: Machine, values: dict[sympy.Symbol, sympy.Expr]) -> None
     missing = numeric.missing(values)
     if not missing:
         numeric.couplings({s: float(sympy.N(v)) for s, v in values.items()})
-
-
-def _cycle_source(cycle: CycleEfficiency) -> str:
-    return "Laus eq. (120)" if cycle.steady_is_input else "Laus eq. (123)"
 
 
 def _numeric(machine: Machine, values: dict[sympy.Symbol, sympy.Expr], port: str) -> tuple[str, dict[str, Any]]:

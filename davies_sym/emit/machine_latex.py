@@ -16,8 +16,6 @@ from davies_sym.machines.cycle import CycleEfficiency
 from davies_sym.machines.joints import FrictionAction
 from davies_sym.topology.symbol_display import latex
 
-_CYCLE_EQUATION = {True: "Laus eq. (120)", False: "Laus eq. (123)"}
-
 
 def _name(name: str) -> str:
     """A magnitude's name in mathematics: ``U_DF`` -> ``U_{DF}``."""
@@ -66,7 +64,7 @@ def _direction(direction: DirectionForms, cycle: CycleEfficiency | None, first_t
         role = "input" if cycle.steady_is_input else "output"
         out.append(
             rf"\paragraph{{Over one cycle}} of ${latex(cycle.variable)}$, the {role} "
-            rf"{escape(cycle.steady)}'s power constant ({_CYCLE_EQUATION[cycle.steady_is_input]}):"
+            rf"{escape(cycle.steady)}'s power constant ({cycle.equation}):"
         )
         if cycle.closed is not None:
             out += display(r"\bar{\eta}", cycle.closed)

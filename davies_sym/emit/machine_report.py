@@ -15,9 +15,6 @@ from davies_sym.machines.model import Machine
 from davies_sym.machines.network import Network
 from davies_sym.machines.task import TaskResult
 
-#: Laus eq. numbers of the cycle efficiency, by whether the steady port is the input.
-_CYCLE_EQUATION = {True: "Laus eq. (120)", False: "Laus eq. (123)"}
-
 
 def _sign_text(signs: tuple[tuple[sympy.Symbol, int], ...]) -> str:
     return ", ".join(f"{s} = {'+1' if v > 0 else '-1'}" for s, v in signs) or "no friction"
@@ -96,8 +93,7 @@ def _direction_lines(direction: DirectionForms, cycle: CycleEfficiency | None) -
     if cycle is not None:
         role = "input" if cycle.steady_is_input else "output"
         lines.append(
-            f"  cycle efficiency over {cycle.variable}, the {role} {cycle.steady}'s power constant "
-            f"({_CYCLE_EQUATION[cycle.steady_is_input]}):"
+            f"  cycle efficiency over {cycle.variable}, the {role} {cycle.steady}'s power constant ({cycle.equation}):"
         )
         lines.append(
             f"    eta = {cycle.closed}" if cycle.closed is not None else "    no closed form (--eval integrates it)"

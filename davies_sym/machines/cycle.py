@@ -39,6 +39,12 @@ class CycleEfficiency:
     length: sympy.Expr
     steady_is_input: bool
 
+    @property
+    def equation(self) -> str:
+        """The thesis's equation for this cycle efficiency: the mean of eta with a steady
+        input, the length over the integral of 1/eta with a steady output."""
+        return "Laus eq. (120)" if self.steady_is_input else "Laus eq. (123)"
+
     def evaluate(self, values: dict[sympy.Symbol, sympy.Expr]) -> float:
         if self.closed is not None:
             value = sympy.N(self.closed.subs(values), 30)

@@ -16,8 +16,9 @@ from typing import Any
 
 import sympy
 
+from davies_sym.algebra.screws import cross, force_wrench, rotation_twist, torque_wrench, translation_twist
 from davies_sym.machines.model import Coupling
-from davies_sym.machines.vectors import AXES, Vector, cross
+from davies_sym.machines.vectors import AXES, Vector
 
 #: Screws and vectors hold sympy expressions (closed forms) or floats (numeric solution).
 Screw = tuple[Any, ...]
@@ -31,8 +32,6 @@ def exactly_zero(value: Any) -> bool:
 def numerically_zero(value: Any) -> bool:
     return abs(float(value)) < 1e-12
 
-
-ZERO = (sympy.Integer(0),) * 3
 
 #: Multipliers of the friction coefficient for a pin (Laus App. D): a force across the
 #: pin presses a half cylinder (Table 16 with 2 beta = pi), one along it a flat face
@@ -48,24 +47,6 @@ _FLOAT_MULTIPLIERS = {law: {k: float(v) for k, v in m.items()} for law, m in PIN
 _ROTATION_LETTERS = {"x": "r", "y": "s", "z": "t"}
 _TRANSLATION_LETTERS = {"x": "u", "y": "v", "z": "w"}
 _NEXT_AXIS = {"x": "y", "y": "z", "z": "x"}
-
-
-def rotation(direction: Vector, point: Vector) -> Screw:
-    """Unit twist of a rotation about the line through ``point`` (axis formation)."""
-    return (*direction, *cross(point, direction))
-
-
-def translation(direction: Vector) -> Screw:
-    return (*ZERO, *direction)
-
-
-def force(direction: Vector, point: Vector) -> Screw:
-    """Unit wrench of a force through ``point`` (ray formation: moment at the origin first)."""
-    return (*cross(point, direction), *direction)
-
-
-def torque(direction: Vector) -> Screw:
-    return (*direction, *ZERO)
 
 
 def axis_name(direction: Vector) -> str | None:
@@ -181,7 +162,8 @@ def joint_screws(coupling: Coupling, coordinate_names: bool = True, zero: ZeroTe
         ]
     )
     freedoms = tuple(
-        (name, rotation(d, p) if k == "R" else translation(d)) for name, (k, d) in zip(motion_names, free, strict=True)
+        (name, rotation_twist(d, p) if k == "R" else translation_twist(d))
+        for name, (k, d) in zip(motion_names, free, strict=True)
     )
     action_names = _Names(coupling.name).plan(
         [
@@ -192,7 +174,8 @@ def joint_screws(coupling: Coupling, coordinate_names: bool = True, zero: ZeroTe
         ]
     )
     constraints = tuple(
-        (name, torque(d) if k == "M" else force(d, p)) for name, (k, d) in zip(action_names, held, strict=True)
+        (name, torque_wrench(d) if k == "M" else force_wrench(d, p))
+        for name, (k, d) in zip(action_names, held, strict=True)
     )
     forces = [(name, d) for name, (k, d) in zip(action_names, held, strict=True) if k == "F"]
     return JointScrews(coupling.name, freedoms, constraints, _friction(coupling, free, freedoms, forces, zero))
@@ -214,7 +197,7 @@ def _friction(
     resultant = law.load == "resultant"
     for freedom, d in sliding:
         load: tuple[tuple[str, Any], ...] = tuple((name, 1) for name, fd in forces if not _parallel(fd, d, zero))
-        base = force(d, coupling.at)
+        base = force_wrench(d, coupling.at)
         if law.height is None:
             out.append(FrictionAction(friction_name(freedom), coupling.name, base, freedom, law.mu, load, resultant))
             continue
@@ -236,7 +219,13 @@ def _friction(
             )
             out.append(
                 FrictionAction(
-                    friction_name(freedom), coupling.name, torque(d), freedom, law.mu * law.pin_radius, load, resultant
+                    friction_name(freedom),
+                    coupling.name,
+                    torque_wrench(d),
+                    freedom,
+                    law.mu * law.pin_radius,
+                    load,
+                    resultant,
                 )
             )
     return tuple(out)

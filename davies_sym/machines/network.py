@@ -18,6 +18,7 @@ import networkx as nx
 import numpy as np
 import sympy
 
+from davies_sym.algebra.screws import force_wrench, torque_wrench
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.machines.joints import (
     FrictionAction,
@@ -26,11 +27,9 @@ from davies_sym.machines.joints import (
     ZeroTest,
     axis_name,
     exactly_zero,
-    force,
     friction_name,
     joint_screws,
     numerically_zero,
-    torque,
 )
 from davies_sym.machines.model import Coupling, Machine, Port
 from davies_sym.network.coupling_graph import CouplingGraph
@@ -134,10 +133,10 @@ def _port_wrench(port: Port, joint: JointScrews, at: tuple[sympy.Expr, ...]) -> 
     if port.action == "freedom":
         name, twist = joint.freedoms[0]
         if twist[:3] == (0, 0, 0):
-            return name, force(tuple(twist[3:]), at)
-        return name, torque(tuple(twist[:3]))
+            return name, force_wrench(tuple(twist[3:]), at)
+        return name, torque_wrench(tuple(twist[:3]))
     assert port.direction is not None
-    wrench = force(port.direction, at) if port.action == "force" else torque(port.direction)
+    wrench = force_wrench(port.direction, at) if port.action == "force" else torque_wrench(port.direction)
     axis = axis_name(port.direction)
     letters = "UVW" if port.action == "force" else "RST"
     letter = letters["xyz".index(axis)] if axis is not None else ("Q" if port.action == "force" else "P")

@@ -15,6 +15,7 @@ from typing import Any
 
 import sympy
 
+from davies_sym.algebra.screws import cross
 from davies_sym.topology.expressions import MAX_LENGTH, ExpressionError, parse_expression
 
 Vector = tuple[sympy.Expr, sympy.Expr, sympy.Expr]
@@ -32,10 +33,6 @@ _SCALAR_FUNCTIONS = {"sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos, "ta
 
 def dot(a: Vector, b: Vector) -> sympy.Expr:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def cross(a: Vector, b: Vector) -> Vector:
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
 def unit(a: Vector) -> Vector:

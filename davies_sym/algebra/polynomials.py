@@ -10,18 +10,17 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from functools import cached_property
-from math import factorial, gcd, isqrt
+from math import factorial, gcd
 
 import sympy
-from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz_mpoly, fmpz_mpoly_ctx
+from flint import fmpq, fmpq_mpoly, fmpz_mpoly, fmpz_mpoly_ctx
 
 from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
+from davies_sym.algebra.point_values import PointValues
 from davies_sym.algebra.products import Product, fraction_substituted, fraction_sum, homogenised, lowest_terms
 from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
-
-_ZERO = fmpq(0)
 
 
 class PolynomialRing:
@@ -51,9 +50,13 @@ class PolynomialRing:
         # polynomials; documents write them as square roots (RadicalTable.restore).
         self._exprs = tuple(self.symbols)
         #: (generator index, radicand) of every radical symbol: s^2 = m.
-        #: The last point filled for evaluation: (args, values with 0 for None, mask of the None).
-        self._filled: tuple[tuple[fmpq | None, ...] | None, tuple[fmpq | None, ...], int] = (None, (), 0)
         self._relations = tuple((self.symbols.index(r.symbol), self.polynomial(r.radicand)) for r in radicals)
+        #: Exact values at rational points; a radical's from its radicand, exactly.
+        self.points = PointValues(
+            self.ctx,
+            self.symbols,
+            lambda: tuple((self.symbols.index(r.symbol), self.rational(r.radicand)) for r in radicals),
+        )
 
     def reduce(self, p: fmpz_mpoly) -> fmpz_mpoly:
         """``p`` modulo ``s^2 - m`` for every radical: degree at most one in each ``s``
@@ -120,59 +123,6 @@ class PolynomialRing:
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""
         return expanded_expr(p, self._exprs)
-
-    def point_args(self, point: Mapping[sympy.Symbol, object]) -> tuple[fmpq | None, ...]:
-        """The generators' values at ``point`` (absent symbols: None), for `evaluate`."""
-        out: list[fmpq | None] = []
-        for symbol in self.symbols:
-            value = point.get(symbol)
-            if value is None:
-                out.append(None)
-            elif isinstance(value, (sympy.Rational, int)):  # the common case, without sympy's constructor
-                out.append(fmpq(int(value.p), int(value.q)) if isinstance(value, sympy.Rational) else fmpq(value))
-            else:
-                r = sympy.Rational(value)
-                out.append(fmpq(int(r.p), int(r.q)))
-        for index, radicand in self._radicands:
-            # A radical has a rational value only where its radicand is a square.
-            if out[index] is None:
-                try:  # KeyError: the point does not give the radicand
-                    square = radicand.evaluate(tuple(out))
-                except (KeyError, ZeroDivisionError):
-                    continue
-                n, d = int(square.p), int(square.q)
-                if n >= 0 and isqrt(n) ** 2 == n and isqrt(d) ** 2 == d:
-                    out[index] = fmpq(isqrt(n), isqrt(d))
-        return tuple(out)
-
-    @cached_property
-    def _radicands(self) -> tuple[tuple[int, RationalFunction], ...]:
-        return tuple((self.symbols.index(r.symbol), self.rational(r.radicand)) for r in self.radicals)
-
-    def evaluate(
-        self, p: fmpz_mpoly, args: tuple[fmpq | None, ...], rational: fmpq_mpoly | None = None, used: int | None = None
-    ) -> fmpq:
-        """Exact value of ``p`` at ``args`` (from `point_args`); KeyError names a
-        symbol ``p`` needs that has no value.  ``rational`` is ``p`` as an fmpq_mpoly."""
-        if not self.symbols:
-            return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
-        values: tuple[fmpq | None, ...] = args
-        if None in args:  # absent symbols: 0 where p does not use them
-            if args is not self._filled[0]:  # one point is evaluated in many polynomials
-                missing = sum(1 << i for i, v in enumerate(args) if v is None)
-                self._filled = (args, tuple(_ZERO if v is None else v for v in args), missing)
-            _, values, missing = self._filled
-            if absent := (self.used(p) if used is None else used) & missing:
-                raise KeyError(self.symbols[(absent & -absent).bit_length() - 1])
-        return (rational if rational is not None else self.to_rational(p))(*values)  # type: ignore[arg-type]
-
-    def used(self, p: fmpz_mpoly) -> int:
-        """The generators ``p`` depends on, as a bit mask."""
-        return sum(1 << i for i, d in enumerate(p.degrees()) if d > 0)  # the zero polynomial has -1
-
-    def to_rational(self, p: fmpz_mpoly) -> fmpq_mpoly:
-        """``p`` as an ``fmpq_mpoly`` (for evaluation at rational points)."""
-        return fmpq_mpoly_ctx.get(self.ctx.names(), "degrevlex").from_dict(p.to_dict())
 
 
 #: Content and irreducible factors with their exponents, as flint's ``factor`` gives them.
@@ -369,46 +319,54 @@ class RationalFunction:
         return RationalFunction.make(self.ring, num, homogenised(self.den, name, value.num, value.den, degree))
 
     def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq | None, ...]) -> fmpq:
-        """Exact value at a rational point (a mapping, or the ring's ``point_args``);
+        """Exact value at a rational point (a mapping, or the ring's ``points.args``);
         ZeroDivisionError on a pole."""
-        args = point if isinstance(point, tuple) else self.ring.point_args(point)
+        args = point if isinstance(point, tuple) else self.ring.points.args(point)
         if not self._expanded_known():
             (cn, fn), (cd, fd) = self._rational_factors
             value = fmpq(cn)
             for f, q, used, e in fn:
-                value *= self.ring.evaluate(f, args, q, used) ** e
+                value *= self.ring.points.evaluate(f, args, q, used) ** e
             denominator = fmpq(cd)
             for f, q, used, e in fd:
-                denominator *= self.ring.evaluate(f, args, q, used) ** e
+                denominator *= self.ring.points.evaluate(f, args, q, used) ** e
             return value / denominator
         (num_q, num_used), (den_q, den_used) = self._rational_parts
-        return self.ring.evaluate(self.num, args, num_q, num_used) / self.ring.evaluate(self.den, args, den_q, den_used)
+        return self.ring.points.evaluate(self.num, args, num_q, num_used) / self.ring.points.evaluate(
+            self.den, args, den_q, den_used
+        )
 
     @cached_property
     def _rational_factors(self) -> tuple[tuple[int, list[tuple[fmpz_mpoly, fmpq_mpoly, int, int]]], ...]:
         """The factors with their ``fmpq_mpoly`` forms and used generators, for evaluation."""
         ring = self.ring
         return tuple(
-            (content, [(f, ring.to_rational(f), ring.used(f), e) for f, e in factors])
+            (content, [(f, ring.points.rational_form(f), ring.points.used(f), e) for f, e in factors])
             for content, factors in self.factorisation
         )
 
     @cached_property
     def _rational_parts(self) -> tuple[tuple[fmpq_mpoly, int], tuple[fmpq_mpoly, int]]:
         ring = self.ring
-        return (ring.to_rational(self.num), ring.used(self.num)), (ring.to_rational(self.den), ring.used(self.den))
+        return (ring.points.rational_form(self.num), ring.points.used(self.num)), (
+            ring.points.rational_form(self.den),
+            ring.points.used(self.den),
+        )
 
     def derivative_at(self, symbol: sympy.Symbol, point: Mapping[sympy.Symbol, object]) -> fmpq:
         """Value of the partial derivative at ``point``, without forming it
         ((N' D - N D') / D^2 evaluated number by number)."""
         if symbol not in self.ring.symbols:
             return fmpq(0)
-        args = self.ring.point_args(point)
+        args = self.ring.points.args(point)
         name = symbol.name
         (num_q, num_used), (den_q, den_used) = self._rational_parts
-        n, d = self.ring.evaluate(self.num, args, num_q, num_used), self.ring.evaluate(self.den, args, den_q, den_used)
-        dn = self.ring.evaluate(self.num.derivative(name), args)
-        dd = self.ring.evaluate(self.den.derivative(name), args)
+        n, d = (
+            self.ring.points.evaluate(self.num, args, num_q, num_used),
+            self.ring.points.evaluate(self.den, args, den_q, den_used),
+        )
+        dn = self.ring.points.evaluate(self.num.derivative(name), args)
+        dd = self.ring.points.evaluate(self.den.derivative(name), args)
         return (dn * d - n * dd) / (d * d)
 
     def to_expr(self, factored: bool = True) -> sympy.Expr:

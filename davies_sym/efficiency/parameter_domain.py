@@ -102,7 +102,7 @@ class ParameterDomain:
     def _admissible(self, point: Point) -> bool:
         if any(point[s] <= 0 for s in self.eliminated):
             return False  # every geometric symbol is positive, eliminated ones too
-        args = self._ring.point_args(point)
+        args = self._ring.points.args(point)
         return all(e.evaluate(args) > 0 for e in self._positive)
 
     def value(self, expr: sympy.Expr, point: Point) -> sympy.Rational:

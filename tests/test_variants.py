@@ -255,7 +255,7 @@ def test_partial_derivative_rule_flags_a_wrong_power_direction():
     1/eta_C belongs) has a negative partial derivative in eta_C, and the check says so."""
     from dataclasses import replace
 
-    from davies_sym.efficiency.variants import _checked
+    from davies_sym.efficiency.variant_checks import checked_variant
 
     vs = tuplin_variants()
     right = vs.variants[0]
@@ -267,5 +267,5 @@ def test_partial_derivative_rule_flags_a_wrong_power_direction():
     ring = right.efficiency_rf.ring
     wrong = replace(right, efficiency_rf=ring.rational(right.efficiency.subs(eC, 1 / eC)))
     args = (region, etas, vs.analysis, vs.conditions, random.Random(1))
-    assert _checked(right, *args).derivative_check == "positive"
-    assert _checked(wrong, *args).derivative_check == "failed: eta_C"
+    assert checked_variant(right, *args).derivative_check == "positive"
+    assert checked_variant(wrong, *args).derivative_check == "failed: eta_C"

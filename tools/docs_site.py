@@ -24,7 +24,8 @@ from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.several_inputs import derive_several_inputs
 from davies_sym.efficiency.turning_conditions import mesh_roles
-from davies_sym.efficiency.variants import NOMINAL_EFFICIENCY, VariantSet, derive_variants
+from davies_sym.efficiency.variant_checks import NOMINAL_EFFICIENCY
+from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.graph_drawing import coupling_graph_figure
 from davies_sym.emit.plots import (
     Sweep,

@@ -21,14 +21,14 @@ from __future__ import annotations
 import numbers
 import random
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import partial
 
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.light_load import Derivation, LoadCase, bearings_agree, reached_cases
+from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
     INPUT_SPEED,
@@ -40,6 +40,7 @@ from davies_sym.efficiency.operating_point import (
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
 from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_checks import checked_variant
 from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
@@ -53,9 +54,6 @@ from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
 
 Progress = Callable[[str], None]
-
-#: Ordinary efficiency used for the partial-derivative check (Glover's external value).
-NOMINAL_EFFICIENCY = sympy.Rational(49, 50)
 
 
 @dataclass(frozen=True, eq=False)
@@ -293,7 +291,7 @@ def derive_variants(
                 bool(region),
                 loaded_forces=base.forces,
             )
-            variants.append(_checked(variant, region, etas, base.derivation.analysis, conditions, rng))
+            variants.append(checked_variant(variant, region, etas, base.derivation.analysis, conditions, rng))
             light += [(port_in, port_out, signs, case) for case in reversals]
     light = [item for item in light if not _assumed_elsewhere(item[3], item[0], variants, roles)]
     if light and skipped and train.ports.input not in (inputs or ()):
@@ -313,7 +311,7 @@ def derive_variants(
             reversed_forces=case.reversed,
             loaded_forces=case.forces,
         )
-        variants.append(_checked(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
+        variants.append(checked_variant(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
     return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared.form, derivations)
 
 
@@ -339,75 +337,3 @@ def _other_symbols(
     out = form.free_symbols - set(etas)
     out -= {r.flow.friction_symbol for r in roles}
     return sorted_symbols(out)
-
-
-def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition], analysis: Analysis) -> sympy.Expr | None:
-    """A product with the sign of the efficiency inside the variant's region: factors
-    the symbols' assumptions decide, and factors that are a turning condition (whose
-    sign the region fixes), are replaced by their signs.  None when always positive."""
-    known = {c.simplified: variant.signs[c.name] for c in conditions}
-    sign, expression = analysis.oracle.classify(*variant.efficiency_rf.factor_list(), known=known)
-    return None if sign == 1 else expression
-
-
-def _nominal(rf: RationalFunction, point: Point, etas: Sequence[sympy.Symbol]) -> sympy.Rational:
-    """The efficiency at ``point`` with every mesh at the nominal efficiency; 0 where the
-    formula is singular (such a point describes no working train)."""
-    try:
-        return rf.evaluate({**point, **{e: NOMINAL_EFFICIENCY for e in etas}})
-    except ZeroDivisionError:
-        # A pole of the formula at this sample: 0 lies outside (0, 1], so the point
-        # counts as not working, like a self-locking one.
-        return sympy.Integer(0)
-
-
-def _depends_on(rf: RationalFunction, symbol: sympy.Symbol) -> bool:
-    index = rf.ring.symbols.index(symbol)
-    return rf.num.degrees()[index] > 0 or rf.den.degrees()[index] > 0
-
-
-def _checked(
-    variant: Variant,
-    region: Sequence[Point],
-    etas: Sequence[sympy.Symbol],
-    analysis: Analysis,
-    conditions: Sequence[TurningCondition],
-    rng: random.Random,
-) -> Variant:
-    """Partial-derivative rule at a region sample; self-locking by sampling."""
-    rf = variant.efficiency_rf
-    locking_expression = _sign_in_region(variant, conditions, analysis)
-    derivative_check = "not checked"
-    locked: Point | None = None
-    # Laus 3.6.2 applies where the formula describes a working train: check it at a
-    # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
-    region = [
-        p
-        for p in region
-        if bearings_agree(variant.loaded_forces, analysis, {**p, **{e: NOMINAL_EFFICIENCY for e in etas}})
-    ]
-    working = [p for p in region[:40] if 0 < _nominal(rf, p, etas) <= 1]
-    if region and not working:
-        derivative_check = "not checked: the train self-locks at every sampled point"
-    if working:
-        nominal = {**working[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
-        failed = [
-            str(e) for e in etas if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0
-        ]
-        derivative_check = "positive" if not failed else f"failed: {', '.join(failed)}"
-    if region:
-        for point in region[:40]:
-            values = {**point, **{e: sympy.Rational(rng.randint(50, 99), 100) for e in etas}}
-            try:
-                value = rf.evaluate(values)
-            except ZeroDivisionError:
-                continue  # a pole of the formula at this sample: it says nothing of locking
-            # Outside (0, 1] the power directions the variant assumes do not hold: the
-            # train (or one of its stages, when two locked stages multiply) self-locks.
-            if not 0 < value <= 1:
-                used = variant.efficiency.free_symbols
-                locked = {k: v for k, v in values.items() if k in used}
-                break
-    return replace(
-        variant, derivative_check=derivative_check, self_locking_point=locked, locking_expression=locking_expression
-    )

@@ -138,29 +138,6 @@ DEPENDENT: Final[dict[str, str]] = {'rpl': 'rpl = rr/2 - rs2/2'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rr + rs1', '- r_{r} + r_{s1}')}
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
-        'name': 'A_to_D_c1_pos',
-        'number': 1,
-        'input': 'A',
-        'output': 'D',
-        'region': 0,
-        'conditions': ('-rr + rs1 > 0',),
-        'conditions_latex': ('- r_{r} + r_{s1} > 0',),
-        'meshes': (
-            'G1: gear S1 drives gear PS (eta_1), carrier c',
-            'G2: gear PS drives gear PL (eta_2), carrier c',
-            'G3: gear S2 drives gear PL (eta_3), carrier c',
-            'G4: gear PL drives gear R (eta_4), carrier c',
-        ),
-        'formula': 'eta_4*(rr + rs2)*(eta_1*eta_2*rs2 + eta_3*rs1)/((rs1 + rs2)*(eta_3*eta_4*rr + rs2))',
-        'latex': (
-            '\\frac{\\eta_{4} \\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} r_{s2} + \\eta_{3} '
-            'r_{s1}\\right)}{\\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} \\eta_{4} r_{r} + r_{s2}\\right)}'
-        ),
-        'feasible': False,
-        'reversed': (),
-        'forces': ('power through G3: -eta_1*eta_2*eta_4*rr + rs1 > 0',),
-    },
-    {
         'name': 'A_to_D_c1_neg',
         'number': 2,
         'input': 'A',
@@ -182,29 +159,6 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'feasible': True,
         'reversed': (),
         'forces': ('power through G3: -eta_1*eta_2*eta_4*rr + rs1 < 0',),
-    },
-    {
-        'name': 'D_to_A_c1_pos',
-        'number': 3,
-        'input': 'D',
-        'output': 'A',
-        'region': 0,
-        'conditions': ('-rr + rs1 > 0',),
-        'conditions_latex': ('- r_{r} + r_{s1} > 0',),
-        'meshes': (
-            'G1: gear PS drives gear S1 (eta_1), carrier c',
-            'G2: gear PL drives gear PS (eta_2), carrier c',
-            'G3: gear PL drives gear S2 (eta_3), carrier c',
-            'G4: gear R drives gear PL (eta_4), carrier c',
-        ),
-        'formula': 'eta_1*eta_2*(rs1 + rs2)*(eta_3*eta_4*rs2 + rr)/((rr + rs2)*(eta_1*eta_2*rs1 + eta_3*rs2))',
-        'latex': (
-            '\\frac{\\eta_{1} \\eta_{2} \\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} \\eta_{4} r_{s2} + '
-            'r_{r}\\right)}{\\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} r_{s1} + \\eta_{3} r_{s2}\\right)}'
-        ),
-        'feasible': False,
-        'reversed': (),
-        'forces': ('power through G3: -eta_1*eta_2*eta_4*rs1 + rr < 0',),
     },
     {
         'name': 'D_to_A_c1_neg',
@@ -230,6 +184,29 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'reversed': (),
         'forces': ('power through G3: -eta_1*eta_2*eta_4*rs1 + rr > 0',),
     },
+    {
+        'name': 'A_to_D_c1_neg_reversed_G3',
+        'number': 5,
+        'input': 'A',
+        'output': 'D',
+        'region': 1,
+        'conditions': ('-rr + rs1 < 0',),
+        'conditions_latex': ('- r_{r} + r_{s1} < 0',),
+        'meshes': (
+            'G1: gear S1 drives gear PS (eta_1), carrier c',
+            'G2: gear PS drives gear PL (eta_2), carrier c',
+            'G3: gear S2 drives gear PL (eta_3), carrier c',
+            'G4: gear PL drives gear R (eta_4), carrier c',
+        ),
+        'formula': 'eta_4*(rr + rs2)*(eta_1*eta_2*rs2 + eta_3*rs1)/((rs1 + rs2)*(eta_3*eta_4*rr + rs2))',
+        'latex': (
+            '\\frac{\\eta_{4} \\left(r_{r} + r_{s2}\\right) \\left(\\eta_{1} \\eta_{2} r_{s2} + \\eta_{3} '
+            'r_{s1}\\right)}{\\left(r_{s1} + r_{s2}\\right) \\left(\\eta_{3} \\eta_{4} r_{r} + r_{s2}\\right)}'
+        ),
+        'feasible': True,
+        'reversed': ('G3',),
+        'forces': ('power through G3 (reversed by the losses): -eta_1*eta_2*eta_4*rr + rs1 > 0',),
+    },
 )
 
 
@@ -245,78 +222,6 @@ def _relation_1(*, rr: ArrayLike, rs2: ArrayLike) -> NDArray[np.bool_]:
     rr = _array(rr)
     rs2 = _array(rs2)
     return np.asarray(1 / 2 * rr - 1 / 2 * rs2 > 0)
-
-
-def A_to_D_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_3: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-    rs2: ArrayLike,
-) -> Array:
-    """Variant (1): input A, output D, where -rr + rs1 > 0.  G1: gear S1 drives gear PS (eta_1), carrier c; G2: gear
-    PS drives gear PL (eta_2), carrier c; G3: gear S2 drives gear PL (eta_3), carrier c; G4: gear PL drives gear R
-    (eta_4), carrier c.
-    """
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_3 = _array(eta_3)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    rs2 = _array(rs2)
-    _t0 = eta_4 * (rr + rs2) / ((rs1 + rs2) * (eta_3 * eta_4 * rr + rs2))
-    return _array(_t0 * (eta_1 * eta_2 * rs2 + eta_3 * rs1))
-
-
-def _losses_A_to_D_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_3: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-    rs2: ArrayLike,
-) -> tuple[Array, ...]:
-    """Losses over the input power in variant (1)."""
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_3 = _array(eta_3)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    rs2 = _array(rs2)
-    _t0 = rs2 / (rs1 + rs2)
-    _t1 = eta_4 * rr
-    _t2 = eta_1 * eta_2
-    _t3 = _t0 / (_t1 * eta_3 + rs2)
-    return (
-        _array(-_t0 * (eta_1 - 1)),
-        _array(-_t0 * eta_1 * (eta_2 - 1)),
-        _array(_t3 * (eta_3 - 1) * (_t1 * _t2 - rs1)),
-        _array(-_t3 * (eta_4 - 1) * (_t2 * rs2 + eta_3 * rs1)),
-    )
-
-
-def _forces_A_to_D_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-) -> Array:
-    """Loaded forces of G3 in variant (1), each times the sign it needs: all >= 0 where the variant holds."""
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    return _array(-eta_1 * eta_2 * eta_4 * rr + rs1)
 
 
 def A_to_D_c1_neg(
@@ -392,80 +297,6 @@ def _forces_A_to_D_c1_neg(
     return _array(eta_1 * eta_2 * eta_4 * rr - rs1)
 
 
-def D_to_A_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_3: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-    rs2: ArrayLike,
-) -> Array:
-    """Variant (3): input D, output A, where -rr + rs1 > 0.  G1: gear PS drives gear S1 (eta_1), carrier c; G2: gear
-    PL drives gear PS (eta_2), carrier c; G3: gear PL drives gear S2 (eta_3), carrier c; G4: gear R drives gear PL
-    (eta_4), carrier c.
-    """
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_3 = _array(eta_3)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    rs2 = _array(rs2)
-    _t0 = eta_3 * rs2
-    _t1 = eta_1 * eta_2
-    return _array(_t1 * (rs1 + rs2) * (_t0 * eta_4 + rr) / ((_t0 + _t1 * rs1) * (rr + rs2)))
-
-
-def _losses_D_to_A_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_3: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-    rs2: ArrayLike,
-) -> tuple[Array, ...]:
-    """Losses over the input power in variant (3)."""
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_3 = _array(eta_3)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    rs2 = _array(rs2)
-    _t0 = eta_3 * rs2
-    _t1 = eta_1 * eta_2 * rs1
-    _t2 = rs2 / (rr + rs2)
-    _t3 = _t2 / (_t0 + _t1)
-    _t4 = _t3 * (_t0 * eta_4 + rr)
-    return (
-        _array(-_t4 * eta_2 * (eta_1 - 1)),
-        _array(-_t4 * (eta_2 - 1)),
-        _array(-_t3 * (eta_3 - 1) * (_t1 * eta_4 - rr)),
-        _array(-_t2 * (eta_4 - 1)),
-    )
-
-
-def _forces_D_to_A_c1_pos(
-    *,
-    eta_1: ArrayLike,
-    eta_2: ArrayLike,
-    eta_4: ArrayLike,
-    rr: ArrayLike,
-    rs1: ArrayLike,
-) -> Array:
-    """Loaded forces of G3 in variant (3), each times the sign it needs: all >= 0 where the variant holds."""
-    eta_1 = _array(eta_1)
-    eta_2 = _array(eta_2)
-    eta_4 = _array(eta_4)
-    rr = _array(rr)
-    rs1 = _array(rs1)
-    return _array(eta_1 * eta_2 * eta_4 * rs1 - rr)
-
-
 def D_to_A_c1_neg(
     *,
     eta_1: ArrayLike,
@@ -538,6 +369,78 @@ def _forces_D_to_A_c1_neg(
     return _array(-eta_1 * eta_2 * eta_4 * rs1 + rr)
 
 
+def A_to_D_c1_neg_reversed_G3(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+) -> Array:
+    """Variant (5): input A, output D, where -rr + rs1 < 0.  G1: gear S1 drives gear PS (eta_1), carrier c; G2: gear
+    PS drives gear PL (eta_2), carrier c; G3: gear S2 drives gear PL (eta_3), carrier c; G4: gear PL drives gear R
+    (eta_4), carrier c.
+    """
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_3 = _array(eta_3)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    rs2 = _array(rs2)
+    _t0 = eta_4 * (rr + rs2) / ((rs1 + rs2) * (eta_3 * eta_4 * rr + rs2))
+    return _array(_t0 * (eta_1 * eta_2 * rs2 + eta_3 * rs1))
+
+
+def _losses_A_to_D_c1_neg_reversed_G3(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Losses over the input power in variant (5)."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_3 = _array(eta_3)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    rs2 = _array(rs2)
+    _t0 = rs2 / (rs1 + rs2)
+    _t1 = eta_4 * rr
+    _t2 = eta_1 * eta_2
+    _t3 = _t0 / (_t1 * eta_3 + rs2)
+    return (
+        _array(-_t0 * (eta_1 - 1)),
+        _array(-_t0 * eta_1 * (eta_2 - 1)),
+        _array(_t3 * (eta_3 - 1) * (_t1 * _t2 - rs1)),
+        _array(-_t3 * (eta_4 - 1) * (_t2 * rs2 + eta_3 * rs1)),
+    )
+
+
+def _forces_A_to_D_c1_neg_reversed_G3(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+) -> Array:
+    """Loaded forces of G3 in variant (5), each times the sign it needs: all >= 0 where the variant holds."""
+    eta_1 = _array(eta_1)
+    eta_2 = _array(eta_2)
+    eta_4 = _array(eta_4)
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return _array(-eta_1 * eta_2 * eta_4 * rr + rs1)
+
+
 def _dependent_rpl(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
     """rpl = rr/2 - rs2/2 (the geometric constraint rpl + rs2 = -rpl + rr)."""
     rr = _array(rr)
@@ -557,23 +460,23 @@ _CONDITIONS: Final[_Table] = {'c1': (condition_c1, ('rr', 'rs1'))}
 _RELATIONS: Final[_Table] = {'rr/2 - rs2/2 > 0': (_relation_1, ('rr', 'rs2'))}
 _DEPENDENT: Final[_Table] = {'rpl': (_dependent_rpl, ('rr', 'rs2'))}
 _EFFICIENCY: Final[_Table] = {
-    'A_to_D_c1_pos': (A_to_D_c1_pos, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
     'A_to_D_c1_neg': (A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
-    'D_to_A_c1_pos': (D_to_A_c1_pos, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
     'D_to_A_c1_neg': (D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
+    'A_to_D_c1_neg_reversed_G3': (A_to_D_c1_neg_reversed_G3, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
 }
 _LOSSES: Final[_Table] = {
-    'A_to_D_c1_pos': (_losses_A_to_D_c1_pos, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
     'A_to_D_c1_neg': (_losses_A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
-    'D_to_A_c1_pos': (_losses_D_to_A_c1_pos, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
     'D_to_A_c1_neg': (_losses_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
+    'A_to_D_c1_neg_reversed_G3': (
+        _losses_A_to_D_c1_neg_reversed_G3,
+        ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2'),
+    ),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rr', 'rs1', 'rs2'))}
 _FORCES: Final[_Table] = {
-    'A_to_D_c1_pos': (_forces_A_to_D_c1_pos, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
     'A_to_D_c1_neg': (_forces_A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
-    'D_to_A_c1_pos': (_forces_D_to_A_c1_pos, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
     'D_to_A_c1_neg': (_forces_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
+    'A_to_D_c1_neg_reversed_G3': (_forces_A_to_D_c1_neg_reversed_G3, ('eta_1', 'eta_2', 'eta_4', 'rr', 'rs1')),
 }
 
 

@@ -234,19 +234,25 @@ def test_two_efficiency_symbols_per_mesh():
     assert [(v.input, v.efficiency) for v in vs.variants] == [("A", e12), ("B", e21)]
 
 
-def test_unreachable_condition_combination_is_reported_infeasible():
+def test_unreachable_condition_combination_is_proved_empty_and_not_derived():
     """Stage 2 has annuli ra1 and rb1 + dd: its condition dd - ra1 + rb1 is positive
-    whenever stage 1's rb1 - ra1 is, so (c1 > 0, c2 < 0) is reported infeasible (no
-    admissible sample), not dropped; the other three regions are reached."""
+    whenever stage 1's rb1 - ra1 is (dd > 0), so no design has (c1 > 0, c2 < 0).  That
+    combination is proved empty from exactly these three facts and listed without a
+    formula, for both inputs, keeping its number; the other three regions are derived."""
     vs = derive_variants(own("dependent_conditions"))
     c1, c2 = vs.conditions
     assert equal(c1.expression, S("rb1") - S("ra1")) and equal(c2.expression, S("dd") - S("ra1") + S("rb1"))
-    assert len(vs.variants) == 8
-    infeasible = {(v.input, v.signs["c1"], v.signs["c2"]) for v in vs.variants if not v.feasible}
-    assert infeasible == {("A1", 1, -1), ("B2", 1, -1)}
+    assert len(vs.variants) == 6 and all(v.feasible for v in vs.variants)
+    assert [v.number for v in vs.listed] == list(range(1, 9))
+    assert {(v.input, v.signs["c1"], v.signs["c2"]) for v in vs.excluded} == {("A1", 1, -1), ("B2", 1, -1)}
+    for v in vs.excluded:
+        assert {(str(r.expression), r.relation) for r in v.conditions} == {
+            (str(c1.expression), ">="),
+            (str(c2.expression), "<"),
+        }
+        assert [(r.expression, r.relation) for r in v.facts] == [(S("dd"), ">")]
     for v in vs.variants:
-        if v.feasible:
-            assert v.derivative_check == "positive"
+        assert v.derivative_check == "positive"
 
 
 def test_partial_derivative_rule_flags_a_wrong_power_direction():

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.light_load import LoadedForces
 from davies_sym.efficiency.parameter_domain import Point
@@ -76,13 +77,51 @@ class Variant:
     @property
     def name(self) -> str:
         """An identifier naming the ports and the condition signs, e.g. ``A_to_B_c1_pos``."""
-        parts = [f"{self.input}_to_{self.output}"]
-        parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in self.signs.items()]
-        if self.reversed_forces:
-            parts += ["reversed", *sorted(self.reversed_forces)]
-        name = "_".join(_identifier(p) for p in parts)
-        # A port named by a number would start the function name with a digit.
-        return name if name[0].isalpha() else f"from_{name}"
+        return variant_name(self.input, self.output, self.signs, self.reversed_forces)
+
+
+def variant_name(input: str, output: str, signs: Mapping[str, int], reversed_forces: frozenset[str]) -> str:
+    """An identifier naming the ports, the condition signs and the reversed forces."""
+    parts = [f"{input}_to_{output}"]
+    parts += [f"{c}_{'pos' if s > 0 else 'neg'}" for c, s in signs.items()]
+    if reversed_forces:
+        parts += ["reversed", *sorted(reversed_forces)]
+    name = "_".join(_identifier(p) for p in parts)
+    # A port named by a number would start the function name with a digit.
+    return name if name[0].isalpha() else f"from_{name}"
+
+
+@dataclass(frozen=True, eq=False)
+class ExcludedVariant:
+    """A combination of input port and turning-condition signs that no admissible
+    geometry reaches, proved so before its formula is built (`davies_sym.algebra.linear_regions`):
+    it keeps its number in the table (Laus Tables 5 and 6 list every combination) and has
+    no formula."""
+
+    number: int
+    input: str
+    output: str
+    signs: Mapping[str, int]
+    first_drives: Mapping[str, bool]
+    #: The requirements the proof needs: the variant's conditions and the facts of the
+    #: admissible geometry they contradict (``rr - rs1 > 0``).
+    conditions: tuple[Requirement, ...]
+    facts: tuple[Requirement, ...]
+
+    @property
+    def name(self) -> str:
+        return variant_name(self.input, self.output, self.signs, frozenset())
+
+    @property
+    def reason(self) -> str:
+        """Why the variant never holds, in one sentence."""
+        against = f"with {_listed(self.facts)} (admissible geometry)" if self.facts else "for any values"
+        return f"{_listed(self.conditions)} cannot hold {against}, so no design reaches it; not derived"
+
+
+def _listed(requirements: tuple[Requirement, ...]) -> str:
+    items = [str(r) for r in requirements]
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _identifier(text: str) -> str:

@@ -31,11 +31,11 @@ def _sign_in_region(variant: Variant, conditions: Sequence[TurningCondition], an
     return None if sign == 1 else expression
 
 
-def _nominal(rf: RationalFunction, point: Point, etas: Sequence[sympy.Symbol]) -> sympy.Rational:
-    """The efficiency at ``point`` with every mesh at the nominal efficiency; 0 where the
-    formula is singular (such a point describes no working train)."""
+def _value(rf: RationalFunction, point: Point) -> sympy.Rational:
+    """The efficiency at ``point``; 0 where the formula is singular (such a point
+    describes no working train)."""
     try:
-        return rf.evaluate({**point, **{e: NOMINAL_EFFICIENCY for e in etas}})
+        return rf.evaluate(point)
     except ZeroDivisionError:
         # A pole of the formula at this sample: 0 lies outside (0, 1], so the point
         # counts as not working, like a self-locking one.
@@ -61,17 +61,22 @@ def checked_variant(
     derivative_check = "not checked"
     locked: Point | None = None
     # Laus 3.6.2 applies where the formula describes a working train: check it at a
-    # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].
-    region = [
-        p
-        for p in region
-        if bearings_agree(variant.loaded_forces, analysis, {**p, **{e: NOMINAL_EFFICIENCY for e in etas}})
-    ]
-    working = [p for p in region[:40] if 0 < _nominal(rf, p, etas) <= 1]
+    # region sample whose efficiency at the nominal mesh efficiencies is in (0, 1].  A
+    # case the losses reach (reversed forces) holds at its sample's own efficiencies,
+    # not always at the nominal ones: it is checked there.
+    reached = bool(variant.reversed_forces)
+
+    def checked_at(point: Point) -> Point:
+        if reached and all(e in point for e in etas if _depends_on(rf, e)):
+            return point
+        return {**point, **{e: NOMINAL_EFFICIENCY for e in etas}}
+
+    region = [p for p in region if bearings_agree(variant.loaded_forces, analysis, checked_at(p))]
+    working = [p for p in region[:40] if 0 < _value(rf, checked_at(p)) <= 1]
     if region and not working:
         derivative_check = "not checked: the train self-locks at every sampled point"
     if working:
-        nominal = {**working[0], **{e: NOMINAL_EFFICIENCY for e in etas}}
+        nominal = checked_at(working[0])
         failed = [
             str(e) for e in etas if e in rf.ring.symbols and _depends_on(rf, e) and not rf.derivative_at(e, nominal) > 0
         ]

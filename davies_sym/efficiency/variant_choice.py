@@ -19,8 +19,8 @@ import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variant import Variant
-from davies_sym.errors import DerivationError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.efficiency.variant import ExcludedVariant, Variant
+from davies_sym.errors import DerivationError, DesignError, MissingValuesError, NotCoveredError, Problem
 
 Values = Mapping[sympy.Symbol, sympy.Expr]
 
@@ -80,6 +80,7 @@ def holding_variant(
     port: str,
     values: Values,
     path: str | None = None,
+    excluded: Sequence[ExcludedVariant] = (),
 ) -> Variant:
     """The variant with input ``port`` that holds at ``values``.
 
@@ -93,6 +94,18 @@ def holding_variant(
     signs = condition_signs_at(conditions, values, path)
     port_variants = [v for v in variants if v.input == port]
     own = [v for v in port_variants if dict(v.signs) == signs]
+    never = [v for v in excluded if v.input == port and dict(v.signs) == signs]
+    if not own and never:
+        raise DesignError(
+            [
+                Problem(
+                    "--eval",
+                    f"these values lie in the region of variant ({never[0].number}), which no admissible "
+                    f"design reaches: {never[0].reason}; check the values",
+                )
+            ],
+            path,
+        )
     if not own:
         raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
     others = [v for v in port_variants if dict(v.signs) != signs and v.loaded_forces]

@@ -26,8 +26,10 @@ from functools import partial
 
 import sympy
 
+from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.empty_regions import broken_facts, emptiness_proof, geometry_facts
 from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
@@ -39,12 +41,12 @@ from davies_sym.efficiency.operating_point import (
 )
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variant_checks import checked_variant
 from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
-from davies_sym.errors import InputError, MissingValuesError, Problem
+from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
@@ -71,6 +73,13 @@ class VariantSet:
     #: reactions of the named bearings reversed; the declared input's without reversal
     #: always, the other input's when friction laws besides the meshes' make it differ.
     derivations: Mapping[tuple[bool, frozenset[str]], Derivation] = field(default_factory=dict, repr=False)
+    #: The combinations no admissible geometry reaches, proved so and not derived.
+    excluded: tuple[ExcludedVariant, ...] = ()
+
+    @property
+    def listed(self) -> list[Variant | ExcludedVariant]:
+        """Every variant and every excluded combination, by number (the table's order)."""
+        return sorted([*self.variants, *self.excluded], key=lambda v: v.number)
 
     def _repr_latex_(self) -> str:
         """Every variant's formula and where it holds, for a notebook."""
@@ -143,8 +152,23 @@ class VariantSet:
 
     def _completed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
         """``values`` keyed by symbol, checked against the geometric constraints, with the
-        defined symbols (e.g. a mesh efficiency from the tooth geometry) added."""
-        return completed(check_values(self.train, self._keyed(values)), self.train.definitions)
+        defined symbols (e.g. a mesh efficiency from the tooth geometry) added; values
+        outside the admissible geometry (a sun larger than its ring) are refused."""
+        given = check_values(self.train, self._keyed(values))
+        facts = geometry_facts(self.train, self.analysis.network.layout, self.conditions)
+        broken = broken_facts(facts, given)
+        if broken:
+            raise DesignError(
+                [
+                    Problem(
+                        "--eval",
+                        f"the values break {'; '.join(broken)}: no admissible design has them "
+                        "(every pitch radius and every fact of the layout is positive)",
+                    )
+                ],
+                self.train.path,
+            )
+        return completed(given, self.train.definitions)
 
     def variant_for(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> Variant:
         """The variant whose conditions hold at ``values`` (keyed by symbol or name) with
@@ -164,7 +188,7 @@ class VariantSet:
                 ],
                 self.train.path,
             )
-        return holding_variant(self.variants, self.conditions, port, values, self.train.path)
+        return holding_variant(self.variants, self.conditions, port, values, self.train.path, self.excluded)
 
     def evaluate(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (keyed by symbol or name, e.g. ``{"r1": 40}``; exact
@@ -261,10 +285,13 @@ def derive_variants(
         key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
         regions.setdefault(key, []).append(point)
     variants: list[Variant] = []
+    excluded: list[ExcludedVariant] = []
     skipped = 0
     light: list[tuple[str, str, dict[str, int], LoadCase]] = []
     combos = condition_signs(conditions)
     rng = random.Random(seed)
+    facts = geometry_facts(train, analysis.network.layout, conditions)
+    proofs: dict[tuple[int, ...], tuple[tuple[Requirement, ...], tuple[Requirement, ...]] | None] = {}
     for declared_input in (True, False):
         port_in = train.ports.input if declared_input else train.ports.output
         port_out = train.ports.output if declared_input else train.ports.input
@@ -272,9 +299,20 @@ def derive_variants(
             skipped += len(combos)  # their numbers stay taken: a variant keeps its number
             continue
         for signs in combos:
-            say(f"variant {len(variants) + skipped + 1} of {2 * len(combos)}: input {port_in}")
+            number = len(variants) + len(excluded) + skipped + 1
             first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
-            region = regions.get(tuple(signs[c.name] for c in conditions), [])
+            key = tuple(signs[c.name] for c in conditions)
+            region = regions.get(key, [])
+            if not region:
+                # No sample in the region: prove it empty before building anything there.
+                if key not in proofs:
+                    proofs[key] = emptiness_proof(facts, conditions, signs)
+                proof = proofs[key]
+                if proof is not None:
+                    say(f"variant {number} of {2 * len(combos)}: input {port_in}, no admissible geometry")
+                    excluded.append(ExcludedVariant(number, port_in, port_out, signs, first, *proof))
+                    continue
+            say(f"variant {number} of {2 * len(combos)}: input {port_in}")
             if resolve_again:
                 base, *reversals = reached_cases(first, partial(derive, declared_input), roles, region, etas, seed)
             else:
@@ -282,7 +320,7 @@ def derive_variants(
                 same = partial(_same, declared)
                 base, *reversals = reached_cases(first, same, roles, region, etas, seed, not declared_input)
             variant = Variant(
-                len(variants) + skipped + 1,
+                number,
                 port_in,
                 port_out,
                 signs,
@@ -299,9 +337,10 @@ def derive_variants(
         return derive_variants(train, progress, samples, seed, layout)
     for port_in, port_out, signs, case in light:
         reversed_ = ", ".join(sorted(case.reversed))
-        say(f"variant {len(variants) + skipped + 1}: input {port_in}, the losses reverse {reversed_}")
+        number = len(variants) + len(excluded) + skipped + 1
+        say(f"variant {number}: input {port_in}, the losses reverse {reversed_}")
         variant = Variant(
-            len(variants) + skipped + 1,
+            number,
             port_in,
             port_out,
             signs,
@@ -312,7 +351,16 @@ def derive_variants(
             loaded_forces=case.forces,
         )
         variants.append(checked_variant(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
-    return VariantSet(train, analysis, tuple(roles), tuple(conditions), tuple(variants), declared.form, derivations)
+    return VariantSet(
+        train,
+        analysis,
+        tuple(roles),
+        tuple(conditions),
+        tuple(variants),
+        declared.form,
+        derivations,
+        tuple(excluded),
+    )
 
 
 def _same(derivation: Derivation, bearings: frozenset[str]) -> Derivation:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy
 
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.latex_lines import LINE_WIDTH, display, fits, numbered
 from davies_sym.emit.variant_report import variant_forces
@@ -98,6 +98,23 @@ def _latex_notes(variant: Variant) -> list[str]:
     return out
 
 
+#: The relations of a requirement as LaTeX.
+_RELATION_LATEX = {">": ">", ">=": r"\ge", "<": "<"}
+
+
+def never_holds_latex(variant: ExcludedVariant) -> list[str]:
+    """Why no admissible design reaches ``variant``: its conditions and the facts of the
+    geometry they contradict, each displayed (broken into lines when long)."""
+    out = [r"\noindent Never holds, so not derived: no admissible design satisfies"]
+    for r in variant.conditions:
+        out += display("", r.factored(), tail=f" {_RELATION_LATEX[r.relation]} 0")
+    out.append(r"\noindent together with the facts of the admissible geometry")
+    for r in variant.facts:
+        note = rf"\quad\text{{({escape(r.description)})}}" if r.description else ""
+        out += display("", r.factored(), tail=f" {_RELATION_LATEX[r.relation]} 0{note}")
+    return out
+
+
 def _sign(sign: int) -> str:
     return "$> 0$" if sign > 0 else "$< 0$"
 
@@ -128,7 +145,7 @@ def latex_states_document(sets: list[VariantSet]) -> str:
     return "\n".join([*PREAMBLE, *body[:-1], r"\end{document}", ""])
 
 
-def drivers_latex(variants: VariantSet, variant: Variant) -> str:
+def drivers_latex(variants: VariantSet, variant: Variant | ExcludedVariant) -> str:
     """The driving gear of every mesh in ``variant``: ``C: 1$\\to$3`` (gear 1 drives gear
     3), ``idle`` for a mesh that carries no power."""
     out = []
@@ -191,7 +208,8 @@ def _conditions_table(variants: VariantSet) -> list[str]:
 
 def variants_table(variants: VariantSet) -> list[str]:
     """Input, output, condition signs, driving gears (and status where any) per variant."""
-    statuses = [_status(v) for v in variants.variants]
+    listed = variants.listed
+    statuses = ["never holds" if isinstance(v, ExcludedVariant) else _status(v) for v in listed]
     extra = any(statuses)
     columns = "lll" + "c" * len(variants.conditions) + "L" + ("L" if extra else "")
     header = [
@@ -203,7 +221,7 @@ def variants_table(variants: VariantSet) -> list[str]:
         *(["Status"] if extra else []),
     ]
     rows = []
-    for v, status in zip(variants.variants, statuses, strict=True):
+    for v, status in zip(listed, statuses, strict=True):
         cells = [f"({v.number})", escape(v.input), escape(v.output)]
         cells += [_sign(v.signs[c.name]) for c in variants.conditions] + [drivers_latex(variants, v)]
         rows.append(cells + ([status] if extra else []))
@@ -237,12 +255,15 @@ def _section(variants: VariantSet) -> list[str]:
         )
         out.append(rf"\par\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
     out += variants_table(variants)
-    for v in variants.variants:
+    for v in variants.listed:
         out.append(
             rf"\paragraph{{Variant ({v.number})}} Input {escape(v.input)}, output {escape(v.output)}"
             + ("".join(f", ${c.name}$ {_sign(v.signs[c.name])}" for c in variants.conditions))
             + "."
         )
+        if isinstance(v, ExcludedVariant):
+            out += never_holds_latex(v)
+            continue
         # The losses' say beyond the lossless turning conditions: each mesh power (and
         # bearing reaction) the losses can reverse, with the sign the variant needs.
         out += force_latex(variant_forces(variants, v))

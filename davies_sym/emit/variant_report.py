@@ -6,13 +6,13 @@ from typing import Any
 
 import sympy
 
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.force_conditions import force_conditions, force_text
 from davies_sym.topology.symbol_display import latex as display_latex
 
 
-def condition_text(variants: VariantSet, variant: Variant) -> list[str]:
+def condition_text(variants: VariantSet, variant: Variant | ExcludedVariant) -> list[str]:
     """``"r2 - r1 > 0"`` for every turning condition of ``variant``."""
     out = []
     for c in variants.conditions:
@@ -26,7 +26,7 @@ def variant_forces(variants: VariantSet, variant: Variant) -> list[tuple[str, sy
     return force_conditions(variant.loaded_forces, {r.coupling for r in variants.roles}, variant.reversed_forces)
 
 
-def mesh_text(variants: VariantSet, variant: Variant) -> list[str]:
+def mesh_text(variants: VariantSet, variant: Variant | ExcludedVariant) -> list[str]:
     """``"C: gear 1 drives gear 3 (eta_C)"`` for every mesh (an idle one says so)."""
     out = []
     for role in variants.roles:
@@ -92,19 +92,14 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
                 ),
             }
         )
-    items = []
-    for v in variants.variants:
+    items: list[dict[str, Any]] = []
+    for v in variants.listed:
+        if isinstance(v, ExcludedVariant):
+            items.append(_excluded_entry(variants, v))
+            continue
         items.append(
             {
-                "number": v.number,
-                "name": v.name,
-                "input": v.input,
-                "output": v.output,
-                "conditions": [
-                    {"condition": c.name, "expression": sympy.sstr(c.simplified), "sign": v.signs[c.name]}
-                    for c in variants.conditions
-                ],
-                "meshes": mesh_text(variants, v),
+                **_common_entry(variants, v),
                 "efficiency": sympy.sstr(v.efficiency),
                 "latex": display_latex(v.efficiency),
                 "feasible": v.feasible,
@@ -131,6 +126,36 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
     return {"turning_conditions": conditions, "meshes": meshes, "variants": items, "definitions": definitions}
 
 
+def _common_entry(variants: VariantSet, v: Variant | ExcludedVariant) -> dict[str, Any]:
+    """What every row of the variants table has: number, name, ports, condition signs
+    and the driving gear of every mesh."""
+    return {
+        "number": v.number,
+        "name": v.name,
+        "input": v.input,
+        "output": v.output,
+        "conditions": [
+            {"condition": c.name, "expression": sympy.sstr(c.simplified), "sign": v.signs[c.name]}
+            for c in variants.conditions
+        ],
+        "meshes": mesh_text(variants, v),
+    }
+
+
+def _excluded_entry(variants: VariantSet, v: ExcludedVariant) -> dict[str, Any]:
+    """A combination no admissible design reaches: no formula, the proof's requirements."""
+    return {
+        **_common_entry(variants, v),
+        "efficiency": None,
+        "feasible": False,
+        "never_holds": {
+            "reason": v.reason,
+            "conditions": [str(r) for r in v.conditions],
+            "facts": [str(r) for r in v.facts],
+        },
+    }
+
+
 def variants_text(variants: VariantSet) -> str:
     """Plain-text table of conditions and variants."""
     lines = []
@@ -139,9 +164,13 @@ def variants_text(variants: VariantSet) -> str:
             f"  turning condition {c.name}: sign of {sympy.sstr(c.simplified)}"
             + (f" (derived: {sympy.sstr(c.expression)})" if c.expression != c.simplified else "")
         )
-    for v in variants.variants:
+    for v in variants.listed:
         where = "; ".join(condition_text(variants, v)) or "always"
         lines.append(f"  ({v.number}) input {v.input}, output {v.output}, where {where}:")
+        if isinstance(v, ExcludedVariant):
+            lines.append(f"      never holds: {v.reason}")
+            lines += [f"      {m}" for m in mesh_text(variants, v)]
+            continue
         lines.append(f"      eta = {sympy.sstr(v.efficiency)}")
         for f in force_text(variant_forces(variants, v)):
             lines.append(f"      holds where the {f}")

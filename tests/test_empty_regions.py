@@ -1,0 +1,219 @@
+"""Regions of turning-condition signs that no admissible design reaches are proved empty
+and their variants are not built.
+
+The prover (`davies_sym.algebra.linear_regions`) is checked against scipy's linear
+programming on random systems and against random points on random products; its use on
+the Ravigneaux set against the placement's triangle inequality, written here from the
+drawing, not from the package's layout.
+"""
+
+from __future__ import annotations
+
+import json
+import random
+import subprocess
+import sys
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.optimize import linprog
+
+import davies_sym
+from davies_sym.algebra.linear_regions import Inequality, Requirement, empty_region, feasible
+from davies_sym.efficiency.parameter_domain import ParameterDomain
+from davies_sym.efficiency.variant import ExcludedVariant
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.topology.states import train_in_state
+
+from conftest import ROOT, catalog_path, catalog_trains
+
+X = sympy.symbols("x0:3")
+ZF_SECOND = ["rs1=25", "rs2=32", "rps=16", "rr=64", "eta_1=0.98", "eta_2=0.98", "eta_3=0.98", "eta_4=0.98"]
+
+coefficient = st.integers(-3, 3)
+row = st.tuples(st.lists(coefficient, min_size=3, max_size=3), st.integers(-4, 4), st.booleans())
+
+
+def _lp_feasible(rows: list[tuple[list[int], int, bool]]) -> bool | None:
+    """Feasibility by linear programming (scipy, floating point): maximise the slack t of
+    the strict rows, A x + b >= t; None where t is too close to zero to tell."""
+    a_ub, b_ub = [], []
+    for coefficients, constant, strict in rows:
+        a_ub.append([-c for c in coefficients] + [1 if strict else 0])
+        b_ub.append(constant)
+    bounds = [(None, None)] * 3 + [(None, 1)]
+    result = linprog([0, 0, 0, -1], A_ub=a_ub, b_ub=b_ub, bounds=bounds, method="highs")
+    if result.status == 2:
+        return False
+    assert result.status == 0
+    if not any(strict for _, _, strict in rows):
+        return True
+    t = -result.fun
+    return None if abs(t) < 1e-9 else t > 0
+
+
+@given(st.lists(row, min_size=1, max_size=7))
+def test_fourier_motzkin_agrees_with_linear_programming(rows):
+    """Exact elimination and scipy's LP give the same answer on every random system of
+    strict and non-strict inequalities in three variables (up to LP's rounding at t = 0)."""
+    system = [
+        Inequality(tuple((x, Fraction(c)) for x, c in zip(X, cs, strict=True)), Fraction(b), strict)
+        for cs, b, strict in rows
+    ]
+    expected = _lp_feasible(rows)
+    if expected is not None:
+        assert feasible(system) is expected
+
+
+linear = st.tuples(st.lists(st.integers(-2, 2), min_size=3, max_size=3), st.integers(-2, 2))
+product = st.lists(linear, min_size=1, max_size=3)
+
+
+@given(st.lists(st.tuples(product, st.sampled_from([">", ">=", "<"])), min_size=1, max_size=4))
+def test_a_proof_of_emptiness_is_never_contradicted_by_a_point(requirements):
+    """Where a region of random products of linear factors is proved empty, no random
+    point satisfies every requirement (evaluated in floating point, apart from the
+    prover)."""
+    reqs = []
+    for factors, relation in requirements:
+        expr = sympy.Mul(*(sum(c * x for c, x in zip(cs, X, strict=True)) + b for cs, b in factors))
+        reqs.append(Requirement(expr, relation))
+    if empty_region(reqs) is None:
+        return
+    rng = np.random.default_rng(0)
+    points = rng.uniform(-5, 5, size=(4000, 3))
+    functions = [sympy.lambdify(X, r.expression, "numpy") for r in reqs]
+    holds = np.ones(len(points), dtype=bool)
+    for r, f in zip(reqs, functions, strict=True):
+        value = np.broadcast_to(f(*points.T), (len(points),))
+        holds &= {">": value > 0, ">=": value >= 0, "<": value < 0}[r.relation]
+    assert not holds.any()
+
+
+def test_a_nonlinear_factor_is_left_out_not_guessed():
+    """x^2 + y^2 < 1 is not linear: it takes no part in a proof, so x > 1 and
+    x^2 + y^2 < 1 are not proved empty (they are, but not by this prover), while x > 1
+    and x < 0 are."""
+    x, y = sympy.symbols("x y")
+    assert empty_region([Requirement(x - 1, ">"), Requirement(x**2 + y**2 - 1, "<")]) is None
+    proof = empty_region([Requirement(x - 1, ">"), Requirement(x**2 + y**2 - 1, "<"), Requirement(x, "<")])
+    assert proof is not None
+    assert {r.expression for r in proof.core} == {x - 1, x}
+
+
+def test_a_boundary_point_keeps_its_region():
+    """x >= 0 with x <= 0 (x = 0) is not empty: the sign +1 of a turning condition
+    includes its boundary, where the variant is still chosen."""
+    x = sympy.Symbol("x")
+    assert empty_region([Requirement(x, ">="), Requirement(-x, ">=")]) is None
+    assert empty_region([Requirement(x, ">="), Requirement(-x, ">")]) is not None
+
+
+RAVIGNEAUX = davies_sym.load(catalog_path("ravigneaux"))
+SECOND = train_in_state(RAVIGNEAUX, RAVIGNEAUX.state("second"))
+
+
+def _triangle_closes(rs1: float, rs2: float, rps: float, rr: float) -> bool:
+    """The ZF 3HP12 drawing: small sun and short planet at centre distance rs1 + rps, long
+    planet on the circle rr - rpl = rs2 + rpl, the planets at rps + rpl; the three
+    centres must form a triangle, and every radius is positive."""
+    rpl = (rr - rs2) / 2
+    a, b, c = rs1 + rps, rs2 + rpl, rps + rpl
+    return min(rs1, rs2, rps, rpl) > 0 and abs(a - b) < c < a + b
+
+
+def test_ravigneaux_second_gear_small_sun_never_outgrows_the_ring():
+    """2nd gear of the ZF 3HP12 (large sun held): its turning condition is rs1 - rr; the
+    triangle of the drawing makes rs1 < rr (triangle inequality: rs1 + rps < (rr - rpl)
+    + (rps + rpl)), so the combination c1 > 0 is proved empty for both inputs, not
+    derived, and the proof uses the placement's fact.  Checked against 20000 random
+    drawings by the triangle itself."""
+    vs = derive_variants(SECOND)
+    (c1,) = vs.conditions
+    assert sympy.expand(c1.expression - (SECOND.symbols["rs1"] - SECOND.symbols["rr"])) == 0
+    assert [(v.number, v.input, v.signs["c1"]) for v in vs.excluded] == [(1, "A", 1), (3, "D", 1)]
+    assert [v.number for v in vs.listed] == [1, 2, 3, 4, 5]
+    (proof,) = {tuple(str(r) for r in v.facts) for v in vs.excluded}
+    assert any("(rr - rs1)" in fact for fact in proof)  # the triangle's radicand
+    rng = random.Random(7)
+    closes = 0
+    for _ in range(20000):
+        rs1, rs2, rps, rr = (rng.uniform(1, 100) for _ in range(4))
+        if _triangle_closes(rs1, rs2, rps, rr):
+            closes += 1
+            assert rs1 < rr
+    assert closes > 1000
+
+
+def test_the_losses_case_of_the_empty_region_is_still_derived():
+    """The driving pattern of the empty region (G3: large sun drives) is reached by the
+    losses near the turning condition (rs1 > eta_1 eta_2 eta_4 rr, with rs1 < rr): that
+    case is derived as variant (5) with the region c1 < 0, and passes Laus's
+    partial-derivative rule at a point where it holds."""
+    vs = derive_variants(SECOND)
+    (five,) = [v for v in vs.variants if v.number == 5]
+    (one,) = [v for v in vs.excluded if v.number == 1]
+    assert five.signs["c1"] == -1 and dict(five.first_drives) == dict(one.first_drives)
+    assert five.reversed_forces == frozenset({"G3"})
+    assert five.derivative_check == "positive"
+
+
+@pytest.mark.parametrize(("name", "train"), catalog_trains(), ids=[name for name, _ in catalog_trains()])
+def test_no_region_a_sample_reaches_is_excluded(name, train):
+    """Sound on the catalog: every excluded combination of every train and state has no
+    point among 400 admissible samples drawn with another seed than the derivation's."""
+    vs = derive_variants(train)
+    domain = ParameterDomain.of(vs.train, vs.analysis.network.layout)
+    points = list(domain.samples(400, seed=11))
+    for v in vs.excluded:
+        for point in points:
+            signs = {c.name: 1 if domain.value(c.expression, point) >= 0 else -1 for c in vs.conditions}
+            assert signs != dict(v.signs)
+    assert (name == "ravigneaux[second]") == bool(vs.excluded)
+
+
+def _derive(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", *args], cwd=ROOT, capture_output=True, text=True, check=False
+    )
+
+
+def test_documents_list_the_excluded_variant_without_a_formula():
+    """Text, JSON and LaTeX keep the number and say why it never holds; no formula."""
+    text = _derive(catalog_path("ravigneaux"), "--state", "second", "--quiet").stdout
+    block = text.split("  (1) ")[1].split("  (2) ")[0]
+    assert "never holds" in block and "eta =" not in block
+    document = json.loads(_derive(catalog_path("ravigneaux"), "--state", "second", "--json", "--quiet").stdout)
+    first = document["variants"][0] if "variants" in document else document["states"]["second"]["variants"][0]
+    assert first["number"] == 1 and first["efficiency"] is None and "rr - rs1" in first["never_holds"]["reason"]
+    latex = _derive(catalog_path("ravigneaux"), "--state", "second", "--latex", "--quiet").stdout
+    assert r"\paragraph{Variant (1)}" in latex and "Never holds" in latex
+
+
+def test_values_outside_the_admissible_geometry_are_refused():
+    """A small sun of 70 in a ring of 64 breaks the triangle of the drawing: exit 2 with
+    the fact named, never a number (it used to print variant (1)'s value)."""
+    result = _derive(catalog_path("ravigneaux"), "--state", "second", "--eval", "rs1=70", *ZF_SECOND[1:], "--quiet")
+    assert result.returncode == 2 and result.stdout == ""
+    assert "(rr - rs1)" in result.stderr and "no admissible design" in result.stderr
+    assert "Traceback" not in result.stderr
+    good = _derive(catalog_path("ravigneaux"), "--state", "second", "--eval", *ZF_SECOND, "--quiet")
+    assert good.returncode == 0 and good.stdout.startswith("variant (2)")
+
+
+def test_excluded_combination_is_refused_by_the_api_even_past_the_facts():
+    """Asking the variant of an excluded region directly (values that pass the facts
+    cannot reach it, so the conditions are given a point of their own) is a design
+    error naming the variant, not an internal error."""
+    from davies_sym.efficiency.variant_choice import holding_variant
+    from davies_sym.errors import DesignError
+
+    vs = derive_variants(SECOND)
+    s = SECOND.symbols
+    with pytest.raises(DesignError, match=r"variant \(1\)"):
+        holding_variant(vs.variants, vs.conditions, "A", {s["rs1"]: 70, s["rr"]: 64}, None, vs.excluded)
+    assert all(isinstance(v, ExcludedVariant) for v in vs.excluded)

@@ -184,3 +184,33 @@ def test_substitution_by_factors_equals_the_expanded_substitution(seed: int) -> 
     assert got.num == plain.num and got.den == plain.den
     if not plain.is_zero():
         assert got.factorisation == (factor(plain.num), factor(plain.den))
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_simultaneous_substitution_equals_sympy_substitution(seed: int) -> None:
+    """Two symbols replaced at once (each factor substituted in both and factored once)
+    equals sympy's simultaneous substitution of the expanded expression, put in lowest
+    terms, with flint's factorisation of that result; values free of the replaced
+    symbols, as the meshes' zeta forms are."""
+    rng = random.Random(1000 + seed)
+    ring = PolynomialRing(SYMBOLS)
+    x, y = rng.sample(SYMBOLS, 2)
+    a = _lazy(ring, rng) * _lazy(ring, rng)
+    values = {}
+    for symbol in (x, y):
+        value = _lazy(ring, rng)
+        while value.free_symbols & {x, y}:
+            value = value.substitute(x, RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5)))
+            value = value.substitute(y, RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5)))
+        values[symbol] = value
+    expr = a.to_expr(factored=False).subs({s: v.to_expr(factored=False) for s, v in values.items()}, simultaneous=True)
+    try:
+        plain = ring.rational(sympy.together(expr))
+    except DerivationError:  # the substitution divides by zero
+        with pytest.raises(ZeroDivisionError):
+            a.substitute_all(values)
+        return
+    got = a.substitute_all(values)
+    assert got.num == plain.num and got.den == plain.den
+    if not plain.is_zero():
+        assert got.factorisation == (factor(plain.num), factor(plain.den))

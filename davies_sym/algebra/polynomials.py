@@ -17,7 +17,14 @@ from flint import fmpq, fmpq_mpoly, fmpz_mpoly, fmpz_mpoly_ctx
 
 from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
 from davies_sym.algebra.point_values import PointValues
-from davies_sym.algebra.products import Product, fraction_substituted, fraction_sum, homogenised, lowest_terms
+from davies_sym.algebra.products import (
+    Product,
+    Replacement,
+    fraction_substituted,
+    fraction_sum,
+    homogenised,
+    lowest_terms,
+)
 from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
@@ -306,17 +313,34 @@ class RationalFunction:
         whole fraction: factor by factor where the factors are known (each f(n/d) d^k,
         k its degree, factored on its own), else N(n/d) d^K / (D(n/d) d^K), K the larger
         degree in ``symbol``."""
-        name, index = symbol.name, self.ring.symbols.index(symbol)
-        if not self.ring.radicals and self._factored_enough() and value._factored_enough():
-            if not any(f.degrees()[index] > 0 for part in self.factorisation for f, _ in part[1]):
+        return self.substitute_all({symbol: value})
+
+    def substitute_all(self, values: Mapping[sympy.Symbol, RationalFunction]) -> RationalFunction:
+        """``self`` with every symbol of ``values`` replaced at once (the values must not
+        contain the replaced symbols): factor by factor where the factors are known, each
+        factor substituted and factored once, not once per symbol; else one symbol after
+        the other on the expanded numerator and denominator."""
+        indices = {symbol: self.ring.symbols.index(symbol) for symbol in values}
+        factored = not self.ring.radicals and self._factored_enough()
+        if factored and all(value._factored_enough() for value in values.values()):
+            used = [
+                s for s in values if any(f.degrees()[indices[s]] > 0 for part in self.factorisation for f, _ in part[1])
+            ]
+            if not used:
                 return self
-            found = fraction_substituted(self.factorisation, name, index, value.num, value.den, value.factorisation[1])
-            return RationalFunction.from_factors(self.ring, found[0][0], found[1][0], found[0][1], found[1][1])
-        degree = max(self.num.degrees()[index], self.den.degrees()[index])
-        if degree == 0:
-            return self
-        num = homogenised(self.num, name, value.num, value.den, degree)
-        return RationalFunction.make(self.ring, num, homogenised(self.den, name, value.num, value.den, degree))
+            replacements = [
+                Replacement(s.name, indices[s], values[s].num, values[s].den, values[s].factorisation[1]) for s in used
+            ]
+            (cn, fn), (cd, fd) = fraction_substituted(self.factorisation, replacements)
+            return RationalFunction.from_factors(self.ring, cn, cd, fn, fd)
+        out = self
+        for symbol, value in values.items():
+            degree = max(out.num.degrees()[indices[symbol]], out.den.degrees()[indices[symbol]])
+            if degree:
+                num = homogenised(out.num, symbol.name, value.num, value.den, degree)
+                den = homogenised(out.den, symbol.name, value.num, value.den, degree)
+                out = RationalFunction.make(self.ring, num, den)
+        return out
 
     def evaluate(self, point: Mapping[sympy.Symbol, object] | tuple[fmpq | None, ...]) -> fmpq:
         """Exact value at a rational point (a mapping, or the ring's ``points.args``);

@@ -8,7 +8,7 @@ both work on them, so that nothing grows with the expanded size of a stage produ
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import reduce
 from math import gcd
@@ -186,31 +186,48 @@ def homogenised(p: fmpz_mpoly, name: str, n: fmpz_mpoly, d: fmpz_mpoly, degree: 
     return total
 
 
-def fraction_substituted(
-    fraction: Fraction, name: str, index: int, n: fmpz_mpoly, d: fmpz_mpoly, value_den: tuple[int, FactorList]
-) -> Fraction:
-    """``fraction`` with the variable ``name`` (generator ``index``) replaced by ``n / d``,
-    factor by factor: each factor f of degree k becomes f(n/d) d^k, factored on its own,
-    and the powers of d (``value_den``: its content and factors) are put back on the side
-    they fall on.  ZeroDivisionError when the denominator vanishes."""
+@dataclass(frozen=True)
+class Replacement:
+    """The variable ``name`` (generator ``index``) replaced by ``n / d``; ``den`` is the
+    content and irreducible factors of ``d``."""
+
+    name: str
+    index: int
+    n: fmpz_mpoly
+    d: fmpz_mpoly
+    den: tuple[int, FactorList]
+
+
+def fraction_substituted(fraction: Fraction, replacements: Sequence[Replacement]) -> Fraction:
+    """``fraction`` with every replacement made at once, factor by factor: each factor f
+    becomes f(n1/d1, n2/d2, ...) d1^k1 d2^k2 ... (k the degree it has in each variable
+    when its turn comes), factored once, and the powers of each d (its known factors)
+    are put back on the side they fall on.  ZeroDivisionError when the denominator
+    vanishes."""
     sides: dict[int, tuple[int, FactorList]] = {1: (fraction[0][0], []), -1: (fraction[1][0], [])}
-    exponent = 0  # of d in the result
+    exponents = [0] * len(replacements)  # of each d in the result
     for side, factors in ((1, fraction[0][1]), (-1, fraction[1][1])):
         for f, e in factors:
             content, found = sides[side]
-            k = int(f.degrees()[index])
-            if k <= 0:
+            p, changed = f, False
+            for k, r in enumerate(replacements):
+                degree = int(p.degrees()[r.index])
+                if degree > 0:
+                    p, changed = homogenised(p, r.name, r.n, r.d, degree), True
+                    exponents[k] -= side * degree * e
+            if not changed:
                 found.append((f, e))
                 continue
-            c, parts = factor(homogenised(f, name, n, d, k))
+            c, parts = factor(p)
             sides[side] = (content * c**e, found + [(g, m * e) for g, m in parts])
-            exponent -= side * k * e
     if sides[-1][0] == 0:
         raise ZeroDivisionError("the substitution makes the denominator zero")
-    side = 1 if exponent > 0 else -1
-    content, found = sides[side]
-    dc, df = value_den
-    sides[side] = (content * dc ** abs(exponent), found + [(g, m * abs(exponent)) for g, m in df])
+    for r, exponent in zip(replacements, exponents, strict=True):
+        if exponent:
+            side = 1 if exponent > 0 else -1
+            content, found = sides[side]
+            dc, df = r.den
+            sides[side] = (content * dc ** abs(exponent), found + [(g, m * abs(exponent)) for g, m in df])
     (cn, fn), (cd, fd) = sides[1], sides[-1]
     if cn == 0:
         return (0, []), (1, [])

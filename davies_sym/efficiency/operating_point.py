@@ -52,7 +52,6 @@ def substituted(
     zetas: Mapping[tuple[str, bool], RationalFunction],
     first: Mapping[str, bool],
 ) -> RationalFunction:
-    """``form`` with each mesh's zeta of the direction ``first`` gives it (first gear drives or not)."""
-    for role in roles:
-        form = form.substitute(role.flow.friction_symbol, zetas[(role.coupling, first[role.coupling])])
-    return form
+    """``form`` with each mesh's zeta of the direction ``first`` gives it (first gear drives
+    or not), every mesh at once: each factor of ``form`` is factored once."""
+    return form.substitute_all({r.flow.friction_symbol: zetas[(r.coupling, first[r.coupling])] for r in roles})

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.radicals import has_square_root
 from davies_sym.algebra.screws import (
     AXES,
     UNIT,
@@ -188,6 +189,14 @@ WRITERS: Mapping[type[Coupling], Callable[..., CouplingScrews]] = {
     Prismatic: _prismatic,
     ScrewCoupling: _written,
 }
+
+
+def written_square_root(screws: CouplingScrews) -> bool:
+    """Whether a square root is written in the screws (a low-level coupling's), which
+    the layout's radical table must absorb."""
+    return any(
+        has_square_root(x) for group in (screws.motions, screws.constraints) for named in group for x in named.screw
+    )
 
 
 def coupling_screws(coupling: Coupling, layout: Layout) -> CouplingScrews:

@@ -14,20 +14,22 @@ from dataclasses import dataclass, replace
 
 import sympy
 
-from davies_sym.algebra.radicals import RadicalTable, has_square_root
+from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import NamedScrew, action_along_motion, cross, power, torque_magnitude_name
 from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
-from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws
+from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws, written_square_root
 from davies_sym.network.screw_system import (
     CouplingScrewError,
     ReducedCoupling,
     ScrewSystem,
+    essential_twists,
     minimal_screw_system,
     reduce_coupling,
 )
+from davies_sym.network.shared_screws import shared_screws
 from davies_sym.topology.couplings import Coupling, GearMesh, Revolute, ScrewCoupling
 from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
@@ -112,19 +114,26 @@ class Network:
         for label, t in (("tree", self.tree), ("action tree", self.action_tree)):
             if not self.graph.is_spanning_tree(t):
                 raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
-        full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
-        essential = [m.screw for s in full.values() for m in (*s.motions, *s.spans)]
-        if self.layout.spatial:
-            # Skew axes: every freedom of a point contact counts, so the system is space itself.
-            essential += [m.screw for s in full.values() for m in s.secondary]
-        self.system: ScrewSystem = minimal_screw_system(essential)
+        # A state given its whole's layout takes the screw work its whole train shares, unless
+        # square roots are written in its screws: their radical symbols are numbered per train.
+        shared = shared_screws(train) if layout is None else None
+        if shared is not None and not shared.written_square_root(c.name for c in train.couplings):
+            full = {c.name: shared.screws(c.name) for c in train.couplings}
+            self.system: ScrewSystem = shared.system(tuple(full))
+        else:
+            shared = None
+            full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
+            self.system = minimal_screw_system(essential_twists(full.values(), self.layout.spatial))
         self._friction_wrenches = {name: s.friction for name, s in full.items() if s.friction is not None}
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:
             if isinstance(c, ScrewCoupling):
                 _check_reciprocal(train, c, full[c.name])
             try:
-                self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
+                if shared is not None:
+                    self.reduced[c.name] = shared.reduced(self.system, c.name)
+                else:
+                    self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
             except CouplingScrewError as exc:
                 entry = f"couplings.{c.name}" + (".motions" if isinstance(c, ScrewCoupling) else "")
                 raise TopologyError([train.problem(entry, exc.reason)], train.path) from exc
@@ -134,13 +143,7 @@ class Network:
     def _absorb_radicals(self, full: dict[str, CouplingScrews]) -> dict[str, CouplingScrews]:
         """Square roots written in low-level screws become radical symbols of the layout
         (positive radicands), so the exact algebra treats them like tilted bevel axes."""
-        if not any(
-            has_square_root(x)
-            for screws in full.values()
-            for group in (screws.motions, screws.constraints)
-            for named in group
-            for x in named.screw
-        ):
+        if not any(written_square_root(screws) for screws in full.values()):
             return full
         table = RadicalTable(list(self.layout.radicals))
 

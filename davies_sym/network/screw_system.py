@@ -14,7 +14,7 @@ d - f constraint wrenches reciprocal to its own twists.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -54,6 +54,17 @@ class ScrewSystem:
         """Whether ``twist`` lies in the system (its lift reproduces it)."""
         back = self.lift * sympy.Matrix(self.reduce_twist(twist))
         return all(sympy.expand(a - b) == 0 for a, b in zip(back, twist, strict=True))
+
+
+def essential_twists(screws: Iterable[CouplingScrews], spatial: bool) -> list[Screw]:
+    """The twists the screw system must span: every coupling's motions and the freedoms
+    it needs (``spans``); on skew axes every freedom of a point contact counts too, so
+    the system is space itself."""
+    screws = tuple(screws)
+    essential = [m.screw for s in screws for m in (*s.motions, *s.spans)]
+    if spatial:
+        essential += [m.screw for s in screws for m in s.secondary]
+    return essential
 
 
 def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:

@@ -101,7 +101,8 @@ def _without(train: Train, free: set[str], ports: Ports) -> Train:
     """``train`` without the ``free`` members and their gears and couplings: the geometry a
     state keeps (brakes and clutches join members without moving axes; free members take
     no part, so no axis of the state depends on theirs).  Kept in ``train.memo``, so the
-    states that free the same members share one whole train, and its layout is solved once."""
+    states that free the same members share one whole train: its layout is solved once,
+    its coupling screws and screw systems worked out once (`davies_sym.network.shared_screws`)."""
     key = ("without", frozenset(free), ports)
     known = train.memo.get(key)
     if isinstance(known, type(train)):

@@ -1,0 +1,102 @@
+"""The screw work of a multi-speed train, done once for the states that share a whole train.
+
+A state (`davies_sym.topology.states.train_in_state`) keeps the couplings of its whole
+train with their ends renamed, and the layout of the whole (a brake or a clutch joins
+members, it does not move an axis).  A coupling's screws read its name, gears and kind
+from the coupling and its point, axis and tangent from the layout, never its ends, so
+they are the same in every state: the unit screws (Laus Tables 3-4), the screw system
+the kept couplings span (section 3.3.1) and each coupling reduced to it are worked out
+once, kept in the whole train's ``memo``, and a brake or a clutch only changes which of
+them a state takes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import replace
+
+import sympy
+
+from davies_sym.geometry import train_layout
+from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws, written_square_root
+from davies_sym.network.screw_system import (
+    ReducedCoupling,
+    ScrewSystem,
+    essential_twists,
+    minimal_screw_system,
+    reduce_coupling,
+)
+from davies_sym.topology.model import Train
+
+#: The key of the shared screw work in a whole train's ``memo``.
+MEMO_KEY = "coupling screws"
+
+
+class SharedScrews:
+    """The coupling screws of a whole train and what the screw systems of its states
+    make of them, each computed on first use.
+
+    Screw systems are keyed by the couplings a state keeps (a state that drops
+    couplings may span a smaller system); reduced couplings by the system and the
+    coupling, so states whose systems agree share them.
+    """
+
+    def __init__(self, whole: Train):
+        self.layout = train_layout(whole)
+        self.couplings = {c.name: c for c in whole.couplings}
+        self._screws: dict[str, CouplingScrews] = {}
+        self._rooted: dict[str, bool] = {}
+        self._systems: dict[tuple[str, ...], ScrewSystem] = {}
+        self._reduced: dict[tuple[tuple[int, ...], tuple[sympy.Expr, ...], str], ReducedCoupling] = {}
+
+    def screws(self, name: str) -> CouplingScrews:
+        """The full unit screws of coupling ``name`` (`coupling_screws`)."""
+        known = self._screws.get(name)
+        if known is None:
+            known = self._screws[name] = coupling_screws(self.couplings[name], self.layout)
+        return known
+
+    def written_square_root(self, names: Iterable[str]) -> bool:
+        """Whether a square root is written in the screws of any coupling of ``names``."""
+        for name in names:
+            rooted = self._rooted.get(name)
+            if rooted is None:
+                rooted = self._rooted[name] = written_square_root(self.screws(name))
+            if rooted:
+                return True
+        return False
+
+    def system(self, kept: tuple[str, ...]) -> ScrewSystem:
+        """The screw system the couplings ``kept`` span (`minimal_screw_system`)."""
+        known = self._systems.get(kept)
+        if known is None:
+            essential = essential_twists((self.screws(n) for n in kept), self.layout.spatial)
+            known = self._systems[kept] = minimal_screw_system(essential)
+        return known
+
+    def reduced(self, system: ScrewSystem, name: str) -> ReducedCoupling:
+        """Coupling ``name`` reduced to ``system`` (`reduce_coupling`); a coupling that
+        does not fit raises `CouplingScrewError` every time it is asked for."""
+        key = (system.coordinates, tuple(system.lift), name)
+        known = self._reduced.get(key)
+        if known is None:
+            known = self._reduced[key] = reduce_coupling(system, self.screws(name), name)
+        return known
+
+
+def shared_screws(train: Train) -> SharedScrews | None:
+    """The shared screw work of ``train``'s whole train, when ``train`` is a state whose
+    couplings are its whole's with other ends (the only difference `coupling_screws`
+    does not read); None for a train on its own."""
+    whole = train.whole
+    if whole is None:
+        return None
+    shared = whole.memo.get(MEMO_KEY)
+    if not isinstance(shared, SharedScrews):
+        shared = SharedScrews(whole)
+        whole.memo[MEMO_KEY] = shared
+    for c in train.couplings:
+        own = shared.couplings.get(c.name)
+        if own is None or replace(c, links=own.links) != own:
+            return None
+    return shared

@@ -552,3 +552,38 @@ def test_three_upu_losses_by_coupling_type_against_laus_shares(task, published):
     assert abs(share - published) < 0.004
     text = run_main([THREE_UPU, "--task", task, "--quiet"], timeout=120).stdout
     assert "lost by coupling type: round_annulus" in text
+
+
+def test_a_load_through_zero_is_taken_again_in_the_next_position(upu):
+    """The 3-UPU ellipse at t = 0.75 s has the universal joint A's reaction Q_A2 through
+    zero (about 1e-12 N): the friction rows take a negligible load as none.  Starting
+    the next position (t = 0.755 s) from it, the load is 48 N again and must be taken
+    with its sign; the continuation then gives the same actions as a fresh start (which
+    is also the Newton-Euler oracle's), not a solution missing that load's friction."""
+    import davies_sym.machines.task as task_module
+
+    task = upu.tasks["ellipse"]
+    numeric = NumericMachine(upu)
+    values = {s: float(sympy.N(v)) for s, v in upu.values.items()}
+    times = task_module._time_samples(task, values)
+    first = {s: float(sympy.N(e.subs(values).subs(task_module.TIME, times[0]))) for s, e in task.path.items()}
+    joint = next(j for j in numeric.network({**values, **first}).joints if j.coupling == task.drive)
+    state = task_module._known_motions(upu, task, values, [m for m, _ in joint.freedoms])
+    loads = {p: float(e.subs(values)) for p, e in task.loads.items()}
+
+    def solve(k, start):
+        where, motions = state(float(times[k]))
+        network = numeric.network({**values, **where})
+        known = {network.ports[p].action: v for p, v in loads.items()}
+        return solve_position(numeric, {**values, **where}, motions, known, start)
+
+    before = solve(150, None)
+    assert abs(before.actions["Q_A2"]) < 1e-6  # the load passes through zero here
+    fresh, continued = solve(151, None), solve(151, before.actions)
+    scale = max(abs(v) for v in fresh.actions.values())
+    assert abs(fresh.actions["Q_A2"]) > 10
+    for name, value in fresh.actions.items():
+        assert abs(continued.actions[name] - value) < 1e-9 * scale, name
+    theirs = simulate("ellipse").steps[151]
+    for k in range(3):
+        assert abs(abs(continued.actions[f"Q_{'CGK'[k]}"]) - abs(theirs.actuator_force[k])) < 1e-7 * scale

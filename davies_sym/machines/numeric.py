@@ -174,16 +174,20 @@ def _friction_rows(
             size = float(np.sqrt(sum((w * q) ** 2 for _, w, q in loads)))
             parts = [(name, w * w * q / size if size > 0 else 0.0) for name, w, q in loads]
         else:
-            parts = [(name, w * (0.0 if abs(q) <= 1e-12 * scale else float(np.sign(q)))) for name, w, q in loads]
+            parts = [(name, w * _load_sign(q, scale)) for name, w, q in loads]
         for name, part in parts:
             rows[r, network.action_index(name)] += weight * float(f.coefficient) * sense * part
     return rows
 
 
+def _load_sign(value: float, scale: float) -> float:
+    """sign(load) as the friction rows take it: 0 for a load negligible beside ``scale``."""
+    return 0.0 if abs(value) <= 1e-12 * scale else float(np.sign(value))
+
+
 def _face_sign(f: FrictionAction, guess: Mapping[str, float], scale: float) -> float:
     """sign(load) of a slider face's friction: which face the one load presses."""
-    value = guess.get(f.load[0][0], 0.0)
-    return 0.0 if abs(value) <= 1e-12 * scale else float(np.sign(value))
+    return _load_sign(guess.get(f.load[0][0], 0.0), scale)
 
 
 def _shifted(network: Network, guess: Mapping[str, float], scale: float) -> np.ndarray:
@@ -205,7 +209,9 @@ def _settled(network: Network, old: Mapping[str, float], new: Mapping[str, float
             if f.resultant:
                 if abs(a - b) > 1e-11 * scale:
                     return False
-            elif np.sign(a) != np.sign(b) and max(abs(a), abs(b)) > 1e-12 * scale:
+            elif abs(b) > 1e-12 * scale and _load_sign(a, scale) != np.sign(b):
+                # The rows took a negligible guess as no load (sign 0): a load that is not
+                # negligible now must be taken again with its sign, whatever the guess's.
                 return False
     return True
 

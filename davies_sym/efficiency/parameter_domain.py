@@ -10,12 +10,14 @@ positive fact (annulus larger than its pinion) is positive.  Other coefficients
 
 from __future__ import annotations
 
+import math
 import random
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
 import sympy
+from flint import fmpz_mpoly
 
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
@@ -25,6 +27,44 @@ from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.model import Train
 
 Point = dict[sympy.Symbol, sympy.Rational]
+
+
+@dataclass(frozen=True)
+class FloatPolynomial:
+    """An integer polynomial evaluated in floating point, with the sign only where the
+    value exceeds a bound on its rounding error."""
+
+    terms: tuple[tuple[float, tuple[tuple[sympy.Symbol, int], ...]], ...]
+
+    @classmethod
+    def of(cls, p: fmpz_mpoly, symbols: Sequence[sympy.Symbol]) -> FloatPolynomial:
+        return cls(
+            tuple(
+                (float(int(c)), tuple((x, int(k)) for x, k in zip(symbols, m, strict=True) if k))
+                for m, c in zip(p.monoms(), p.coeffs(), strict=True)
+            )
+        )
+
+    def _parts(self, values: Mapping[sympy.Symbol, float]) -> tuple[float, float]:
+        """The value and the sum of the terms' sizes (nan where a symbol has no value)."""
+        total, size = 0.0, 0.0
+        for c, powers in self.terms:
+            term = c
+            for x, k in powers:
+                term *= values.get(x, math.nan) ** k
+            total += term
+            size += abs(term)
+        return total, size
+
+    def value(self, values: Mapping[sympy.Symbol, float]) -> float:
+        return self._parts(values)[0]
+
+    def sign(self, values: Mapping[sympy.Symbol, float]) -> int | None:
+        """+1 or -1, or None (zero, or too close to it to tell in floating point)."""
+        total, size = self._parts(values)
+        if not abs(total) > 1e-9 * size:  # also nan
+            return None
+        return 1 if total > 0 else -1
 
 
 def geometry_symbols(train: Train) -> set[sympy.Symbol]:
@@ -99,6 +139,42 @@ class ParameterDomain:
     def _conversions(self) -> dict[sympy.Expr, RationalFunction]:
         return {}
 
+    @cached_property
+    def _float_checks(
+        self,
+    ) -> tuple[list[tuple[sympy.Symbol, FloatPolynomial, FloatPolynomial]], list[FloatPolynomial]]:
+        """The eliminated symbols and the positive facts as float evaluations (numerator
+        and denominator of each, with a bound on their rounding error): a quick first
+        look at a drawn point, decided exactly only where it is not clear."""
+        ring = self._ring
+        eliminated = []
+        for symbol, expr in self.eliminated.items():
+            rf = self._converted(sympy.sympify(expr))
+            eliminated.append(
+                (symbol, FloatPolynomial.of(rf.num, ring.symbols), FloatPolynomial.of(rf.den, ring.symbols))
+            )
+        facts = [FloatPolynomial.of(p, ring.symbols) for rf in self._positive for p in (rf.num, rf.den)]
+        return eliminated, facts
+
+    def _clearly_inadmissible(self, point: Mapping[sympy.Symbol, int]) -> bool:
+        """Whether floating point shows ``point`` (drawn integers over 100) outside the
+        domain beyond its rounding error: an eliminated symbol not positive, or a fact's
+        numerator and denominator of opposite signs.  Unclear points go to the exact test."""
+        eliminated, facts = self._float_checks
+        values = {s: v / 100 for s, v in point.items()}
+        for symbol, num, den in eliminated:
+            n, d = num.sign(values), den.sign(values)
+            if n is None or d is None:
+                return False
+            if n * d < 0:
+                return True
+            values[symbol] = num.value(values) / den.value(values)
+        for k in range(0, len(facts), 2):
+            n, d = facts[k].sign(values), facts[k + 1].sign(values)
+            if n is not None and d is not None and n * d < 0:
+                return True
+        return False
+
     def _admissible(self, point: Point) -> bool:
         if any(point[s] <= 0 for s in self.eliminated):
             return False  # every geometric symbol is positive, eliminated ones too
@@ -126,7 +202,10 @@ class ParameterDomain:
         others = sorted_symbols(set(extra) - geometry_symbols(self.train))
         produced = 0
         for _ in range(count * attempts):
-            point: Point = {s: sympy.Rational(rng.randint(100, 10000), 100) for s in free}
+            drawn = {s: rng.randint(100, 10000) for s in free}
+            if self._clearly_inadmissible(drawn):
+                continue
+            point: Point = {s: sympy.Rational(v, 100) for s, v in drawn.items()}
             for symbol, expr in self.eliminated.items():
                 point[symbol] = self.value(expr, point)
             if not self._admissible(point):

@@ -820,12 +820,11 @@ def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str,
     return np.where(bad, np.nan, result) if bad.any() else result
 
 
-def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array], errors: str) -> Array:
-    """NaN (with a warning, or an error) where the design is not admissible, no variant
-    holds (``numbers`` 0: the losses reverse loaded forces as none covers) or the train
-    self-locks."""
+def _screened(result: Array, numbers: NDArray[np.int64], outside: NDArray[np.bool_], errors: str) -> Array:
+    """NaN (with a warning, or an error) where the design is not admissible (``outside``),
+    no variant holds (``numbers`` 0: the losses reverse loaded forces as none covers) or
+    the train self-locks."""
     _check_errors(errors)
-    outside = ~_admissible(values)
     uncovered = (numbers == 0) & ~outside
     with np.errstate(invalid="ignore"):
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
@@ -838,21 +837,53 @@ def _screened(result: Array, numbers: NDArray[np.int64], values: dict[str, Array
     return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
 
 
+_BLOCK = 65536
+
+
+def _blockwise(
+    values: dict[str, Array], compute: Callable[[dict[str, Array]], tuple[NDArray[Any], ...]]
+) -> tuple[NDArray[Any], ...]:
+    """``compute`` on ``values`` block by block of `_BLOCK` points (broadcast and
+    flattened first); each result's blocks joined along its last axis, in the broadcast
+    shape (leading axes, such as a function's outputs, kept)."""
+    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
+    size = int(np.prod(shape))
+    if size <= _BLOCK:
+        return compute(values)
+    flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
+    blocks = [
+        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        for start in range(0, size, _BLOCK)
+    ]
+    return tuple(
+        np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
+    )
+
+
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    gathered: _Gathered = {}
-    numbers = _variant_numbers(input, values, gathered)
-    (result,) = _select(numbers, values, _EFFICIENCY, 1, gathered)
-    return _screened(result, numbers, values, errors)
+
+    def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
+        gathered: _Gathered = {}
+        numbers = _variant_numbers(input, part, gathered)
+        return numbers, _select(numbers, part, _EFFICIENCY, 1, gathered), ~_admissible(part)
+
+    numbers, selected, outside = _blockwise(values, compute)
+    return _screened(selected[0], numbers, outside, errors)
 
 
 def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
-    gathered: _Gathered = {}
-    numbers = _variant_numbers(input, values, gathered)
-    (result,) = _select(numbers, values, _EFFICIENCY, 1, gathered)
-    bad = np.isnan(_screened(result, numbers, values, errors))
-    parts = _select(numbers, values, _LOSSES, len(LOSSY), gathered)
+
+    def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
+        gathered: _Gathered = {}
+        numbers = _variant_numbers(input, part, gathered)
+        efficiency = _select(numbers, part, _EFFICIENCY, 1, gathered)
+        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
+        return numbers, efficiency, losses, ~_admissible(part)
+
+    numbers, efficiency, parts, outside = _blockwise(values, compute)
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, errors))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 

@@ -323,3 +323,40 @@ def test_generated_modules_pass_mypy_strict():
         check=False,
     )
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+@pytest.mark.parametrize("name", TWO_REGIONS)
+def test_a_large_array_is_evaluated_in_blocks_with_the_same_values(name):
+    """More design points than one block (`_BLOCK`), in a 2-D grid of both regions and
+    inadmissible points: efficiency and losses equal, element by element and bit for
+    bit, the same points evaluated a few at a time (no blocks), and the warning counts
+    every bad point of the whole array once."""
+    vs, module = variant_set(name), module_of(name)
+    points = design_points(vs, 40, seed=3)
+    base = kwargs_of(points, vs.symbols)
+    rows = module._BLOCK // len(points) + 7
+    rng = np.random.default_rng(5)
+    # Each row scales each geometric parameter on its own (some to a negative length).
+    grid = {
+        k: v if k.startswith("eta") else v[np.newaxis, :] * rng.uniform(-0.1, 1.5, (rows, 1)) for k, v in base.items()
+    }
+    assert np.broadcast_shapes(*(v.shape for v in grid.values())) == (rows, len(points))
+    for port in (vs.train.ports.input, vs.train.ports.output):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", module.DesignWarning)
+            whole = module.efficiency(input=port, **grid)
+            losses = module.losses(input=port, **grid)
+        assert whole.shape == (rows, len(points))
+        for k in range(0, rows, 97):
+            row = {n: np.broadcast_to(v, whole.shape)[k] for n, v in grid.items()}
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", module.DesignWarning)
+                alone = module.efficiency(input=port, **row)
+                alone_losses = module.losses(input=port, **row)
+            assert np.array_equal(whole[k], alone, equal_nan=True)
+            for part in losses:
+                assert np.array_equal(losses[part][k], alone_losses[part], equal_nan=True)
+        bad = int(np.count_nonzero(np.isnan(whole)))
+        assert bad > 0 and len(caught) == 2
+        counts = [int(w) for w in str(caught[0].message).replace(",", " ").split() if w.isdigit()]
+        assert sum(counts) == bad

@@ -19,7 +19,7 @@ from davies_sym.emit.languages import emit_code
 from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.python_module import python_module
-from davies_sym.emit.report import text_summary, train_document
+from davies_sym.emit.report import summary_document, text_summary, train_document
 from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.network.analysis import Analysis
@@ -93,11 +93,12 @@ def _state_entry(vs: VariantSet) -> dict[str, object]:
 def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
     if not train.states:
         ((_, vs),) = sets
-        document = {"status": "ok", **train_document(Analysis(train, progress=progress))}
+        analysis = Analysis(train, progress=progress)
         if as_json:
-            document.update(variants_document(vs))
+            document = {"status": "ok", **train_document(analysis), **variants_document(vs)}
             return json.dumps(document, indent=2) + "\n"
-        return text_summary(document) + "\n" + variants_text(vs) + "\n"
+        # The text prints a summary: the screws, magnitudes and LaTeX are not formed.
+        return text_summary(summary_document(analysis)) + "\n" + variants_text(vs) + "\n"
     if as_json:
         return (
             json.dumps(

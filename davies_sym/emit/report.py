@@ -31,9 +31,54 @@ def _friction(coupling: Any) -> dict[str, str]:
     }
 
 
-def train_document(analysis: Analysis) -> dict[str, Any]:
-    """Everything ``derive --json`` prints, as plain JSON-ready data."""
+def _forms(analysis: Analysis) -> tuple[sympy.Expr, sympy.Expr]:
+    """The speed ratio and the efficiency in the friction coefficients, radicals as roots."""
+    radicals = analysis.network.layout.radicals
+    return restore(analysis.speed_ratio().to_expr(), radicals), restore(analysis.efficiency, radicals)
+
+
+def summary_document(analysis: Analysis, forms: tuple[sympy.Expr, sympy.Expr] | None = None) -> dict[str, Any]:
+    """What the text summary prints (`text_summary`): the train, its mobility and screw
+    system, the geometric constraints, the speed ratio and the efficiency in the friction
+    coefficients (``forms``, when already formed), with nothing formed that it does not
+    print."""
     train, net = analysis.train, analysis.network
+    ratio, efficiency = forms or _forms(analysis)
+    conditions = [
+        {"symbol": str(s.symbol), "coupling": s.coupling, "equals": f"sign({sympy.sstr(s.expression)})"}
+        for s in analysis.sign_conditions
+    ]
+    return {
+        "name": train.name,
+        "links": list(train.link_names),
+        "reference": train.reference,
+        "degrees_of_freedom": analysis.degrees_of_freedom,
+        "screw_system_order": net.order,
+        "screw_system": {
+            "motion_coordinates": list(net.system.twist_names),
+            "action_coordinates": list(net.system.wrench_names),
+        },
+        "geometric_constraints": [r.constraint for r in train.dependent or ()]
+        + [str(c) for c in net.layout.constraints],
+        "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in train.dependent or ()},
+        "speed_ratio": {"input": train.ports.input, "output": train.ports.output, "expression": sympy.sstr(ratio)},
+        "efficiency_friction_form": {
+            "input": train.ports.input,
+            "output": train.ports.output,
+            "expression": sympy.sstr(efficiency),
+            "sign_conditions": conditions,
+            "friction_convention": FRICTION_CONVENTION,
+        },
+    }
+
+
+def train_document(analysis: Analysis) -> dict[str, Any]:
+    """Everything ``derive --json`` prints, as plain JSON-ready data: the summary, and
+    every coupling's screws, every motion and action magnitude and the LaTeX of the
+    speed ratio and the efficiency."""
+    train, net = analysis.train, analysis.network
+    ratio, efficiency = _forms(analysis)
+    summary = summary_document(analysis, (ratio, efficiency))
     couplings = []
     for c in train.couplings:
         entry: dict[str, Any] = {"name": c.name, "type": c.kind, "links": list(c.links)}
@@ -49,17 +94,12 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
             v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]} for v in net.coupling_actions(c.name)
         }
         couplings.append(entry)
-    efficiency = restore(analysis.efficiency, analysis.network.layout.radicals)
-    ratio = restore(analysis.speed_ratio().to_expr(), analysis.network.layout.radicals)
-    conditions = [
-        {"symbol": str(s.symbol), "coupling": s.coupling, "equals": f"sign({sympy.sstr(s.expression)})"}
-        for s in analysis.sign_conditions
-    ]
+    eff = summary["efficiency_friction_form"]
     return {
         "name": train.name,
         "source": train.source,
         "file": train.path,
-        "links": list(train.link_names),
+        "links": summary["links"],
         "reference": train.reference,
         "gears": [
             {"name": g.name, "link": g.link, "radius": sympy.sstr(g.radius), "internal": g.internal}
@@ -67,31 +107,22 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         ],
         "couplings": couplings,
         "ports": {"input": train.ports.input, "output": train.ports.output},
-        "degrees_of_freedom": analysis.degrees_of_freedom,
-        "screw_system_order": net.order,
-        "screw_system": {
-            "motion_coordinates": list(net.system.twist_names),
-            "action_coordinates": list(net.system.wrench_names),
-        },
+        "degrees_of_freedom": summary["degrees_of_freedom"],
+        "screw_system_order": summary["screw_system_order"],
+        "screw_system": summary["screw_system"],
         "spanning_tree": list(net.tree),
-        "geometric_constraints": [r.constraint for r in train.dependent or ()]
-        + [str(c) for c in net.layout.constraints],
-        "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in train.dependent or ()},
+        "geometric_constraints": summary["geometric_constraints"],
+        "dependent_parameters": summary["dependent_parameters"],
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
-        "speed_ratio": {
-            "input": train.ports.input,
-            "output": train.ports.output,
-            "expression": sympy.sstr(ratio),
-            "latex": display_latex(ratio),
-        },
+        "speed_ratio": {**summary["speed_ratio"], "latex": display_latex(ratio)},
         "efficiency_friction_form": {
-            "input": train.ports.input,
-            "output": train.ports.output,
-            "expression": sympy.sstr(efficiency),
+            "input": eff["input"],
+            "output": eff["output"],
+            "expression": eff["expression"],
             "latex": display_latex(efficiency),
-            "sign_conditions": conditions,
-            "friction_convention": FRICTION_CONVENTION,
+            "sign_conditions": eff["sign_conditions"],
+            "friction_convention": eff["friction_convention"],
         },
     }
 

@@ -242,3 +242,17 @@ def test_the_float_look_at_a_drawn_point_never_rejects_an_admissible_one(name):
             assert not domain._admissible(point)
     if name in ("ravigneaux[second]", "tuplin"):  # narrow domains: many draws fall outside
         assert rejected > 100
+
+
+def test_a_search_beyond_its_budget_gives_no_answer():
+    """Twelve linear factors in three products: the sign patterns outnumber the budget of
+    eliminations, so the prover gives no answer (the variant is then derived and
+    sampled) instead of searching on; a small contradiction among them is still found."""
+    x = sympy.symbols("x0:6")
+    f1 = sympy.Mul(*[x[i] - x[(i + 1) % 6] + 1 for i in range(6)])
+    f2 = sympy.Mul(*[x[i] + x[(i + 2) % 6] - 3 for i in range(6)])
+    wide = [Requirement(f1, ">"), Requirement(f2, ">"), Requirement(f1 * f2, "<")]
+    assert empty_region(wide) is None
+    small = [Requirement(f1, ">"), Requirement(x[0] - x[1], ">"), Requirement(x[1] - x[0], ">")]
+    proof = empty_region(small)
+    assert proof is not None and {r.expression for r in proof.core} == {x[0] - x[1], x[1] - x[0]}

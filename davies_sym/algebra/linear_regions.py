@@ -24,9 +24,9 @@ from davies_sym.algebra.flint_conversion import factor_expression
 #: Relations a requirement may state of its expression.
 RELATIONS = (">", ">=", "<")
 
-#: Most branches (sign patterns of the factors) one proof may visit, and most
-#: inequalities one elimination may hold; beyond either, no answer is given.
-MAX_BRANCHES = 4096
+#: Most eliminations (of a sign pattern of the factors, whole or partial) one search
+#: may run, and most inequalities one elimination may hold; beyond either, no answer.
+MAX_BRANCHES = 512
 MAX_INEQUALITIES = 4000
 
 
@@ -207,26 +207,34 @@ def empty_region(requirements: Sequence[Requirement]) -> Emptiness | None:
 
 
 def _empty(alternatives: Sequence[list[Branch]]) -> bool | None:
-    """Whether every combination of one branch per requirement is infeasible."""
-    ordered = sorted(alternatives, key=len)
-    for visited, system in enumerate(_systems(ordered, ()), start=1):
-        if visited > MAX_BRANCHES:
-            return None
-        answer = feasible(system)
+    """Whether every combination of one branch per requirement is infeasible; None when
+    one is feasible, or the search needs more than `MAX_BRANCHES` eliminations."""
+    budget = [MAX_BRANCHES]
+    for system in _systems(sorted(alternatives, key=len), (), budget):
+        answer = _checked(system, budget)
         if answer is not False:
             return None if answer is None else False
-    return True
+    return None if budget[0] < 0 else True
 
 
-def _systems(alternatives: Sequence[list[Branch]], base: Branch) -> Iterator[Branch]:
+def _checked(system: Branch, budget: list[int]) -> bool | None:
+    """`feasible`, counted against ``budget`` (None once it is spent)."""
+    budget[0] -= 1
+    return None if budget[0] < 0 else feasible(system)
+
+
+def _systems(alternatives: Sequence[list[Branch]], base: Branch, budget: list[int]) -> Iterator[Branch]:
     """Every combination of one branch per requirement, a partial one cut off as soon as
-    it is infeasible on its own (depth first: the single-branch requirements come first)."""
+    it is infeasible on its own (depth first: the single-branch requirements come first);
+    the search stops when ``budget`` is spent."""
     if not alternatives:
         yield base
         return
     first, rest = alternatives[0], alternatives[1:]
     for branch in first:
+        if budget[0] < 0:
+            return
         system = (*base, *branch)
-        if rest and feasible(system) is False:
+        if rest and _checked(system, budget) is False:
             continue
-        yield from _systems(rest, system)
+        yield from _systems(rest, system, budget)

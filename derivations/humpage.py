@@ -162,6 +162,7 @@ IGNORED: Final[tuple[str, ...]] = ()
 RELATIONS: Final[tuple[str, ...]] = ('-r1**2 + 2*r1*r5 + 4*r2**2 - r5**2 > 0',)
 DEPENDENT: Final[dict[str, str]] = {}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-r2*r4 + r3*r5', '- r_{2} r_{4} + r_{3} r_{5}')}
+EXCLUDED: Final[tuple[int, ...]] = ()
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_B_c1_pos',
@@ -783,7 +784,8 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
-    """Where every parameter is in its range and every relation positive."""
+    """Where every parameter is in its range, every relation positive and the turning
+    conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     ok = np.ones(shape, dtype=bool)
     with np.errstate(all="ignore"):
@@ -795,6 +797,8 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
         for function, names in _RELATIONS.values():
             if all(n in values for n in names):
                 ok &= function(**{n: values[n] for n in names})
+        if EXCLUDED:
+            ok &= ~np.isin(_region(values, shape), EXCLUDED)
     return ok
 
 

@@ -98,6 +98,7 @@ IGNORED: Final[tuple[str, ...]] = ()
 RELATIONS: Final[tuple[str, ...]] = ()
 DEPENDENT: Final[dict[str, str]] = {}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
+EXCLUDED: Final[tuple[int, ...]] = ()
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'I_to_O',
@@ -314,7 +315,8 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
-    """Where every parameter is in its range and every relation positive."""
+    """Where every parameter is in its range, every relation positive and the turning
+    conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     ok = np.ones(shape, dtype=bool)
     with np.errstate(all="ignore"):
@@ -326,6 +328,8 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
         for function, names in _RELATIONS.values():
             if all(n in values for n in names):
                 ok &= function(**{n: values[n] for n in names})
+        if EXCLUDED:
+            ok &= ~np.isin(_region(values, shape), EXCLUDED)
     return ok
 
 

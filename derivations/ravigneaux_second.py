@@ -133,9 +133,10 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 IGNORED: Final[tuple[str, ...]] = ('rps',)
-RELATIONS: Final[tuple[str, ...]] = ('rr/2 - rs2/2 > 0',)
+RELATIONS: Final[tuple[str, ...]] = ('rr/2 - rs2/2 > 0', 'rr - rs1 > 0')
 DEPENDENT: Final[dict[str, str]] = {'rpl': 'rpl = rr/2 - rs2/2'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rr + rs1', '- r_{r} + r_{s1}')}
+EXCLUDED: Final[tuple[int, ...]] = (0,)
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_D_c1_neg',
@@ -222,6 +223,13 @@ def _relation_1(*, rr: ArrayLike, rs2: ArrayLike) -> NDArray[np.bool_]:
     rr = _array(rr)
     rs2 = _array(rs2)
     return np.asarray(1 / 2 * rr - 1 / 2 * rs2 > 0)
+
+
+def _relation_2(*, rr: ArrayLike, rs1: ArrayLike) -> NDArray[np.bool_]:
+    """Whether rr - rs1 > 0."""
+    rr = _array(rr)
+    rs1 = _array(rs1)
+    return np.asarray(rr - rs1 > 0)
 
 
 def A_to_D_c1_neg(
@@ -457,7 +465,10 @@ def _ratio_formula(*, rr: ArrayLike, rs1: ArrayLike, rs2: ArrayLike) -> Array:
 
 
 _CONDITIONS: Final[_Table] = {'c1': (condition_c1, ('rr', 'rs1'))}
-_RELATIONS: Final[_Table] = {'rr/2 - rs2/2 > 0': (_relation_1, ('rr', 'rs2'))}
+_RELATIONS: Final[_Table] = {
+    'rr/2 - rs2/2 > 0': (_relation_1, ('rr', 'rs2')),
+    'rr - rs1 > 0': (_relation_2, ('rr', 'rs1')),
+}
 _DEPENDENT: Final[_Table] = {'rpl': (_dependent_rpl, ('rr', 'rs2'))}
 _EFFICIENCY: Final[_Table] = {
     'A_to_D_c1_neg': (A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
@@ -611,7 +622,8 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
-    """Where every parameter is in its range and every relation positive."""
+    """Where every parameter is in its range, every relation positive and the turning
+    conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     ok = np.ones(shape, dtype=bool)
     with np.errstate(all="ignore"):
@@ -623,6 +635,8 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
         for function, names in _RELATIONS.values():
             if all(n in values for n in names):
                 ok &= function(**{n: values[n] for n in names})
+        if EXCLUDED:
+            ok &= ~np.isin(_region(values, shape), EXCLUDED)
     return ok
 
 

@@ -116,6 +116,7 @@ IGNORED: Final[tuple[str, ...]] = ()
 RELATIONS: Final[tuple[str, ...]] = ('-r1 + r2 + r3 > 0', 'r1 - r3 > 0')
 DEPENDENT: Final[dict[str, str]] = {'r4': 'r4 = -r1 + r2 + r3'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-r1 + r2', '- r_{1} + r_{2}')}
+EXCLUDED: Final[tuple[int, ...]] = ()
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_B_c1_pos',
@@ -576,7 +577,8 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
-    """Where every parameter is in its range and every relation positive."""
+    """Where every parameter is in its range, every relation positive and the turning
+    conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     ok = np.ones(shape, dtype=bool)
     with np.errstate(all="ignore"):
@@ -588,6 +590,8 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
         for function, names in _RELATIONS.values():
             if all(n in values for n in names):
                 ok &= function(**{n: values[n] for n in names})
+        if EXCLUDED:
+            ok &= ~np.isin(_region(values, shape), EXCLUDED)
     return ok
 
 

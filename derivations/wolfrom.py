@@ -125,6 +125,7 @@ IGNORED: Final[tuple[str, ...]] = ()
 RELATIONS: Final[tuple[str, ...]] = ()
 DEPENDENT: Final[dict[str, str]] = {'rr1': 'rr1 = 2*rp1 + rs', 'rr2': 'rr2 = rp1 + rp2 + rs'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {'c1': ('-rp1 + rp2', '- r_{p1} + r_{p2}')}
+EXCLUDED: Final[tuple[int, ...]] = ()
 VARIANTS: Final[tuple[Variant, ...]] = (
     {
         'name': 'A_to_B_c1_pos',
@@ -738,7 +739,8 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
-    """Where every parameter is in its range and every relation positive."""
+    """Where every parameter is in its range, every relation positive and the turning
+    conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
     shape = np.broadcast_shapes(*(v.shape for v in values.values()))
     ok = np.ones(shape, dtype=bool)
     with np.errstate(all="ignore"):
@@ -750,6 +752,8 @@ def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
         for function, names in _RELATIONS.values():
             if all(n in values for n in names):
                 ok &= function(**{n: values[n] for n in names})
+        if EXCLUDED:
+            ok &= ~np.isin(_region(values, shape), EXCLUDED)
     return ok
 
 

@@ -201,6 +201,10 @@ def test_values_outside_the_admissible_geometry_are_refused():
     assert result.returncode == 2 and result.stdout == ""
     assert "(rr - rs1)" in result.stderr and "no admissible design" in result.stderr
     assert "Traceback" not in result.stderr
+    # Without the short planet's radius the triangle cannot be checked; the region can.
+    unplaced = [v for v in ZF_SECOND[1:] if not v.startswith("rps")]
+    result = _derive(catalog_path("ravigneaux"), "--state", "second", "--eval", "rs1=70", *unplaced, "--quiet")
+    assert result.returncode == 2 and "region of variant (1)" in result.stderr and "Traceback" not in result.stderr
     good = _derive(catalog_path("ravigneaux"), "--state", "second", "--eval", *ZF_SECOND, "--quiet")
     assert good.returncode == 0 and good.stdout.startswith("variant (2)")
 
@@ -256,3 +260,34 @@ def test_a_search_beyond_its_budget_gives_no_answer():
     small = [Requirement(f1, ">"), Requirement(x[0] - x[1], ">"), Requirement(x[1] - x[0], ">")]
     proof = empty_region(small)
     assert proof is not None and {r.expression for r in proof.core} == {x[0] - x[1], x[1] - x[0]}
+
+
+def _ravigneaux_second_module():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("gen_rav_second", f"{ROOT}/derivations/ravigneaux_second.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_module_knows_the_implied_relation_and_the_excluded_region():
+    """The module of Ravigneaux 2nd gear does not take the short planet's radius (its
+    formulas do not use it), so the triangle cannot be checked there; the relation the
+    proof implies, rr - rs1 > 0, is in RELATIONS, and the excluded region's code in
+    EXCLUDED: a small sun of 70 in a ring of 64 gives NaN and a DesignWarning, not the
+    value of a variant; each of the two checks does so on its own."""
+    module = _ravigneaux_second_module()
+    assert "rr - rs1 > 0" in module.RELATIONS
+    assert module.EXCLUDED == (0,)  # c1 >= 0: no condition negative
+    values = {"rs1": np.array([25.0, 70.0]), "rs2": 32.0, "rr": 64.0, **{f"eta_{k}": 0.98 for k in range(1, 5)}}
+    with pytest.warns(module.DesignWarning, match="1 design point"):
+        eta = module.efficiency(**values)
+    assert np.isfinite(eta[0]) and np.isnan(eta[1])
+    arrays = {k: np.asarray(v, dtype=float) for k, v in values.items()}
+    relations = dict(module._RELATIONS)
+    implied = relations.pop("rr - rs1 > 0")
+    module._RELATIONS = relations  # the excluded region alone
+    assert list(module._admissible(arrays)) == [True, False]
+    module._RELATIONS, module.EXCLUDED = {**relations, "rr - rs1 > 0": implied}, ()  # the relation alone
+    assert list(module._admissible(arrays)) == [True, False]

@@ -4,11 +4,13 @@ The generated formula modules and the documentation list them (``PARAMETERS``), 
 admissible design is stated as relations that must be positive (``RELATIONS``): every
 pitch radius and every known fact of the layout (an annulus larger than its pinion, a
 radicand of a bevel geometry), written in the symbols left after the geometric
-constraints eliminated some radii.
+constraints eliminated some radii, and the sign of a turning condition the facts are
+proved to imply (`davies_sym.efficiency.empty_regions`).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -181,7 +183,8 @@ def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
     eliminate = eliminated_symbols(variants)
     known = set(variants.symbols)
     out: list[sympy.Expr] = []
-    for expr in [g.radius for g in variants.train.gears] + list(layout.positive_facts):
+    facts = [g.radius for g in variants.train.gears] + list(layout.positive_facts)
+    for expr in facts + _implied_by_excluded(variants):
         relation = sympy.expand(restore(sympy.sympify(expr).subs(eliminate), layout.radicals))
         if relation.is_Symbol or relation.is_number or not relation.free_symbols <= known:
             continue
@@ -190,6 +193,20 @@ def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
         if relation not in out:
             out.append(relation)
     return tuple(out)
+
+
+def _implied_by_excluded(variants: VariantSet) -> list[sympy.Expr]:
+    """-c of each turning condition c whose whole positive side (c >= 0, with every sign
+    of the others) is proved to hold no admissible design: the facts imply c < 0, in
+    the formulas' symbols even where a fact needs others (Ravigneaux 2nd gear: the
+    planets' triangle, with the short planet's radius, implies rs1 < rr)."""
+    empty = {tuple(v.signs[c.name] for c in variants.conditions) for v in variants.excluded}
+    out = []
+    for k, c in enumerate(variants.conditions):
+        side = [combo for combo in itertools.product((1, -1), repeat=len(variants.conditions)) if combo[k] > 0]
+        if all(combo in empty for combo in side):
+            out.append(-c.expression)
+    return out
 
 
 def file_parameters(train: Train) -> tuple[str, ...]:

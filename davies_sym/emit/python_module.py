@@ -11,7 +11,9 @@ The module depends on numpy only and is meant for design code (sweeps, optimiser
   input power, adding up to 1 - efficiency);
 - ``PARAMETERS`` (name, meaning, unit, admissible range), ``RELATIONS`` (expressions
   positive on an admissible design), ``CONDITIONS`` and ``VARIANTS`` (conditions and
-  formula as text and as LaTeX), the source in the module docstring.
+  formula as text and as LaTeX), ``EXCLUDED`` (the region codes, as ``VARIANTS`` gives
+  them, that no admissible design reaches: a point there is not admissible), the source
+  in the module docstring.
 
 The module is built as a syntax tree: the hand-written part is
 `davies_sym.emit.formula_runtime` (copied as it is), the train's tables are
@@ -34,7 +36,7 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
 from davies_sym.emit.code_layout import docstring, literal, module_source
@@ -103,7 +105,7 @@ def _where(variants: VariantSet, variant: Variant) -> str:
     )
 
 
-def _region(variants: VariantSet, variant: Variant) -> int:
+def _region(variants: VariantSet, variant: Variant | ExcludedVariant) -> int:
     """Bit k set where condition k is negative (the code ``_region`` computes)."""
     return sum(1 << k for k, c in enumerate(variants.conditions) if variant.signs[c.name] < 0)
 
@@ -178,6 +180,7 @@ def _tables(
         "RELATIONS": tuple(f"{sympy.sstr(r)} > 0" for r in relations),
         "DEPENDENT": {str(r.symbol): str(r) for r in train.dependent or ()},
         "CONDITIONS": {c.name: (sympy.sstr(c.simplified), display_latex(c.simplified)) for c in variants.conditions},
+        "EXCLUDED": tuple(sorted({_region(variants, v) for v in variants.excluded})),
         "VARIANTS": tuple(variant_rows),
     }
     return [_constant(name, literal(value)) for name, value in data.items()]

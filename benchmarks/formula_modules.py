@@ -5,7 +5,8 @@
 For every module in derivations/: admissible designs sampled exactly from the train's
 parameter domain are tiled to POINTS rows (default 1,000,000), each mesh efficiency drawn
 uniformly in [0.9, 1), and ``efficiency`` (the variant chosen element by element,
-screened for self-locking) is timed, best of three; also ``losses``.
+screened for self-locking) is timed, best of three; also ``losses``.  The SR20
+differential's module (two input shafts) last, on drawn speeds and loads.
 """
 
 from __future__ import annotations
@@ -90,6 +91,31 @@ def main(points: int) -> None:
             t_loss = _best(lambda: module.losses(errors="ignore", **kwargs))  # noqa: B023
         rate = points / t_eff
         print(f"| {stem} | {len(vs.variants)} | {t_eff:.3f} s | {t_loss:.3f} s | {rate:.2e} |", flush=True)
+    several_inputs(points, rng)
+
+
+def several_inputs(points: int, rng: np.random.Generator) -> None:
+    """The SR20 differential's module (two input shafts): shaft speeds drawn in [-100, 100]
+    rad/s, the output torque in [10, 100], the planets' drag in [0, 0.5], the mesh
+    efficiency in [0.9, 1); ``torques`` in the losses' column."""
+    module = _module("sr20_differential")
+    kwargs = {
+        "D_P": rng.uniform(0.0, 0.5, points),
+        "eta_M": rng.uniform(0.9, 1.0, points),
+        "omega_A": rng.uniform(-100.0, 100.0, points),
+        "omega_K": rng.uniform(-100.0, 100.0, points),
+        "tau_out": rng.uniform(10.0, 100.0, points),
+    }
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t_eff = _best(lambda: module.efficiency(errors="ignore", **kwargs))
+        t_torques = _best(lambda: module.torques(errors="ignore", **kwargs))
+    rate = points / t_eff
+    print(
+        f"| sr20_differential (regions; torques) | {len(module.REGIONS)} | {t_eff:.3f} s | {t_torques:.3f} s | "
+        f"{rate:.2e} |",
+        flush=True,
+    )
 
 
 if __name__ == "__main__":

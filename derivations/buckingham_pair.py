@@ -22,6 +22,30 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+_BLOCK = 65536
+
+
+def _blockwise(
+    values: dict[str, NDArray[np.float64]],
+    compute: Callable[[dict[str, NDArray[np.float64]]], tuple[NDArray[Any], ...]],
+) -> tuple[NDArray[Any], ...]:
+    """``compute`` on ``values`` block by block of `_BLOCK` points (broadcast and
+    flattened first); each result's blocks joined along its last axis, in the broadcast
+    shape (leading axes, such as a function's outputs, kept)."""
+    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
+    size = int(np.prod(shape))
+    if size <= _BLOCK:
+        return compute(values)
+    flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
+    blocks = [
+        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        for start in range(0, size, _BLOCK)
+    ]
+    return tuple(
+        np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
+    )
+
+
 Array = NDArray[np.float64]
 
 
@@ -371,29 +395,6 @@ def _screened(result: Array, numbers: NDArray[np.int64], outside: NDArray[np.boo
         "(efficiency outside (0, 1]): NaN there"
     )
     return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
-
-
-_BLOCK = 65536
-
-
-def _blockwise(
-    values: dict[str, Array], compute: Callable[[dict[str, Array]], tuple[NDArray[Any], ...]]
-) -> tuple[NDArray[Any], ...]:
-    """``compute`` on ``values`` block by block of `_BLOCK` points (broadcast and
-    flattened first); each result's blocks joined along its last axis, in the broadcast
-    shape (leading axes, such as a function's outputs, kept)."""
-    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
-    size = int(np.prod(shape))
-    if size <= _BLOCK:
-        return compute(values)
-    flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
-    blocks = [
-        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
-        for start in range(0, size, _BLOCK)
-    ]
-    return tuple(
-        np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
-    )
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:

@@ -143,6 +143,36 @@ def test_module_refuses_where_the_formulas_do_not_hold(module) -> None:
         assert np.isnan(module.efficiency(errors="ignore", omega_A=100.0, omega_K=100.0, tau_out=1.0, **base))
 
 
+def test_a_large_array_is_evaluated_in_blocks_with_the_same_values(module) -> None:
+    """More points than one block (`_BLOCK`), over every region, on condition lines and
+    outside the ranges: efficiency and torques equal, bit for bit, the same points
+    evaluated a row at a time, and the one warning counts every bad point of the whole
+    array; the module imports nothing of the package (the block code is copied in)."""
+    rng = np.random.default_rng(2)
+    rows = module._BLOCK // 50 + 3
+    speeds = rng.choice([-100.0, -40.0, 0.0, 40.0, 100.0], size=(2, rows, 50))
+    values = {"omega_A": speeds[0], "omega_K": speeds[1], "tau_out": 10.0, "eta_2": 0.95, "rho_P": 0.0}
+    values |= {"D_P": rng.uniform(0.0, 0.2, 50), "D_A": 0.0, "b_A": 0.0, "eta_1": rng.uniform(0.9, 1.05, (rows, 1))}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", module.DesignWarning)
+        eta = module.efficiency(**values)
+        torques = module.torques(**values)
+    assert eta.shape == (rows, 50) and len(caught) == 2
+    bad = int(np.count_nonzero(np.isnan(eta)))
+    counts = [int(w) for w in str(caught[0].message).replace(",", " ").replace("(", " ").split() if w.isdigit()]
+    assert 0 < bad < eta.size and sum(counts) == bad
+    for k in range(0, rows, 211):
+        row = {n: (np.broadcast_to(v, eta.shape)[k] if np.ndim(v) else v) for n, v in values.items()}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", module.DesignWarning)
+            assert np.array_equal(module.efficiency(**row), eta[k], equal_nan=True)
+            alone = module.torques(**row)
+        for port, part in torques.items():
+            assert np.array_equal(alone[port], part[k], equal_nan=True)
+    source = Path(module.__file__).read_text(encoding="utf-8")
+    assert "davies_sym" not in "".join(line for line in source.splitlines() if line.startswith(("import", "from")))
+
+
 def test_module_is_deterministic_and_lists_its_regions(lossy, module) -> None:
     assert several_inputs_module(lossy) == several_inputs_module(
         derive_several_inputs(davies_sym.loads(LOSSY, "sr20_lossy.yaml"))

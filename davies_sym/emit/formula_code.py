@@ -7,6 +7,7 @@ module only adds data and formulas where its placeholders stand)."""
 from __future__ import annotations
 
 import ast
+import importlib
 import inspect
 import keyword
 from collections.abc import Iterator, Sequence
@@ -18,6 +19,7 @@ import sympy
 from sympy.printing.numpy import NumPyPrinter
 
 from davies_sym.emit.code_layout import WIDTH, docstring, literal
+from davies_sym.errors import DerivationError
 
 _TEMPORARY = "_t"
 #: Room for one printed expression: the width less an indent, ``_t12 = `` and ``_array(...)``.
@@ -69,16 +71,35 @@ class Runtime:
 
 @cache
 def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
-    """The parts of ``module``; ``taken``: names its entry points add (their arguments)."""
+    """The parts of ``module``; ``taken``: names its entry points add (their arguments).
+    A helper the runtime imports from the package (`davies_sym.emit.block_runtime`) is
+    copied in, its statements first, and its import is left out: a generated module
+    imports nothing of the package."""
     source = inspect.getsource(module)
     lines = source.split("\n")
     tree = ast.parse(source)
     body = tree.body[1:]  # without the docstring
     imports = [n for n in body if isinstance(n, (ast.Import, ast.ImportFrom))]
-    block = "\n".join(lines[imports[0].lineno - 1 : imports[-1].end_lineno])
+    helpers = [n for n in imports if isinstance(n, ast.ImportFrom) and (n.module or "").startswith("davies_sym.")]
+    own = range(imports[0].lineno - 1, imports[-1].end_lineno or imports[-1].lineno)
+    dropped = {k for n in helpers for k in range(n.lineno - 1, n.end_lineno or n.lineno)}
+    block = "\n".join(lines[k] for k in own if k not in dropped).strip()
+    while "\n\n\n" in block:
+        block = block.replace("\n\n\n", "\n\n")
     before: list[str] = []
     after: list[str] = []
     placeholders: dict[str, ast.expr] = {}
+    names = {*taken, "float"}  # the builtin the tables use
+    imported = {(a.asname or a.name) for n in imports if n not in helpers for a in n.names}
+    for imported_from in helpers:
+        helper = runtime_of(importlib.import_module(imported_from.module or ""), frozenset())
+        needs = {(a.asname or a.name) for n in ast.parse(helper.imports).body for a in getattr(n, "names", [])}
+        if helper.placeholders or helper.after or not needs <= imported:
+            raise DerivationError(
+                f"{imported_from.module} must have no placeholders and only imports {module.__name__} has"
+            )
+        before += helper.before
+        names |= helper.names
     for node in body[len(imports) :]:
         if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
             placeholders[node.target.id] = node.annotation
@@ -86,7 +107,6 @@ def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
         segment = ast.get_source_segment(source, node)
         assert segment is not None
         (after if placeholders else before).append(segment)
-    names = {*taken, "float"}  # the builtin the tables use
     for part in ast.walk(tree):
         if isinstance(part, (ast.FunctionDef, ast.ClassDef)):
             names.add(part.name)

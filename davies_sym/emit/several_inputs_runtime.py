@@ -23,6 +23,8 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from davies_sym.emit.block_runtime import _blockwise
+
 Array = NDArray[np.float64]
 _Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
 
@@ -117,9 +119,13 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
     code, boundary = _codes(values)
     numbers = np.zeros(code.shape, dtype=np.int64)
     count = np.zeros(code.shape, dtype=np.int64)
+    # Regions that differ only in the loaded forces the losses reverse share their code.
+    inside: dict[int, NDArray[np.bool_]] = {}
     with np.errstate(all="ignore"):
         for region in REGIONS:
-            mask = np.array((code == region["code"]) & ~boundary, dtype=bool)
+            if region["code"] not in inside:
+                inside[region["code"]] = np.asarray((code == region["code"]) & ~boundary, dtype=bool)
+            mask = inside[region["code"]].copy()
             if mask.any() and region["name"] in _FORCES:
                 function, names = _FORCES[region["name"]]
                 index = np.flatnonzero(mask)
@@ -179,11 +185,10 @@ def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
 
 
 def _not_covered(
-    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, values: dict[str, Array]
+    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, outside: NDArray[np.bool_]
 ) -> tuple[NDArray[np.bool_], str]:
     """Where the formulas do not hold, and why (counts of each reason), given the regions
-    chosen, the condition lines and the efficiency."""
-    outside = _outside_ranges(values)
+    chosen, the condition lines, the efficiency and the points outside the ranges."""
     on_line = boundary & ~outside
     nowhere = (numbers <= 0) & ~boundary & ~outside
     with np.errstate(invalid="ignore"):
@@ -199,12 +204,17 @@ def _not_covered(
 
 def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) -> Array:
     """The functions of ``table`` in the region that holds (shape (width, *shape)), NaN
-    where the formulas do not hold; the regions are chosen once."""
+    where the formulas do not hold; the regions are chosen once, block by block."""
     _check_errors(errors)
-    numbers, boundary = _choice(values)
-    result = _select(numbers, values, table, width)
-    eta = result[0] if table is _EFFICIENCY else _select(numbers, values, _EFFICIENCY, 1)[0]
-    bad, why = _not_covered(numbers, boundary, eta, values)
+
+    def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
+        numbers, boundary = _choice(part)
+        result = _select(numbers, part, table, width)
+        eta = result[0] if table is _EFFICIENCY else _select(numbers, part, _EFFICIENCY, 1)[0]
+        return result, numbers, boundary, eta, _outside_ranges(part)
+
+    result, numbers, boundary, eta, outside = _blockwise(values, compute)
+    bad, why = _not_covered(numbers, boundary, eta, outside)
     if not bad.any():
         return result
     if errors == "raise":

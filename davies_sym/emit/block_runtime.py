@@ -1,0 +1,40 @@
+"""Evaluation in blocks, shared by the hand-written runtimes of the formula modules.
+
+`davies_sym.emit.formula_code.runtime_of` copies this file's statements into every
+generated module whose runtime imports from it (the import itself is left out), so a
+module stays self-contained (numpy only).  Its imports must be among the runtimes' own.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: Design points evaluated at a time: the temporaries of a block stay in the cache and in
+#: memory the allocator keeps, instead of being mapped and faulted in afresh by every
+#: operation on the whole array (on a million points that took half the time).
+_BLOCK = 65536
+
+
+def _blockwise(
+    values: dict[str, NDArray[np.float64]],
+    compute: Callable[[dict[str, NDArray[np.float64]]], tuple[NDArray[Any], ...]],
+) -> tuple[NDArray[Any], ...]:
+    """``compute`` on ``values`` block by block of `_BLOCK` points (broadcast and
+    flattened first); each result's blocks joined along its last axis, in the broadcast
+    shape (leading axes, such as a function's outputs, kept)."""
+    shape = np.broadcast_shapes(*(v.shape for v in values.values()))
+    size = int(np.prod(shape))
+    if size <= _BLOCK:
+        return compute(values)
+    flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
+    blocks = [
+        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        for start in range(0, size, _BLOCK)
+    ]
+    return tuple(
+        np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
+    )

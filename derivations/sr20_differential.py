@@ -42,6 +42,24 @@ def _blockwise(
     )
 
 
+def _at(
+    values: dict[str, NDArray[np.float64]],
+    names: tuple[str, ...],
+    index: NDArray[np.intp],
+    shape: tuple[int, ...],
+    kept: dict[str, NDArray[np.float64]] | None = None,
+) -> dict[str, NDArray[np.float64]]:
+    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
+    by index: a boolean mask would be counted again for every argument), taken from
+    ``kept`` where gathered before at the same points, and kept there."""
+    kept = {} if kept is None else kept
+    for n in names:
+        if n not in kept:
+            v = values[n]
+            kept[n] = v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1)[index]
+    return {n: kept[n] for n in names}
+
+
 Array = NDArray[np.float64]
 
 
@@ -1068,16 +1086,6 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
             count += mask
     numbers[count > 1] = -1
     return numbers, boundary
-
-
-def _at(
-    values: dict[str, Array], names: tuple[str, ...], index: NDArray[np.intp], shape: tuple[int, ...]
-) -> dict[str, Array]:
-    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
-    by index: a boolean mask would be counted again for every argument)."""
-    return {
-        n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape).reshape(-1)[index] for n in names
-    }
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

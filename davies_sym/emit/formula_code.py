@@ -72,7 +72,7 @@ class Runtime:
 @cache
 def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
     """The parts of ``module``; ``taken``: names its entry points add (their arguments).
-    A helper the runtime imports from the package (`davies_sym.emit.block_runtime`) is
+    A helper the runtime imports from the package (`davies_sym.emit.shared_runtime`) is
     copied in, its statements first, and its import is left out: a generated module
     imports nothing of the package."""
     source = inspect.getsource(module)

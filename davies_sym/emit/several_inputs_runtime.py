@@ -23,7 +23,7 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from davies_sym.emit.block_runtime import _blockwise
+from davies_sym.emit.shared_runtime import _at, _blockwise
 
 Array = NDArray[np.float64]
 _Table = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
@@ -144,16 +144,6 @@ def _choice(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.boo
             count += mask
     numbers[count > 1] = -1
     return numbers, boundary
-
-
-def _at(
-    values: dict[str, Array], names: tuple[str, ...], index: NDArray[np.intp], shape: tuple[int, ...]
-) -> dict[str, Array]:
-    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
-    by index: a boolean mask would be counted again for every argument)."""
-    return {
-        n: values[n] if values[n].ndim == 0 else np.broadcast_to(values[n], shape).reshape(-1)[index] for n in names
-    }
 
 
 def _select(numbers: NDArray[np.int64], values: dict[str, Array], table: _Table, width: int) -> Array:

@@ -1,4 +1,5 @@
-"""Evaluation in blocks, shared by the hand-written runtimes of the formula modules.
+"""What the hand-written runtimes of the formula modules share: evaluation in blocks and
+the gathering of a variant's (or region's) arguments at its points.
 
 `davies_sym.emit.formula_code.runtime_of` copies this file's statements into every
 generated module whose runtime imports from it (the import itself is left out), so a
@@ -38,3 +39,21 @@ def _blockwise(
     return tuple(
         np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
     )
+
+
+def _at(
+    values: dict[str, NDArray[np.float64]],
+    names: tuple[str, ...],
+    index: NDArray[np.intp],
+    shape: tuple[int, ...],
+    kept: dict[str, NDArray[np.float64]] | None = None,
+) -> dict[str, NDArray[np.float64]]:
+    """The arguments ``names`` at the flat ``index`` of the broadcast ``shape`` (gathered
+    by index: a boolean mask would be counted again for every argument), taken from
+    ``kept`` where gathered before at the same points, and kept there."""
+    kept = {} if kept is None else kept
+    for n in names:
+        if n not in kept:
+            v = values[n]
+            kept[n] = v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1)[index]
+    return {n: kept[n] for n in names}

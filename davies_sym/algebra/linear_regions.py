@@ -12,6 +12,7 @@ Nothing here guesses: the answer is a proof of emptiness, or no answer.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -109,7 +110,7 @@ def branches(requirement: Requirement) -> list[Branch] | None:
     wanted = -1 if requirement.relation == "<" else 1
     out: list[Branch] = []
     for signs in product((1, -1), repeat=len(odd)):
-        if sign * _parity(signs) != wanted:
+        if sign * math.prod(signs) != wanted:
             continue
         system = [_inequality(f, s, True) for f, s in zip(odd, signs, strict=True)]
         # An even power is positive where it is not zero; zero is not > 0 nor < 0.
@@ -119,13 +120,6 @@ def branches(requirement: Requirement) -> list[Branch] | None:
     if requirement.relation == ">=":
         for form, _ in forms:  # the product is zero where one factor is
             out.append((_inequality(form, 1, False), _inequality(form, -1, False)))
-    return out
-
-
-def _parity(signs: Sequence[int]) -> int:
-    out = 1
-    for s in signs:
-        out *= s
     return out
 
 

@@ -18,6 +18,7 @@ import sympy
 
 from davies_sym.algebra.linear_regions import Requirement, empty_region
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.turning_conditions import TurningCondition
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.model import Train
@@ -29,8 +30,7 @@ CONDITION, FACT = "condition", "fact"
 def geometry_facts(train: Train, layout: Layout, conditions: Sequence[TurningCondition]) -> list[Requirement]:
     """What every admissible design satisfies: each pitch radius and layout fact positive,
     and each symbol the file declares positive that they or the conditions use."""
-    facts = [(sympy.sympify(g.radius), f"pitch radius of {g.name}") for g in train.gears]
-    facts += [(sympy.sympify(f), "") for f in layout.positive_facts]
+    facts = admissible_facts(train, layout)
     used: set[sympy.Symbol] = set()
     for expr in [*(f for f, _ in facts), *(c.expression for c in conditions)]:
         used |= expr.free_symbols

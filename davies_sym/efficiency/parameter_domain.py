@@ -67,6 +67,14 @@ class FloatPolynomial:
         return 1 if total > 0 else -1
 
 
+def admissible_facts(train: Train, layout: Layout) -> list[tuple[sympy.Expr, str]]:
+    """Expressions positive on every admissible design, each with what it is: every pitch
+    radius (``pitch radius of S1``) and every fact of the layout (an annulus larger than
+    its pinion, a placement's triangle that closes; described by the expression alone)."""
+    radii = [(sympy.sympify(g.radius), f"pitch radius of {g.name}") for g in train.gears]
+    return radii + [(sympy.sympify(f), "") for f in layout.positive_facts]
+
+
 def geometry_symbols(train: Train) -> set[sympy.Symbol]:
     """Symbols of pitch radii, modules and bearing positions."""
     out: set[sympy.Symbol] = set()
@@ -126,8 +134,7 @@ class ParameterDomain:
 
     @cached_property
     def _positive(self) -> list[RationalFunction]:
-        checks = [g.radius for g in self.train.gears] + list(self.layout.positive_facts)
-        return [self._ring.rational(e) for e in checks]
+        return [self._ring.rational(e) for e, _ in admissible_facts(self.train, self.layout)]
 
     def _converted(self, expr: sympy.Expr) -> RationalFunction:
         cache = self._conversions

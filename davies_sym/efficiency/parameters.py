@@ -20,6 +20,7 @@ import sympy
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
+from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.losses.definitions import parameters_of
 from davies_sym.network.matrices import FrictionLaw
@@ -183,9 +184,9 @@ def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
     eliminate = eliminated_symbols(variants)
     known = set(variants.symbols)
     out: list[sympy.Expr] = []
-    facts = [g.radius for g in variants.train.gears] + list(layout.positive_facts)
+    facts = [expr for expr, _ in admissible_facts(variants.train, layout)]
     for expr in facts + _implied_by_excluded(variants):
-        relation = sympy.expand(restore(sympy.sympify(expr).subs(eliminate), layout.radicals))
+        relation = sympy.expand(restore(expr.subs(eliminate), layout.radicals))
         if relation.is_Symbol or relation.is_number or not relation.free_symbols <= known:
             continue
         if not relation.is_polynomial() or _obviously_positive(relation):

@@ -75,6 +75,9 @@ class VariantSet:
     derivations: Mapping[tuple[bool, frozenset[str]], Derivation] = field(default_factory=dict, repr=False)
     #: The combinations no admissible geometry reaches, proved so and not derived.
     excluded: tuple[ExcludedVariant, ...] = ()
+    #: What every admissible design satisfies (`geometry_facts`): the proofs' facts, and
+    #: what evaluated values are checked against.
+    facts: tuple[Requirement, ...] = field(default=(), repr=False)
 
     @property
     def listed(self) -> list[Variant | ExcludedVariant]:
@@ -155,8 +158,7 @@ class VariantSet:
         defined symbols (e.g. a mesh efficiency from the tooth geometry) added; values
         outside the admissible geometry (a sun larger than its ring) are refused."""
         given = check_values(self.train, self._keyed(values))
-        facts = geometry_facts(self.train, self.analysis.network.layout, self.conditions)
-        broken = broken_facts(facts, given)
+        broken = broken_facts(self.facts, given)
         if broken:
             raise DesignError(
                 [
@@ -290,7 +292,7 @@ def derive_variants(
     light: list[tuple[str, str, dict[str, int], LoadCase]] = []
     combos = condition_signs(conditions)
     rng = random.Random(seed)
-    facts = geometry_facts(train, analysis.network.layout, conditions)
+    facts = tuple(geometry_facts(train, analysis.network.layout, conditions))
     proofs: dict[tuple[int, ...], tuple[tuple[Requirement, ...], tuple[Requirement, ...]] | None] = {}
     for declared_input in (True, False):
         port_in = train.ports.input if declared_input else train.ports.output
@@ -360,6 +362,7 @@ def derive_variants(
         declared.form,
         derivations,
         tuple(excluded),
+        facts,
     )
 
 

@@ -94,7 +94,6 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
             v.name: {"role": v.role, "wrench": [sympy.sstr(x) for x in v.wrench]} for v in net.coupling_actions(c.name)
         }
         couplings.append(entry)
-    eff = summary["efficiency_friction_form"]
     return {
         "name": train.name,
         "source": train.source,
@@ -115,16 +114,19 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
         "dependent_parameters": summary["dependent_parameters"],
         "motion_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.motion_magnitudes.items()},
         "action_magnitudes": {k: sympy.sstr(v.to_expr()) for k, v in analysis.action_magnitudes.items()},
-        "speed_ratio": {**summary["speed_ratio"], "latex": display_latex(ratio)},
-        "efficiency_friction_form": {
-            "input": eff["input"],
-            "output": eff["output"],
-            "expression": eff["expression"],
-            "latex": display_latex(efficiency),
-            "sign_conditions": eff["sign_conditions"],
-            "friction_convention": eff["friction_convention"],
-        },
+        "speed_ratio": _with_latex(summary["speed_ratio"], ratio),
+        "efficiency_friction_form": _with_latex(summary["efficiency_friction_form"], efficiency),
     }
+
+
+def _with_latex(entry: dict[str, Any], expr: sympy.Expr) -> dict[str, Any]:
+    """``entry`` with the LaTeX of ``expr`` after its ``expression``."""
+    out: dict[str, Any] = {}
+    for key, value in entry.items():
+        out[key] = value
+        if key == "expression":
+            out["latex"] = display_latex(expr)
+    return out
 
 
 def text_summary(document: dict[str, Any]) -> str:

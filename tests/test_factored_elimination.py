@@ -177,9 +177,9 @@ def test_substitution_by_factors_equals_the_expanded_substitution(seed: int) -> 
         plain = ring.rational(sympy.together(expr))
     except DerivationError:  # the substitution divides by zero
         with pytest.raises(ZeroDivisionError):
-            a.substitute(symbol, value)
+            a.substitute({symbol: value})
         return
-    got = a.substitute(symbol, value)
+    got = a.substitute({symbol: value})
     assert got == plain
     assert got.num == plain.num and got.den == plain.den
     if not plain.is_zero():
@@ -200,17 +200,17 @@ def test_simultaneous_substitution_equals_sympy_substitution(seed: int) -> None:
     for symbol in (x, y):
         value = _lazy(ring, rng)
         while value.free_symbols & {x, y}:
-            value = value.substitute(x, RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5)))
-            value = value.substitute(y, RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5)))
+            value = value.substitute({x: RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5))})
+            value = value.substitute({y: RationalFunction.polynomial(ring, ring.one * rng.randint(2, 5))})
         values[symbol] = value
     expr = a.to_expr(factored=False).subs({s: v.to_expr(factored=False) for s, v in values.items()}, simultaneous=True)
     try:
         plain = ring.rational(sympy.together(expr))
     except DerivationError:  # the substitution divides by zero
         with pytest.raises(ZeroDivisionError):
-            a.substitute_all(values)
+            a.substitute(values)
         return
-    got = a.substitute_all(values)
+    got = a.substitute(values)
     assert got.num == plain.num and got.den == plain.den
     if not plain.is_zero():
         assert got.factorisation == (factor(plain.num), factor(plain.den))

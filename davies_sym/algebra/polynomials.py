@@ -308,24 +308,16 @@ class RationalFunction:
     def __hash__(self) -> int:  # pragma: no cover - not used as a key
         return hash((str(self.num), str(self.den)))
 
-    def substitute(self, symbol: sympy.Symbol, value: RationalFunction) -> RationalFunction:
-        """``self`` with ``symbol`` replaced by ``value = n / d``, without expanding the
-        whole fraction: factor by factor where the factors are known (each f(n/d) d^k,
-        k its degree, factored on its own), else N(n/d) d^K / (D(n/d) d^K), K the larger
-        degree in ``symbol``."""
-        return self.substitute_all({symbol: value})
-
-    def substitute_all(self, values: Mapping[sympy.Symbol, RationalFunction]) -> RationalFunction:
+    def substitute(self, values: Mapping[sympy.Symbol, RationalFunction]) -> RationalFunction:
         """``self`` with every symbol of ``values`` replaced at once (the values must not
-        contain the replaced symbols): factor by factor where the factors are known, each
-        factor substituted and factored once, not once per symbol; else one symbol after
-        the other on the expanded numerator and denominator."""
+        contain the replaced symbols), without expanding the whole fraction: factor by
+        factor where the factors are known (each f(n1/d1, ...) d1^k1 ..., factored once),
+        else on the expanded numerator and denominator, one symbol after the other."""
         indices = {symbol: self.ring.symbols.index(symbol) for symbol in values}
         factored = not self.ring.radicals and self._factored_enough()
         if factored and all(value._factored_enough() for value in values.values()):
-            used = [
-                s for s in values if any(f.degrees()[indices[s]] > 0 for part in self.factorisation for f, _ in part[1])
-            ]
+            factors = [f for part in self.factorisation for f, _ in part[1]]
+            used = [s for s in values if any(f.degrees()[indices[s]] > 0 for f in factors)]
             if not used:
                 return self
             replacements = [

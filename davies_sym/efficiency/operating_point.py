@@ -29,8 +29,9 @@ def at_operating_point(form: RationalFunction, analysis: Analysis) -> RationalFu
     omega_in (the input turning forwards and putting power in: Laus's primary variables,
     eq. (53) and the efficiency after it)."""
     torque = form.ring.rational(analysis.input_power_sign * INPUT_TORQUE)
-    form = form.substitute(analysis.input_action.symbol, torque)
-    return form.substitute(analysis.input_motion.symbol, form.ring.rational(INPUT_SPEED))
+    return form.substitute(
+        {analysis.input_action.symbol: torque, analysis.input_motion.symbol: form.ring.rational(INPUT_SPEED)}
+    )
 
 
 def zeta_forms(
@@ -54,4 +55,4 @@ def substituted(
 ) -> RationalFunction:
     """``form`` with each mesh's zeta of the direction ``first`` gives it (first gear drives
     or not), every mesh at once: each factor of ``form`` is factored once."""
-    return form.substitute_all({r.flow.friction_symbol: zetas[(r.coupling, first[r.coupling])] for r in roles})
+    return form.substitute({r.flow.friction_symbol: zetas[(r.coupling, first[r.coupling])] for r in roles})

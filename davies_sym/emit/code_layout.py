@@ -175,6 +175,34 @@ def literal(value: object) -> ast.expr:
     raise TypeError(f"no literal for {type(value).__name__}")
 
 
+def keyword_function(
+    name: str,
+    params: Sequence[ast.arg],
+    defaults: Sequence[ast.expr | None],
+    body: Sequence[ast.stmt],
+    returns: ast.expr | None,
+) -> ast.FunctionDef:
+    """``def name(*, params...) -> returns: body`` as a complete node on every Python.
+
+    Each field the running version defines is given (3.12 added ``type_params``), so the
+    node dumps exactly as the parse of its text does, which `module_source` checks."""
+    arguments = ast.arguments(
+        posonlyargs=[],
+        args=[],
+        vararg=None,
+        kwonlyargs=list(params),
+        kw_defaults=list(defaults),
+        kwarg=None,
+        defaults=[],
+    )
+    node = ast.FunctionDef(
+        name=name, args=arguments, body=list(body), decorator_list=[], returns=returns, type_comment=None
+    )
+    if "type_params" in ast.FunctionDef._fields:
+        setattr(node, "type_params", [])  # noqa: B010 (a field of Python 3.12 and later only)
+    return node
+
+
 def module_source(items: Sequence[tuple[int, str | ast.stmt]]) -> str:
     """The module of ``items``, each (blank lines before it, statement): a statement node
     laid out here, or source text copied as it is (hand-written code).  Raises

@@ -18,7 +18,7 @@ from types import ModuleType
 import sympy
 from sympy.printing.numpy import NumPyPrinter
 
-from davies_sym.emit.code_layout import WIDTH, docstring, literal
+from davies_sym.emit.code_layout import WIDTH, docstring, keyword_function, literal
 from davies_sym.errors import DerivationError
 
 _TEMPORARY = "_t"
@@ -197,11 +197,8 @@ def formula_function(
     else:
         returned = ast.Tuple([call("_array", parsed(r)) for r in results], ast.Load())
     body.append(ast.Return(returned))
-    arguments = ast.arguments(
-        [], [], None, [ast.arg(a, name_node("ArrayLike")) for a in args], [None] * len(args), None, []
-    )
-    returns_node = ast.parse(returns, mode="eval").body
-    return ast.FunctionDef(name, arguments, body, [], returns_node, None), args
+    params = [ast.arg(a, name_node("ArrayLike")) for a in args]
+    return keyword_function(name, params, [None] * len(args), body, ast.parse(returns, mode="eval").body), args
 
 
 def table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:

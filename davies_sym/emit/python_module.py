@@ -39,7 +39,7 @@ from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplin
 from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
-from davies_sym.emit.code_layout import docstring, literal, module_source
+from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
 from davies_sym.emit.force_conditions import force_text
 from davies_sym.emit.formula_code import call, constant, formula_function, name_node, runtime_of, table, usable
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
@@ -94,8 +94,7 @@ def _entry_point(
         given = ast.Dict([ast.Constant(a) for a in checked], [name_node(a) for a in checked])
         body.append(ast.Expr(call("_consistent", given, name_node("values"))))
     body.append(ast.Return(returned))
-    arguments = ast.arguments([], [], None, params, defaults, None, [])
-    return ast.FunctionDef(name, arguments, body, [], ast.parse(returns, mode="eval").body, None)
+    return keyword_function(name, params, defaults, body, ast.parse(returns, mode="eval").body)
 
 
 def _where(variants: VariantSet, variant: Variant) -> str:

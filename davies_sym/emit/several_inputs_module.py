@@ -30,10 +30,10 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameters import Parameter, parameters_of_train
+from davies_sym.efficiency.parameter_ranges import Parameter, parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
-from davies_sym.emit.code_layout import docstring, literal, module_source
+from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
 from davies_sym.emit.formula_code import (
     call,
     compiled_module,
@@ -69,8 +69,7 @@ def _entry(
         ),
         ast.Return(returned),
     ]
-    arguments = ast.arguments([], [], None, params, defaults, None, [])
-    return ast.FunctionDef(name, arguments, body, [], ast.parse(returns, mode="eval").body, None)
+    return keyword_function(name, params, defaults, body, ast.parse(returns, mode="eval").body)
 
 
 def _code(si: SeveralInputs, region: Region) -> int:

@@ -400,6 +400,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -543,6 +548,7 @@ def efficiency(
         'beta_2': _array(beta_2),
         'mu': _array(mu),
     }
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _efficiency(input, errors, values)
 
 
@@ -572,6 +578,7 @@ def losses(
         'beta_2': _array(beta_2),
         'mu': _array(mu),
     }
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _losses(input, errors, values)
 
 
@@ -601,6 +608,7 @@ def variant(
         'beta_2': _array(beta_2),
         'mu': _array(mu),
     }
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _variant(input, errors, values)
 
 
@@ -625,4 +633,5 @@ def speed_ratio(
     cos(beta_2)**2)*cos(beta_1)) with A as input); NaN where the design is not admissible.
     """
     values: dict[str, Array] = {'beta_1': _array(beta_1), 'beta_2': _array(beta_2), 'r1': _array(r1), 'r2': _array(r2)}
+    values.update(_given({'alpha_n': alpha_n, 'mu': mu}))
     return _speed_ratio(input, errors, values)

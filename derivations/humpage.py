@@ -807,6 +807,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -1055,4 +1060,16 @@ def speed_ratio(
         'r4': _array(r4),
         'r5': _array(r5),
     }
+    values.update(
+        _given(
+            {
+                'eta_12': eta_12,
+                'eta_21': eta_21,
+                'eta_25': eta_25,
+                'eta_34': eta_34,
+                'eta_43': eta_43,
+                'eta_52': eta_52,
+            },
+        ),
+    )
     return _speed_ratio(input, errors, values)

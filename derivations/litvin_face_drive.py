@@ -632,6 +632,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -839,4 +844,5 @@ def speed_ratio(
     where the design is not admissible.
     """
     values: dict[str, Array] = {'N1': _array(N1), 'N2': _array(N2), 'N3': _array(N3), 'N4': _array(N4)}
+    values.update(_given({'eta_1': eta_1, 'eta_2': eta_2}))
     return _speed_ratio(input, errors, values)

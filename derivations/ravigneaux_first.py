@@ -373,6 +373,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -508,6 +513,7 @@ def efficiency(
     where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
     """
     values: dict[str, Array] = {'eta_1': _array(eta_1), 'eta_2': _array(eta_2), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs1': rs1}))
     return _efficiency(input, errors, values)
 
 
@@ -529,6 +535,7 @@ def losses(
     element by element; NaN where efficiency is.
     """
     values: dict[str, Array] = {'eta_1': _array(eta_1), 'eta_2': _array(eta_2), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs1': rs1}))
     return _losses(input, errors, values)
 
 
@@ -550,6 +557,7 @@ def variant(
     conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
     """
     values: dict[str, Array] = {'eta_1': _array(eta_1), 'eta_2': _array(eta_2), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs1': rs1}))
     return _variant(input, errors, values)
 
 
@@ -571,4 +579,5 @@ def speed_ratio(
     not admissible.
     """
     values: dict[str, Array] = {'rr': _array(rr), 'rs1': _array(rs1)}
+    values.update(_given({'eta_1': eta_1, 'eta_2': eta_2, 'eta_4': eta_4}))
     return _speed_ratio(input, errors, values)

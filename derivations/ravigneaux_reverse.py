@@ -359,6 +359,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -494,6 +499,7 @@ def efficiency(
     where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
     """
     values: dict[str, Array] = {'eta_3': _array(eta_3), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs2': rs2}))
     return _efficiency(input, errors, values)
 
 
@@ -515,6 +521,7 @@ def losses(
     element by element; NaN where efficiency is.
     """
     values: dict[str, Array] = {'eta_3': _array(eta_3), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs2': rs2}))
     return _losses(input, errors, values)
 
 
@@ -536,6 +543,7 @@ def variant(
     conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
     """
     values: dict[str, Array] = {'eta_3': _array(eta_3), 'eta_4': _array(eta_4)}
+    values.update(_given({'rr': rr, 'rs2': rs2}))
     return _variant(input, errors, values)
 
 
@@ -558,4 +566,5 @@ def speed_ratio(
     """
     values: dict[str, Array] = {'rr': _array(rr), 'rs2': _array(rs2)}
     _consistent({'rpl': rpl}, values)
+    values.update(_given({'eta_3': eta_3, 'eta_4': eta_4}))
     return _speed_ratio(input, errors, values)

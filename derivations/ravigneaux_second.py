@@ -645,6 +645,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -871,4 +876,5 @@ def speed_ratio(
     """
     values: dict[str, Array] = {'rr': _array(rr), 'rs1': _array(rs1), 'rs2': _array(rs2)}
     _consistent({'rpl': rpl}, values)
+    values.update(_given({'eta_1': eta_1, 'eta_2': eta_2, 'eta_3': eta_3, 'eta_4': eta_4}))
     return _speed_ratio(input, errors, values)

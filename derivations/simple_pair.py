@@ -327,6 +327,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -456,6 +461,7 @@ def efficiency(
     where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
     """
     values: dict[str, Array] = {'eta_C': _array(eta_C)}
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _efficiency(input, errors, values)
 
 
@@ -471,6 +477,7 @@ def losses(
     element by element; NaN where efficiency is.
     """
     values: dict[str, Array] = {'eta_C': _array(eta_C)}
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _losses(input, errors, values)
 
 
@@ -486,6 +493,7 @@ def variant(
     conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
     """
     values: dict[str, Array] = {'eta_C': _array(eta_C)}
+    values.update(_given({'r1': r1, 'r2': r2}))
     return _variant(input, errors, values)
 
 
@@ -501,4 +509,5 @@ def speed_ratio(
     not admissible.
     """
     values: dict[str, Array] = {'r1': _array(r1), 'r2': _array(r2)}
+    values.update(_given({'eta_C': eta_C}))
     return _speed_ratio(input, errors, values)

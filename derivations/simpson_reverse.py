@@ -358,6 +358,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -493,6 +498,7 @@ def efficiency(
     where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
     """
     values: dict[str, Array] = {'eta_E': _array(eta_E), 'eta_F': _array(eta_F)}
+    values.update(_given({'rr2': rr2, 'rs': rs}))
     return _efficiency(input, errors, values)
 
 
@@ -514,6 +520,7 @@ def losses(
     element by element; NaN where efficiency is.
     """
     values: dict[str, Array] = {'eta_E': _array(eta_E), 'eta_F': _array(eta_F)}
+    values.update(_given({'rr2': rr2, 'rs': rs}))
     return _losses(input, errors, values)
 
 
@@ -535,6 +542,7 @@ def variant(
     conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
     """
     values: dict[str, Array] = {'eta_E': _array(eta_E), 'eta_F': _array(eta_F)}
+    values.update(_given({'rr2': rr2, 'rs': rs}))
     return _variant(input, errors, values)
 
 
@@ -557,4 +565,5 @@ def speed_ratio(
     """
     values: dict[str, Array] = {'rr2': _array(rr2), 'rs': _array(rs)}
     _consistent({'rp2': rp2}, values)
+    values.update(_given({'eta_E': eta_E, 'eta_F': eta_F}))
     return _speed_ratio(input, errors, values)

@@ -398,6 +398,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -600,4 +605,5 @@ def speed_ratio(
     """
     values: dict[str, Array] = {'rr1': _array(rr1), 'rs': _array(rs)}
     _consistent({'rp1': rp1}, values)
+    values.update(_given({'eta_C': eta_C, 'eta_D': eta_D}))
     return _speed_ratio(input, errors, values)

@@ -762,6 +762,11 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
+def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+    """The optional parameters given (not None), as arrays."""
+    return {name: _array(value) for name, value in optional.items() if value is not None}
+
+
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
     """Where every parameter is in its range, every relation positive and the turning
     conditions' signs are not those of a region no admissible design reaches (EXCLUDED)."""
@@ -981,4 +986,5 @@ def speed_ratio(
     """
     values: dict[str, Array] = {'rp1': _array(rp1), 'rp2': _array(rp2), 'rs': _array(rs)}
     _consistent({'rr1': rr1, 'rr2': rr2}, values)
+    values.update(_given({'eta_C': eta_C, 'eta_D': eta_D, 'eta_E': eta_E}))
     return _speed_ratio(input, errors, values)

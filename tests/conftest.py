@@ -120,3 +120,14 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if item.nodeid in known:
             item.add_marker(pytest.mark.xfail(strict=True, reason="hostile input not yet refused cleanly"))
+
+
+def efficiency_or_refusal(variants: davies_sym.VariantSet, values: dict, port: str) -> object:
+    """The efficiency at ``values`` with ``port`` as input, or the reason the design is
+    refused: two spellings of a train must agree on either (where it self-locks, which
+    variant's negative value is reported is moot: the reason alone is compared)."""
+    try:
+        return variants.evaluate(values, port)
+    except davies_sym.DaviesError as exc:
+        text = str(exc)
+        return f"{type(exc).__name__}: " + ("self-locks" if "self-locks" in text else text.split(": ", 1)[-1])

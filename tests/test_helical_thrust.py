@@ -17,6 +17,7 @@ from hostile.helpers import run_main
 import davies_sym
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
 from davies_sym.efficiency.variants import derive_variants
+from davies_sym.losses.definitions import completed
 from davies_sym.network.analysis import Analysis
 
 PAIR = """
@@ -183,11 +184,18 @@ def test_small_helix_and_no_friction_limits() -> None:
     eta_C; mu -> 0 gives eta_C at any helix."""
     variants = derive_variants(_pair(a=", friction: {thrust: {mu: mu_A, radius: a_A}}"))
     base = {"r1": 30, "r2": 70, "eta_C": sympy.Rational(95, 100), "a_A": 4}
-    flat = variants.evaluate(_values(variants, **base, mu_A=sympy.Rational(1, 10), cos_beta=1, sin_beta=0))
-    assert flat == sympy.Rational(95, 100)
-    free = variants.evaluate(
-        _values(variants, **base, mu_A=0, cos_beta=sympy.Rational(3, 5), sin_beta=sympy.Rational(4, 5))
+    # sin_beta = 0 lies outside the admissible helix (0, 90 deg): the formula's own limit there.
+    at = _values(variants, **base, mu_A=sympy.Rational(1, 10), cos_beta=1, sin_beta=0)
+    near = _values(
+        variants, **base, mu_A=sympy.Rational(1, 10), cos_beta=sympy.Rational(99, 101), sin_beta=sympy.Rational(20, 101)
     )
+    flat = variants.variant_for(near, "A").efficiency.subs(at)
+    assert flat == sympy.Rational(95, 100)
+    # mu_A = 0 lies outside the admissible (0, inf) of a loss model's coefficient: the limit.
+    helix = {"cos_beta": sympy.Rational(3, 5), "sin_beta": sympy.Rational(4, 5)}
+    lossless = _values(variants, **base, mu_A=0, **helix)
+    free = variants.variant_for(_values(variants, **base, mu_A=sympy.Rational(1, 10), **helix), "A").efficiency
+    free = free.subs(completed(lossless, variants.train.definitions))
     assert free == sympy.Rational(95, 100)
 
 

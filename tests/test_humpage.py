@@ -22,8 +22,8 @@ import davies_sym
 from davies_sym.algebra.radicals import RadicalError, RadicalTable, restore
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.efficiency.variants import derive_variants
-from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
-from davies_sym.errors import GeometryError
+from davies_sym.efficiency.virtual_power_balance import balance_at, virtual_power_balance
+from davies_sym.errors import GeometryError, NotCoveredError
 from davies_sym.geometry import train_layout
 
 from conftest import catalog_path, equal, read_text
@@ -267,14 +267,20 @@ def test_consistent_both_routes(consistent, port):
         values = {**point, **{e: sympy.Rational(rng.randint(90, 99), 100) for e in ALL_098}}
         if point is NELSON_CIPRA:
             values = {**point, **ALL_098}
-        davies = consistent.evaluate(values, port)
-        chen = virtual_power_balance(TRAIN, values, port)
+        # The variant's own value, a self-locking one too (evaluate refuses that, as below).
+        davies = consistent.variant_for(values, port).efficiency.subs(values)
+        chen = balance_at(TRAIN, values, port)
         if davies > 0:
+            assert consistent.evaluate(values, port) == davies
             assert davies == chen.efficiency
         else:
             # Self-locked: both say so; the balance takes the drivers that agree with its own
             # flows (-15384/38665), the engine the lossless ones, as the hand route does.
             assert chen.efficiency <= 0
+            with pytest.raises(NotCoveredError, match="self-locks"):
+                consistent.evaluate(values, port)
+            with pytest.raises(NotCoveredError, match="self-locks"):
+                virtual_power_balance(TRAIN, values, port)
         z = {str(k): Fraction(int(v)) for k, v in point.items()}
         etas = {str(e): Fraction(int(values[e].p), int(values[e].q)) for e in ALL_098}
         hand, _, kept = carrier_frame_efficiency(z, etas, port)

@@ -16,6 +16,8 @@ from oracle.skew_pair import SkewPair
 
 import davies_sym
 from davies_sym.efficiency.variants import derive_variants
+from davies_sym.errors import NotCoveredError
+from davies_sym.losses.definitions import completed
 
 WORM = """
 name: worm pair
@@ -108,15 +110,17 @@ def test_worm_self_locking_condition_is_the_textbook_one() -> None:
 
 
 def test_self_locking_flagged_exactly_at_the_boundary() -> None:
-    """tan(gamma) = 1/7, cos(alpha_n) = 4/5: the wheel drives while mu < 4/35, not at 4/35."""
+    """tan(gamma) = 1/7, cos(alpha_n) = 4/5: the wheel drives while mu < 4/35, not at 4/35
+    (there the efficiency is exactly 0: refused as self-locking, decided exactly)."""
     v = _variants(WORM)
     gamma, alpha = sympy.atan(sympy.Rational(1, 7)), sympy.acos(sympy.Rational(4, 5))
     limit = sympy.Rational(4, 35)
-    at = v.evaluate({"gamma": gamma, "alpha_n": alpha, "mu": limit}, input="B")
-    assert at == 0
-    below = v.evaluate({"gamma": gamma, "alpha_n": alpha, "mu": limit - sympy.Rational(1, 10**6)}, input="B")
+    at = {"gamma": gamma, "alpha_n": alpha, "mu": limit, "r1": 1, "r2": 2}
+    with pytest.raises(NotCoveredError, match=r"self-locks .* gives 0 exactly"):
+        v.evaluate(at, input="B")
+    below = v.evaluate({**at, "mu": limit - sympy.Rational(1, 10**6)}, input="B")
     assert 0 < below < sympy.Rational(1, 10**4)
-    forward = v.evaluate({"gamma": gamma, "alpha_n": alpha, "mu": limit}, input="A")
+    forward = v.evaluate(at, input="A")
     assert 0 < forward < 1
 
 
@@ -144,7 +148,9 @@ def test_crossed_helical_maximum_efficiency() -> None:
     for theta, phi in ((55, 6), (80, 8), (40, 3)):
         t, f = theta * pi / 180, phi * pi / 180
         values = {"beta_1": (t + f) / 2, "beta_2": (t - f) / 2, "alpha_n": 0, "mu": tan(f), "r1": 1, "r2": 2}
-        value = float(v.evaluate({k: sympy.Float(x, 30) for k, x in values.items()}))
+        # alpha_n = 0 lies outside the admissible (0, pi/2): the formula's own value there.
+        keyed = {v.train.symbols[k]: sympy.Float(x, 30) for k, x in values.items()}
+        value = float(v.variant_for(keyed, "A").efficiency.subs(completed(keyed, v.train.definitions)))
         assert value == pytest.approx((1 + cos(t + f)) / (1 + cos(t - f)), rel=1e-12)
 
 
@@ -159,14 +165,15 @@ def test_worm_against_independent_statics(text: str) -> None:
     for _ in range(20):
         g, a, mu = rng.uniform(0.03, 0.6), rng.uniform(0.2, 0.45), rng.uniform(0.01, 0.25)
         values = {n: sympy.Float(x, 30) for n, x in zip(names, (g, a, mu), strict=True)}
+        values.update({"r1": 1, "r2": 2} if "r1" in v.train.symbols else {"a": 1, "b": 2})  # the speed ratio's
         pair = SkewPair(1.0, 2.0, pi / 2 - g, g, a, mu)
         for gear, port in zip((1, 2), inputs, strict=True):
             expected = pair.efficiency(gear)
-            value = float(v.evaluate(values, input=port))
             if expected is None:
-                assert value <= 0
+                with pytest.raises(NotCoveredError, match="self-locks"):
+                    v.evaluate(values, input=port)
             else:
-                assert value == pytest.approx(expected, rel=1e-9)
+                assert float(v.evaluate(values, input=port)) == pytest.approx(expected, rel=1e-9)
 
 
 def test_crossed_helical_against_independent_statics_in_both_gear_orders() -> None:
@@ -187,8 +194,11 @@ def test_crossed_helical_against_independent_statics_in_both_gear_orders() -> No
             pair = SkewPair(2.0, 7.0, b1, b2, a, mu)
             for gear, port in ((1, "A"), (2, "B")):
                 expected = pair.efficiency(gear)
-                value = float(v.evaluate(exact, input=port))
-                assert value <= 0 if expected is None else value == pytest.approx(expected, rel=1e-9)
+                if expected is None:
+                    with pytest.raises(NotCoveredError, match="self-locks"):
+                        v.evaluate(exact, input=port)
+                else:
+                    assert float(v.evaluate(exact, input=port)) == pytest.approx(expected, rel=1e-9)
 
 
 def test_power_balance_with_the_sliding_loss() -> None:
@@ -225,11 +235,15 @@ def test_lossless_limit_and_parallel_limit() -> None:
     ratio -r2 / r1 of a spur pair."""
     worm = _variants(WORM)
     for port in ("A", "B"):
-        assert worm.evaluate({"gamma": sympy.Rational(1, 5), "alpha_n": sympy.Rational(1, 3), "mu": 0}, port) == 1
+        lossless = {"gamma": sympy.Rational(1, 5), "alpha_n": sympy.Rational(1, 3), "mu": 0, "r1": 1, "r2": 3}
+        assert worm.evaluate(lossless, port) == 1
+    # Helix angles of 0 lie outside the admissible (0, pi/2): the limit of the formula itself.
     crossed = _variants(CROSSED)
-    assert (
-        crossed.evaluate({"beta_1": 0, "beta_2": 0, "alpha_n": sympy.Rational(1, 3), "mu": sympy.Rational(1, 10)}) == 1
-    )
+    parallel = {"beta_1": 0, "beta_2": 0, "alpha_n": sympy.Rational(1, 3), "mu": sympy.Rational(1, 10)}
+    keyed = {crossed.train.symbols[k]: sympy.sympify(x) for k, x in parallel.items()}
+    assert crossed.variants[0].efficiency.subs(completed(keyed, crossed.train.definitions)) == 1
+    with pytest.raises(davies_sym.DesignError, match="beta_1 = 0 is outside the admissible range"):
+        crossed.evaluate({**parallel, "r1": 1, "r2": 2})
     s = crossed.train.symbols
     ratio = crossed.analysis.speed_ratio().to_expr()
     parallel = ratio.subs({s["cos_beta_1"]: 1, s["sin_beta_1"]: 0, s["cos_beta_2"]: 1, s["sin_beta_2"]: 0})

@@ -13,8 +13,9 @@ import sympy
 import davies_sym
 from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.efficiency.variants import derive_variants
-from davies_sym.efficiency.virtual_power_balance import virtual_power_balance
-from davies_sym.errors import MissingValuesError
+from davies_sym.efficiency.virtual_power_balance import balance_at, virtual_power_balance
+from davies_sym.errors import MissingValuesError, NotCoveredError
+from davies_sym.losses.definitions import completed
 
 from conftest import ROOT, S, catalog_path, catalog_trains, equal, read_text
 
@@ -64,9 +65,9 @@ def test_values_that_leave_the_efficiency_open_are_named():
     """MissingValuesError (an InputError: exit status 2) names what a condition or the
     formula still needs; the documentation shows such a published number as not evaluated."""
     vs = tuplin_variants()
-    with pytest.raises(MissingValuesError, match="condition c1 needs values for r1"):
+    with pytest.raises(MissingValuesError, match=r"missing values for eta_C, eta_D, r1$"):
         vs.evaluate({r2: 60, r3: 15})
-    with pytest.raises(MissingValuesError, match="the efficiency needs values for eta_C, eta_D"):
+    with pytest.raises(MissingValuesError, match=r"missing values for eta_C, eta_D$"):
         vs.evaluate({r1: 40, r2: 60, r3: 15, r4: 35})
     assert issubclass(MissingValuesError, davies_sym.InputError)
 
@@ -152,13 +153,18 @@ def _both_routes(train: davies_sym.Train, points: int = 6, seed: int = 7) -> int
     for point in domain.samples(points, seed=seed):
         values = {**point, **{e: sympy.Rational(rng.randint(90, 99), 100) for e in etas}}
         for port in (train.ports.input, train.ports.output):
-            davies = vs.evaluate(values, port)
-            chen = virtual_power_balance(train, values, port)
-            if davies <= 0:
-                # Self-locked: both say so; which drivers give the value is moot (the engine
-                # keeps the lossless ones where no variant agrees with its own flow).
-                assert chen.efficiency <= 0, (train.name, port, values)
+            try:
+                davies = vs.evaluate(values, port)
+            except NotCoveredError as locked:
+                # Self-locked: both refuse, with the same reason; which drivers give the value
+                # is moot (the engine keeps the lossless ones where no variant agrees with its
+                # own flow), the balance's own value is not in (0, 1] either.
+                assert "self-locks" in str(locked)
+                with pytest.raises(NotCoveredError, match="self-locks"):
+                    virtual_power_balance(train, values, port)
+                assert balance_at(train, values, port).efficiency <= 0, (train.name, port, values)
                 continue
+            chen = virtual_power_balance(train, values, port)
             assert davies == chen.efficiency, (train.name, port, values)
             # Which gear drives matters only where virtual power crosses the mesh.
             loaded = {m for m, loss in chen.losses.items() if loss != 0}
@@ -173,17 +179,38 @@ def _both_routes(train: davies_sym.Train, points: int = 6, seed: int = 7) -> int
 #: coefficient instead, and is checked against the statics of tests/oracle/skew_pair.py
 #: (tests/test_skew_axes.py) and the product of the stages (catalog/worm_planetary.yaml).
 SKEW = {"crossed_helical", "worm_drive", "worm_planetary"}
+#: A mesh efficiency from the tooth geometry (Laus App. A) is given by its flank friction
+#: coefficient, a transcendental function of it; Chen's balance is exact in rationals only:
+#: `test_tooth_geometry_pair_efficiency_is_its_mesh_efficiency` checks it instead.
+TOOTH_GEOMETRY = {"buckingham_pair"}
 
 
 @pytest.mark.parametrize(
     ("name", "train"),
-    [(n, t) for n, t in catalog_trains() if n not in SKEW],
-    ids=[n for n, _ in catalog_trains() if n not in SKEW],
+    [(n, t) for n, t in catalog_trains() if n not in SKEW | TOOTH_GEOMETRY],
+    ids=[n for n, _ in catalog_trains() if n not in SKEW | TOOTH_GEOMETRY],
 )
 def test_both_routes_agree_on_every_catalog_train(name, train):
     """Every catalog train (bevel and face-gear trains too) and every operating state of
     the multi-speed sets, but the skew-axis ones (`SKEW`)."""
     assert _both_routes(train) > 0, name
+
+
+def test_tooth_geometry_pair_efficiency_is_its_mesh_efficiency():
+    """Laus eqs. (36)-(37): a single external pair's efficiency is the ordinary efficiency
+    of its mesh in the driving direction; here that efficiency comes from the tooth
+    geometry (App. A, eqs. (134)-(136)) at the flank friction coefficient mu, so the value
+    at mu equals the definition's own value, both inputs."""
+    train = davies_sym.load(catalog_path("buckingham_pair"))
+    vs = derive_variants(train)
+    defined = {str(d.symbol): d.symbol for d in train.definitions}
+    rng = random.Random(4)
+    for _ in range(3):
+        mu = sympy.Rational(rng.randint(5, 60), 1000)
+        values = {"mu": mu, **{n: v for n, v in train.published_design(None).items() if n != "mu"}}
+        keyed = completed({train.symbols[k]: sympy.sympify(v) for k, v in values.items()}, train.definitions)
+        for port, eta in (("A", "eta_C_1_2"), ("B", "eta_C_2_1")):
+            assert sympy.N(vs.evaluate(values, port) - keyed[defined[eta]], 40) == 0
 
 
 OWN_TRAINS = ["double_pinion", "two_carriers", "idler_internal", "dependent_conditions"]

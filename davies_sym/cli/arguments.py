@@ -9,58 +9,40 @@ from collections.abc import Collection, Iterable, Mapping, Sequence
 
 import sympy
 
+from davies_sym.efficiency.design_values import design_values
 from davies_sym.emit.plots import Sweep, figure_format
 from davies_sym.errors import InputError, Problem, shortened
-from davies_sym.topology.checks import mesh_efficiency_symbols, role_problem
-from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
 
 
 def values(
-    train: Train, pairs: Sequence[str], option: str = "--eval", operating: Collection[sympy.Symbol] = ()
+    train: Train,
+    pairs: Sequence[str],
+    option: str = "--eval",
+    operating: Collection[sympy.Symbol] = (),
+    defaults: Mapping[str, str] | None = None,
 ) -> dict[sympy.Symbol, sympy.Expr]:
-    """``NAME=VALUE`` pairs as exact values of the train's symbols (sizes positive, mesh
-    efficiencies in (0, 1]) and of the ``operating`` symbols the formulas take besides
-    (input torque and speed, positive)."""
-    problems, out = [], {}
-    symbols = {**train.symbols, **{str(s): s for s in operating}}
-    efficiencies = mesh_efficiency_symbols(train.couplings)
-    defined = {str(d.symbol): d for d in train.definitions}
+    """``NAME=VALUE`` pairs as exact values of the train's symbols and of the ``operating``
+    symbols the formulas take besides (input torque and speed), read and checked as the
+    Python API reads them (`design_values`); a name given twice is refused, a name of
+    ``defaults`` (the published design a figure starts from) is overridden."""
+    problems: list[Problem] = []
+    given: dict[str, str] = {}
     for pair in pairs:
         name, sep, text = pair.partition("=")
         name = name.strip()
         if not sep or not name:
             problems.append(Problem(option, f"expected NAME=VALUE, got {shortened(pair)}"))
-            continue
-        if name not in symbols:
+        elif name in given:
             problems.append(
-                Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(sorted(symbols))})")
+                Problem(option, f"{shortened(name)} is given twice ({name}={given[name]}, {name}={text}): give it once")
             )
-            continue
-        if name in defined:
-            d = defined[name]
-            problems.append(
-                Problem(
-                    option,
-                    f"{name} is the {d.meaning} ({d.source}); give "
-                    f"{', '.join(sorted(map(str, d.expression.free_symbols)))} instead",
-                )
-            )
-            continue
-        try:
-            value = parse_expression(text)
-        except ExpressionError as exc:
-            problems.append(Problem(option, f"{name}: {exc}"))
-            continue
-        why = role_problem(name, symbols[name], value, text, efficiencies)
-        if why is not None:
-            problems.append(Problem(option, why))
-            continue
-        out[symbols[name]] = value
+        else:
+            given[name] = text
     if problems:
         raise InputError(problems, train.path)
-    return out
+    return design_values(train, {**(defaults or {}), **given}, option, operating)
 
 
 def sweep(train: Train, option: str, text: str, names: Collection[str] | None = None) -> Sweep:

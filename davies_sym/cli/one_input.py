@@ -42,8 +42,8 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     x, y = plot_sweeps(train, args, [*train.symbols, *map(str, operating)])
     port = eval_port(train, args)
     # A published value for a name the file no longer has (written as a number) is not a default.
-    published = [f"{k}={v}" for k, v in train.published_design(args.state).items() if k in train.symbols]
-    given = {str(k): float(v) for k, v in values(train, [*published, *args.at], "--at", operating).items()}
+    published = {k: v for k, v in train.published_design(args.state).items() if k in train.symbols}
+    given = {str(k): float(v) for k, v in values(train, args.at, "--at", operating, published).items()}
     fixed = held_values(train, given, [str(s) for s in formula_symbols(variants)], (x, y))
     if y is None:
         return figure_bytes(efficiency_figure(variants, x, fixed, port), figure_suffix(args.out, train.path))

@@ -17,6 +17,7 @@ from collections.abc import Mapping, Sequence
 
 import sympy
 
+from davies_sym.algebra.exact_sign import UndecidedSign, is_real_number, number_sign
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.turning_conditions import TurningCondition
 from davies_sym.efficiency.variant import ExcludedVariant, Variant
@@ -49,7 +50,7 @@ def condition_signs_at(conditions: Sequence[TurningCondition], values: Values, p
     out = {}
     for c in conditions:
         value = _number(sympy.sympify(c.expression.subs(values)), f"condition {c.name}", path)
-        out[c.name] = 1 if value >= 0 else -1
+        out[c.name] = 1 if _decided_sign(value, f"condition {c.name}") >= 0 else -1
     return out
 
 
@@ -63,10 +64,24 @@ def assumption_values(variant: Variant, values: Values, path: str | None) -> dic
     return out
 
 
+def _decided_sign(value: sympy.Expr, what: str) -> int:
+    """The exact sign of ``value`` (`number_sign`): a value exactly on a limit is decided,
+    and one whose sign cannot be proved is refused, never rounded."""
+    try:
+        return number_sign(value)
+    except UndecidedSign as exc:
+        raise NotCoveredError(f"{what}: {exc}; no variant is chosen where it cannot be decided exactly") from None
+
+
 def _holds(value: sympy.Expr) -> bool:
     """Whether an assumption's value (force times its needed sign) is non-negative; a
     pole's ``nan`` is not."""
-    return bool(value.is_extended_real and value >= 0)
+    return is_real_number(value) and _decided_sign(value, "a force of the power flow") >= 0
+
+
+def _positive(value: sympy.Expr) -> bool:
+    """Whether an efficiency is a real number greater than zero (exactly decided)."""
+    return is_real_number(value) and _decided_sign(value, "an efficiency") > 0
 
 
 def agrees(variant: Variant, values: Values, path: str | None) -> bool:
@@ -116,14 +131,14 @@ def holding_variant(
             return own[0]  # without the losses' values, the lossless rule alone (Laus's tables)
         raise
     efficiency = {v.number: _number(value_at(v.efficiency_rf, values), "the efficiency", path) for v in agreeing}
-    working = [v for v in agreeing if efficiency[v.number].is_extended_real and efficiency[v.number] > 0]
+    working = [v for v in agreeing if _positive(efficiency[v.number])]
     chosen = working or agreeing
-    if chosen and len({efficiency[v.number] for v in chosen}) == 1:
+    if chosen and _one_value([efficiency[v.number] for v in chosen]):
         return chosen[0]
     base = own[0]
     if not chosen:
         own_value = _number(value_at(base.efficiency_rf, values), "the efficiency", path)
-        if not (own_value.is_extended_real and own_value > 0):
+        if not _positive(own_value):
             return base
         raise NotCoveredError(
             f"no variant's power flow agrees with its own forces at these values (input {port}): "
@@ -135,6 +150,14 @@ def holding_variant(
         f"the power flows of variants {numbers} all agree with their own forces at these values, "
         "with different efficiencies: the friction does not decide the power flow here"
     )
+
+
+def _one_value(values: Sequence[sympy.Expr]) -> bool:
+    """Whether ``values`` are one number, however each is written (exactly compared)."""
+    first = values[0]
+    if not all(is_real_number(v) for v in values):
+        return len(set(values)) == 1
+    return all(_decided_sign(v - first, "a difference of efficiencies") == 0 for v in values[1:])
 
 
 def _disagreeing(variant: Variant, values: Values, path: str | None) -> str:

@@ -18,7 +18,6 @@ as self-locking.
 
 from __future__ import annotations
 
-import numbers
 import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -28,7 +27,10 @@ import sympy
 
 from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.design_point import DesignPoint, check_constraints, check_working, turning_ratio
+from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.empty_regions import broken_facts, emptiness_proof, geometry_facts
 from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
@@ -40,6 +42,7 @@ from davies_sym.efficiency.operating_point import (
     zeta_forms,
 )
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
+from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, Parameter, parameters_of_train, range_problem
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
 from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variant_checks import checked_variant
@@ -49,11 +52,9 @@ from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
-from davies_sym.losses.definitions import completed
+from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
-from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
-from davies_sym.topology.symbols import exact_number
 
 Progress = Callable[[str], None]
 
@@ -115,49 +116,11 @@ class VariantSet:
             out |= c.expression.free_symbols
         return sorted_symbols(out)
 
-    def _keyed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
-        """``values`` keyed by symbols: a name (``"r1"``, ``"tau_in"``) stands for its symbol,
-        a Python number is taken exactly as written (``0.99`` is 99/100), a text is read by
-        the expression grammar (``"1/3"``)."""
-        names = {**self.train.symbols, **{str(s): s for s in OPERATING_SYMBOLS}}
-        out: dict[sympy.Symbol, sympy.Expr] = {}
-        unknown = []
-        for key, value in values.items():
-            symbol = names.get(key) if isinstance(key, str) else key
-            if symbol is None:
-                unknown.append(str(key))
-                continue
-            if isinstance(value, sympy.Basic):
-                out[symbol] = value
-            elif isinstance(value, str):
-                try:
-                    out[symbol] = parse_expression(value)  # the safe grammar, never Python
-                except ExpressionError as exc:
-                    unknown.append(f"{key} = {value[:40]!r} ({exc})")
-            elif (number := exact_number(value)) is not None:  # int, float as written
-                out[symbol] = number
-            elif isinstance(value, numbers.Rational):  # Fraction, numpy integers
-                out[symbol] = sympy.Rational(int(value.numerator), int(value.denominator))
-            else:
-                unknown.append(f"{key} (value {value!r} is not a number)")
-        if unknown:
-            raise InputError(
-                [
-                    Problem(
-                        "values",
-                        f"cannot use {', '.join(unknown)} (the names are: "
-                        f"{', '.join(sorted(names))}; the values numbers or texts like '1/3')",
-                    )
-                ],
-                self.train.path,
-            )
-        return out
-
     def _completed(self, values: Mapping[sympy.Symbol | str, object]) -> dict[sympy.Symbol, sympy.Expr]:
         """``values`` keyed by symbol, checked against the geometric constraints, with the
         defined symbols (e.g. a mesh efficiency from the tooth geometry) added; values
         outside the admissible geometry (a sun larger than its ring) are refused."""
-        given = check_values(self.train, self._keyed(values))
+        given = check_values(self.train, design_values(self.train, values))
         broken = broken_facts(self.facts, given)
         if broken:
             raise DesignError(
@@ -192,17 +155,59 @@ class VariantSet:
             )
         return holding_variant(self.variants, self.conditions, port, values, self.train.path, self.excluded)
 
+    @property
+    def parameters(self) -> list[sympy.Symbol]:
+        """The values a design needs: the symbols of the formulas, the conditions and the
+        speed ratio (defined ones replaced by their parameters), sorted by name."""
+        return sorted_symbols(parameters_of(self._used, self.train.definitions))
+
+    @property
+    def _used(self) -> set[sympy.Symbol]:
+        """The symbols of the formulas, the conditions and the speed ratio as written."""
+        ratio = restore(self.analysis.speed_ratio().to_expr(), self.analysis.network.layout.radicals)
+        used: set[sympy.Symbol] = set(self.symbols) | ratio.free_symbols
+        return used
+
+    @property
+    def parameter_table(self) -> tuple[Parameter, ...]:
+        """Meaning, unit and admissible range of each of `parameters` (the modules' ``PARAMETERS``)."""
+        return parameters_of_train(self.train, self.analysis.network.laws, self.parameters, OPERATING_PARAMETERS)
+
+    def design_point(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> DesignPoint:
+        """The variant, speed ratio and efficiency at ``values`` (keyed by symbol or name,
+        exact when the values are) with ``input`` as input port: the one decision every
+        entry point shares.  Refuses (`InputError`, `DesignError`, `NotCoveredError`)
+        missing or bad values, an inadmissible geometry, a port that does not turn, a
+        train that self-locks there (`davies_sym.efficiency.design_point`)."""
+        port = input or self.train.ports.input
+        given = self._completed(values)
+        # A defined symbol given itself (cos_beta = 3/5) stands for its definition's parameters.
+        definitions = [d for d in self.train.definitions if d.symbol not in given]
+        missing = [str(s) for s in sorted_symbols(parameters_of(self._used, definitions)) if s not in given]
+        if missing:
+            raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.path)
+        outside = [why for p in self.parameter_table if (why := _range_problem(p, given)) is not None]
+        if outside:
+            raise DesignError([Problem("--eval", why) for why in outside], self.train.path)
+        check_constraints(self.analysis.network.layout.constraints, given, self.train.path)
+        ports = self.train.ports
+        other = ports.output if port == ports.input else ports.input
+        ratio = turning_ratio(self.analysis.speed_ratio().to_expr(), given, port, other, port == ports.input)
+        variant = self._variant_at(given, port)
+        value = sympy.sympify(variant.efficiency.subs(given))
+        check_working(value, port, f"variant ({variant.number})", INPUT_TORQUE in variant.efficiency.free_symbols)
+        return DesignPoint(port, other, variant, ratio, value)
+
     def evaluate(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> sympy.Expr:
         """The efficiency at ``values`` (keyed by symbol or name, e.g. ``{"r1": 40}``; exact
-        when the values are), right variant chosen."""
-        given = self._completed(values)
-        value = self._variant_at(given, input).efficiency.subs(given)
-        if not sympy.sympify(value).is_number:
-            missing = sorted(map(str, value.free_symbols))
-            raise MissingValuesError(
-                [Problem("--eval", f"the efficiency needs values for {', '.join(missing)}")], self.train.path
-            )
-        return value
+        when the values are), right variant chosen; a design `design_point` refuses is
+        refused here with the same reason."""
+        return self.design_point(values, input).efficiency
+
+
+def _range_problem(parameter: Parameter, values: Mapping[sympy.Symbol, sympy.Expr]) -> str | None:
+    symbol = next((s for s in values if str(s) == parameter.name), None)
+    return None if symbol is None else range_problem(parameter, values[symbol])
 
 
 def derive_variants(

@@ -37,10 +37,13 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.efficiency.balance_frames import ConicalFrames, Frames, PlanarFrames, Row, Values, exact, is_zero
+from davies_sym.efficiency.design_point import check_working
+from davies_sym.efficiency.design_values import design_values
 from davies_sym.errors import DerivationError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import check_values, resolved_train
 from davies_sym.geometry.layout import Layout
+from davies_sym.losses.definitions import completed
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -62,13 +65,28 @@ class BalanceResult:
 
 
 def virtual_power_balance(
-    train: Train, values: Values, input: str | None = None, layout: Layout | None = None
+    train: Train, values: Mapping[sympy.Symbol | str, object], input: str | None = None, layout: Layout | None = None
 ) -> BalanceResult:
-    """Efficiency of ``train`` at ``values`` with ``input`` (default: the declared one);
-    ``layout`` replaces the derived geometry (to study a published one)."""
+    """Efficiency of ``train`` at ``values`` (keyed by symbol or name, read as every entry
+    point reads them: `design_values`) with ``input`` (default: the declared one);
+    ``layout`` replaces the derived geometry (to study a published one).  A design where
+    the train self-locks is refused as `VariantSet.design_point` refuses it
+    (`NotCoveredError`); `balance_at` gives the balance there too."""
+    result = balance_at(train, values, input, layout)
+    check_working(result.efficiency, input or train.ports.input, "the virtual-power balance")
+    return result
+
+
+def balance_at(
+    train: Train, values: Mapping[sympy.Symbol | str, object], input: str | None = None, layout: Layout | None = None
+) -> BalanceResult:
+    """The balance of `virtual_power_balance` at any design, a self-locking one included
+    (its efficiency then is not in (0, 1])."""
+    given = design_values(train, values)
     if layout is None:
         train = resolved_train(train)
-        values = check_values(train, values)
+        given = check_values(train, given)
+    values = completed(given, train.definitions)  # a mesh efficiency from its tooth geometry
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
     layout = layout or train_layout(train)

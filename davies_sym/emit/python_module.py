@@ -72,6 +72,7 @@ def _entry_point(
     returns: str,
     returned: ast.expr,
     default_input: str,
+    ranged: Sequence[str] = (),
 ) -> ast.FunctionDef:
     """``name(*, input, errors, required..., optional=None...)``: the required arguments
     as arrays, the ``checked`` optional ones (dependent parameters) against their
@@ -93,6 +94,11 @@ def _entry_point(
     if checked:
         given = ast.Dict([ast.Constant(a) for a in checked], [name_node(a) for a in checked])
         body.append(ast.Expr(call("_consistent", given, name_node("values"))))
+    if ranged:
+        # Given optional parameters join the values, so that the admissibility check sees them.
+        given = ast.Dict([ast.Constant(a) for a in ranged], [name_node(a) for a in ranged])
+        update = ast.Attribute(name_node("values"), "update", ast.Load())
+        body.append(ast.Expr(ast.Call(update, [call("_given", given)], [])))
     body.append(ast.Return(returned))
     return keyword_function(name, params, defaults, body, ast.parse(returns, mode="eval").body)
 
@@ -293,7 +299,9 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     def entry(name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr) -> ast.FunctionDef:
         checked = [d for d, args in needs.items() if set(args) <= set(required)]
         optional = [a for a in every if a not in required]
-        return _entry_point(name, doc, required, optional, checked, returns, returned, train.ports.input)
+        # A parameter of the train this entry does not need is still held to its range when given.
+        ranged = [a for a in optional if a in symbols or a in ratio_args]
+        return _entry_point(name, doc, required, optional, checked, returns, returned, train.ports.input, ranged)
 
     arrays = (name_node("input"), name_node("errors"), name_node("values"))
     entries = [

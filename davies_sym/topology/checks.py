@@ -9,11 +9,12 @@ sizes positive, mesh efficiencies in (0, 1].
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from typing import Any
 
 import sympy
 
+from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.errors import shortened
 from davies_sym.topology.couplings import Coupling, GearMesh
 from davies_sym.topology.entries import EntryReader, describe
@@ -75,6 +76,7 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
     if entry is None:
         return {}
     efficiencies = mesh_efficiency_symbols(couplings.values())
+    coefficients = friction_coefficient_symbols(couplings.values())
     out = {}
     for name, item in entry.items():
         where = f"{path}.{name}"
@@ -86,7 +88,7 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
         if number is None:
             continue
         # A value for a name the train does not use (a radius written as a number) is kept.
-        why = role_problem(name, reader.symbols.get(name), number, shortened(str(item)), efficiencies)
+        why = role_problem(name, reader.symbols.get(name), number, shortened(str(item)), efficiencies, coefficients)
         if why is not None:
             reader.problem(where, why)
         else:
@@ -105,16 +107,40 @@ def mesh_efficiency_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:
     }
 
 
+def friction_coefficient_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:
+    """The symbols of the couplings' friction laws: a coefficient may be 0 (the lossless
+    limit), as the formula modules' ranges ``[0, inf)`` say."""
+    out: set[sympy.Symbol] = set()
+    for c in couplings:
+        for law in (c.friction.coulomb, c.friction.linear, c.friction.viscous, c.friction.drag):
+            if law is not None:
+                out |= {s for s in law.free_symbols if isinstance(s, sympy.Symbol)}
+    return out
+
+
 def role_problem(
-    name: str, symbol: sympy.Symbol | None, number: sympy.Expr, shown: str, efficiencies: set[sympy.Symbol]
+    name: str,
+    symbol: sympy.Symbol | None,
+    number: sympy.Expr,
+    shown: str,
+    efficiencies: set[sympy.Symbol],
+    coefficients: Collection[sympy.Symbol] = (),
 ) -> str | None:
     """Why ``number`` (shown to the user as ``shown``) cannot be the value of ``symbol``:
-    an efficiency lies in (0, 1], a size is positive; None when it can (or the symbol is
-    unknown)."""
-    if symbol in efficiencies and not 0 < number <= 1:
-        return f"{name} = {shown} is not an efficiency: write a number in (0, 1]"
-    if symbol is not None and symbol.is_positive and not number > 0:
-        return f"{name} = {shown} must be positive"
+    an efficiency lies in (0, 1], a size is positive, a friction coefficient (one of
+    ``coefficients``) is not negative; None when it can (or the symbol is unknown).
+    Decided by the exact sign, so a value exactly on a bound is decided too."""
+    try:
+        if symbol in efficiencies and (number_sign(number) <= 0 or number_sign(1 - number) < 0):
+            return f"{name} = {shown} is not an efficiency: write a number in (0, 1]"
+        if symbol in coefficients and number_sign(number) < 0:
+            return f"{name} = {shown} is a friction coefficient: write a number >= 0"
+        if symbol is not None and symbol not in coefficients and symbol.is_positive and number_sign(number) <= 0:
+            return f"{name} = {shown} must be positive"
+    except UndecidedSign:
+        return f"{name} = {shown} is not a finite real number"
+    if number.is_finite is False:
+        return f"{name} = {shown} is not finite"
     return None
 
 

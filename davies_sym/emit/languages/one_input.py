@@ -22,7 +22,8 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameters import Parameter, admissible_relations, eliminated_symbols, parameter_table
+from davies_sym.efficiency.parameter_ranges import Parameter
+from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step

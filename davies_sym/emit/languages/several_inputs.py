@@ -18,7 +18,7 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameters import parameters_of_train
+from davies_sym.efficiency.parameter_ranges import parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.one_input import range_checks
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step

@@ -7,7 +7,7 @@ import os
 import re
 from collections.abc import Sequence
 
-from davies_sym.efficiency.parameters import Parameter
+from davies_sym.efficiency.parameter_ranges import Parameter
 
 
 def identifier_part(text: str) -> str:

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import time
 from typing import Any
 
 import numpy as np
@@ -294,8 +293,10 @@ def test_bad_arguments() -> None:
         simulate("lift", step=0.003)
 
 
-def test_runtime() -> None:
-    """200 steps take well under 10 s."""
-    start = time.perf_counter()
-    simulate("ellipse")
-    assert time.perf_counter() - start < 5.0
+def test_a_task_settles_every_step() -> None:
+    """The ellipse task's 200 steps each settle their friction signs within the bounded
+    iteration (UpuConvergenceError otherwise): work bounded by a count, not by seconds
+    (the timing is benchmarks/three_upu_task.py's)."""
+    task = simulate("ellipse")
+    assert len(task.steps) in (200, 201)  # t = 0, 0.005, ..., 1 s
+    assert task.supplied_energy > 0 and all(e >= 0 for e in task.friction_energy.values())

@@ -28,6 +28,9 @@ gears on links, couplings between links (revolute pairs, gear meshes, prismatic
 pairs, or explicit screws), the ports (input and output couplings), the reference
 link and the friction of each coupling. Every entry is checked on load; all
 problems are reported together, each with its file, line and entry path.
+An entry that takes a list (`links`, `independent`, a state's `brake`, `free` and
+`clutch`, `calibrate.fit`) takes one item written alone as the list of that item:
+`brake: c2` is `brake: [c2]`.
 
 This page is generated from `davies_sym/schema.py` and `davies_sym/couplings.py`
 (`python3 tools/topology_doc.py`); a test fails when it is out of date.

@@ -45,21 +45,45 @@ def values(
     return design_values(train, {**(defaults or {}), **given}, option, operating)
 
 
+#: Largest magnitude of a sweep's bound: far beyond any size or coefficient of a train, and
+#: small enough that the formulas' powers of it stay finite in floating point.
+LARGEST_BOUND = 1e12
+
+
 def sweep(train: Train, option: str, text: str, names: Collection[str] | None = None) -> Sweep:
-    """``NAME=START:STOP`` as a sweep of one of ``names`` (default: the train's symbols)."""
+    """``NAME=START:STOP`` as a sweep of one of ``names`` (default: the train's symbols),
+    its bounds finite, at most `LARGEST_BOUND` in magnitude and far enough apart to draw."""
     known = sorted(train.symbols if names is None else names)
     name, sep, interval = text.partition("=")
     start, colon, stop = interval.partition(":")
     bounds = (exact_number(start.strip()), exact_number(stop.strip()))
-    if not sep or not colon or None in bounds:
-        raise InputError([Problem(option, f"expected NAME=START:STOP, got {text!r}")], train.path)
+    if not sep or not colon:
+        raise InputError([Problem(option, f"expected NAME=START:STOP, got {shortened(text)}")], train.path)
     if name.strip() not in known:
         raise InputError(
-            [Problem(option, f"unknown symbol {name.strip()!r} (the train has: {', '.join(known)})")], train.path
+            [Problem(option, f"unknown symbol {shortened(name.strip())} (the train has: {', '.join(known)})")],
+            train.path,
         )
+    for written, bound in zip((start, stop), bounds, strict=True):
+        if bound is None or abs(bound) > LARGEST_BOUND:
+            what = "not a finite number" if bound is None else "too large to draw"
+            raise InputError(
+                [
+                    Problem(
+                        option,
+                        f"the bound {shortened(written.strip())} of {shortened(text)} is {what}: give numbers "
+                        f"between {-LARGEST_BOUND:g} and {LARGEST_BOUND:g}",
+                    )
+                ],
+                train.path,
+            )
     low, high = (float(v) for v in bounds)  # type: ignore[arg-type]
     if not low < high:
-        raise InputError([Problem(option, f"the interval {text!r} is empty (START < STOP)")], train.path)
+        raise InputError([Problem(option, f"the interval {shortened(text)} is empty (START < STOP)")], train.path)
+    if high - low <= 1e-9 * max(abs(low), abs(high)):
+        raise InputError(
+            [Problem(option, f"the interval {shortened(text)} is too narrow to draw; widen it")], train.path
+        )
     return Sweep(name.strip(), low, high)
 
 
@@ -72,7 +96,12 @@ def plot_sweeps(
         raise InputError([Problem("--plot", "give the figure's file with -o FILE.png")], train.path)
     figure_suffix(args.out, train.path)
     x = sweep(train, "--plot", args.plot, names)
-    return x, (sweep(train, "--vs", args.vs, names) if args.vs else None)
+    y = sweep(train, "--vs", args.vs, names) if args.vs else None
+    if y is not None and y.name == x.name:
+        raise InputError(
+            [Problem("--vs", f"{x.name} is swept by --plot already: give --vs another parameter")], train.path
+        )
+    return x, y
 
 
 def figure_suffix(path: str, source: str | None) -> str:
@@ -103,14 +132,19 @@ def held_values(
     return {n: float(given[n]) for n in held}
 
 
+def not_a_port(option: str, given: str, ports: Sequence[str], source: str | None) -> InputError:
+    """The refusal of ``--input`` or ``--output`` naming no port."""
+    return InputError([Problem(option, f"{shortened(given)} is not a port (ports: {', '.join(ports)})")], source)
+
+
 def eval_port(train: Train, args: argparse.Namespace) -> str:
+    """The input port ``--input`` or ``--output`` choose (default: the declared input),
+    each checked to name a port of ``train``."""
     ports = (train.ports.input, train.ports.output)
     chosen = args.input
     if args.output is not None:
         if args.output not in ports:
-            raise InputError(
-                [Problem("--output", f"{args.output!r} is not a port (ports: {', '.join(ports)})")], train.path
-            )
+            raise not_a_port("--output", args.output, ports, train.path)
         other = ports[1] if args.output == ports[0] else ports[0]
         if chosen is not None and chosen != other:
             raise InputError(
@@ -125,7 +159,7 @@ def eval_port(train: Train, args: argparse.Namespace) -> str:
             )
         chosen = other
     if chosen is not None and chosen not in ports:
-        raise InputError([Problem("--input", f"{chosen!r} is not a port (ports: {', '.join(ports)})")], train.path)
+        raise not_a_port("--input", chosen, ports, train.path)
     return chosen or train.ports.input
 
 

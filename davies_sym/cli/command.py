@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import tempfile
 from collections.abc import Callable, Sequence
 
 from davies_sym.cli.completion import completion_script
@@ -40,6 +41,58 @@ def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
             raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}")], path)
 
 
+def _check_distinct(targets: Sequence[tuple[str, str]], source: str) -> None:
+    """Before anything is derived: no two outputs ((file, option) pairs) name the same
+    file, however the paths are written (relative, ``..``, a symbolic or hard link)."""
+    for k, (target, option) in enumerate(targets):
+        for other, first in targets[:k]:
+            same = os.path.realpath(target) == os.path.realpath(other) or (
+                os.path.exists(target) and os.path.exists(other) and os.path.samefile(target, other)
+            )
+            if same:
+                raise InputError(
+                    [
+                        Problem(
+                            option,
+                            f"{first} and {option} both name the file {_path_text(target)}: one would "
+                            "overwrite the other; give two files",
+                        )
+                    ],
+                    source,
+                )
+
+
+def _folder_for_outputs(folder: str, source: str) -> None:
+    """``--out DIR``: the folder exists (made if missing) and takes files, checked before
+    anything is derived."""
+    existed = os.path.isdir(folder)
+    try:
+        os.makedirs(folder, exist_ok=True)
+        handle, probe = tempfile.mkstemp(prefix=".", suffix=".tmp", dir=folder)
+        os.close(handle)
+        os.unlink(probe)
+    except OSError as exc:
+        what = "write into" if existed else "create"
+        why = f"cannot {what} the folder {_path_text(folder)}: {exc.strerror or exc}; give a folder you can write"
+        raise InputError([Problem("--out", why)], source) from None
+
+
+def _write(outputs: Sequence[tuple[str | None, str | bytes]], options: dict[str, str], source: str) -> None:
+    """Each output to its file (atomically) or to standard output; a file the system will
+    not let us write is reported at its option (``-o``, ``--python``) by the name given."""
+    for target, content in outputs:
+        if target is None:
+            sys.stdout.write(content if isinstance(content, str) else content.decode())
+            continue
+        try:
+            write_atomic(target, content)
+        except OSError as exc:
+            raise InputError(
+                [Problem(options.get(target, "-o"), f"cannot write {_path_text(target)}: {exc.strerror or exc}")],
+                source,
+            ) from None
+
+
 def _path_text(path: str) -> str:
     """A path as the user can find it: whole unless absurdly long."""
     return path if len(path) <= 300 else shortened(path)
@@ -53,9 +106,10 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
     from davies_sym.topology.loader import build_train
 
     path = args.files[0]
-    for target, option in ((args.out, "-o"), (args.python, "--python")):
-        if target:
-            _check_target(target, option, [path])
+    targets = [(target, option) for target, option in ((args.python, "--python"), (args.out, "-o")) if target]
+    for target, option in targets:
+        _check_target(target, option, [path])
+    _check_distinct(targets, path)
     document = read_document(path)
     failures: list[str] = []
     if is_machine(document.data):
@@ -74,11 +128,7 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
             if several_degrees_of_freedom(train)
             else one_input_outputs(train, args, progress, failures)
         )
-    for target, content in outputs:
-        if target is None:
-            sys.stdout.write(content if isinstance(content, str) else content.decode())
-        else:
-            write_atomic(target, content)
+    _write(outputs, {target: option for target, option in targets}, path)
     for line in failures:
         print(line, file=sys.stderr)
     return 2 if failures else 0
@@ -97,6 +147,7 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
         return 2
     from davies_sym.cli.many_files import derive_into
 
+    _folder_for_outputs(args.out, args.files[0])
     return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler)
 
 
@@ -156,9 +207,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.json:
             print(status_json("bad input", reason))
         return 2
-    except OSError as exc:
-        print(
-            f"derive: {args.files[0]}: cannot write the output: {exc.strerror} ({shortened(str(exc.filename))})",
-            file=sys.stderr,
-        )
+    except OSError as exc:  # the system refused something the checks above did not foresee
+        print(f"derive: {args.files[0]}: {exc.strerror or exc} ({shortened(str(exc.filename))})", file=sys.stderr)
         return 2

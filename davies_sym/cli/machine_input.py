@@ -181,6 +181,8 @@ def _task(machine: Machine, args: argparse.Namespace, progress: Progress) -> Out
 def machine_outputs(machine: Machine, args: argparse.Namespace, progress: Progress) -> Outputs:
     """What ``derive`` writes for a machine file."""
     _refuse_train_options(machine, args)
+    if args.input is not None:
+        _input_port(machine, args)  # a port, with --eval or without
     if args.task:
         return _task(machine, args, progress)
     if args.plot is not None:

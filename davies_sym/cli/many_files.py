@@ -214,7 +214,14 @@ def derive_into(
         for derived in results:
             counter.report(derived.messages)
             for name, content in derived.written:
-                write_atomic(os.path.join(directory, name), content)
+                target = os.path.join(directory, name)
+                try:
+                    write_atomic(target, content)
+                except OSError as exc:  # reported per file, like a refusal: the others are still written
+                    counter.report(
+                        [f"input error: {derived.path}: --out: cannot write {target}: {exc.strerror or exc}"]
+                    )
+                    statuses.add(2)
             statuses.add(derived.status)
             counter.finished(derived)
     finally:

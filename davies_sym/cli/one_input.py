@@ -9,7 +9,15 @@ from collections.abc import Callable, Sequence
 
 import sympy
 
-from davies_sym.cli.arguments import check_emit, eval_port, figure_suffix, held_values, plot_sweeps, values
+from davies_sym.cli.arguments import (
+    check_emit,
+    eval_port,
+    figure_suffix,
+    held_values,
+    not_a_port,
+    plot_sweeps,
+    values,
+)
 from davies_sym.cli.messages import message
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
@@ -123,14 +131,34 @@ def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, p
     return "\n".join(parts) + "\n"
 
 
+def _chosen(train: Train, state: str | None) -> Train:
+    """The train of the chosen state (the train itself without one, or for an unknown one,
+    which `derive_sets` refuses)."""
+    if train.states and state is not None:
+        return next((train_in_state(train, st) for st in train.states if st.name == state), train)
+    return train
+
+
+def _check_ports(train: Train, args: argparse.Namespace) -> None:
+    """``--input`` and ``--output`` name ports, with ``--eval`` or without (refused as
+    ``--eval`` refuses them): of the chosen state, or without one of the file or any state."""
+    if args.input is None and args.output is None:
+        return
+    if not (train.states and args.state is None):
+        eval_port(_chosen(train, args.state), args)
+        return
+    every = [(train.ports.input, train.ports.output), *((st.input, st.output) for st in train.states)]
+    ports = tuple(dict.fromkeys(p for pair in every for p in pair))
+    for option, given in (("--input", args.input), ("--output", args.output)):
+        if given is not None and given not in ports:
+            raise not_a_port(option, given, ports, train.path)
+
+
 def _eval_inputs(train: Train, args: argparse.Namespace) -> list[str] | None:
     """The input port an evaluation asks for (of the chosen state), or None when it is
     not a port (the full derivation then refuses it as usual)."""
-    chosen = train
-    if train.states and args.state is not None:
-        chosen = next((train_in_state(train, st) for st in train.states if st.name == args.state), train)
     try:
-        return [eval_port(chosen, args)]
+        return [eval_port(_chosen(train, args.state), args)]
     except DaviesError:
         return None
 
@@ -143,6 +171,7 @@ def one_input_outputs(
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
     check_emit(args, train.path)
+    _check_ports(train, args)
     # An evaluation alone needs only the variants of its input port.
     alone = args.eval is not None and not (args.python or args.emit or args.plot or args.out or args.latex)
     sets = derive_sets(train, args.state, progress, failures, _eval_inputs(train, args) if alone else None)

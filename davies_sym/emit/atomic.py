@@ -18,9 +18,13 @@ def _mode_for(path: str) -> int:
 
 
 def write_atomic(path: str, text: str | bytes) -> None:
-    """Write ``text`` (or bytes) to ``path`` so that readers see the old or the new file, never half."""
+    """Write ``text`` (or bytes) to ``path`` so that readers see the old or the new file, never half; an
+    `OSError` names ``path``."""
     directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".", suffix=".tmp", dir=directory)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".", suffix=".tmp", dir=directory)
+    except OSError as exc:
+        raise _about(exc, path) from None
     try:
         # mkstemp creates the file readable by its owner only.
         os.chmod(tmp, _mode_for(path))
@@ -31,7 +35,15 @@ def write_atomic(path: str, text: str | bytes) -> None:
             with os.fdopen(fd, "w", encoding="utf-8") as handle:
                 handle.write(text)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as exc:
         if os.path.exists(tmp):
             os.unlink(tmp)
+        if isinstance(exc, OSError):
+            raise _about(exc, path) from None
         raise
+
+
+def _about(exc: OSError, path: str) -> OSError:
+    """``exc`` naming the file the caller wrote to, not the temporary file beside it (of the
+    same class: ``PermissionError`` stays one)."""
+    return OSError(exc.errno, exc.strerror, path) if exc.errno is not None else OSError(f"{exc} ({path})")

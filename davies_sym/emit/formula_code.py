@@ -19,7 +19,8 @@ import sympy
 from sympy.printing.numpy import NumPyPrinter
 
 from davies_sym.emit.code_layout import WIDTH, docstring, keyword_function, literal
-from davies_sym.errors import DerivationError
+from davies_sym.errors import DerivationError, TopologyError
+from davies_sym.topology.model import Train
 
 _TEMPORARY = "_t"
 #: Room for one printed expression: the width less an indent, ``_t12 = `` and ``_array(...)``.
@@ -120,6 +121,21 @@ def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
 def constant(runtime: Runtime, name: str, value: ast.expr) -> ast.AnnAssign:
     """``NAME: <annotation of the placeholder> = value``."""
     return ast.AnnAssign(ast.Name(name, ast.Store()), runtime.placeholders[name], value, simple=1)
+
+
+#: Why a symbol or a generated function name cannot be a name of a generated module.
+NOT_A_PARAMETER = "a Python keyword, a name the module uses, or not an ASCII identifier"
+NOT_A_FUNCTION = "not an ASCII identifier, a name the module uses, or two ports or conditions give the same name"
+
+
+def refused_name(train: Train, kind: str, name: str, why: str, code: str = "module") -> TopologyError:
+    """The refusal of a name a generated file cannot hold (``kind``: ``symbol`` or
+    ``generated function name``; ``code``: what is generated), at the entry where the file
+    writes it: a symbol where it is first written, a function name (made of the ports) at
+    the ports."""
+    message = f"the {kind} {name!r} cannot be a name in the generated {code} ({why}); rename it in the topology file"
+    problem = train.symbol_problem(name, message) if kind == "symbol" else train.problem("ports", message)
+    return TopologyError([problem], train.path)
 
 
 def usable(runtime: Runtime, name: str) -> bool:

@@ -41,9 +41,19 @@ from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
 from davies_sym.emit.force_conditions import force_text
-from davies_sym.emit.formula_code import call, constant, formula_function, name_node, runtime_of, table, usable
+from davies_sym.emit.formula_code import (
+    NOT_A_FUNCTION,
+    NOT_A_PARAMETER,
+    call,
+    constant,
+    formula_function,
+    name_node,
+    refused_name,
+    runtime_of,
+    table,
+    usable,
+)
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
-from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
@@ -205,11 +215,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
     for s in sorted({*symbols, *accepted, *dependent_of}):
         if not _usable(s) or s.startswith("_"):
-            raise DerivationError(
-                f"the symbol {s!r} cannot be a name in the generated module (a Python keyword, "
-                "a name the module uses, or not an ASCII identifier); rename it in the topology "
-                "file"
-            )
+            raise refused_name(train, "symbol", s, NOT_A_PARAMETER)
     lossy = lossy_couplings(variants)
     functions: list[ast.FunctionDef] = []
     tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
@@ -343,11 +349,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     names = [f.name for f in functions]
     for f in functions:
         if not _usable(f.name) or names.count(f.name) > 1:
-            raise DerivationError(
-                f"the generated function name {f.name!r} is not "
-                "usable (not an ASCII identifier, or two ports or conditions give the same "
-                "name); rename the ports in the topology file"
-            )
+            raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
 
     runtime = _runtime()
     items: list[tuple[int, str | ast.stmt]] = [(0, docstring(_module_doc(variants, ignored), "")), (1, runtime.imports)]

@@ -35,17 +35,19 @@ from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInp
 from davies_sym.emit import several_inputs_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
 from davies_sym.emit.formula_code import (
+    NOT_A_FUNCTION,
+    NOT_A_PARAMETER,
     call,
     compiled_module,
     constant,
     formula_function,
     name_node,
+    refused_name,
     runtime_of,
     table,
     usable,
 )
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
-from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
@@ -183,16 +185,10 @@ def several_inputs_module(si: SeveralInputs) -> str:
     }
     for a in required:
         if not usable(runtime, a) or a.startswith("_"):
-            raise DerivationError(
-                f"the symbol {a!r} cannot be a name in the generated module (a Python keyword, "
-                "a name the module uses, or not an ASCII identifier); rename it in the topology "
-                "file"
-            )
+            raise refused_name(train, "symbol", a, NOT_A_PARAMETER)
     for f in functions:
         if not usable(runtime, f.name) or [g.name for g in functions].count(f.name) > 1:
-            raise DerivationError(
-                f"the generated function name {f.name!r} is not usable; rename the ports in the topology file"
-            )
+            raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
     parameters = parameters_of_train(
         train, si.analysis.network.laws, [symbols[a] for a in required], operating_parameters(si)
     )

@@ -15,6 +15,14 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
     network's motions; ``input_index`` is the input speed's), empty when nothing is."""
     dof = len(free)
     problems = []
+    if dof == 0 and train.degrees_of_freedom is None:
+        # One cause, one problem: the input cannot move because nothing can.
+        port = train.ports.input
+        return [
+            train.problem(
+                "ports", f"the train has no degree of freedom (it is locked): the input coupling {port!r} cannot move"
+            )
+        ]
     if input_index not in free:
         problems.append(
             train.problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked")

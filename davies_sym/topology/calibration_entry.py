@@ -30,8 +30,10 @@ def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | Non
     if entry is None:
         return None
     reader.check_keys(entry, "calibrate", CALIBRATE)
-    names = entry.get("fit", [])
-    if not isinstance(names, list) or not names or not all(isinstance(n, str) for n in names):
+    names = reader.items(entry.get("fit", []), "calibrate.fit", "a list of parameter names")  # `fit: mu` is [mu]
+    if names is None:
+        return None
+    if not names or not all(isinstance(n, str) for n in names):
         reader.problem("calibrate.fit", f"expected a list of parameter names, got {describe(names)}")
         return None
     for i, name in enumerate(names):

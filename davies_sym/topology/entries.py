@@ -43,6 +43,8 @@ class EntryReader:
         self.unreadable: set[str] = set()
         #: Kinds whose optional table is absent: the first reference says so, once.
         self.absent: set[str] = set()
+        #: The entry where each symbol is first written (``r1`` -> ``gears.1.radius``).
+        self.written: dict[str, str] = {}
         #: (kind, name) of each unknown name reported: its problem's index, message and other places.
         self._unknown: dict[tuple[str, str], tuple[int, str, list[str]]] = {}
 
@@ -86,10 +88,24 @@ class EntryReader:
         known = {f.key for f in fields}
         for key in entry:
             if key not in known:
-                self.problem(f"{path}.{key}", f"unknown key {key!r} (known: {', '.join(sorted(known))})")
+                # A top-level key is its own entry (``gear_ratio``, at its own line).
+                self.problem(
+                    f"{path}.{key}" if path else key, f"unknown key {key!r} (known: {', '.join(sorted(known))})"
+                )
         for f in fields:
             if f.required and f.key not in entry:
                 self.problem(path or f.key, f"missing required key {f.key!r}: add `{f.key}:` ({f.kind})")
+
+    def items(self, value: Any, path: str, what: str) -> list[Any] | None:
+        """A list entry (``what`` it holds, for the message): a list, or one item written
+        without brackets, read as the list of that item (``brake: c2`` is ``brake: [c2]``);
+        None, with the problem recorded, for anything else."""
+        if isinstance(value, list):
+            return value
+        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
+            return [value]
+        self.problem(path, f"expected {what}, got {describe(value)}")
+        return None
 
     def name(self, value: Any, path: str) -> str | None:
         """A name (of a link, gear or coupling): strings and integers are accepted."""
@@ -118,11 +134,15 @@ class EntryReader:
     def quantity(self, value: Any, path: str, role: str, roots: bool = False) -> sympy.Expr | None:
         """``value`` read as a quantity of ``role`` (square roots only where ``roots``), or None
         with the problem recorded."""
+        known = set(self.symbols)
         try:
-            return parse_quantity(value, role, self.symbols, roots)
+            read = parse_quantity(value, role, self.symbols, roots)
         except QuantityError as exc:
             self.problem(path, str(exc))
             return None
+        for new in self.symbols.keys() - known:
+            self.written.setdefault(new, path)
+        return read
 
 
 def describe(value: Any) -> str:

@@ -24,7 +24,7 @@ from davies_sym.topology.documents import document_from_bytes, read_document
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
-from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORTS, STATE, TOP_LEVEL
+from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORT_KEYS, PORTS, STATE, TOP_LEVEL
 from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
 
@@ -78,7 +78,7 @@ def build_train(document: SourceDocument) -> Train:
         reader.problem("degrees_of_freedom", f"expected a positive integer, got {describe(dof)}")
         dof = None
     expected = read_expected(data.get("expected", []), reader, couplings)
-    states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings)
+    states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings, reference)
     for i, check in enumerate(expected):
         if check.state is not None and check.state not in {st.name for st in states}:
             reader.problem(f"expected[{i}].state", f"unknown state {shortened(check.state)}")
@@ -107,6 +107,7 @@ def build_train(document: SourceDocument) -> Train:
         calibrate=calibrate,
         placement=placement,
         independent=independent,
+        written=MappingProxyType(dict(reader.written)),
     )
 
 
@@ -137,8 +138,11 @@ def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.
 
 def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None:
     """``independent: [r1, r2, r3]``: symbols of the file that stay free."""
-    if not isinstance(value, list) or not value:
-        reader.problem("independent", f"expected a list of symbols, got {describe(value)}")
+    value = reader.items(value, "independent", "a list of symbols")
+    if value is None:
+        return None
+    if not value:
+        reader.problem("independent", "expected a list of symbols, got an empty list")
         return None
     names = []
     for i, item in enumerate(value):
@@ -152,7 +156,12 @@ def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:
     links: list[Link] = []
-    if isinstance(value, list):
+    if not isinstance(value, Mapping):
+        # A list of names; one name alone is the list of that name (a machine needs two, below).
+        value = reader.items(value, "links", "a list of link names or a mapping of links")
+    if value is None:
+        reader.unreadable.add("link")
+    elif isinstance(value, list):
         for i, item in enumerate(value):
             name = reader.defined_name(item, f"links[{i}]", "link")
             if name is None:
@@ -171,10 +180,7 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
                 continue
             reader.check_keys(entry, f"links.{name}", LINK)
             links.append(Link(name, str(entry.get("description", ""))))
-    else:
-        reader.problem("links", f"expected a list of link names or a mapping of links, got {describe(value)}")
-        reader.unreadable.add("link")
-    if isinstance(value, (list, Mapping)) and len(links) < 2:
+    if value is not None and len(links) < 2:
         reader.problem("links", "a machine needs at least two links")
         reader.unreadable.add("link")  # references to the others say nothing more
     return links
@@ -291,7 +297,7 @@ def _read_ports(value: Any, reader: EntryReader, couplings: Mapping[str, Couplin
         return None
     reader.check_keys(entry, "ports", PORTS)
     names: dict[str, list[str]] = {}
-    for role in ("input", "output"):
+    for role in PORT_KEYS:
         if role not in entry:
             continue
         # Several inputs (a differential driven on two shafts) are written as a list.
@@ -364,10 +370,16 @@ def _read_reference(
     return common.pop()
 
 
+def _as_written(value: Any) -> str:
+    """A name as written, for a message (`describe` without its quotes)."""
+    return describe(value).strip("'\"")
+
+
 def _read_states(
-    value: Any, reader: EntryReader, links: set[str], couplings: Mapping[str, Coupling]
+    value: Any, reader: EntryReader, links: set[str], couplings: Mapping[str, Coupling], reference: str | None
 ) -> tuple[State, ...]:
-    """The ``states`` mapping: ports, brakes, clutches and free members per state."""
+    """The ``states`` mapping: ports, brakes, clutches and free members per state, each
+    problem at the state's own entry."""
     states = reader.mapping(value, "states")
     if states is None:
         return ()
@@ -380,20 +392,15 @@ def _read_states(
         if entry is None:
             continue
         reader.check_keys(entry, path, STATE)
-        ports = []
-        for key in ("input", "output"):
-            port = reader.name(entry.get(key), f"{path}.{key}") if key in entry else None
-            if port is not None and port not in couplings:
-                reader.unknown(f"{path}.{key}", "coupling", port, f"port on a missing coupling {shortened(port)}")
-                port = None
-            ports.append(port)
+        # A state's ports are read as the top-level ones are: a coupling, not a mesh.
+        ports = [_port(entry[key], f"{path}.{key}", reader, couplings) if key in entry else None for key in PORT_KEYS]
+        if ports[0] is not None and ports[0] == ports[1]:
+            reader.problem(f"{path}.output", f"{ports[1]!r} is also the input: every port must be a different coupling")
+            ports[1] = None
 
         def members(key: str, items: Any, path: str = path) -> list[str]:
-            if not isinstance(items, list):
-                reader.problem(f"{path}.{key}", "expected a list")
-                return []
-            found = []
-            for i, item in enumerate(items):
+            found: list[str] = []
+            for i, item in enumerate(reader.items(items, f"{path}.{key}", "a list of links") or []):
                 link = reader.name(item, f"{path}.{key}[{i}]")
                 if link is not None and link not in links:
                     reader.unknown(f"{path}.{key}[{i}]", "link", link)
@@ -402,9 +409,23 @@ def _read_states(
             return found
 
         brake = members("brake", entry.get("brake", []))
+        for i, link in enumerate(brake):
+            if link == reference:
+                reader.problem(
+                    f"{path}.brake[{i}]",
+                    f"{link!r} is the reference link (the housing): a brake holds another member to it; "
+                    "name the member to hold",
+                )
         free = members("free", entry.get("free", []))
         clutch: list[tuple[str, str]] = []
-        for i, pair in enumerate(entry.get("clutch", []) if isinstance(entry.get("clutch", []), list) else []):
+        pairs = reader.items(entry.get("clutch", []), f"{path}.clutch", "a list of pairs [link, link]") or []
+        if pairs and not any(isinstance(pair, list) for pair in pairs):
+            # Names where pairs are expected (`clutch: c2`, `clutch: [r1, s]`): one problem, not one per name.
+            shown = f"[[{', '.join(_as_written(n) for n in pairs)}]]" if len(pairs) == 2 else ""
+            shown = shown if 0 < len(shown) <= 80 else "[[LINK, LINK]]"
+            reader.problem(f"{path}.clutch", f"a clutch is a pair of links inside the list: write clutch: {shown}")
+            pairs = []
+        for i, pair in enumerate(pairs):
             found = members(f"clutch[{i}]", pair)
             if len(found) != 2 or found[0] == found[1]:
                 reader.problem(f"{path}.clutch[{i}]", "a clutch joins two different links: [link, link]")

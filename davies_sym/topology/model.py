@@ -127,6 +127,13 @@ class Train:
     dependent: tuple[Relation, ...] | None = None
     #: What ``derive calibrate`` fits by default (the ``calibrate`` entry).
     calibrate: CalibrationDefaults | None = None
+    #: The entry where each symbol is first written (``r1`` -> ``gears.1.radius``), for a
+    #: problem with a symbol found after loading (a name a generated module cannot hold).
+    written: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
+    #: Entries the later stages name that the file writes elsewhere: the train of an
+    #: operating state has its ports at ``states.NAME`` (``ports.input`` ->
+    #: ``states.NAME.input``), so a problem with them points at the state's own entry.
+    renamed: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
     #: What the later stages derived from this very train (its layout, its resolved form),
     #: kept with it: the train is immutable, so they hold for its lifetime, and the states
     #: of one file share their whole train's.  Not copied by ``dataclasses.replace``.
@@ -150,11 +157,20 @@ class Train:
         )
 
     def problem(self, entry: str, message: str) -> Problem:
-        """A `Problem` at ``entry`` with the line it has in the source file."""
+        """A `Problem` at ``entry`` (where the file writes it, see ``renamed``) with the
+        line it has in the source file."""
+        for name in sorted(self.renamed, key=len, reverse=True):
+            if entry == name or entry.startswith((f"{name}.", f"{name}[")):
+                entry = self.renamed[name] + entry[len(name) :]
+                break
         path = entry
         while path and path not in self.locations:
             path = path.rpartition(".")[0]
         return Problem(entry, message, self.locations.get(path))
+
+    def symbol_problem(self, name: str, message: str) -> Problem:
+        """A `Problem` with the symbol ``name``, at the entry where the file first writes it."""
+        return self.problem(self.written.get(name, ""), message)
 
     def coupling(self, name: str) -> Coupling:
         for c in self.couplings:

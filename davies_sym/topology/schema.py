@@ -111,6 +111,9 @@ PORTS = (
     Field("output", "coupling", True, "Coupling that carries the output torque (or force)."),
 )
 
+#: The keys of the ports, of the file and of each operating state.
+PORT_KEYS = tuple(f.key for f in PORTS)
+
 STATE = (
     Field("input", "coupling", True, "Input port in this state."),
     Field("output", "coupling", True, "Output port in this state."),

@@ -10,11 +10,13 @@ carries no power and no loss.  The result is an ordinary train, analysed as any 
 from __future__ import annotations
 
 from dataclasses import replace
+from types import MappingProxyType
 
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.topology.couplings import Coupling, Revolute
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Link, Ports, State, Train
+from davies_sym.topology.schema import PORT_KEYS
 
 
 def train_in_state(train: Train, state: State) -> Train:
@@ -94,6 +96,10 @@ def train_in_state(train: Train, state: State) -> Train:
         degrees_of_freedom=None,
         states=(),
         whole=_without(train.whole or train, free, Ports(state.input, state.output)),
+        # The state's ports are written in its own entry: a problem with them points there.
+        renamed=MappingProxyType(
+            {"ports": f"states.{state.name}", **{f"ports.{key}": f"states.{state.name}.{key}" for key in PORT_KEYS}}
+        ),
     )
 
 

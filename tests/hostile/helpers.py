@@ -28,7 +28,7 @@ import subprocess
 import sys
 import time
 import traceback
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -42,6 +42,10 @@ DATA = ROOT / "tests" / "data"
 
 #: Longest acceptable stderr of a refusal: one or a few short lines, never a huge value echoed back.
 MAX_STDERR = 2000
+#: The default hang guard of both runners: a run still going after this long is stopped and
+#: fails.  Never a claim about speed (a busy machine may be slow); the tests bound the work
+#: instead (a refusal names the limit it hit).
+HANG_GUARD = 120.0
 
 
 @dataclass
@@ -68,7 +72,7 @@ def _on_alarm(signum: int, frame: Any) -> None:
     raise Hang("derive did not finish within the watchdog time")
 
 
-def run_main(args: Sequence[str], timeout: float = 60.0) -> Result:
+def run_main(args: Sequence[str], timeout: float = HANG_GUARD) -> Result:
     """``derive ARGS`` in this process; stdout and stderr captured, exceptions rendered as a traceback."""
     from davies_sym import cli
 
@@ -100,7 +104,10 @@ def run_main(args: Sequence[str], timeout: float = 60.0) -> Result:
 
 
 def run_cli(
-    args: Sequence[str], timeout: float = 30.0, cwd: str | os.PathLike[str] | None = None, memory: int | None = None
+    args: Sequence[str],
+    timeout: float = HANG_GUARD,
+    cwd: str | os.PathLike[str] | None = None,
+    memory: int | None = None,
 ) -> Result:
     """``python -m davies_sym.cli ARGS`` in a fresh process (this worktree first on PYTHONPATH);
     ``memory``: an address-space limit in bytes (a bomb then fails in its own process
@@ -214,6 +221,18 @@ def catalog(name: str) -> Any:
 def dump(data: Any, path: Path) -> Path:
     path.write_text(yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=100000), encoding="utf-8")
     return path
+
+
+def entry_paths(data: Any, prefix: tuple[Any, ...] = ()) -> Iterator[tuple[Any, ...]]:
+    """The path of every mapping key and list item of ``data``, depth first."""
+    if isinstance(data, dict):
+        for key, value in data.items():
+            yield (*prefix, key)
+            yield from entry_paths(value, (*prefix, key))
+    elif isinstance(data, list):
+        for index, value in enumerate(data):
+            yield (*prefix, index)
+            yield from entry_paths(value, (*prefix, index))
 
 
 def rename_key(mapping: dict[Any, Any], old: Any, new: Any) -> dict[Any, Any]:

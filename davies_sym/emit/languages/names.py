@@ -13,6 +13,16 @@ from davies_sym.emit.languages.program import Program
 from davies_sym.errors import DerivationError
 
 
+class RefusedName(DerivationError):
+    """A parameter or function name the target language cannot take: ``kind`` (``symbol``
+    or ``generated function name``), the ``name``, ``why``, and the ``code`` generated;
+    `davies_sym.emit.languages.registry.emit_code` reports it where the file writes the name."""
+
+    def __init__(self, kind: str, name: str, why: str, code: str):
+        self.kind, self.name, self.why, self.code = kind, name, why, code
+        super().__init__(f"the {kind} {name!r} cannot be a name in the generated {code} ({why}); rename it")
+
+
 def check_names(
     program: Program,
     language: str,
@@ -37,10 +47,7 @@ def check_names(
             elif name.startswith("_") and not leading_underscore:
                 why = f"{language} names cannot start with '_'"
             if why:
-                raise DerivationError(
-                    f"the {kind} {name!r} cannot be a name in the generated {language} code ({why}); "
-                    "rename it in the topology file"
-                )
+                raise RefusedName(kind, name, why, f"{language} code")
 
 
 def comment_text(line: str) -> str:

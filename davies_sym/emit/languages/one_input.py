@@ -26,6 +26,7 @@ from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.variant import Variant
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import (
     Check,
@@ -37,7 +38,6 @@ from davies_sym.emit.languages.routines import (
 )
 from davies_sym.emit.languages.text import identifier_part, origin_text, parameter_lines
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
-from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 
 
@@ -214,12 +214,10 @@ def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:
     and calls every routine)."""
     seen: set[str] = set()
     for r in routines:
-        if r.name in seen or r.name in names:
-            raise DerivationError(
-                f"the generated function name {r.name!r} is also the name of "
-                f"{'a parameter' if r.name in names else 'another function'}; rename the "
-                "parameter or the ports in the topology file"
-            )
+        if r.name in names:
+            raise RefusedName("symbol", r.name, "it is also the name of a generated function", "code")
+        if r.name in seen:
+            raise RefusedName("generated function name", r.name, "it is also the name of another function", "code")
         seen.add(r.name)
 
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 from davies_sym.efficiency.several_inputs import SeveralInputs
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.emit.formula_code import refused_name
 from davies_sym.emit.language_names import LANGUAGES
 from davies_sym.emit.languages.c import C
 from davies_sym.emit.languages.julia import JULIA
 from davies_sym.emit.languages.modelica import MODELICA
+from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.octave import OCTAVE
 from davies_sym.emit.languages.one_input import one_input_program
 from davies_sym.emit.languages.program import Program
@@ -39,4 +41,7 @@ def program_of(derived: VariantSet | SeveralInputs, language: str, state: str | 
 def emit_code(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> str:
     """The source text of ``derived`` in ``language`` (one of `LANGUAGES`); the same
     train gives the same bytes."""
-    return TARGETS[language].write(program_of(derived, language, state))
+    try:
+        return TARGETS[language].write(program_of(derived, language, state))
+    except RefusedName as exc:
+        raise refused_name(derived.train, exc.kind, exc.name, exc.why, exc.code) from None

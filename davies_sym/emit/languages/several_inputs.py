@@ -20,13 +20,13 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_ranges import parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
+from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.one_input import range_checks
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
 from davies_sym.emit.languages.text import origin_text, parameter_lines
 from davies_sym.emit.several_inputs_module import operating_parameters
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
-from davies_sym.errors import DerivationError
 from davies_sym.losses.definitions import parameters_of, substituted
 
 
@@ -103,11 +103,11 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
     routines.append(_choice(si, names, conditions, regions, forces, in_ranges, not_covered))
     seen: set[str] = set()
     for routine in routines:
-        if routine.name in seen or routine.name in names:
-            raise DerivationError(
-                f"the generated function name {routine.name!r} is also the name of a parameter "
-                "or of another function; rename it in the topology file"
-            )
+        if routine.name in names:
+            raise RefusedName("symbol", routine.name, "it is also the name of a generated function", "code")
+        if routine.name in seen:
+            why = "it is also the name of another function"
+            raise RefusedName("generated function name", routine.name, why, "code")
         seen.add(routine.name)
     ports = train.ports
     lines = [

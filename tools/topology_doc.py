@@ -64,7 +64,9 @@ and the screws, and derives the efficiency.
 
 All gear axes are parallel to z and lie in the plane x = 0 (Laus Figs. 5 and 7). Gears
 on one link share its axis; a revolute between two geared links makes them coaxial.
-The axis of the reference link (or of the first gear) is at y = 0. An external mesh
+The axis of the reference link is at y = 0, and a bearing's `at` puts its axis at that
+y; when the reference carries no gear and no `at` places a geared axis, the axis of the
+first geared link (by name) is at y = 0: the ports never move an axis. An external mesh
 puts the centres r_g + r_h apart, an internal mesh R - r apart with the pinion on the
 +y side of the annulus centre. The pitch point of a mesh is where its friction torque
 acts and its tooth force (along x, pressure angle zero, Laus section 3.3.1) passes.

@@ -80,13 +80,14 @@ def axis_structure(train: Train) -> AxisStructure:
             bearing_on[c.name] = a
     frames = _mesh_frames(train, meshes, parent, depth, coaxial)
     axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
+    bearing_axis = {name: axis[link] for name, link in bearing_on.items()}
     return AxisStructure(
         parent=parent,
         depth=depth,
         axis=axis,
-        bearing_axis={name: axis[link] for name, link in bearing_on.items()},
+        bearing_axis=bearing_axis,
         meshes=frames,
-        root=_root(train, axis),
+        root=_root(train, axis, bearing_axis),
     )
 
 
@@ -199,14 +200,17 @@ def _representative(groups: LinkGroups, link: str, names: Sequence[str]) -> str:
     return min(n for n in names if groups.find(n) == root)
 
 
-def _root(train: Train, axis: Mapping[str, str]) -> str:
-    """The class drawn at the origin: the reference's axis when gears turn about it, else
-    the axis of the input port's member, else the first geared class."""
+def _root(train: Train, axis: Mapping[str, str], bearing_axis: Mapping[str, str]) -> str:
+    """The class drawn at the origin, from the file's own statements, never from its ports:
+    the reference's axis when gears turn about it; else, where a bearing gives a geared
+    axis its `at`, the reference's axis too (the origin the `at` values are measured from),
+    so that every `at` is kept as written; else the first geared class (by name)."""
     geared = {axis[g.link] for g in train.gears}
     if axis[train.reference] in geared:
         return axis[train.reference]
-    port = train.coupling(train.ports.input)
-    for link in sorted(port.links, key=lambda link: link == train.reference):
-        if axis[link] in geared:
-            return axis[link]
-    return min(geared) if geared else axis[train.reference]
+    stated = any(
+        isinstance(c, Revolute) and c.at is not None and bearing_axis.get(c.name) in geared for c in train.couplings
+    )
+    if stated or not geared:
+        return axis[train.reference]
+    return min(geared)

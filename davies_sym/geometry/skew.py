@@ -21,7 +21,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.layout import X_AXIS, Layout
 from davies_sym.topology.couplings import Revolute
-from davies_sym.topology.model import Ports, Train
+from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
 
 
@@ -139,19 +139,12 @@ def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, Ske
 
 
 def _parallel_part(train: Train, worm_links: set[str]) -> Train:
-    """``train`` without the worm links, their gears and their couplings."""
-    couplings = tuple(c for c in train.couplings if not set(c.links) & worm_links)
-    names = {c.name for c in couplings}
-    ports = train.ports
-    if not set(ports.every) <= names:
-        # The layout only picks its main axis from a port; one on the parallel part serves.
-        kept = [c.name for c in couplings if isinstance(c, Revolute)]
-        ports = Ports(kept[0], kept[0]) if kept else ports
+    """``train`` without the worm links, their gears and their couplings (its ports may
+    name a removed coupling: the layout never reads them)."""
     return replace(
         train,
         links=tuple(k for k in train.links if k.name not in worm_links),
         gears=tuple(g for g in train.gears if g.link not in worm_links),
-        couplings=couplings,
-        ports=ports,
+        couplings=tuple(c for c in train.couplings if not set(c.links) & worm_links),
         states=(),
     )

@@ -373,21 +373,36 @@ def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str,
     return np.where(bad, np.nan, result) if bad.any() else result
 
 
-def _screened(result: Array, numbers: NDArray[np.int64], outside: NDArray[np.bool_], errors: str) -> Array:
+def _still(values: dict[str, Array]) -> NDArray[np.bool_]:
+    """Where a port does not turn (speed ratio 0 or infinite), as far as the given values
+    tell (all False when the ratio's parameters are not among them)."""
+    function, names = _RATIO[PORTS[0]]
+    if not all(n in values for n in names):
+        return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
+    with np.errstate(all="ignore"):
+        ratio = _array(function(**{n: values[n] for n in names}))
+    return np.asarray(~np.isfinite(ratio) | (ratio == 0))
+
+
+def _screened(
+    result: Array, numbers: NDArray[np.int64], outside: NDArray[np.bool_], still: NDArray[np.bool_], errors: str
+) -> Array:
     """NaN (with a warning, or an error) where the design is not admissible (``outside``),
-    no variant holds (``numbers`` 0: the losses reverse loaded forces as none covers) or
-    the train self-locks."""
+    a port does not turn (``still``), no variant holds (``numbers`` 0: the losses reverse
+    loaded forces as none covers) or the train self-locks."""
     _check_errors(errors)
-    uncovered = (numbers == 0) & ~outside
+    still = still & ~outside
+    uncovered = (numbers == 0) & ~outside & ~still
     with np.errstate(invalid="ignore"):
-        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered
+        locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered & ~still
     message = (
         f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
+        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(still))} where a port does not turn (speed ratio 0 "
+        f"or infinite), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
         f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
         "(efficiency outside (0, 1]): NaN there"
     )
-    return _nan_where(outside | uncovered | locked, result, message, errors, stacklevel=4)
+    return _nan_where(outside | still | uncovered | locked, result, message, errors, stacklevel=4)
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
@@ -396,10 +411,10 @@ def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
-        return numbers, _select(numbers, part, _EFFICIENCY, 1, gathered), ~_admissible(part)
+        return numbers, _select(numbers, part, _EFFICIENCY, 1, gathered), ~_admissible(part), _still(part)
 
-    numbers, selected, outside = _blockwise(values, compute)
-    return _screened(selected[0], numbers, outside, errors)
+    numbers, selected, outside, still = _blockwise(values, compute)
+    return _screened(selected[0], numbers, outside, still, errors)
 
 
 def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
@@ -410,10 +425,10 @@ def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Arra
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(numbers, part, _EFFICIENCY, 1, gathered)
         losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part)
+        return numbers, efficiency, losses, ~_admissible(part), _still(part)
 
-    numbers, efficiency, parts, outside = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, errors))
+    numbers, efficiency, parts, outside, still = _blockwise(values, compute)
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 

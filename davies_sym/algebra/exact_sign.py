@@ -9,8 +9,9 @@ sign is decided in two steps, never by rounding:
 1. evaluation with guaranteed accuracy (sympy's ``evalf(strict=True)`` raises where it
    cannot reach the asked precision): a non-zero result that meets the precision has a
    certain sign;
-2. where that fails (cancellation to zero), the minimal polynomial of the algebraic
-   number: it is ``x`` exactly when the number is zero.
+2. where that fails (cancellation to zero), the numerator and denominator are split into
+   factors and each factor's minimal polynomial is computed: it is ``x`` exactly when the
+   factor is zero (the work bounded by the factor's size, `MAX_OPERATIONS`).
 
 A number that is neither settled by step 1 nor algebraic raises `UndecidedSign`; the
 callers turn that into a refusal, never into a guess.
@@ -24,6 +25,12 @@ from sympy.core.evalf import PrecisionExhausted
 #: Decimal digits tried in turn by the guaranteed-accuracy evaluation.
 _DIGITS = (30, 120)
 _X = sympy.Dummy("x")
+#: The largest factor (in sympy operations) whose minimal polynomial is computed: a bound on
+#: the work, beyond which the sign is reported undecided instead of searched for.
+MAX_OPERATIONS = 80
+#: The largest degree of the number field a factor may lie in (`_degree_bound`): the
+#: minimal polynomial of cos(389 pi/3600) alone has a degree in the hundreds.
+MAX_DEGREE = 256
 
 
 class UndecidedSign(ValueError):
@@ -45,7 +52,8 @@ def number_sign(value: object) -> int:
     """-1, 0 or +1: the exact sign of the real constant ``value``.
 
     Raises `UndecidedSign` for a non-real or non-number value, and where the sign cannot
-    be proved (a transcendental number indistinguishable from zero)."""
+    be proved (a transcendental number indistinguishable from zero, or a factor too large
+    for its minimal polynomial: `MAX_OPERATIONS`)."""
     number = sympy.sympify(value)
     if number.is_Rational:
         return int(sympy.sign(number))
@@ -59,17 +67,63 @@ def number_sign(value: object) -> int:
         sign = _evaluated_sign(number, digits)
         if sign is not None:
             return sign
+    # Cancellation: the sign is the product of the signs of the factors of the numerator
+    # and the denominator, each decided on its own (smaller minimal polynomials).
+    numerator, denominator = sympy.fraction(sympy.together(number))
+    sign = 1
+    for part in (numerator, denominator):
+        for factor in sympy.Mul.make_args(part):
+            base, exponent = factor.as_base_exp()
+            if exponent.is_Integer:
+                sign *= _factor_sign(base, number) ** int(exponent)
+            else:
+                sign *= _factor_sign(factor, number)
+            if sign == 0:
+                return 0
+    return sign
+
+
+def _factor_sign(factor: sympy.Expr, whole: sympy.Expr) -> int:
+    """The sign of one factor: evaluation first, then its minimal polynomial."""
+    if factor.is_Rational:
+        return int(sympy.sign(factor))
+    for digits in _DIGITS:
+        sign = _evaluated_sign(factor, digits)
+        if sign is not None:
+            return sign
+    if sympy.count_ops(factor) > MAX_OPERATIONS or _degree_bound(factor) > MAX_DEGREE:
+        raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly (too large a closed form)")
     try:
-        minimal = sympy.minimal_polynomial(number, _X, polys=True)
+        minimal = sympy.minimal_polynomial(factor, _X, polys=True)
     except (NotImplementedError, ValueError, TypeError) as exc:
-        raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(number)} exactly") from exc
+        raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly") from exc
     if minimal.as_expr() == _X:
         return 0
     # Non-zero: an evaluation at enough precision separates it from zero.
-    sign = _evaluated_sign(number, 4 * _DIGITS[-1])
+    sign = _evaluated_sign(factor, 4 * _DIGITS[-1])
     if sign is None:
-        raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(number)} exactly")
+        raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly")
     return sign
+
+
+def _degree_bound(factor: sympy.Expr) -> int:
+    """A bound on the degree of the number field ``factor`` lies in: each square root
+    at most doubles it, and the sines, cosines and tangents of rational multiples p/q of
+    pi all lie in the cyclotomic field of the 4 L-th roots of unity, L the least common
+    multiple of the q, whose degree is phi(4 L)."""
+    bound = 1
+    for atom in factor.atoms(sympy.Pow):
+        if atom.exp.is_Rational and not atom.exp.is_Integer:
+            bound *= int(atom.exp.q)
+    denominators = [sympy.Integer(1)]
+    for function in factor.atoms(sympy.sin, sympy.cos, sympy.tan):
+        coefficient = function.args[0] / sympy.pi
+        if not coefficient.is_Rational:
+            return MAX_DEGREE + 1  # not a rational multiple of pi: not algebraic
+        denominators.append(sympy.Integer(coefficient.q))
+    if len(denominators) > 1:
+        bound *= int(sympy.totient(4 * sympy.ilcm(*denominators)))
+    return bound
 
 
 def is_real_number(value: object) -> bool:

@@ -19,6 +19,7 @@ from flint import fmpz_mpoly
 
 from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.algebra.radical import Radical
 
 Row = dict[int, fmpz_mpoly]
 Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
@@ -127,6 +128,18 @@ def gauss_jordan(
         progress,
     )
     return Elimination(ncols, pivots)
+
+
+def exact_rank(matrix: sympy.Matrix, radicals: Iterable[Radical] = ()) -> int:
+    """The rank of a matrix of rational expressions, exactly: fraction-free elimination in
+    flint, entries reduced by the radicals' relations ``s^2 = m`` before every zero test.
+    (sympy's ``rank(simplify=True)`` decides zeros by ``simplify`` and numeric probes,
+    seconds per entry on rotated layouts, and takes a radical symbol for a free one.)"""
+    if all(x == 0 for x in matrix):
+        return 0
+    symbols = set().union(*(sympy.sympify(x).free_symbols for x in matrix))
+    ring = PolynomialRing(symbols, radicals)
+    return gauss_jordan(polynomial_rows(ring, matrix), matrix.cols, reduce=ring.reduce).rank
 
 
 Entry = TypeVar("Entry")

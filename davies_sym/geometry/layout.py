@@ -64,6 +64,10 @@ class Layout:
     #: Some mesh is helical: the gears carry axial thrust, so every mesh may slide along
     #: and tilt about its tangent where the screw system holds those motions.
     thrust: bool = False
+    #: The unit direction (x, y) the planets of a 2-D drawing are placed along (the
+    #: file's `placement`): the drawing is the upright one (planets along +y) turned to
+    #: it, and the network solves its equations turned back (`davies_sym.network.null_space`).
+    frame: tuple[sympy.Expr, sympy.Expr] = (sympy.Integer(0), sympy.Integer(1))
 
 
 def line_point(y: sympy.Expr) -> Vector:

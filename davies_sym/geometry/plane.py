@@ -118,6 +118,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
         constraints=tuple(constraints),
         positive_facts=tuple(facts) + tuple(r.radicand for r in radicals.radicals),
         radicals=tuple(radicals.radicals),
+        frame=unit,
     )
 
 

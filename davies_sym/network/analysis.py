@@ -13,9 +13,8 @@ from functools import cached_property
 
 import sympy
 
-from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Elimination, Reduce, Row, gauss_jordan, polynomial_rows
+from davies_sym.algebra.linalg import Reduce, Row, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
@@ -25,6 +24,7 @@ from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_s
 from davies_sym.network.analysis_display import analysis_latex
 from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
 from davies_sym.network.mobility import mobility_problems
+from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
@@ -101,12 +101,11 @@ class Analysis:
     def rows(self, matrix: sympy.Matrix) -> list[Row]:
         return polynomial_rows(self.ring, matrix)
 
-    def _eliminate(self, rows: list[Row], ncols: int, prefer: list[int]) -> Elimination | FactoredElimination:
-        """Stages in series multiply: factored entries keep them apart (not with radicals,
-        whose relations the factors would not respect)."""
-        if self.ring.radicals:
-            return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=self._reduce)
-        return factored_gauss_jordan(rows, ncols, self.ring.one, prefer_free=prefer)
+    def _solve(
+        self, matrix: sympy.Matrix, prefer: list[int], columns: Sequence[ActionVariable] = (), laws: int = 0
+    ) -> Solved:
+        """`null_space` of ``matrix``: circuit or cutset blocks, then ``laws`` rows."""
+        return null_space(self.network, self.ring, matrix, prefer, columns, laws)
 
     # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
     @cached_property
@@ -120,7 +119,7 @@ class Analysis:
         self._progress("solving the motions (null space of M_N)")
         net = self.network
         index = net.motions.index(self.input_motion)
-        elimination = self._eliminate(self.rows(net.network_motion_matrix()), len(net.motions), [index])
+        elimination = self._solve(net.network_motion_matrix(), [index])
         free = elimination.free
         problems = mobility_problems(self.train, net, free, index)
         if problems:
@@ -150,7 +149,7 @@ class Analysis:
         among ``preferred`` (motion names) first: eq. (1) for any mobility."""
         net = self.network
         prefer = [net.motions.index(net.motion(name)) for name in preferred]
-        elimination = self._eliminate(self.rows(net.network_motion_matrix()), len(net.motions), prefer)
+        elimination = self._solve(net.network_motion_matrix(), prefer)
         solution = elimination.solution(self.ring)
         return {v.name: {net.motions[j].name: c for j, c in solution[k].items()} for k, v in enumerate(net.motions)}
 
@@ -179,7 +178,7 @@ class Analysis:
         net = self.network
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
-        elimination = self._eliminate(self.rows(net.network_action_matrix(lossless=True)), len(cols), [index])
+        elimination = self._solve(net.network_action_matrix(lossless=True), [index], cols)
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -331,9 +330,8 @@ class Analysis:
         sources = sympy.zeros(D.rows, 1)
         for k in range(nu.rows):
             sources[D.rows - nu.rows + k] = -nu[k]
-        rows = self.rows(D.row_join(sources))
         index = net.actions.index(self.input_action)
-        elimination = self._eliminate(rows, ncols + 1, [index, const])
+        elimination = self._solve(D.row_join(sources), [index, const], net.actions, len(net.laws))
         free = [j for j in elimination.free if j != const]
         self._check_action_nullity(tuple(free), index, list(net.actions))
         if const in elimination.pivots:

@@ -123,7 +123,9 @@ class Network:
         else:
             shared = None
             full = self._absorb_radicals({c.name: coupling_screws(c, self.layout) for c in train.couplings})
-            self.system = minimal_screw_system(essential_twists(full.values(), self.layout.spatial))
+            self.system = minimal_screw_system(
+                essential_twists(full.values(), self.layout.spatial), self.layout.radicals
+            )
         self._friction_wrenches = {name: s.friction for name, s in full.items() if s.friction is not None}
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:

@@ -19,6 +19,9 @@ from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.linalg import exact_rank
+from davies_sym.algebra.radical import Radical
+from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import TWIST_COORDINATES, WRENCH_COORDINATES, NamedScrew, Screw, power
 from davies_sym.errors import DerivationError
 from davies_sym.network.coupling_screws import CouplingScrews
@@ -26,10 +29,12 @@ from davies_sym.network.coupling_screws import CouplingScrews
 
 @dataclass(frozen=True)
 class ScrewSystem:
-    """A screw system of order ``d``: which coordinates are kept and how they lift."""
+    """A screw system of order ``d``: which coordinates are kept and how they lift, and
+    the square roots of the layout its screws may hold (for exact zero tests)."""
 
     coordinates: tuple[int, ...]
     lift: sympy.Matrix  # 6 x d, twist = lift * reduced twist
+    radicals: tuple[Radical, ...] = ()
 
     @property
     def order(self) -> int:
@@ -53,7 +58,16 @@ class ScrewSystem:
     def contains(self, twist: Screw) -> bool:
         """Whether ``twist`` lies in the system (its lift reproduces it)."""
         back = self.lift * sympy.Matrix(self.reduce_twist(twist))
-        return all(sympy.expand(a - b) == 0 for a, b in zip(back, twist, strict=True))
+        return all(self.is_zero(a - b) for a, b in zip(back, twist, strict=True))
+
+    def rank(self, rows: Sequence[Sequence[sympy.Expr]]) -> int:
+        """The exact rank of ``rows`` (`exact_rank`, the layout's radicals reduced)."""
+        return exact_rank(sympy.Matrix(rows), self.radicals)
+
+    def is_zero(self, value: sympy.Expr) -> bool:
+        """Whether ``value`` vanishes, its radicals reduced."""
+        value = sympy.expand(value)
+        return value == 0 or (bool(self.radicals) and RadicalTable(list(self.radicals)).reduce(value) == 0)
 
 
 def essential_twists(screws: Iterable[CouplingScrews], spatial: bool) -> list[Screw]:
@@ -67,22 +81,24 @@ def essential_twists(screws: Iterable[CouplingScrews], spatial: bool) -> list[Sc
     return essential
 
 
-def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
-    """The screw system spanned by ``essential`` twists."""
+def minimal_screw_system(essential: Sequence[Screw], radicals: Iterable[Radical] = ()) -> ScrewSystem:
+    """The screw system spanned by ``essential`` twists (``radicals``: the square roots
+    of the layout they are written in)."""
+    radicals = tuple(radicals)
     W = sympy.Matrix([list(t) for t in essential]).T  # 6 x m
     used = [i for i in range(6) if any(W[i, j] != 0 for j in range(W.cols))]
-    rank = W.rank(simplify=True)
+    rank = exact_rank(W, radicals)
     if rank == 0:
         raise DerivationError("no coupling allows any motion")
     if len(used) == rank:
         lift = sympy.zeros(6, rank)
         for k, i in enumerate(used):
             lift[i, k] = 1
-        return ScrewSystem(tuple(used), lift)
+        return ScrewSystem(tuple(used), lift, radicals)
     # General case: keep independent coordinate rows, express the others through them.
     chosen: list[int] = []
     for i in used:
-        if sympy.Matrix([W.row(k) for k in [*chosen, i]]).rank(simplify=True) > len(chosen):
+        if exact_rank(sympy.Matrix([W.row(k) for k in [*chosen, i]]), radicals) > len(chosen):
             chosen.append(i)
         if len(chosen) == rank:
             break
@@ -96,7 +112,7 @@ def minimal_screw_system(essential: Sequence[Screw]) -> ScrewSystem:
             coeffs = (W.row(i) * WI.T * gram_inv).applyfunc(sympy.cancel)
             for k in range(rank):
                 lift[i, k] = coeffs[0, k]
-    return ScrewSystem(tuple(chosen), lift)
+    return ScrewSystem(tuple(chosen), lift, radicals)
 
 
 class CouplingScrewError(DerivationError):
@@ -123,7 +139,7 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
     """Keep the coupling's freedoms that lie in the system and pick d - f constraints."""
     motions = list(screws.motions) + [s for s in screws.secondary if system.contains(s.screw)]
     reduced_motions = sympy.Matrix([list(system.reduce_twist(m.screw)) for m in motions])
-    freedom = reduced_motions.rank(simplify=True)
+    freedom = system.rank(reduced_motions.tolist())
     if freedom != len(motions):
         raise CouplingScrewError(
             name, "its unit motion screws are not independent; give screws that span different motions"
@@ -132,10 +148,10 @@ def reduce_coupling(system: ScrewSystem, screws: CouplingScrews, name: str) -> R
     spatial: list[Screw] = []
     rows: list[list[sympy.Expr]] = []
     for candidate in screws.constraints:
-        if any(sympy.expand(power(candidate.screw, m.screw)) != 0 for m in motions):
+        if any(not system.is_zero(power(candidate.screw, m.screw)) for m in motions):
             continue
         row = list(system.reduce_wrench(candidate.screw))
-        if sympy.Matrix([*rows, row]).rank(simplify=True) > len(rows):
+        if system.rank([*rows, row]) > len(rows):
             rows.append(row)
             chosen.append(NamedScrew(candidate.name, tuple(row)))
             spatial.append(candidate.screw)

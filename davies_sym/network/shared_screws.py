@@ -71,7 +71,7 @@ class SharedScrews:
         known = self._systems.get(kept)
         if known is None:
             essential = essential_twists((self.screws(n) for n in kept), self.layout.spatial)
-            known = self._systems[kept] = minimal_screw_system(essential)
+            known = self._systems[kept] = minimal_screw_system(essential, self.layout.radicals)
         return known
 
     def reduced(self, system: ScrewSystem, name: str) -> ReducedCoupling:

@@ -18,6 +18,7 @@ import sympy
 
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.errors import InputError, Problem, shortened
+from davies_sym.losses.definitions import Definition
 from davies_sym.topology.checks import friction_coefficient_symbols, mesh_efficiency_symbols, role_problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
@@ -69,8 +70,9 @@ def design_values(
                 Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(sorted(names))})")
             )
             continue
-        if symbol in defined and _names_of(defined[symbol].expression.free_symbols) & _given_names(values):
-            # A defined value may stand for its definition (cos_beta = 3/5, exact), not beside it.
+        if symbol in defined and not _exact_spelling(defined[symbol], values):
+            # The cosine or sine of an angle may stand for it (cos_beta = 3/5, exact); a loss
+            # model's output (a mesh efficiency from the tooth geometry) comes from its parameters.
             d = defined[symbol]
             given = ", ".join(sorted(map(str, d.expression.free_symbols)))
             problems.append(Problem(option, f"{name} is the {d.meaning} ({d.source}); give {given} instead"))
@@ -95,9 +97,9 @@ def design_values(
     return out
 
 
-def _names_of(symbols: Collection[sympy.Basic]) -> set[str]:
-    return {str(s) for s in symbols}
-
-
-def _given_names(values: Values) -> set[str]:
-    return {str(k) for k in values}
+def _exact_spelling(definition: Definition, values: Values) -> bool:
+    """Whether ``definition``'s symbol may be given itself: the cosine or sine of an angle
+    (an exact value where the angle has none), unless the angle is given too."""
+    given = {str(k) for k in values}
+    trigonometric = isinstance(definition.expression, (sympy.cos, sympy.sin))
+    return trigonometric and not {str(s) for s in definition.expression.free_symbols} & given

@@ -7,6 +7,8 @@ import traceback
 from dataclasses import dataclass
 from fractions import Fraction
 
+from davies_sym.errors import NotCoveredError
+
 from . import engine_adapter as engine
 from .balance import OracleError, SelfLocking, solve
 from .random_trains import RandomTrain, Spelling
@@ -106,6 +108,13 @@ def compare(train: RandomTrain, sp: Spelling) -> list[Outcome]:
                 continue
             try:
                 got = engine.engine_efficiency(sp.yaml, sp.values, sp.ports[port], estate)
+            except NotCoveredError as exc:
+                if locking is not None and "self-locks" in str(exc):
+                    # Both self-lock: the engine refuses, as every entry point does there.
+                    add(state.name, port, "efficiency", LOCKING, f"oracle: {locking}; engine: {exc}")
+                else:
+                    add(state.name, port, "efficiency", *_failure(exc))
+                continue
             except Exception as exc:
                 add(state.name, port, "efficiency", *_failure(exc))
                 continue

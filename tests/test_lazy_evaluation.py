@@ -28,7 +28,9 @@ def _cases():
             continue
         for i, check in enumerate(train.expected):
             if check.state is None and not train.states:
-                yield pytest.param(path, i, id=f"{Path(path).stem}[{i}]")
+                # Humpage's full derivation takes tens of seconds: the slow tier.
+                slow = [pytest.mark.slow] if Path(path).stem == "humpage" else []
+                yield pytest.param(path, i, id=f"{Path(path).stem}[{i}]", marks=slow)
 
 
 @pytest.mark.parametrize(("path", "index"), list(_cases()))

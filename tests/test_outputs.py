@@ -207,6 +207,7 @@ def test_catalog_files_have_sources():
 DERIVATIONS = os.path.join(ROOT, "derivations")
 
 
+@pytest.mark.slow
 def test_derivations_are_current(tmp_path):
     """`derive catalog/*.yaml --out derivations/` gives exactly the committed files
     (regenerate with that command when this fails)."""

@@ -109,6 +109,7 @@ def test_every_region_equals_the_oracle(lossy, seed: int) -> None:
 CATALOG_PER_METRE = 27625
 
 
+@pytest.mark.slow
 def test_bearing_coulomb_friction_in_every_region_equals_the_oracle() -> None:
     """Coulomb friction in the planet bearing (on the carrier) and in the carrier's housing
     bearing, loaded by their reactions (Laus eq. (21)), with mesh efficiencies and planet drag:
@@ -450,6 +451,7 @@ ports:
 """
 
 
+@pytest.mark.slow
 def test_a_ring_output_differential_written_otherwise_equals_the_oracle() -> None:
     """Another train and spelling: sun and arm driven, the internal ring loaded, symbolic
     radii (the ring's eliminated by the coaxial constraint), no degrees_of_freedom entry (one

@@ -193,6 +193,7 @@ def test_module_is_deterministic_and_lists_its_regions(lossy, module) -> None:
     }
 
 
+@pytest.mark.slow
 def test_latex_document_formulas_equal_the_oracle(lossy) -> None:
     """Each region's eta* equation, parsed back from the LaTeX, equals the oracle's
     efficiency at a point of that region, and the conditions on its loaded forces, read

@@ -13,8 +13,8 @@ a few lines and under 2,000 characters on stderr; a refusal names the file.
 The default run (about 360 cases) covers every entry of the fast trains (simple_pair,
 planetary_simple) with a spread of the mutation kinds, every top-level entry of the
 trains that derive in about a second deleted or nulled, and renames in simple_pair.  The
-whole set (about 15,500 cases, the extra ones marked slow) is generated with ``-m slow``
-or ``HOSTILE_FULL=1``: it takes a long time (the harmless mutations of Ravigneaux derive
+whole set (about 15,500 cases, the extra ones marked slow) is generated with
+``HOSTILE_FULL=1``: it takes a long time (the harmless mutations of Ravigneaux derive
 the train again, 7 s each); select a train with ``-k``, e.g. ``-m slow -k tuplin``.
 """
 
@@ -140,7 +140,7 @@ def _cases(full: bool) -> list[Any]:
 
 
 def pytest_generate_tests(metafunc: pytest.Metafunc) -> None:
-    """The default run gets the default cases; ``-m slow`` or ``HOSTILE_FULL=1`` every case (the extra ones
+    """The default run gets the default cases; ``HOSTILE_FULL=1`` every case (the extra ones
     marked slow), so that the plain run neither spends the time nor lists thousands of skips."""
     if metafunc.function.__name__ == "test_mutated_catalog_entry_is_answered_or_refused":
         metafunc.parametrize(("train", "mutation"), _cases(full_run(metafunc.config)))

@@ -68,7 +68,9 @@ def main(checkout: Path, out: Path) -> int:
         if not any(line.startswith("machine:") for line in p.read_text(encoding="utf-8").splitlines())
     ]
     derive = Path(sys.executable).with_name("derive")
-    done = subprocess.run([str(derive), *map(str, catalog), "--out", str(out), "--jobs", "auto", "--quiet"], check=False)
+    done = subprocess.run(
+        [str(derive), *map(str, catalog), "--out", str(out), "--jobs", "auto", "--quiet"], check=False
+    )
     problems = [] if done.returncode == 0 else [f"derive --out exited with {done.returncode}"]
     checked = 0
     for path in catalog:

@@ -182,6 +182,7 @@ def _derive(*args: str) -> subprocess.CompletedProcess[str]:
     )
 
 
+@pytest.mark.slow
 def test_documents_list_the_excluded_variant_without_a_formula():
     """Text, JSON and LaTeX keep the number and say why it never holds; no formula."""
     text = _derive(catalog_path("ravigneaux"), "--state", "second", "--quiet").stdout
@@ -194,6 +195,7 @@ def test_documents_list_the_excluded_variant_without_a_formula():
     assert r"\paragraph{Variant (1)}" in latex and "Never holds" in latex
 
 
+@pytest.mark.slow
 def test_values_outside_the_admissible_geometry_are_refused():
     """A small sun of 70 in a ring of 64 breaks the triangle of the drawing: exit 2 with
     the fact named, never a number (it used to print variant (1)'s value)."""

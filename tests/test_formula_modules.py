@@ -94,10 +94,12 @@ def agree(got: np.ndarray, want: list[float]) -> bool:
     return same_nan and np.allclose(got[finite], want_array[finite], rtol=1e-12, atol=0)
 
 
+#: Humpage's module takes 10-20 s per test to build and check: those cases run in the slow tier.
 NAMES = sorted(TRAINS)
+PARAMETRISED = [pytest.param(n, marks=pytest.mark.slow) if n == "humpage" else n for n in NAMES]
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", PARAMETRISED)
 def test_module_efficiency_equals_the_exact_variant(name):
     """efficiency() on an array of sampled designs, both input ports, to 1e-12 relative;
     every variant function on the points of its own region."""
@@ -198,7 +200,7 @@ def test_the_modules_of_one_files_states_share_one_signature(train):
         assert set(m.IGNORED).isdisjoint(used), n
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", PARAMETRISED)
 def test_module_agrees_with_derive_eval(name):
     """The module's efficiency and speed ratio equal what ``derive --eval`` prints (its
     last line and the line before) at sampled designs, both input ports."""
@@ -227,7 +229,7 @@ def test_module_agrees_with_derive_eval(name):
             assert ratio == pytest.approx(float(ratio_line.rsplit(": ", 1)[1]), rel=1e-12)
 
 
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", PARAMETRISED)
 def test_losses_add_up_and_equal_the_exact_fractions(name):
     """losses(): one entry per friction element, each equal to the exact -P_k/P_in of
     the variant, together 1 - efficiency; speed_ratio equals the exact ratio."""
@@ -320,6 +322,7 @@ def test_parameters_and_variants_tables():
     assert "Laus 2011, Fig. 7" in module.__doc__ and "r4 = -r1 + r2 + r3" in module.__doc__
 
 
+@pytest.mark.slow
 def test_generated_modules_pass_mypy_strict():
     """mypy --strict on every generated module (type hints are part of the output)."""
     result = subprocess.run(

@@ -101,6 +101,7 @@ def test_jobs_auto_is_one_process_per_core(tmp_path: Path) -> None:
     assert parser().parse_args(["--jobs", "auto"]).jobs == (os.cpu_count() or 1)
 
 
+@pytest.mark.slow
 def test_dask_cluster_writes_what_the_serial_run_writes(tmp_path: Path) -> None:
     """A local Dask cluster of two worker processes, as a user's cluster would be."""
     distributed = pytest.importorskip("dask.distributed")
@@ -111,6 +112,7 @@ def test_dask_cluster_writes_what_the_serial_run_writes(tmp_path: Path) -> None:
     _same_as_committed(tmp_path, TRAINS[:3])
 
 
+@pytest.mark.slow
 def test_an_unreachable_scheduler_is_named(tmp_path: Path) -> None:
     pytest.importorskip("dask.distributed")
     files = [CATALOG / "simple_pair.yaml", CATALOG / "tuplin.yaml"]

@@ -244,6 +244,7 @@ def test_progress_on_stderr_and_quiet_silences_it(tmp_path):
     assert quiet.returncode == 0 and quiet.stderr == ""
 
 
+@pytest.mark.slow
 def test_plot_writes_a_png_and_names_bad_arguments(tmp_path):
     """--plot with the file's published design as the fixed values; --vs for the region map."""
     one, two = tmp_path / "one.png", tmp_path / "two.png"

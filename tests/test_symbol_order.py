@@ -56,6 +56,7 @@ print(json.dumps([train_document(v.analysis), variants_document(v)], default=str
 """
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["tuplin", "planetary_simple"])
 def test_derivation_does_not_depend_on_the_hash_seed(name: str) -> None:
     outputs = set()

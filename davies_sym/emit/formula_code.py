@@ -108,14 +108,25 @@ def runtime_of(module: ModuleType, taken: frozenset[str]) -> Runtime:
         segment = ast.get_source_segment(source, node)
         assert segment is not None
         (after if placeholders else before).append(segment)
-    for part in ast.walk(tree):
-        if isinstance(part, (ast.FunctionDef, ast.ClassDef)):
-            names.add(part.name)
-        elif isinstance(part, ast.alias):
-            names.add((part.asname or part.name).split(".")[0])
-        elif isinstance(part, ast.Name) and isinstance(part.ctx, ast.Store):
-            names.add(part.id)
+    names |= module_level_names(tree)
     return Runtime(block, tuple(before), placeholders, tuple(after), frozenset(names))
+
+
+def module_level_names(tree: ast.Module) -> set[str]:
+    """The names ``tree`` binds at module level: a symbol is a keyword argument of a
+    generated function, so only these (and the generated functions' own locals) can
+    clash with it; the runtime functions' locals live in their own scopes."""
+    names: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names}
+        elif isinstance(node, ast.Assign):
+            names |= {t.id for target in node.targets for t in ast.walk(target) if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            names.add(node.target.id)
+    return names
 
 
 def constant(runtime: Runtime, name: str, value: ast.expr) -> ast.AnnAssign:

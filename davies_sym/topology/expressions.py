@@ -51,6 +51,18 @@ _DECIMAL = re.compile(r"(\d+(\.\d*)?|\.\d+)([eE][-+]?\d{1,3})?")
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
 #: Names that read as infinities or not-a-number (sympy's ``oo``, ``zoo``, ``nan``; numpy's ``inf``).
 NON_FINITE_NAMES = frozenset({"oo", "zoo", "nan", "inf"})
+#: The public names a generated formula module binds at module level and in its entry
+#: points (tests/test_reserved_names.py keeps this equal to what the generator writes):
+#: a symbol of one of these names would shadow or be shadowed by the module's own.
+FORMULA_MODULE_NAMES = frozenset(
+    {
+        *("Any", "Array", "ArrayLike", "Callable", "Final", "NDArray", "TypedDict", "annotations"),
+        *("CONDITIONS", "DEPENDENT", "EXCLUDED", "IGNORED", "INPUTS", "LOSSY", "OUTPUT", "PARAMETERS"),
+        *("PORTS", "REGIONS", "RELATIONS", "SPEEDS", "VARIANTS"),
+        *("DesignError", "DesignWarning", "Parameter", "Region", "Variant"),
+        *("efficiency", "losses", "region", "speed_ratio", "speeds", "torques", "values", "variant"),
+    }
+)
 #: Names a symbol may not take: Python keywords and built-ins (a generated formula
 #: module uses them), the grammar's functions and constants, the non-finite names and
 #: the names the generated modules define for themselves.
@@ -69,6 +81,7 @@ RESERVED_NAMES = frozenset(
         "input",
         "errors",
         "state",
+        *FORMULA_MODULE_NAMES,
     ]
 )
 

@@ -10,8 +10,8 @@ accept them (as every state of the file does) and ignore them (IGNORED).
 efficiency(**params) takes the parameters of PARAMETERS (scalars or numpy arrays, broadcast together), picks the
 variant element by element from the turning conditions, the input port and the signs of the loaded forces, and
 gives NaN with a DesignWarning (errors='raise': a DesignError) where the design is outside the admissible
-parameters, the losses reverse loaded forces as no variant covers, or the train self-locks.  speed_ratio, losses
-and variant work the same way.
+parameters, a port does not turn, no variant's power flow agrees with its own forces, or the train self-locks.
+speed_ratio, losses and variant work the same way.
 """
 
 from __future__ import annotations
@@ -105,7 +105,7 @@ class Variant(TypedDict):
 
 class DesignWarning(RuntimeWarning):
     """Some design points are outside the admissible parameters, self-lock, or lie where
-    the losses reverse loaded forces as no variant covers (NaN there)."""
+    no variant's power flow agrees with its own forces (NaN there)."""
 
 
 class DesignError(ValueError):
@@ -328,6 +328,20 @@ def _variant_numbers(input: str, values: dict[str, Array], gathered: _Gathered |
     return numbers
 
 
+def _own_where_none(input: str, values: dict[str, Array], numbers: NDArray[np.int64]) -> NDArray[np.int64]:
+    """``numbers`` with each 0 (no variant agrees with its own forces) replaced by the
+    variant of the point's lossless region: its efficiency tells a train that self-locks
+    there (not positive) from one whose losses reverse forces as no variant covers."""
+    if (numbers != 0).all():
+        return numbers
+    with np.errstate(all="ignore"):
+        code = _region(values, numbers.shape)
+    own = numbers.copy()
+    for variant in reversed([v for v in VARIANTS if v["input"] == input]):
+        own[(numbers == 0) & (code == variant["region"])] = variant["number"]
+    return own
+
+
 def _agreeing(
     variant: Variant, values: dict[str, Array], mask: NDArray[np.bool_], gathered: _Gathered | None = None
 ) -> NDArray[np.bool_]:
@@ -462,18 +476,21 @@ def _screened(
 ) -> Array:
     """NaN (with a warning, or an error) where the design is not admissible (``outside``),
     a port does not turn (``still``), no variant holds (``numbers`` 0: the losses reverse
-    loaded forces as none covers) or the train self-locks."""
+    loaded forces as none covers; ``result`` is then the region's own variant) or the train
+    self-locks (the reasons and their words are those of `VariantSet.design_point`)."""
     _check_errors(errors)
     still = still & ~outside
-    uncovered = (numbers == 0) & ~outside & ~still
     with np.errstate(invalid="ignore"):
+        # Where no variant agrees, ``result`` is the region's own variant (`_own_where_none`):
+        # not positive, the train self-locks; otherwise the losses reverse forces uncovered.
+        uncovered = (numbers == 0) & ~(result <= 0) & ~outside & ~still
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered & ~still
     message = (
         f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
         f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(still))} where a port does not turn (speed ratio 0 "
-        f"or infinite), {int(np.count_nonzero(uncovered))} where the losses reverse loaded "
-        f"forces as no variant covers and {int(np.count_nonzero(locked))} where the train self-locks "
-        "(efficiency outside (0, 1]): NaN there"
+        f"or infinite), {int(np.count_nonzero(uncovered))} where no variant's power flow agrees with its "
+        f"own forces (the losses reverse forces as no variant covers) and {int(np.count_nonzero(locked))} "
+        "where the train self-locks (efficiency outside (0, 1]): NaN there"
     )
     return _nan_where(outside | still | uncovered | locked, result, message, errors, stacklevel=4)
 
@@ -484,7 +501,8 @@ def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
-        return numbers, _select(numbers, part, _EFFICIENCY, 1, gathered), ~_admissible(part), _still(part)
+        own = _own_where_none(input, part, numbers)
+        return numbers, _select(own, part, _EFFICIENCY, 1, gathered), ~_admissible(part), _still(part)
 
     numbers, selected, outside, still = _blockwise(values, compute)
     return _screened(selected[0], numbers, outside, still, errors)
@@ -496,7 +514,7 @@ def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Arra
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
-        efficiency = _select(numbers, part, _EFFICIENCY, 1, gathered)
+        efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
         losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
         return numbers, efficiency, losses, ~_admissible(part), _still(part)
 

@@ -149,9 +149,9 @@ def _module_doc(variants: VariantSet, ignored: Sequence[str]) -> str:
         "efficiency(**params) takes the parameters of PARAMETERS (scalars or numpy arrays, broadcast "
         "together), picks the variant element by element from the turning conditions, the input "
         "port and the signs of the loaded forces, and gives NaN with a DesignWarning (errors='raise': a "
-        "DesignError) where the design is outside the admissible parameters, the losses reverse loaded "
-        "forces as no variant covers, or the train self-locks.  speed_ratio, losses and variant work the "
-        "same way."
+        "DesignError) where the design is outside the admissible parameters, a port does not turn, no "
+        "variant's power flow agrees with its own forces, or the train self-locks.  speed_ratio, losses "
+        "and variant work the same way."
     )
     return "\n".join(parts)
 

@@ -42,6 +42,8 @@ from davies_sym.errors import (
 )
 
 if TYPE_CHECKING:
+    from davies_sym.efficiency.power_flow_regions import OperatingPoint, SeveralInputs
+    from davies_sym.efficiency.several_inputs import derive_several_inputs
     from davies_sym.efficiency.turning_conditions import TurningCondition
     from davies_sym.efficiency.variant import Variant
     from davies_sym.efficiency.variants import VariantSet, derive_variants
@@ -59,6 +61,9 @@ __version__ = "0.1.0"
 #: Where each public name lives.  They are imported on first use (PEP 562), so that
 #: ``import davies_sym.cli`` for ``derive --help`` does not load sympy and flint.
 _LAZY = {
+    "OperatingPoint": "davies_sym.efficiency.power_flow_regions",
+    "SeveralInputs": "davies_sym.efficiency.power_flow_regions",
+    "derive_several_inputs": "davies_sym.efficiency.several_inputs",
     "TurningCondition": "davies_sym.efficiency.turning_conditions",
     "Variant": "davies_sym.efficiency.variant",
     "VariantSet": "davies_sym.efficiency.variants",
@@ -106,7 +111,9 @@ __all__ = [
     "Link",
     "MobilityError",
     "NotCoveredError",
+    "OperatingPoint",
     "Ports",
+    "SeveralInputs",
     "SignCondition",
     "State",
     "TopologyError",
@@ -119,6 +126,7 @@ __all__ = [
     "catalog_file",
     "catalog_names",
     "derive",
+    "derive_several_inputs",
     "derive_variants",
     "load",
     "loads",

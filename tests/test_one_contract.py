@@ -1,7 +1,6 @@
 """One contract for every entry point: the same designs accepted or refused, with the same reason.
 
-For every catalog train with one input (every state of the multi-speed sets; but the
-slowest to derive, `EXPENSIVE`) the same
+For every catalog train with one input (every state of the multi-speed sets) the same
 designs go through ``derive --eval`` (in-process), the Python API
 (`VariantSet.design_point` and `VariantSet.evaluate`, with names and with symbols as keys),
 Chen's virtual-power balance (`virtual_power_balance`, where it applies: parallel or
@@ -52,9 +51,6 @@ from conftest import CATALOG, ROOT, TRAIN_FILES
 
 #: Several inputs (its own contract: tests/test_several_inputs.py).
 SEVERAL_INPUTS = {"sr20_differential"}
-#: Trains whose every --eval derives for tens of seconds (each state of the Ravigneaux set, the
-#: Humpage reduction): their evaluations are held to the API by tests/test_lazy_evaluation.py.
-EXPENSIVE = {"humpage", "ravigneaux"}
 #: Chen's balance takes parallel or intersecting axes and ordinary efficiencies.
 NO_BALANCE = {"crossed_helical", "worm_drive", "worm_planetary", "buckingham_pair"}
 
@@ -63,7 +59,7 @@ def _cases() -> list[tuple[str, str | None]]:
     out = []
     for path in TRAIN_FILES:
         stem = Path(path).stem
-        if stem in SEVERAL_INPUTS | EXPENSIVE:
+        if stem in SEVERAL_INPUTS:
             continue
         train = davies_sym.load(path)
         out += [(stem, s.name) for s in train.states] or [(stem, None)]

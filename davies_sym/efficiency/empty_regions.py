@@ -16,10 +16,12 @@ from collections.abc import Mapping, Sequence
 
 import sympy
 
+from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.algebra.linear_regions import Requirement, empty_region
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.turning_conditions import TurningCondition
+from davies_sym.errors import DesignError, Problem
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.model import Train
 
@@ -67,10 +69,34 @@ def emptiness_proof(
 
 def broken_facts(facts: Sequence[Requirement], values: Mapping[sympy.Symbol, sympy.Expr]) -> list[str]:
     """Each fact of the admissible geometry the ``values`` break, with its value there
-    (a fact whose symbols are not all given is left to the evaluation's own message)."""
+    (a fact whose symbols are not all given is left to the evaluation's own message).
+    Decided by exact signs: a fact that is 0 exactly is broken."""
     out = []
     for fact in facts:
         value = sympy.sympify(fact.expression).subs(values)
-        if value.is_number and value.is_extended_real and not value > 0:
+        if not value.is_number:
+            continue
+        try:
+            broken = number_sign(value) <= 0
+        except UndecidedSign:
+            broken = value.is_extended_real is False
+        if broken:
             out.append(f"{fact}, which is {sympy.sstr(value)} here")
     return out
+
+
+def check_facts(facts: Sequence[Requirement], values: Mapping[sympy.Symbol, sympy.Expr], path: str | None) -> None:
+    """Refuse (`DesignError`) ``values`` that break a fact of the admissible geometry:
+    the one check of it that every entry point makes."""
+    broken = broken_facts(facts, values)
+    if broken:
+        raise DesignError(
+            [
+                Problem(
+                    "--eval",
+                    f"the values break {'; '.join(broken)}: no admissible design has them "
+                    "(every pitch radius and every fact of the layout is positive)",
+                )
+            ],
+            path,
+        )

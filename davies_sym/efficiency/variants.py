@@ -31,7 +31,7 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.design_point import DesignPoint, check_constraints, check_working, turning_ratio
 from davies_sym.efficiency.design_values import design_values
-from davies_sym.efficiency.empty_regions import broken_facts, emptiness_proof, geometry_facts
+from davies_sym.efficiency.empty_regions import check_facts, emptiness_proof, geometry_facts
 from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
@@ -121,18 +121,7 @@ class VariantSet:
         defined symbols (e.g. a mesh efficiency from the tooth geometry) added; values
         outside the admissible geometry (a sun larger than its ring) are refused."""
         given = check_values(self.train, design_values(self.train, values))
-        broken = broken_facts(self.facts, given)
-        if broken:
-            raise DesignError(
-                [
-                    Problem(
-                        "--eval",
-                        f"the values break {'; '.join(broken)}: no admissible design has them "
-                        "(every pitch radius and every fact of the layout is positive)",
-                    )
-                ],
-                self.train.path,
-            )
+        check_facts(self.facts, given, self.train.path)
         return completed(given, self.train.definitions)
 
     def variant_for(self, values: Mapping[sympy.Symbol | str, object], input: str | None = None) -> Variant:
@@ -222,6 +211,19 @@ def derive_variants(
     (``layout``: a geometry other than the one derived from the train; ``inputs``: only
     the variants with these input ports, e.g. for one evaluation)."""
     say = progress or (lambda message: None)
+    if len(train.ports.inputs) > 1:
+        # One efficiency per input port is this function's answer; several inputs have regions.
+        raise InputError(
+            [
+                train.problem(
+                    "ports",
+                    f"the train is driven at {', '.join(train.ports.inputs)}: its efficiency depends on "
+                    "the power-flow region; derive it with davies_sym.derive_several_inputs(train), as the "
+                    "derive command does",
+                )
+            ],
+            train.path,
+        )
     check_mesh_friction(train)
     if layout is None:
         train = resolved_train(train)

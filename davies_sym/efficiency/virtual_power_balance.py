@@ -39,6 +39,7 @@ import sympy
 from davies_sym.efficiency.balance_frames import ConicalFrames, Frames, PlanarFrames, Row, Values, exact, is_zero
 from davies_sym.efficiency.design_point import check_working
 from davies_sym.efficiency.design_values import design_values
+from davies_sym.efficiency.empty_regions import check_facts, geometry_facts
 from davies_sym.errors import DerivationError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import check_values, resolved_train
@@ -86,10 +87,12 @@ def balance_at(
     if layout is None:
         train = resolved_train(train)
         given = check_values(train, given)
+        layout = train_layout(train)
+        # The derived geometry admits the designs every entry point admits (a ring larger than its sun).
+        check_facts(geometry_facts(train, layout, ()), given, train.path)
     values = completed(given, train.definitions)  # a mesh efficiency from its tooth geometry
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
-    layout = layout or train_layout(train)
     conical = any(g.axis is not None or g.tilted for g in train.gears)
     frames: Frames = (ConicalFrames if conical else PlanarFrames)(train, values, layout)
     meshes, carriers, arms = frames.meshes, frames.carriers, frames.arms

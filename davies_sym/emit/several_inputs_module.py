@@ -30,7 +30,6 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameter_ranges import Parameter, parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
@@ -77,28 +76,6 @@ def _entry(
 def _code(si: SeveralInputs, region: Region) -> int:
     """Bit k set where speed condition k is negative (what the runtime's ``_codes`` gives)."""
     return sum(1 << k for k, c in enumerate(si.conditions) if region.signs[c.name] < 0)
-
-
-def operating_parameters(si: SeveralInputs) -> dict[sympy.Symbol, Parameter]:
-    """The speeds and the load as parameters."""
-    out = {
-        s: Parameter(
-            str(s),
-            f"speed of input port {p} (signed, along the coupling's positive direction)",
-            "rad/s",
-            -float("inf"),
-            float("inf"),
-        )
-        for p, s in zip(si.train.ports.inputs, si.speeds, strict=True)
-    }
-    out[LOAD_TORQUE] = Parameter(
-        str(LOAD_TORQUE),
-        f"load torque at output port {si.train.ports.output} (magnitude, resisting its motion)",
-        "torque",
-        0.0,
-        float("inf"),
-    )
-    return out
 
 
 def several_inputs_module(si: SeveralInputs) -> str:
@@ -189,9 +166,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
     for f in functions:
         if not usable(runtime, f.name) or [g.name for g in functions].count(f.name) > 1:
             raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
-    parameters = parameters_of_train(
-        train, si.analysis.network.laws, [symbols[a] for a in required], operating_parameters(si)
-    )
+    parameters = si.parameter_table([symbols[a] for a in required])
     data: dict[str, object] = {
         "INPUTS": tuple(ports.inputs),
         "OUTPUT": ports.output,

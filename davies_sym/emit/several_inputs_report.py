@@ -11,10 +11,9 @@ from typing import Any
 
 import sympy
 
+from davies_sym.efficiency.power_flow_regions import OperatingPoint
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs, speed_symbol
 from davies_sym.emit.force_conditions import force_conditions, force_text
-from davies_sym.errors import DerivationError, InputError, NotCoveredError, Problem
-from davies_sym.losses.definitions import completed
 from davies_sym.topology.symbol_display import latex as display_latex
 
 
@@ -114,22 +113,34 @@ def several_inputs_text(document: Mapping[str, Any]) -> str:
 
 @dataclass(frozen=True)
 class SeveralEvaluation:
-    """The region, port torques and efficiency at given speeds, load and parameters."""
+    """The answer of ``--eval``: the operating point and the region's speed conditions."""
 
-    region: Region
+    point: OperatingPoint
     conditions: tuple[str, ...]
-    torques: Mapping[str, sympy.Expr]
-    efficiency: sympy.Expr
-    #: Power into the train at each port (negative where the port takes power out).
-    powers: Mapping[str, sympy.Expr]
+
+    @property
+    def region(self) -> Region:
+        return self.point.region
+
+    @property
+    def torques(self) -> Mapping[str, sympy.Expr]:
+        return self.point.torques
+
+    @property
+    def efficiency(self) -> sympy.Expr:
+        return self.point.efficiency
+
+    @property
+    def powers(self) -> Mapping[str, sympy.Expr]:
+        return self.point.powers
 
     @property
     def inputs(self) -> tuple[str, ...]:
-        return tuple(p for p, v in self.powers.items() if v > 0)
+        return self.point.inputs
 
     @property
     def outputs(self) -> tuple[str, ...]:
-        return tuple(p for p, v in self.powers.items() if v < 0)
+        return self.point.outputs
 
     def document(self) -> dict[str, object]:
         return {
@@ -153,30 +164,7 @@ class SeveralEvaluation:
 
 
 def evaluate_several(si: SeveralInputs, values: Mapping[str, sympy.Expr]) -> SeveralEvaluation:
-    """The answer of ``--eval`` for a train with several inputs (``values`` by name)."""
-    train = si.train
-    known = {str(s): s for s in (*si.speeds, LOAD_TORQUE)} | dict(train.symbols)
-    unknown = sorted(set(values) - set(known))
-    if unknown:
-        raise InputError(
-            [Problem("--eval", f"unknown symbol {unknown[0]} (this train takes: {', '.join(sorted(known))})")],
-            train.path,
-        )
-    point = completed({known[k]: v for k, v in values.items()}, train.definitions)
-    try:
-        region = si.region_at(point)
-    except DerivationError as exc:
-        raise InputError([Problem("--eval", str(exc))], train.path) from None
-    eta = sympy.sympify(region.efficiency.subs(point))
-    torques = {p: sympy.sympify(t.to_expr().subs(point)) for p, t in region.torques.items()}
-    missing = sorted({str(s) for e in (eta, *torques.values()) for s in e.free_symbols})
-    if missing:
-        raise InputError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
-    if not 0 < eta <= 1:
-        raise NotCoveredError(
-            f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "
-            "the losses exceed the power put in (the load is too small for the drag, or the "
-            "train self-locks)"
-        )
-    powers = {p: sympy.sympify(t * si.port_speeds[p].to_expr().subs(point) * si.pairing[p]) for p, t in torques.items()}
-    return SeveralEvaluation(region, tuple(condition_text(si, region)), torques, eta, powers)
+    """The answer of ``--eval`` for a train with several inputs (``values`` by name):
+    `SeveralInputs.design_point`, the decision every entry point shares."""
+    point = si.design_point(values)
+    return SeveralEvaluation(point, tuple(condition_text(si, point.region)))

@@ -18,14 +18,12 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameter_ranges import parameters_of_train
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.one_input import range_checks
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
 from davies_sym.emit.languages.text import origin_text, parameter_lines
-from davies_sym.emit.several_inputs_module import operating_parameters
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
 from davies_sym.losses.definitions import parameters_of, substituted
 
@@ -62,7 +60,7 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
             *parameters_of(set(train.symbols.values()), train.definitions),
         )
     }
-    table = parameters_of_train(train, si.analysis.network.laws, [known[n] for n in names], operating_parameters(si))
+    table = si.parameter_table([known[n] for n in names])
     routines: list[Routine] = []
     conditions: dict[str, Routine] = {}
     for c in si.conditions:

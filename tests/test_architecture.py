@@ -27,6 +27,7 @@ STAGES = (
     "machines",
     "emit",
     "calibration",
+    "synthesis",
     "cli",
     "__init__",
 )

@@ -158,6 +158,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         from davies_sym.calibration.command import run as calibration_command
 
         return calibration_command(argv[1:])
+    if argv[:1] == ["search"]:
+        from davies_sym.synthesis.command import run as search_command
+
+        return search_command(argv[1:])
     args = parser().parse_args(argv)
     # The derivation's modules (sympy, flint, matplotlib) load only now: --help and
     # --version answer without them.

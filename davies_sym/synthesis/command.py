@@ -1,0 +1,181 @@
+"""``derive search TRAIN.yaml --target [STATE=]RATIO ... --tolerance REL --teeth NAME=LO:HI
+...``: the tooth numbers that give the target speed ratios, feasible by every rule of
+`davies_sym.synthesis.rules`, ranked by the closed-form efficiency.
+
+Bad input exits with status 2 and one message naming the option; a search that finds no
+feasible design answers so (status 0, ``feasible: 0``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Sequence
+from fractions import Fraction
+
+from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.topology.expressions import ExpressionError, parse_expression
+
+#: Designs listed unless ``--top`` says otherwise.
+TOP = 20
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="derive search",
+        description="Find the tooth numbers of a train (symbolic teeth, free ones listed in independent:) "
+        "whose speed ratios hit the targets, and rank the feasible designs by their exact efficiency.",
+    )
+    p.add_argument("train", metavar="TRAIN.yaml")
+    p.add_argument(
+        "--target",
+        nargs="+",
+        required=True,
+        metavar="[STATE=]RATIO",
+        help="speed ratio wanted (input over output speed), one per state",
+    )
+    p.add_argument(
+        "--tolerance", default="0.01", metavar="REL", help="relative deviation allowed from each target (default 0.01)"
+    )
+    p.add_argument("--teeth", nargs="+", required=True, metavar="NAME=LO:HI", help="bounds of every free tooth number")
+    p.add_argument(
+        "--planets", type=int, metavar="N", help="planets per set, equally spaced (assembly and tip clearance)"
+    )
+    p.add_argument("--min-teeth", type=int, default=17, metavar="Z", help="fewest teeth on any gear (default 17)")
+    p.add_argument(
+        "--weights", nargs="+", default=[], metavar="STATE=W", help="weight of each state in the score (default equal)"
+    )
+    p.add_argument("--top", type=int, default=TOP, metavar="K", help=f"designs listed (default {TOP})")
+    p.add_argument("--json", action="store_true", help="one JSON document")
+    p.add_argument("-o", "--out", metavar="FILE", help="write the answer (or, with --plot, the Pareto figure) to FILE")
+    p.add_argument("--plot", action="store_true", help="the Pareto fronts as a figure (needs -o FRONT.png)")
+    p.add_argument("--write-best", metavar="OUT.yaml", help="write the best design as a train file with numbers")
+    p.add_argument("--quiet", action="store_true", help="no progress messages")
+    return p
+
+
+def _number(text: str, option: str) -> Fraction:
+    try:
+        value = parse_expression(text)
+    except ExpressionError as exc:
+        raise InputError([Problem(option, str(exc))]) from None
+    if not value.is_Rational:
+        raise InputError([Problem(option, f"{text} is not a rational number")])
+    return Fraction(int(value.p), int(value.q))
+
+
+def _targets(pairs: Sequence[str]) -> list[tuple[str | None, Fraction]]:
+    out = []
+    for pair in pairs:
+        state, sep, ratio = pair.rpartition("=")
+        out.append((state.strip() if sep else None, _number(ratio, "--target")))
+    return out
+
+
+def _teeth(pairs: Sequence[str]) -> dict[str, tuple[int, int]]:
+    out: dict[str, tuple[int, int]] = {}
+    for pair in pairs:
+        name, sep, span = pair.partition("=")
+        low, colon, high = span.partition(":")
+        try:
+            bounds = (int(low), int(high))
+        except ValueError:
+            bounds = None
+        if not sep or not colon or bounds is None:
+            raise InputError([Problem("--teeth", f"expected NAME=LO:HI with whole LO and HI, got {pair!r}")])
+        if name.strip() in out:
+            raise InputError([Problem("--teeth", f"{name.strip()} has bounds twice")])
+        out[name.strip()] = bounds
+    return out
+
+
+def _weights(pairs: Sequence[str]) -> dict[str, float]:
+    out = {}
+    for pair in pairs:
+        state, sep, weight = pair.partition("=")
+        if not sep:
+            raise InputError([Problem("--weights", f"expected STATE=W, got {pair!r}")])
+        out[state.strip()] = float(_number(weight, "--weights"))
+    return out
+
+
+def _same_file(a: str, b: str) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.abspath(a) == os.path.abspath(b)
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    problems = []
+    if args.top < 1:
+        problems.append(Problem("--top", f"list at least one design, got {args.top}"))
+    if args.plot and not args.out:
+        problems.append(Problem("--plot", "name the figure's file with -o FRONT.png"))
+    for option, path in (("-o", args.out), ("--write-best", args.write_best)):
+        if path and _same_file(path, args.train):
+            problems.append(Problem(option, f"{path} is the train file itself: name another file"))
+    if args.out and args.write_best and _same_file(args.out, args.write_best):
+        problems.append(Problem("--write-best", "-o and --write-best name the same file"))
+    if problems:
+        raise InputError(problems)
+
+
+def run(argv: Sequence[str]) -> int:
+    """The ``derive search`` command; returns the exit status (0, or 2 for bad input)."""
+    args = parser().parse_args(argv)
+    from davies_sym.emit.atomic import write_atomic
+    from davies_sym.emit.plots import figure_bytes, figure_format
+    from davies_sym.synthesis.best_design import best_design_text
+    from davies_sym.synthesis.problem import search_problem
+    from davies_sym.synthesis.report import pareto_figure, search_text
+    from davies_sym.synthesis.search import run_search
+    from davies_sym.topology.loader import load
+
+    def say(message: str) -> None:
+        if not args.quiet:
+            print(f"derive search: {message}", file=sys.stderr)
+
+    try:
+        _check_outputs(args)
+        if args.plot and figure_format(args.out) is None:
+            raise InputError([Problem("-o", f"{args.out}: name the figure's file .png, .svg or .pdf")])
+        train = load(args.train)
+        problem = search_problem(
+            train,
+            _targets(args.target),
+            _number(args.tolerance, "--tolerance"),
+            _teeth(args.teeth),
+            args.planets,
+            args.min_teeth,
+            _weights(args.weights),
+        )
+        result = run_search(problem, say)
+    except DaviesError as exc:
+        text = exc.report() if isinstance(exc, InputError) else f"derive search: {args.train}: {exc}"
+        print(text.replace("<input>", args.train), file=sys.stderr)
+        return 2
+    document = {"status": "ok", "train": args.train, **result.document(args.top)}
+    answer = json.dumps(document, indent=2) + "\n" if args.json else search_text(result, args.top)
+    try:
+        if args.write_best and result.candidates:
+            best = result.candidates[0]
+            with open(args.train, encoding="utf-8") as handle:
+                source = handle.read()
+            note = f"The best design of derive search {args.train}: efficiency {best.score:.6f}"
+            write_atomic(args.write_best, best_design_text(problem, source, best.teeth, note))
+        if args.plot:
+            write_atomic(args.out, figure_bytes(pareto_figure(result), figure_format(args.out) or ".png"))
+            sys.stdout.write(answer)
+        elif args.out:
+            write_atomic(args.out, answer)
+        else:
+            sys.stdout.write(answer)
+    except OSError as exc:
+        print(f"derive search: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return 2
+    if args.write_best and not result.candidates:
+        print("derive search: --write-best: no feasible design to write", file=sys.stderr)
+    return 0

@@ -1,0 +1,248 @@
+"""The whole search: candidates by exact-bound pruning, the rules checked exactly, the
+efficiency of every state through the generated formulas (vectorised), the ranking and
+the Pareto fronts."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import numpy as np
+import sympy
+from numpy.typing import NDArray
+
+from davies_sym.geometry import train_layout
+from davies_sym.geometry.dependent import resolved_train
+from davies_sym.synthesis import rules
+from davies_sym.synthesis.enumeration import Window, enumerate_designs
+from davies_sym.synthesis.exact_values import ExactRational
+from davies_sym.synthesis.formulas import Progress, StateFormulas, state_formulas
+from davies_sym.synthesis.planet_sets import PlanetSet, assembles_rows, planet_sets
+from davies_sym.synthesis.problem import SearchProblem
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A feasible design: every tooth number, and per state (None: no states) the exact
+    speed ratio and the efficiency of the variant that holds."""
+
+    teeth: Mapping[str, int]
+    ratios: Mapping[str | None, Fraction]
+    efficiencies: Mapping[str | None, float]
+    #: Weighted mean of the efficiencies (the weights of the targets).
+    score: float
+    #: Largest relative deviation of a ratio from its target.
+    ratio_error: float
+    #: Teeth of the largest gear (a ring where there is one): the set's size.
+    size: int
+
+    def document(self) -> dict[str, object]:
+        def by_state(values: Mapping[str | None, object]) -> object:
+            return values[None] if None in values else dict(values)
+
+        return {
+            "teeth": dict(self.teeth),
+            "speed_ratio": by_state({s: float(r) for s, r in self.ratios.items()}),
+            "speed_ratio_exact": by_state({s: str(r) for s, r in self.ratios.items()}),
+            "efficiency": by_state(self.efficiencies),
+            "score": self.score,
+            "ratio_error": self.ratio_error,
+            "size": self.size,
+        }
+
+
+@dataclass(frozen=True)
+class SearchResult:
+    """Every feasible design, best first, and how the search went."""
+
+    problem: SearchProblem
+    candidates: tuple[Candidate, ...]
+    #: Designs the bounds hold, and designs bounded one by one (the rest were pruned in blocks).
+    searched: int
+    examined: int
+    rules: tuple[rules.Rule, ...]
+    seconds: float
+    planet_sets: tuple[PlanetSet, ...] = field(default=(), repr=False)
+
+    def pareto(self, cost: Callable[[Candidate], float]) -> list[int]:
+        """Indices (best first) of the candidates no other beats on both the score and ``cost``."""
+        front, best_cost = [], math.inf
+        for k, c in sorted(enumerate(self.candidates), key=lambda kc: (-kc[1].score, cost(kc[1]))):
+            if cost(c) < best_cost:
+                front.append(k)
+                best_cost = cost(c)
+        return front
+
+    def document(self, top: int) -> dict[str, object]:
+        return {
+            "candidates": [c.document() for c in self.candidates[:top]],
+            "searched": self.searched,
+            "examined": self.examined,
+            "feasible": len(self.candidates),
+            "rules": [r.name for r in self.rules if r.applied],
+            "rule_details": [r.document() for r in self.rules],
+            "planet_sets": [s.name for s in self.planet_sets],
+            "pareto": {
+                "ratio_error": self.pareto(lambda c: c.ratio_error),
+                "size": self.pareto(lambda c: c.size),
+            },
+            "seconds": self.seconds,
+        }
+
+
+def _windows(problem: SearchProblem, formulas: Sequence[StateFormulas]) -> list[Window]:
+    out = []
+    for f in formulas:
+        low, high = problem.window(f.target)
+        out.append(Window(f.ratio, float(low), float(high)))
+    for _, expression in problem.dependent:
+        out.append(Window(expression, problem.min_teeth, math.inf))
+    for s in problem.free:
+        out.append(Window(s, problem.min_teeth, math.inf))
+    return out
+
+
+def _gear_teeth(problem: SearchProblem, teeth: Mapping[str, int]) -> dict[str, int]:
+    """Tooth number of every gear by gear name."""
+    out = {}
+    for g in problem.train.gears:
+        value = g.teeth
+        if isinstance(value, sympy.Basic):
+            value = value.subs({s: teeth[str(s)] for s in value.free_symbols})
+        if value is not None:
+            out[g.name] = int(value)
+    return out
+
+
+def _planet_rules(problem: SearchProblem, sets: Sequence[PlanetSet]) -> list[rules.Rule]:
+    if problem.planets is None:
+        note = "no --planets given"
+    elif not sets:
+        note = "the train has no planet set"
+    else:
+        note = ""
+    applied = not note
+    clearance_note = note or ("one planet: no neighbour" if problem.planets == 1 else "")
+    return [
+        rules.Rule(rules.ASSEMBLY, rules.MEANINGS[rules.ASSEMBLY], applied, note),
+        rules.Rule(rules.TIP_CLEARANCE, rules.MEANINGS[rules.TIP_CLEARANCE], not clearance_note, clearance_note),
+    ]
+
+
+def _gear_columns(
+    problem: SearchProblem, teeth: Mapping[str, NDArray[np.int64]], size: int
+) -> dict[str, NDArray[np.int64]]:
+    """Tooth numbers of every gear (by gear name) at every row; a gear without teeth is left out."""
+    out = {}
+    for g in problem.train.gears:
+        if isinstance(g.teeth, sympy.Symbol):
+            out[g.name] = teeth[str(g.teeth)]
+        elif g.teeth is not None and sympy.sympify(g.teeth).is_Integer:
+            out[g.name] = np.full(size, int(g.teeth), dtype=np.int64)
+    return out
+
+
+def run_search(problem: SearchProblem, progress: Progress | None = None) -> SearchResult:
+    """Every feasible design of ``problem``, ranked (see the module's docstring)."""
+    start = time.perf_counter()
+    formulas = state_formulas(problem, progress)
+    whole_train = resolved_train(problem.train)
+    sets = planet_sets(whole_train, train_layout(whole_train))
+    free = problem.free
+    enumeration = enumerate_designs(free, dict(problem.bounds), _windows(problem, formulas), progress)
+    planet_rules = _planet_rules(problem, sets)
+    rows = enumeration.candidates
+    teeth = {str(s): rows[:, k] for k, s in enumerate(free)}
+    keep = np.ones(len(rows), dtype=bool)
+    for s, expression in problem.dependent:
+        whole, value = ExactRational.of(expression, free).whole_rows(list(rows.T))
+        keep &= whole
+        teeth[str(s)] = value
+    keep &= np.all([t >= problem.min_teeth for t in teeth.values()], axis=0) if teeth else keep
+    ratio_parts = []
+    for f in formulas:
+        exact = ExactRational.of(f.ratio, free)
+        low, high = problem.window(f.target)
+        keep &= exact.within_rows(list(rows.T), low, high)
+        ratio_parts.append(exact)
+    rows, teeth = rows[keep], {n: t[keep] for n, t in teeth.items()}
+    gears = _gear_columns(problem, teeth, len(rows))
+    n = problem.planets
+    if planet_rules[0].applied and n is not None and len(rows):
+        keep = np.ones(len(rows), dtype=bool)
+        for pset in sets:
+            keep &= assembles_rows(pset, gears, n)
+        rows, teeth, gears = rows[keep], {k: t[keep] for k, t in teeth.items()}, {k: g[keep] for k, g in gears.items()}
+    if planet_rules[1].applied and n is not None and len(rows):
+        keep = np.ones(len(rows), dtype=bool)
+        gap = 2 * math.sin(math.pi / n)
+        for pset in sets:
+            for planet in pset.planets:
+                radius = sympy.lambdify(free, pset.orbit[planet], "numpy")
+                orbit = np.broadcast_to(np.asarray(radius(*rows.T.astype(float)), dtype=float), (len(rows),))
+                for g in problem.train.gears:
+                    if g.link == planet and g.module is not None and g.name in gears:
+                        keep &= gap * orbit > float(g.module) * (gears[g.name] + 2) * (1 + 1e-12)
+        rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
+    ratios = []
+    for exact in ratio_parts:
+        num, den = exact.rows(list(rows.T))
+        ratios.append([Fraction(int(a), int(b)) for a, b in zip(num, den, strict=True)])
+    kept = [
+        (
+            {name: int(t[k]) for name, t in _in_gear_order(problem, teeth).items()},
+            {f.target.state: ratios[j][k] for j, f in enumerate(formulas)},
+        )
+        for k in range(len(rows))
+    ]
+    candidates = _ranked(problem, formulas, kept)
+    applied = [
+        rules.Rule(rules.WHOLE, rules.MEANINGS[rules.WHOLE]),
+        rules.Rule(rules.MIN_TEETH, rules.MEANINGS[rules.MIN_TEETH]),
+        rules.Rule(rules.RATIO, rules.MEANINGS[rules.RATIO]),
+        *planet_rules,
+        rules.Rule(rules.RUNS, rules.MEANINGS[rules.RUNS]),
+    ]
+    return SearchResult(
+        problem, candidates, problem.size, enumeration.examined, tuple(applied), time.perf_counter() - start, sets
+    )
+
+
+def _in_gear_order(problem: SearchProblem, teeth: Mapping[str, NDArray[np.int64]]) -> dict[str, NDArray[np.int64]]:
+    """The tooth numbers in the order their gears are written."""
+    order = []
+    for g in problem.train.gears:
+        if isinstance(g.teeth, sympy.Symbol) and str(g.teeth) not in order:
+            order.append(str(g.teeth))
+    return {name: teeth[name] for name in order if name in teeth}
+
+
+def _ranked(
+    problem: SearchProblem,
+    formulas: Sequence[StateFormulas],
+    kept: Sequence[tuple[dict[str, int], dict[str | None, Fraction]]],
+) -> tuple[Candidate, ...]:
+    """Efficiencies in bulk (one vectorised call per state), the designs that run, best first."""
+    if not kept:
+        return ()
+    names = list(kept[0][0])
+    arrays = {n: np.array([t[n] for t, _ in kept], dtype=np.int64) for n in names}
+    etas = {f.target.state: f.efficiency(arrays) for f in formulas}
+    weights = {f.target.state: f.target.weight for f in formulas}
+    total = sum(weights.values())
+    internal = {g.name for g in problem.train.gears if g.internal}
+    out = []
+    for k, (teeth, ratios) in enumerate(kept):
+        efficiencies = {s: float(np.broadcast_to(e, (len(kept),))[k]) for s, e in etas.items()}
+        if not rules.runs(efficiencies):
+            continue
+        score = sum(weights[s] * e for s, e in efficiencies.items()) / total
+        error = max(float(abs(ratios[f.target.state] - f.target.ratio) / abs(f.target.ratio)) for f in formulas)
+        gear_teeth = _gear_teeth(problem, teeth)
+        rings = [z for g, z in gear_teeth.items() if g in internal]
+        out.append(Candidate(teeth, ratios, efficiencies, score, error, max(rings or gear_teeth.values())))
+    out.sort(key=lambda c: (-c.score, c.ratio_error, c.size, tuple(c.teeth.values())))
+    return tuple(out)

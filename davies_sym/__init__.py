@@ -7,6 +7,8 @@ The package is a pipeline; each stage is a subpackage that hands the next a froz
 - `davies_sym.network`: coupling graph, screws, M_N, A_N, D_A, null spaces -> `Analysis`
 - `davies_sym.efficiency`: virtual power, turning conditions, variants, losses -> `VariantSet`
 - `davies_sym.emit`: text, JSON, LaTeX, formula modules, figures
+- `davies_sym.calibration`: loss parameters fitted to measurements
+- `davies_sym.synthesis`: tooth numbers for target ratios, ranked by efficiency (``derive search``)
 - `davies_sym.cli`: the ``derive`` command
 
 `davies_sym.algebra` holds the exact algebra the stages share (flint polynomials,

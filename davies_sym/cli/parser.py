@@ -35,6 +35,9 @@ def parser() -> argparse.ArgumentParser:
         prog="derive",
         description="Derive the efficiency of a gear train (or machine) described in a YAML "
         "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",
+        epilog="other commands: 'derive calibrate TRAIN.yaml DATA.csv' fits loss parameters to test-rig data; "
+        "'derive search TRAIN.yaml --target RATIO --teeth NAME=LO:HI ...' finds the tooth numbers for target "
+        "speed ratios, ranked by efficiency (each has its own --help)",
     )
     # ``.complete``: what shtab offers for the argument in a completion script (--completion).
     files = p.add_argument(

@@ -52,8 +52,25 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--out", metavar="FILE", help="write the answer (or, with --plot, the Pareto figure) to FILE")
     p.add_argument("--plot", action="store_true", help="the Pareto fronts as a figure (needs -o FRONT.png)")
     p.add_argument("--write-best", metavar="OUT.yaml", help="write the best design as a train file with numbers")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument(
+        "--jobs", default="1", metavar="N", help="derive the states on N processes ('auto': one per core)"
+    )
+    where.add_argument("--scheduler", metavar="ADDRESS", help="derive the states on the Dask cluster at ADDRESS")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
+
+
+def _jobs(text: str) -> int:
+    if text == "auto":
+        return os.cpu_count() or 1
+    try:
+        jobs = int(text)
+    except ValueError:
+        jobs = 0
+    if jobs < 1:
+        raise InputError([Problem("--jobs", f"expected a whole number of processes >= 1 or 'auto', got {text!r}")])
+    return jobs
 
 
 def _number(text: str, option: str) -> Fraction:
@@ -152,7 +169,7 @@ def run(argv: Sequence[str]) -> int:
             args.min_teeth,
             _weights(args.weights),
         )
-        result = run_search(problem, say)
+        result = run_search(problem, say, _jobs(args.jobs), args.scheduler)
     except DaviesError as exc:
         text = exc.report() if isinstance(exc, InputError) else f"derive search: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)

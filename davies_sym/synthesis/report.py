@@ -19,7 +19,7 @@ def search_text(result: SearchResult, top: int) -> str:
     p = result.problem
     lines = [
         f"{p.train.name}: {len(result.candidates)} feasible design(s) of {result.searched} "
-        f"({result.examined} bounded one by one) in {result.seconds:.2f} s",
+        f"({result.examined} rows evaluated) in {result.seconds:.2f} s",
         "rules: " + "; ".join(r.name + ("" if r.applied else f" (not applied: {r.note})") for r in result.rules),
     ]
     for s in result.planet_sets:

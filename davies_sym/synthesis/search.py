@@ -145,10 +145,13 @@ def _gear_columns(
     return out
 
 
-def run_search(problem: SearchProblem, progress: Progress | None = None) -> SearchResult:
-    """Every feasible design of ``problem``, ranked (see the module's docstring)."""
+def run_search(
+    problem: SearchProblem, progress: Progress | None = None, jobs: int = 1, scheduler: str | None = None
+) -> SearchResult:
+    """Every feasible design of ``problem``, ranked (see the module's docstring); the states
+    derived on ``jobs`` processes or the Dask cluster at ``scheduler``."""
     start = time.perf_counter()
-    formulas = state_formulas(problem, progress)
+    formulas = state_formulas(problem, progress, jobs, scheduler)
     whole_train = resolved_train(problem.train)
     sets = planet_sets(whole_train, train_layout(whole_train))
     free = problem.free

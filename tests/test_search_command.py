@@ -1,0 +1,87 @@
+"""``derive search`` beyond the answer itself: the states derived on processes or a Dask
+cluster give the same document as in this process, the Pareto figure, and the refusals of
+the options that say where and how to work (exit status 2, the option named)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from hostile.helpers import run_main
+
+DATA = Path(__file__).resolve().parent / "data"
+STATES = DATA / "search_states.yaml"
+PLANETARY = DATA / "search_planetary.yaml"
+#: A two-state search (the low and high states of search_states.yaml) small enough to repeat.
+ARGS = ["--target", "low=4.6", "high=1.28", "--tolerance", "0.01", "--teeth", "zs=17:50", "zr=50:130", "--planets", "3"]
+
+
+def _candidates(*extra: str) -> list[dict]:
+    result = run_main(["search", STATES, *ARGS, "--json", "--quiet", "--top", "1000", *extra], timeout=600)
+    assert result.returncode == 0, result.describe()
+    return json.loads(result.stdout)["candidates"]
+
+
+def test_processes_give_what_this_process_gives() -> None:
+    serial = _candidates()
+    assert serial, "the space holds feasible designs"
+    assert _candidates("--jobs", "2") == serial
+
+
+@pytest.mark.slow
+def test_a_dask_cluster_gives_what_this_process_gives() -> None:
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        on_cluster = _candidates("--scheduler", cluster.scheduler_address)
+    assert on_cluster == _candidates()
+
+
+@pytest.mark.slow
+def test_an_unreachable_scheduler_is_named() -> None:
+    pytest.importorskip("dask.distributed")
+    result = run_main(["search", STATES, *ARGS, "--quiet", "--scheduler", "tcp://127.0.0.1:9"], timeout=120)
+    assert result.returncode == 2, result.describe()
+    assert "--scheduler" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_the_pareto_figure_is_written(tmp_path: Path) -> None:
+    pytest.importorskip("matplotlib")
+    figure = tmp_path / "front.png"
+    result = run_main(["search", STATES, *ARGS, "--quiet", "--plot", "-o", figure, "--json"], timeout=600)
+    assert result.returncode == 0, result.describe()
+    assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    document = json.loads(result.stdout)
+    front = document["pareto"]["ratio_error"]
+    scores = [document["candidates"][k]["score"] for k in front if k < len(document["candidates"])]
+    assert scores == sorted(scores, reverse=True), "the front runs from the best score down"
+
+
+@pytest.mark.parametrize(
+    ("extra", "option"),
+    [
+        (["--jobs", "0"], "--jobs"),
+        (["--jobs", "many"], "--jobs"),
+        (["--plot"], "--plot"),
+        (["--plot", "-o", "front.txt"], "-o"),
+        (["--top", "0"], "--top"),
+        (["--min-teeth", "0"], "--min-teeth"),
+        (["--tolerance", "abc"], "--tolerance"),
+        (["--target", "low=4.6", "high=x"], "--target"),
+    ],
+)
+def test_bad_options_are_refused(tmp_path: Path, extra: list[str], option: str) -> None:
+    args = [a if a != "front.txt" else str(tmp_path / a) for a in extra]
+    base = [a for a in ARGS]
+    if "--target" in args:
+        base = base[base.index("--tolerance") :]
+    result = run_main(["search", STATES, *base, "--quiet", *args], timeout=120)
+    assert result.returncode == 2, result.describe()
+    assert option in result.stderr and "Traceback" not in result.stderr, result.describe()
+
+
+def test_a_train_without_symbolic_teeth_is_refused() -> None:
+    catalog = Path(__file__).resolve().parent.parent / "catalog" / "simple_pair.yaml"
+    result = run_main(["search", catalog, "--target", "2.5", "--teeth", "z1=17:40", "--quiet"], timeout=120)
+    assert result.returncode == 2, result.describe()
+    assert "teeth" in result.stderr and "Traceback" not in result.stderr

@@ -85,3 +85,25 @@ def test_a_train_without_symbolic_teeth_is_refused() -> None:
     result = run_main(["search", catalog, "--target", "2.5", "--teeth", "z1=17:40", "--quiet"], timeout=120)
     assert result.returncode == 2, result.describe()
     assert "teeth" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_a_tooth_geometry_efficiency_ranks_by_the_teeth_themselves() -> None:
+    """With the sun mesh's efficiency from the tooth contact (Laus App. A, mu 0.06), designs
+    of one ratio differ: zs/zr = 21/75 and 42/150 both give 32/7, and the larger teeth
+    lose less (the sliding loss falls with 1/z1 + 1/z2, Laus eq. (134)).  Each candidate's
+    efficiency is what ``derive --eval`` gives at its teeth (the planet's follows from them)."""
+    path = DATA / "search_tooth_geometry.yaml"
+    args = ["--target", "4.6", "--tolerance", "0.01", "--teeth", "zs=17:60", "zr=50:150", "--planets", "3"]
+    result = run_main(["search", path, *args, "--json", "--quiet", "--top", "100"], timeout=600)
+    assert result.returncode == 0, result.describe()
+    candidates = json.loads(result.stdout)["candidates"]
+    by_teeth = {(c["teeth"]["zs"], c["teeth"]["zr"]): c for c in candidates}
+    small, large = by_teeth[(21, 75)], by_teeth[(42, 150)]
+    assert small["speed_ratio_exact"] == large["speed_ratio_exact"] == "32/7"
+    assert large["efficiency"] > small["efficiency"] + 1e-4
+    assert [c["efficiency"] for c in candidates] == sorted((c["efficiency"] for c in candidates), reverse=True)
+    for c in (candidates[0], small, candidates[-1]):
+        teeth = c["teeth"]
+        evaluated = run_main([path, "--quiet", "--eval", f"zs={teeth['zs']}", f"zr={teeth['zr']}"], timeout=600)
+        assert evaluated.returncode == 0, evaluated.describe()
+        assert float(evaluated.stdout.splitlines()[-1]) == pytest.approx(c["efficiency"], rel=1e-12)

@@ -50,7 +50,7 @@ from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem
-from davies_sym.geometry.dependent import check_values, resolved_train
+from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
@@ -120,7 +120,7 @@ class VariantSet:
         """``values`` keyed by symbol, checked against the geometric constraints, with the
         defined symbols (e.g. a mesh efficiency from the tooth geometry) added; values
         outside the admissible geometry (a sun larger than its ring) are refused."""
-        given = check_values(self.train, design_values(self.train, values))
+        given = with_dependent(self.train, design_values(self.train, values))
         check_facts(self.facts, given, self.train.path)
         return completed(given, self.train.definitions)
 

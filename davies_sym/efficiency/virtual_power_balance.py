@@ -42,7 +42,7 @@ from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.empty_regions import check_facts, geometry_facts
 from davies_sym.errors import DerivationError
 from davies_sym.geometry import train_layout
-from davies_sym.geometry.dependent import check_values, resolved_train
+from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
 from davies_sym.topology.couplings import GearMesh
@@ -86,7 +86,7 @@ def balance_at(
     given = design_values(train, values)
     if layout is None:
         train = resolved_train(train)
-        given = check_values(train, given)
+        given = with_dependent(train, given)
         layout = train_layout(train)
         # The derived geometry admits the designs every entry point admits (a ring larger than its sun).
         check_facts(geometry_facts(train, layout, ()), given, train.path)

@@ -143,3 +143,15 @@ def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dic
     if problems:
         raise DesignError(problems, train.path)
     return out
+
+
+def with_dependent(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dict[sympy.Symbol, sympy.Expr]:
+    """`check_values`, then each dependent parameter the given values determine added
+    with its value (a loss model may be written in it: the tooth-contact efficiency of a
+    planet's mesh takes the planet's teeth)."""
+    out = check_values(train, values)
+    for r in resolved_train(train).dependent or ():
+        implied = sympy.expand(r.expression.subs(out))
+        if not implied.free_symbols:
+            out.setdefault(r.symbol, implied)
+    return out

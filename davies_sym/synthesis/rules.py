@@ -1,6 +1,7 @@
-"""The feasibility rules of a design, one function each, and the record of which were
-applied.  A design is feasible when every applied rule holds; `RULES` names them in the
-order the search applies them (the cheap exact ones first)."""
+"""The feasibility rules of a design, one function each (vectorised: each gives the rows
+of a table of designs where it holds), and the record of which were applied.  A design is
+feasible when every applied rule holds; the search applies them in the order of `MEANINGS`
+(the cheap exact ones first)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,15 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
-from davies_sym.synthesis.planet_sets import PlanetSet, assembles
+import numpy as np
+from numpy.typing import NDArray
+
+from davies_sym.synthesis.exact_values import ExactRational
+from davies_sym.synthesis.planet_sets import PlanetSet, assembles_rows
+
+Column = NDArray[np.int64]
+Floats = NDArray[np.float64]
+Mask = NDArray[np.bool_]
 
 
 @dataclass(frozen=True)
@@ -45,36 +54,43 @@ MEANINGS = {
 }
 
 
-def whole(dependent: Mapping[str, Fraction | None]) -> bool:
-    """Every dependent tooth number is a whole number (the free ones are by construction)."""
-    return all(v is not None and v.denominator == 1 for v in dependent.values())
+def dependent_whole(exact: ExactRational, columns: Sequence[Column]) -> tuple[Mask, Column]:
+    """Where a dependent tooth number (a rational function of the free ones, e.g. a
+    planet's (zr - zs)/2) is whole at every row, and its value there (0 elsewhere)."""
+    return exact.whole_rows(columns)
 
 
-def enough_teeth(teeth: Mapping[str, int], minimum: int) -> bool:
-    """Every tooth number is at least ``minimum``."""
-    return all(z >= minimum for z in teeth.values())
+def enough_teeth(teeth: Mapping[str, Column], minimum: int) -> Mask:
+    """Where every tooth number is at least ``minimum``."""
+    return np.asarray(np.all([t >= minimum for t in teeth.values()], axis=0), dtype=bool)
 
 
-def within(ratio: Fraction | None, window: tuple[Fraction, Fraction]) -> bool:
-    """The exact ratio lies in the closed window (target +- tolerance * |target|)."""
-    return ratio is not None and window[0] <= ratio <= window[1]
+def ratio_within(exact: ExactRational, columns: Sequence[Column], window: tuple[Fraction, Fraction]) -> Mask:
+    """Where the exact ratio lies in the closed window (target -+ tolerance * |target|),
+    decided in integers: a ratio on the edge is in."""
+    return exact.within_rows(columns, *window)
 
 
-def equally_spaced(sets: Sequence[PlanetSet], teeth: Mapping[str, int], planets: int) -> bool:
-    """Every planet set assembles with ``planets`` copies equally spaced (a set whose
-    condition could not be decided within the bound counts as not assembling)."""
-    return all(assembles(s, teeth, planets) is True for s in sets)
+def equally_spaced(sets: Sequence[PlanetSet], gears: Mapping[str, Column], planets: int) -> Mask:
+    """Where every planet set assembles with ``planets`` copies equally spaced (a set whose
+    condition is not decided within `MAX_PHASINGS` counts as not assembling)."""
+    size = len(next(iter(gears.values()))) if gears else 0
+    ok = np.ones(size, dtype=bool)
+    for s in sets:
+        ok &= assembles_rows(s, gears, planets)
+    return ok
 
 
-def tips_clear(orbits: Sequence[float], tip_diameters: Sequence[float], planets: int) -> bool:
-    """Copies of a planet at orbit radius a, 2 a sin(pi/N) apart, clear a tip diameter d
-    (one per planet gear, paired with its planet's orbit) with room to spare."""
+def tips_clear(orbit: Floats, tip_diameter: Floats, planets: int) -> Mask:
+    """Where copies of a planet gear at orbit radius a, 2 a sin(pi/N) apart, clear its tip
+    diameter d (= m (z + 2)) with room to spare; always for one planet."""
     if planets < 2:
-        return True
-    gap = 2 * math.sin(math.pi / planets)
-    return all(gap * a > d * (1 + 1e-12) for a, d in zip(orbits, tip_diameters, strict=True))
+        return np.ones(np.shape(orbit), dtype=bool)
+    return np.asarray(2 * math.sin(math.pi / planets) * orbit > tip_diameter * (1 + 1e-12), dtype=bool)
 
 
-def runs(efficiencies: Mapping[str | None, float]) -> bool:
-    """Every state's efficiency is a number in (0, 1]."""
-    return all(0 < e <= 1 + 1e-12 for e in efficiencies.values())
+def runs(efficiencies: Mapping[str | None, Floats]) -> Mask:
+    """Where every state's efficiency is a number in (0, 1] (NaN: self-locking or no
+    variant holds, the formula module's reasons)."""
+    with np.errstate(invalid="ignore"):
+        return np.asarray(np.all([(e > 0) & (e <= 1 + 1e-12) for e in efficiencies.values()], axis=0), dtype=bool)

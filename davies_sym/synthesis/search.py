@@ -20,7 +20,7 @@ from davies_sym.synthesis import rules
 from davies_sym.synthesis.enumeration import Window, enumerate_designs
 from davies_sym.synthesis.exact_values import ExactRational
 from davies_sym.synthesis.formulas import Progress, StateFormulas, state_formulas
-from davies_sym.synthesis.planet_sets import PlanetSet, assembles_rows, planet_sets
+from davies_sym.synthesis.planet_sets import PlanetSet, planet_sets
 from davies_sym.synthesis.problem import SearchProblem
 
 
@@ -159,36 +159,31 @@ def run_search(
     planet_rules = _planet_rules(problem, sets)
     rows = enumeration.candidates
     teeth = {str(s): rows[:, k] for k, s in enumerate(free)}
+    columns = list(rows.T)
     keep = np.ones(len(rows), dtype=bool)
     for s, expression in problem.dependent:
-        whole, value = ExactRational.of(expression, free).whole_rows(list(rows.T))
+        whole, value = rules.dependent_whole(ExactRational.of(expression, free), columns)
         keep &= whole
         teeth[str(s)] = value
-    keep &= np.all([t >= problem.min_teeth for t in teeth.values()], axis=0) if teeth else keep
-    ratio_parts = []
-    for f in formulas:
-        exact = ExactRational.of(f.ratio, free)
-        low, high = problem.window(f.target)
-        keep &= exact.within_rows(list(rows.T), low, high)
-        ratio_parts.append(exact)
+    keep &= rules.enough_teeth(teeth, problem.min_teeth)
+    ratio_parts = [ExactRational.of(f.ratio, free) for f in formulas]
+    for f, exact in zip(formulas, ratio_parts, strict=True):
+        keep &= rules.ratio_within(exact, columns, problem.window(f.target))
     rows, teeth = rows[keep], {n: t[keep] for n, t in teeth.items()}
     gears = _gear_columns(problem, teeth, len(rows))
     n = problem.planets
     if planet_rules[0].applied and n is not None and len(rows):
-        keep = np.ones(len(rows), dtype=bool)
-        for pset in sets:
-            keep &= assembles_rows(pset, gears, n)
+        keep = rules.equally_spaced(sets, gears, n)
         rows, teeth, gears = rows[keep], {k: t[keep] for k, t in teeth.items()}, {k: g[keep] for k, g in gears.items()}
     if planet_rules[1].applied and n is not None and len(rows):
         keep = np.ones(len(rows), dtype=bool)
-        gap = 2 * math.sin(math.pi / n)
         for pset in sets:
             for planet in pset.planets:
                 radius = sympy.lambdify(free, pset.orbit[planet], "numpy")
                 orbit = np.broadcast_to(np.asarray(radius(*rows.T.astype(float)), dtype=float), (len(rows),))
                 for g in problem.train.gears:
                     if g.link == planet and g.module is not None and g.name in gears:
-                        keep &= gap * orbit > float(g.module) * (gears[g.name] + 2) * (1 + 1e-12)
+                        keep &= rules.tips_clear(orbit, (float(g.module) * (gears[g.name] + 2.0)).astype(np.float64), n)
         rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
     ratios = []
     for exact in ratio_parts:
@@ -237,11 +232,13 @@ def _ranked(
     weights = {f.target.state: f.target.weight for f in formulas}
     total = sum(weights.values())
     internal = {g.name for g in problem.train.gears if g.internal}
+    etas = {s: np.broadcast_to(e, (len(kept),)) for s, e in etas.items()}
+    running = rules.runs(etas)
     out = []
     for k, (teeth, ratios) in enumerate(kept):
-        efficiencies = {s: float(np.broadcast_to(e, (len(kept),))[k]) for s, e in etas.items()}
-        if not rules.runs(efficiencies):
+        if not running[k]:
             continue
+        efficiencies = {s: float(e[k]) for s, e in etas.items()}
         score = sum(weights[s] * e for s, e in efficiencies.items()) / total
         error = max(float(abs(ratios[f.target.state] - f.target.ratio) / abs(f.target.ratio)) for f in formulas)
         gear_teeth = _gear_teeth(problem, teeth)

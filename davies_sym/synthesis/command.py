@@ -14,6 +14,7 @@ import os
 import sys
 from collections.abc import Sequence
 from fractions import Fraction
+from typing import Any
 
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression
@@ -146,14 +147,29 @@ def run(argv: Sequence[str]) -> int:
     from davies_sym.emit.atomic import write_atomic
     from davies_sym.emit.plots import figure_bytes, figure_format
     from davies_sym.synthesis.best_design import best_design_text
+    from davies_sym.synthesis.formulas import DERIVED
     from davies_sym.synthesis.problem import search_problem
     from davies_sym.synthesis.report import pareto_figure, search_text
     from davies_sym.synthesis.search import run_search
     from davies_sym.topology.loader import load
 
+    bar: Any = None
+
     def say(message: str) -> None:
-        if not args.quiet:
+        """A line per step; on a terminal, a bar over the states being derived."""
+        nonlocal bar
+        if args.quiet:
+            return
+        if not sys.stderr.isatty():
             print(f"derive search: {message}", file=sys.stderr)
+            return
+        if bar is None:
+            from tqdm import tqdm
+
+            bar = tqdm(total=len(args.target), unit="state", file=sys.stderr, leave=False)
+        if message.startswith(DERIVED):
+            bar.update(1)
+        bar.set_description_str(f"derive search: {message}")
 
     try:
         _check_outputs(args)
@@ -171,9 +187,13 @@ def run(argv: Sequence[str]) -> int:
         )
         result = run_search(problem, say, _jobs(args.jobs), args.scheduler)
     except DaviesError as exc:
+        if bar is not None:
+            bar.close()
         text = exc.report() if isinstance(exc, InputError) else f"derive search: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)
         return 2
+    if bar is not None:
+        bar.close()
     document = {"status": "ok", "train": args.train, **result.document(args.top)}
     answer = json.dumps(document, indent=2) + "\n" if args.json else search_text(result, args.top)
     try:

@@ -30,6 +30,8 @@ from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 
 Progress = Callable[[str], None]
+#: The first word of the message each derived state sends (a progress bar counts them).
+DERIVED = "derived"
 
 
 @dataclass(frozen=True)
@@ -104,12 +106,12 @@ def _derived(problem: SearchProblem, jobs: int, scheduler: str | None, say: Prog
             done: dict[int, DerivedState] = {}
             for future in as_completed(futures):
                 done[futures[future]] = future.result()
-                say(f"derived state {done[futures[future]].state} ({len(done)} of {len(states)})")
+                say(f"{DERIVED} state {done[futures[future]].state} ({len(done)} of {len(states)})")
             return [done[k] for k in range(len(states))]
     out = []
     for k, s in enumerate(states):
         out.append(derive_state(train, s, teeth))
-        say(f"derived {'state ' + s if s else 'the train'} ({k + 1} of {len(states)})")
+        say(f"{DERIVED} {'state ' + s if s else 'the train'} ({k + 1} of {len(states)})")
     return out
 
 

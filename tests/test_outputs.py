@@ -167,6 +167,7 @@ def test_python_module_picks_the_variant_element_by_element(tmp_path):
         module.efficiency(input="Z", r1=1.0, r2=2.0, r3=0.5, eta_C=0.9, eta_D=0.9)
 
 
+@pytest.mark.slow
 def test_generated_module_is_deterministic(tmp_path):
     a, b = tmp_path / "a.py", tmp_path / "b.py"
     run(catalog_path("tuplin"), "--python", str(a))

@@ -319,6 +319,7 @@ def test_clearance_rule_by_hand() -> None:
     assert not clear_of_each_other(24, 20, 6)  # 2 a sin 30 deg = 44 m/2 = 22 m = m (20 + 2): touching
 
 
+@pytest.mark.slow
 def test_oracle_spaces() -> None:
     """The brute force gives sensible sets, and every rule excludes a design in the spaces tested
     (so that a search that forgets one fails a test)."""

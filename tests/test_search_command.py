@@ -45,6 +45,7 @@ def test_an_unreachable_scheduler_is_named() -> None:
     assert "--scheduler" in result.stderr and "Traceback" not in result.stderr
 
 
+@pytest.mark.slow
 def test_the_pareto_figure_is_written(tmp_path: Path) -> None:
     pytest.importorskip("matplotlib")
     figure = tmp_path / "front.png"
@@ -87,6 +88,7 @@ def test_a_train_without_symbolic_teeth_is_refused() -> None:
     assert "teeth" in result.stderr and "Traceback" not in result.stderr
 
 
+@pytest.mark.slow
 def test_a_tooth_geometry_efficiency_ranks_by_the_teeth_themselves() -> None:
     """With the sun mesh's efficiency from the tooth contact (Laus App. A, mu 0.06), designs
     of one ratio differ: zs/zr = 21/75 and 42/150 both give 32/7, and the larger teeth

@@ -231,6 +231,7 @@ def test_double_planet_set() -> None:
     check_condition(pset, gears, (range(17, 29), range(11, 14), range(14, 16), range(70, 84)), double_planet)
 
 
+@pytest.mark.slow
 def test_wolfrom_stepped_planet_with_three_central_gears() -> None:
     """Wolfrom train (catalog/wolfrom.yaml, radii in the file, tooth numbers given here by gear
     name): `wolfrom`, two conditions sharing one planet."""

@@ -173,6 +173,7 @@ def test_a_large_array_is_evaluated_in_blocks_with_the_same_values(module) -> No
     assert "davies_sym" not in "".join(line for line in source.splitlines() if line.startswith(("import", "from")))
 
 
+@pytest.mark.slow
 def test_module_is_deterministic_and_lists_its_regions(lossy, module) -> None:
     assert several_inputs_module(lossy) == several_inputs_module(
         derive_several_inputs(davies_sym.loads(LOSSY, "sr20_lossy.yaml"))

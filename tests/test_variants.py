@@ -187,7 +187,12 @@ TOOTH_GEOMETRY = {"buckingham_pair"}
 
 @pytest.mark.parametrize(
     ("name", "train"),
-    [(n, t) for n, t in catalog_trains() if n not in SKEW | TOOTH_GEOMETRY],
+    # Humpage and the Ravigneaux states take 3-8 s each: the slow tier checks them.
+    [
+        pytest.param(n, t, marks=pytest.mark.slow) if n.startswith(("humpage", "ravigneaux")) else (n, t)
+        for n, t in catalog_trains()
+        if n not in SKEW | TOOTH_GEOMETRY
+    ],
     ids=[n for n, _ in catalog_trains() if n not in SKEW | TOOTH_GEOMETRY],
 )
 def test_both_routes_agree_on_every_catalog_train(name, train):

@@ -329,3 +329,48 @@ def test_write_atomic_names_the_target_it_could_not_write():
     with pytest.raises(OSError) as raised:
         write_atomic(f"{NO_NEW_FILES}/out.txt", "text")
     assert raised.value.filename == f"{NO_NEW_FILES}/out.txt"
+
+
+# --- 14. types a fresh sweep of bad files found accepted ----------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "entry", "words"),
+    [
+        ("format: 1", "format: true", "format", "unsupported topology language version true"),
+        ("name: Simple gear pair", 'name: ""', "name", "the train needs a name"),
+        ("  0: {description: frame}", "  0: {description: [frame]}", "links.0.description", "expected text"),
+        (
+            "  1: {link: 1, radius: r1}",
+            "  1: {link: 1, teeth: 1" + "0" * 400 + ", module: 2}",
+            "gears.1.teeth",
+            "from 1 to",
+        ),
+        ("  1: {link: 1, radius: r1}", "  1: {link: 1, radius: NaN}", "gears.1.radius", "not finite"),
+        ("  1: {link: 1, radius: r1}", "  1: {link: 1, radius: Infinity}", "gears.1.radius", "not finite"),
+        ("degrees_of_freedom: 1", "degrees_of_freedom: 1\nindependent: 5", "independent", "is not a symbol"),
+    ],
+    ids=[
+        "format-true",
+        "empty-name",
+        "description-list",
+        "teeth-huge",
+        "radius-NaN",
+        "radius-Infinity",
+        "independent-5",
+    ],
+)
+def test_a_value_of_the_wrong_kind_is_refused_at_its_line(tmp_path, old, new, entry, words):
+    text = replaced(PAIR, old, new)
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, new.splitlines()[-1][:24]), entry)
+    assert words in result.stderr, result.describe()
+
+
+def test_a_null_key_is_not_the_name_none(tmp_path):
+    """``~:`` (YAML's null) as a gear's key would have been a gear called 'None'."""
+    text = replaced(PAIR, "  2: {link: 2, radius: r2}", "  2: {link: 2, radius: r2}\n  ~: {link: 2, radius: r3}")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert result.returncode == 2 and f"{path}:{line_of(text, '~:')}: gears:" in result.stderr, result.describe()

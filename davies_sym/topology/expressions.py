@@ -96,7 +96,7 @@ def check_name(name: str) -> str | None:
         return (
             f"{shortened(name)} is not a symbol name: use ASCII letters, digits and underscores, starting with a letter"
         )
-    if name in NON_FINITE_NAMES:
+    if name in NON_FINITE_NAMES or name.lower() in {"nan", "inf", "infinity"}:
         return f"{name!r} reads as a value that is not finite; write a finite number, or name the symbol {name}_1"
     if name in RESERVED_NAMES:
         return f"{name!r} is a reserved name (a Python or formula-module name); choose another, e.g. {name}_1"

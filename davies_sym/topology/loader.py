@@ -52,7 +52,7 @@ def build_train(document: SourceDocument) -> Train:
         raise TopologyError(reader.problems, document.name)
     reader.check_keys(data, "", TOP_LEVEL)
     version = data.get("format", FORMAT_VERSION)
-    if version != FORMAT_VERSION:
+    if version != FORMAT_VERSION or isinstance(version, bool):  # YAML's true is not the version 1
         reader.problem(
             "format", f"unsupported topology language version {describe(version)} (this is {FORMAT_VERSION})"
         )
@@ -88,6 +88,8 @@ def build_train(document: SourceDocument) -> Train:
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
             reader.problem(key, f"expected text, got {describe(data[key])}")
+    if isinstance(data.get("name"), str) and not data["name"].strip():
+        reader.problem("name", "the train needs a name: write a few words that say what it is")
     if reader.problems or ports is None or reference is None:
         raise TopologyError(reader.problems, document.name)
     return Train(
@@ -138,6 +140,8 @@ def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.
 
 def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None:
     """``independent: [r1, r2, r3]``: symbols of the file that stay free."""
+    # One symbol written without brackets is the list of it; a problem with it is at the key.
+    bare = not isinstance(value, list)
     value = reader.items(value, "independent", "a list of symbols")
     if value is None:
         return None
@@ -148,7 +152,8 @@ def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None
     for i, item in enumerate(value):
         if not isinstance(item, str) or item not in reader.symbols:
             known = ", ".join(sorted(reader.symbols)[:20])
-            reader.problem(f"independent[{i}]", f"{describe(item)} is not a symbol of the train (symbols: {known})")
+            entry = "independent" if bare else f"independent[{i}]"
+            reader.problem(entry, f"{describe(item)} is not a symbol of the train (symbols: {known})")
         else:
             names.append(item)
     return tuple(names)
@@ -179,7 +184,7 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
                 links.append(Link(name))  # defined all the same: only its description is unreadable
                 continue
             reader.check_keys(entry, f"links.{name}", LINK)
-            links.append(Link(name, str(entry.get("description", ""))))
+            links.append(Link(name, _text(entry, "description", f"links.{name}", reader)))
     if value is not None and len(links) < 2:
         reader.problem("links", "a machine needs at least two links")
         reader.unreadable.add("link")  # references to the others say nothing more
@@ -219,6 +224,11 @@ def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, G
     return gears
 
 
+#: The most teeth a gear may have: far beyond any gear made (rings of a few hundred), and
+#: small enough that every number derived from it stays a finite float.
+MAX_TEETH = 100_000
+
+
 def _read_size(
     entry: Mapping[str, Any], path: str, reader: EntryReader
 ) -> tuple[sympy.Expr | None, int | sympy.Expr | None, sympy.Expr | None]:
@@ -234,12 +244,17 @@ def _read_size(
         count = reader.quantity(teeth, f"{path}.teeth", "teeth")  # a tooth number as a symbol, e.g. z1
         if count is None:
             return None, None, None
-        if count.is_number and not (count.is_integer and count > 0):
-            reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth, got {describe(teeth)}")
+        if count.is_number and not (count.is_integer and 0 < count <= MAX_TEETH):
+            reader.problem(
+                f"{path}.teeth", f"expected a whole number of teeth from 1 to {MAX_TEETH}, got {describe(teeth)}"
+            )
             return None, None, None
         teeth = count
-    elif not isinstance(teeth, int) or isinstance(teeth, bool) or teeth < 1:
-        reader.problem(f"{path}.teeth", f"expected a positive whole number of teeth or a symbol, got {describe(teeth)}")
+    elif not isinstance(teeth, int) or isinstance(teeth, bool) or not 0 < teeth <= MAX_TEETH:
+        reader.problem(
+            f"{path}.teeth",
+            f"expected a whole number of teeth from 1 to {MAX_TEETH} or a symbol, got {describe(teeth)}",
+        )
         return None, None, None
     if "module" not in entry:
         reader.problem(path, "`teeth` needs `module` to give the pitch radius")
@@ -440,7 +455,18 @@ def _read_states(
                     tuple(brake),
                     tuple(clutch),
                     tuple(free),
-                    str(entry.get("description", "")),
+                    _text(entry, "description", f"states.{name}", reader),
                 )
             )
     return tuple(out)
+
+
+def _text(entry: Mapping[str, Any], key: str, path: str, reader: EntryReader) -> str:
+    """A free text of an entry (a description): a string; anything else is refused."""
+    value = entry.get(key, "")
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return str(value)  # a number reads as its text
+    if not isinstance(value, str):
+        reader.problem(f"{path}.{key}", f"expected text, got {describe(value)}")
+        return ""
+    return value

@@ -189,6 +189,10 @@ def _mapping(
         readable, value = _plain(key_node, written, problems)
         if not readable:
             continue
+        if value is None or isinstance(value, bool):
+            # ~, null, true as a key would read as the name 'None' or 'True'.
+            problems.append(Problem(path, f"{key_node.value!r} is not a name for a key: write a name", line))
+            continue
         key = str(value)
         child = f"{path}.{key}" if path else key
         if key in out:

@@ -374,3 +374,13 @@ def test_a_null_key_is_not_the_name_none(tmp_path):
     path = write(tmp_path, text)
     result = run_main([path, "--quiet"])
     assert result.returncode == 2 and f"{path}:{line_of(text, '~:')}: gears:" in result.stderr, result.describe()
+
+
+def test_a_machine_key_in_a_gear_train_is_one_problem_at_that_key(tmp_path):
+    """``machine:`` makes a file a general machine (Laus ch. 4); in a gear train it used to
+    turn every train entry into a problem of its own."""
+    text = PAIR + "machine: x\n"
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, "machine: x"), "machine")
+    assert len(problem_lines(result)) == 1 and "gears" in result.stderr, result.describe()

@@ -100,6 +100,15 @@ def build_machine(doc: SourceDocument) -> Machine:
     """Validate the document of a machine file; raises `TopologyError` with every problem."""
     r = _Reader(doc)
     data = r.mapping("", doc.data)
+    train_only = sorted(k for k in ("gears", "states", "degrees_of_freedom", "independent") if k in data)
+    if train_only:
+        # One mistake, said once: a gear train file with a machine: key.
+        r.problem(
+            "machine",
+            f"machine: makes this a machine file (Laus ch. 4), but it has {', '.join(train_only)} of a gear "
+            "train: take machine: out for a gear train, or write the machine's vectors and couplings",
+        )
+        raise TopologyError(r.problems, doc.name)
     for key in data:
         if key not in _TOP:
             r.problem(key, f"unknown entry {key!r} (a machine file has {', '.join(sorted(_TOP))})")

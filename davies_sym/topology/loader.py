@@ -19,12 +19,13 @@ from davies_sym.errors import TopologyError, shortened
 from davies_sym.topology.calibration_entry import read_calibrate
 from davies_sym.topology.checks import read_expected
 from davies_sym.topology.coupling_kinds import KINDS
-from davies_sym.topology.couplings import Coupling, coupling_fields, read_direction
+from davies_sym.topology.couplings import Coupling, coupling_fields
 from davies_sym.topology.documents import document_from_bytes, read_document
 from davies_sym.topology.entries import EntryReader, describe
+from davies_sym.topology.gear_entries import read_gears
 from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
-from davies_sym.topology.schema import FORMAT_VERSION, GEAR, LINK, PORT_KEYS, PORTS, STATE, TOP_LEVEL
+from davies_sym.topology.schema import FORMAT_VERSION, LINK, PORT_KEYS, PORTS, STATE, TOP_LEVEL
 from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
 
@@ -63,7 +64,7 @@ def build_train(document: SourceDocument) -> Train:
     if "gears" not in data:
         reader.absent.add("gear")
     links = _read_links(data["links"], reader) if "links" in data else []
-    gears = _read_gears(data.get("gears", {}), reader, {link.name for link in links})
+    gears = read_gears(data.get("gears", {}), reader, {link.name for link in links})
     couplings = (
         _read_couplings(data["couplings"], reader, {link.name for link in links}, gears) if "couplings" in data else {}
     )
@@ -189,80 +190,6 @@ def _read_links(value: Any, reader: EntryReader) -> list[Link]:
         reader.problem("links", "a machine needs at least two links")
         reader.unreadable.add("link")  # references to the others say nothing more
     return links
-
-
-def _read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, Gear]:
-    gears: dict[str, Gear] = {}
-    table = reader.mapping(value, "gears")
-    if table is None:
-        reader.unreadable.add("gear")
-    for name, entry in (table or {}).items():
-        path = f"gears.{name}"
-        if reader.defined_name(name, path, "gear") is None:
-            continue
-        entry = reader.mapping(entry, path)
-        if entry is None:
-            reader.broken.add(name)
-            continue
-        reader.check_keys(entry, path, GEAR)
-        link = reader.name(entry["link"], f"{path}.link") if "link" in entry else None
-        if link is not None and link not in links:
-            reader.unknown(f"{path}.link", "link", link)
-        internal = entry.get("internal", False)
-        if not isinstance(internal, bool):
-            reader.problem(f"{path}.internal", f"expected true or false, got {describe(internal)}")
-            internal = False
-        radius, teeth, module = _read_size(entry, path, reader)
-        tilted = entry.get("axis") == "tilted"
-        axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry and not tilted else None
-        if link is not None and radius is not None:
-            gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
-        else:
-            reader.broken.add(name)
-    if table and not gears:
-        reader.unreadable.add("gear")  # not one gear could be read: the table's problems say it all
-    return gears
-
-
-#: The most teeth a gear may have: far beyond any gear made (rings of a few hundred), and
-#: small enough that every number derived from it stays a finite float.
-MAX_TEETH = 100_000
-
-
-def _read_size(
-    entry: Mapping[str, Any], path: str, reader: EntryReader
-) -> tuple[sympy.Expr | None, int | sympy.Expr | None, sympy.Expr | None]:
-    """Pitch radius from ``radius`` or from ``teeth`` and ``module``."""
-    has_radius, has_teeth = "radius" in entry, "teeth" in entry
-    if has_radius == has_teeth:
-        reader.problem(path, "give either `radius` or `teeth` with `module`")
-        return None, None, None
-    if has_radius:
-        return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, None
-    teeth = entry["teeth"]
-    if isinstance(teeth, str):
-        count = reader.quantity(teeth, f"{path}.teeth", "teeth")  # a tooth number as a symbol, e.g. z1
-        if count is None:
-            return None, None, None
-        if count.is_number and not (count.is_integer and 0 < count <= MAX_TEETH):
-            reader.problem(
-                f"{path}.teeth", f"expected a whole number of teeth from 1 to {MAX_TEETH}, got {describe(teeth)}"
-            )
-            return None, None, None
-        teeth = count
-    elif not isinstance(teeth, int) or isinstance(teeth, bool) or not 0 < teeth <= MAX_TEETH:
-        reader.problem(
-            f"{path}.teeth",
-            f"expected a whole number of teeth from 1 to {MAX_TEETH} or a symbol, got {describe(teeth)}",
-        )
-        return None, None, None
-    if "module" not in entry:
-        reader.problem(path, "`teeth` needs `module` to give the pitch radius")
-        return None, None, None
-    module = reader.quantity(entry["module"], f"{path}.module", "length")
-    if module is None:
-        return None, None, None
-    return module * teeth / 2, teeth, module
 
 
 def _read_couplings(value: Any, reader: EntryReader, links: set[str], gears: Mapping[str, Gear]) -> dict[str, Coupling]:

@@ -384,3 +384,20 @@ def test_a_machine_key_in_a_gear_train_is_one_problem_at_that_key(tmp_path):
     result = run_main([path, "--quiet"])
     assert_at(result, path, line_of(text, "machine: x"), "machine")
     assert len(problem_lines(result)) == 1 and "gears" in result.stderr, result.describe()
+
+
+@pytest.mark.parametrize("args", [["--completion", "bash"], [str(CATALOG / "tuplin.yaml"), "--latex", "--quiet"]])
+def test_a_reader_that_stops_early_gets_no_traceback(args):
+    """``derive ... | head -1``: the pipe is closed before the command writes (here before it
+    has even started: the reader is gone); it stops quietly instead of a BrokenPipeError."""
+    import subprocess
+    import sys
+
+    process = subprocess.Popen(
+        [sys.executable, "-m", "davies_sym.cli", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE
+    )
+    assert process.stdout is not None and process.stderr is not None
+    process.stdout.close()
+    stderr = process.stderr.read().decode()
+    assert process.wait() == 0, stderr
+    assert "Traceback" not in stderr and "BrokenPipe" not in stderr, stderr

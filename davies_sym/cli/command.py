@@ -5,6 +5,8 @@ status (2 bad input, 3 a design the formulas do not cover), never a traceback.""
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
 import os
 import sys
 import tempfile
@@ -153,6 +155,17 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    try:
+        return _main(argv)
+    except BrokenPipeError:
+        # The reader of the output went away (derive ... | head): it has what it wanted.
+        # Python would report the pipe again when it flushes stdout at exit: point it nowhere.
+        with contextlib.suppress(OSError, ValueError, io.UnsupportedOperation):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+
+
+def _main(argv: Sequence[str] | None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["calibrate"]:
         from davies_sym.calibration.command import run as calibration_command
@@ -211,6 +224,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.json:
             print(status_json("bad input", reason))
         return 2
+    except BrokenPipeError:
+        raise  # the reader of the output went away: `main` stops quietly
     except OSError as exc:  # the system refused something the checks above did not foresee
         print(f"derive: {args.files[0]}: {exc.strerror or exc} ({shortened(str(exc.filename))})", file=sys.stderr)
         return 2

@@ -401,3 +401,23 @@ def test_a_reader_that_stops_early_gets_no_traceback(args):
     stderr = process.stderr.read().decode()
     assert process.wait() == 0, stderr
     assert "Traceback" not in stderr and "BrokenPipe" not in stderr, stderr
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "entry", "words"),
+    [
+        ("  1: {link: 1, radius: r1}", "  1: {link: 1, radius: eta_C}", "gears.1.radius", "eta_C is the name of"),
+        ("  1: {link: 1, radius: r1}", "  1: {link: 1, radius: tau_in}", "gears.1.radius", "input torque"),
+        ("friction: {coulomb: zeta_C}}", "efficiency: r1}", "couplings.C.efficiency", "one symbol has one meaning"),
+    ],
+    ids=["radius-is-the-mesh-efficiency", "radius-is-the-input-torque", "efficiency-is-a-radius"],
+)
+def test_one_symbol_in_two_roles_is_refused_where_the_second_is_written(tmp_path, old, new, entry, words):
+    """A radius called eta_C (the name of mesh C's ordinary efficiency), a radius called
+    tau_in (the formulas' input torque), a mesh efficiency written as the radius r1: each
+    was derived as if the two meanings were one."""
+    text = replaced(PAIR, old, new)
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, new.strip()[:20]), entry)
+    assert words in result.stderr, result.describe()

@@ -217,7 +217,8 @@ def test_viscous_on_the_output_by_hand_when_it_is_the_input() -> None:
 
 
 def test_operating_point_names_are_reserved() -> None:
-    with pytest.raises(davies_sym.InputError, match="omega_in, tau_in name the input torque and speed"):
+    """Refused on load, where the file writes them."""
+    with pytest.raises(davies_sym.InputError, match=r"friction.viscous: 'tau_in' is the input torque of the formulas"):
         derive_variants(_pair(a=", friction: {viscous: tau_in*omega_in}"))
 
 

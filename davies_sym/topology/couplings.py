@@ -224,6 +224,18 @@ class GearMesh(Coupling):
                 f"{path}.mesh",
                 f"stated {shortened(str(stated))} but the gears make an {'internal' if internal else 'external'} mesh",
             )
+        for own, meaning, role, given in (
+            (f"zeta_{name}", "mesh friction coefficient", "friction", "friction" in entry),
+            (f"eta_{name}", "ordinary efficiency", "efficiency", "efficiency" in entry),
+        ):
+            elsewhere = reader.written.get(own)
+            if not given and elsewhere is not None and not elsewhere.startswith(path):
+                # The mesh's own symbol, already written in another role (a radius called eta_G):
+                # said once, where it was written.
+                reader.problem(
+                    elsewhere, f"{own} is the name of the {meaning} of mesh {name}; give this symbol another name"
+                )
+                reader.roles[own] = role
         default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default, name)
         value = entry.get("efficiency", f"eta_{name}")

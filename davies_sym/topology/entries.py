@@ -45,6 +45,8 @@ class EntryReader:
         self.absent: set[str] = set()
         #: The entry where each symbol is first written (``r1`` -> ``gears.1.radius``).
         self.written: dict[str, str] = {}
+        #: The role each symbol was first read in (``r1`` -> ``length``).
+        self.roles: dict[str, str] = {}
         #: (kind, name) of each unknown name reported: its problem's index, message and other places.
         self._unknown: dict[tuple[str, str], tuple[int, str, list[str]]] = {}
 
@@ -142,7 +144,21 @@ class EntryReader:
             return None
         for new in self.symbols.keys() - known:
             self.written.setdefault(new, path)
+            self.roles.setdefault(new, role)
+        # An ordinary efficiency is a number in (0, 1], a length is not: one symbol is not both.
+        for name in sorted(str(s) for s in read.free_symbols) if isinstance(read, sympy.Basic) else ():
+            first = self.roles.get(name)
+            if first is not None and first != role and "efficiency" in (first, role):
+                self.problem(
+                    path,
+                    f"{name} is written as {_a(first)} at {self.written.get(name, '?')} and here as {_a(role)}: "
+                    "one symbol has one meaning; give one of them another name",
+                )
         return read
+
+
+def _a(role: str) -> str:
+    return f"{'an' if role[0] in 'aeiou' else 'a'} {role}"
 
 
 def describe(value: Any) -> str:

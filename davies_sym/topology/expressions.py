@@ -63,6 +63,9 @@ FORMULA_MODULE_NAMES = frozenset(
         *("efficiency", "losses", "region", "speed_ratio", "speeds", "torques", "values", "variant"),
     }
 )
+#: The operating point of the formulas: input torque and speed, and the load of a train
+#: driven on several shafts.
+OPERATING_NAMES = {"tau_in": "input torque", "omega_in": "input speed", "tau_out": "load torque"}
 #: Names a symbol may not take: Python keywords and built-ins (a generated formula
 #: module uses them), the grammar's functions and constants, the non-finite names and
 #: the names the generated modules define for themselves.
@@ -81,6 +84,7 @@ RESERVED_NAMES = frozenset(
         "input",
         "errors",
         "state",
+        *OPERATING_NAMES,
         *FORMULA_MODULE_NAMES,
     ]
 )
@@ -98,6 +102,8 @@ def check_name(name: str) -> str | None:
         )
     if name in NON_FINITE_NAMES or name.lower() in {"nan", "inf", "infinity"}:
         return f"{name!r} reads as a value that is not finite; write a finite number, or name the symbol {name}_1"
+    if name in OPERATING_NAMES:
+        return f"{name!r} is the {OPERATING_NAMES[name]} of the formulas; choose another name, e.g. {name}_1"
     if name in RESERVED_NAMES:
         return f"{name!r} is a reserved name (a Python or formula-module name); choose another, e.g. {name}_1"
     return None

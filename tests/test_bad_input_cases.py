@@ -421,3 +421,23 @@ def test_one_symbol_in_two_roles_is_refused_where_the_second_is_written(tmp_path
     result = run_main([path, "--quiet"])
     assert_at(result, path, line_of(text, new.strip()[:20]), entry)
     assert words in result.stderr, result.describe()
+
+
+@pytest.mark.skipif(not hasattr(os, "geteuid") or os.geteuid() != 0, reason="making a device node needs root")
+def test_output_to_a_device_writes_to_it_and_keeps_it(tmp_path):
+    """``-o /dev/null`` as root: renaming a file over the device would have replaced it."""
+    import stat
+
+    device = tmp_path / "nulldev"
+    os.mknod(device, 0o666 | stat.S_IFCHR, os.makedev(1, 3))
+    result = run_main([CATALOG / "simple_pair.yaml", "--quiet", "-o", device])
+    assert result.returncode == 0, result.describe()
+    assert stat.S_ISCHR(os.stat(device).st_mode)
+
+
+@needs_proc
+def test_calibration_figure_that_cannot_be_written_is_refused_by_name(tmp_path):
+    data = CATALOG / "data" / "sr20_table1.csv"
+    result = run_main(["calibrate", CATALOG / "sr20_differential.yaml", data, "--quiet", "-o", "/proc/fit.png"])
+    assert result.returncode == 2 and "Traceback" not in result.stderr, result.describe()
+    assert "cannot write /proc/fit.png" in result.stderr, result.describe()

@@ -148,6 +148,10 @@ def run(argv: Sequence[str]) -> int:
             document["mean_absolute_error"] = error
             lines.append(f"mean absolute error against the measured eta: {error:.4f}")
     if args.out:
-        write_atomic(args.out, residual_figure(result, suffix=suffix))
+        try:
+            write_atomic(args.out, residual_figure(result, suffix=suffix))
+        except OSError as exc:
+            print(f"derive calibrate: -o: cannot write {exc.filename}: {exc.strerror or exc}", file=sys.stderr)
+            return 2
     print(json.dumps(document, indent=2) if args.json else "\n".join(lines))
     return 0

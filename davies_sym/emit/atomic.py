@@ -19,7 +19,15 @@ def _mode_for(path: str) -> int:
 
 def write_atomic(path: str, text: str | bytes) -> None:
     """Write ``text`` (or bytes) to ``path`` so that readers see the old or the new file, never half; an
-    `OSError` names ``path``."""
+    `OSError` names ``path``.  A device or pipe (``-o /dev/null``) is written to as it is:
+    renaming a file over it would replace the device."""
+    if os.path.exists(path) and not os.path.isfile(path) and not os.path.isdir(path):
+        try:
+            with open(path, "wb") as stream:
+                stream.write(text if isinstance(text, bytes) else text.encode("utf-8"))
+        except OSError as exc:
+            raise _about(exc, path) from None
+        return
     directory = os.path.dirname(os.path.abspath(path))
     try:
         fd, tmp = tempfile.mkstemp(prefix=".", suffix=".tmp", dir=directory)

@@ -2,7 +2,6 @@
 closed-form efficiency (``derive search``).
 
 - `davies_sym.synthesis.problem`: the search asked for, read and checked -> `SearchProblem`
-- `davies_sym.synthesis.intervals`: bounds of a rational function over a box of tooth numbers
 - `davies_sym.synthesis.enumeration`: every design whose ratios can reach their targets,
   by exact-bound pruning, never the blind product of the ranges
 - `davies_sym.synthesis.planet_sets`: the planet sets of a train and their assembly and

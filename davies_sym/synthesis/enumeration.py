@@ -81,14 +81,13 @@ class _Filter:
             self.tests.append((frozenset(symbols), symbols, function, low, high))
         self.examined = 0
 
-    def __call__(self, table: Table, done: frozenset[sympy.Symbol] = frozenset()) -> Table:
-        """The rows of ``table`` that every window bound by its columns (and not bound by
-        ``done`` alone, already applied) admits."""
+    def __call__(self, table: Table) -> Table:
+        """The rows of ``table`` that every window bound by its columns admits."""
         keep = np.ones(len(table), dtype=bool)
         bound = frozenset(table.symbols)
         self.examined += len(table)
         for uses, symbols, function, low, high in self.tests:
-            if not uses <= bound or uses <= done:
+            if not uses <= bound:
                 continue
             with np.errstate(all="ignore"):
                 value = np.asarray(function(*(table.column(s)[keep].astype(float) for s in symbols)), dtype=float)
@@ -153,12 +152,10 @@ def _size(left: Table, right: Table) -> int:
 
 def _join(left: Table, right: Table, check: _Filter) -> Table:
     """The join of two tables, filtered by every window it binds, in slices of `MAX_ROWS`."""
-    done = frozenset(left.symbols) | frozenset(right.symbols)
     if len(right) > len(left):
         left, right = right, left
     step = max(1, MAX_ROWS // max(1, len(right)))
     parts = [check(_join_slice(Table(left.symbols, left.rows[k : k + step]), right)) for k in range(0, len(left), step)]
-    del done
     symbols = parts[0].symbols if parts else (*left.symbols, *(s for s in right.symbols if s not in left.symbols))
     rows = np.concatenate([p.rows for p in parts]) if parts else np.zeros((0, len(symbols)), dtype=np.int64)
     return Table(symbols, rows)

@@ -32,7 +32,6 @@ import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from fractions import Fraction
 
 import numpy as np
 import sympy
@@ -162,58 +161,11 @@ def _carrier_axis(layout: Layout, centrals: list[str]) -> tuple[sympy.Expr, ...]
     return tuple(sympy.Integer(0) for _ in range(3))
 
 
-def _speed_ratio(steps: tuple[Step, ...], teeth: Mapping[str, int]) -> Fraction:
-    """The speed of the last gear's link over the first gear's, relative to the carrier."""
-    out = Fraction(1)
-    for s in steps:
-        out *= Fraction(teeth[s.previous], teeth[s.gear]) * (1 if s.internal else -1)
-    return out
-
-
-def assembly_residues(pset: PlanetSet, teeth: Mapping[str, int], n: int) -> tuple[list[Fraction], list[list[Fraction]]]:
-    """For each further central gear i: z_i (1 - rho_i)/n and the shifts s_ij of the
-    planets' re-phasings (one tooth of each planet's entry gear), in Gi's teeth."""
-    constants: list[Fraction] = []
-    shifts: list[list[Fraction]] = []
-    for central in pset.centrals[1:]:
-        path = pset.paths[central]
-        rho = _speed_ratio(path, teeth)
-        constants.append(teeth[central] * (1 - rho) / n)
-        row = []
-        for planet in pset.planets:
-            if planet not in pset.paths or pset.paths[planet] != path[: len(pset.paths[planet])]:
-                row.append(Fraction(0))
-                continue
-            rest = path[len(pset.paths[planet]) :]
-            # One tooth of the entry gear turns the planet 1/z_entry; carried to Gi along the rest.
-            turn = Fraction(1, teeth[pset.entry[planet]]) * _speed_ratio(rest, teeth) if rest else Fraction(0)
-            row.append(turn * teeth[central])
-        shifts.append(row)
-    return constants, shifts
-
-
-def assembles(pset: PlanetSet, teeth: Mapping[str, int], n: int) -> bool | None:
-    """Whether ``n`` equally spaced copies of the group can be assembled (None: more
-    re-phasings than `MAX_PHASINGS` would have to be tried)."""
-    constants, shifts = assembly_residues(pset, teeth, n)
-    if not constants:
-        return True
-    periods = [math.lcm(*(s[j].denominator for s in shifts)) for j in range(len(pset.planets))]
-    if math.prod(periods) > MAX_PHASINGS:
-        return None
-    for ks in itertools.product(*(range(p) for p in periods)):
-        if all(
-            (c + sum(k * s for k, s in zip(ks, row, strict=True))).denominator == 1
-            for c, row in zip(constants, shifts, strict=True)
-        ):
-            return True
-    return False
-
-
 def _ratio_rows(
     steps: tuple[Step, ...], teeth: Mapping[str, NDArray[np.int64]]
 ) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """`_speed_ratio` at every row: numerator and (positive) denominator arrays."""
+    """The speed of the last gear's link over the first gear's, relative to the carrier, at
+    every row: numerator and (positive) denominator arrays."""
     size = len(next(iter(teeth.values())))
     num, den = np.ones(size, dtype=np.int64), np.ones(size, dtype=np.int64)
     for s in steps:
@@ -224,13 +176,28 @@ def _ratio_rows(
     return num, den
 
 
+def assembles(pset: PlanetSet, teeth: Mapping[str, int], n: int) -> bool | None:
+    """Whether ``n`` equally spaced copies of the group can be assembled at one design
+    (None: more re-phasings than `MAX_PHASINGS` would have to be tried)."""
+    fits, tried = _assembly(pset, {g: np.array([z], dtype=np.int64) for g, z in teeth.items()}, n)
+    return bool(fits[0]) if tried[0] else None
+
+
 def assembles_rows(pset: PlanetSet, teeth: Mapping[str, NDArray[np.int64]], n: int) -> NDArray[np.bool_]:
-    """`assembles` at every row of ``teeth`` (arrays by gear name), vectorised: for each
-    re-phasing k (up to each planet's largest tooth period) the residues are tested on all
-    rows at once.  A row whose periods exceed `MAX_PHASINGS` counts as not assembling."""
+    """`assembles` at every row of ``teeth`` (arrays by gear name); a row whose periods
+    exceed `MAX_PHASINGS` counts as not assembling."""
+    return _assembly(pset, teeth, n)[0]
+
+
+def _assembly(
+    pset: PlanetSet, teeth: Mapping[str, NDArray[np.int64]], n: int
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+    """Where the group assembles, and where that was decided (within `MAX_PHASINGS`), at
+    every row, vectorised: for each re-phasing k (up to each planet's largest tooth
+    period) the residues z_i (1 - rho_i)/n + sum_j k_j s_ij are tested on all rows at once."""
     size = len(next(iter(teeth.values())))
     if len(pset.centrals) < 2:
-        return np.ones(size, dtype=bool)
+        return np.ones(size, dtype=bool), np.ones(size, dtype=bool)
     constants = []  # (numerator, denominator) of z_i (1 - rho_i)/n
     shifts = []  # per central: (numerator, denominator) per planet
     for central in pset.centrals[1:]:
@@ -261,7 +228,7 @@ def assembles_rows(pset: PlanetSet, teeth: Mapping[str, NDArray[np.int64]], n: i
     tried = total <= MAX_PHASINGS
     largest = [int(p[tried].max()) if tried.any() else 1 for p in periods]
     if math.prod(largest) > MAX_PHASINGS:
-        return fits
+        return fits, np.zeros(size, dtype=bool)
     for ks in itertools.product(*(range(p) for p in largest)):
         ok = tried & ~fits
         for (cn, cd), row in zip(constants, shifts, strict=True):
@@ -276,4 +243,4 @@ def assembles_rows(pset: PlanetSet, teeth: Mapping[str, NDArray[np.int64]], n: i
         fits |= ok
         if fits[tried].all():
             break
-    return fits
+    return fits, tried

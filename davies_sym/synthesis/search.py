@@ -105,18 +105,6 @@ def _windows(problem: SearchProblem, formulas: Sequence[StateFormulas]) -> list[
     return out
 
 
-def _gear_teeth(problem: SearchProblem, teeth: Mapping[str, int]) -> dict[str, int]:
-    """Tooth number of every gear by gear name."""
-    out = {}
-    for g in problem.train.gears:
-        value = g.teeth
-        if isinstance(value, sympy.Basic):
-            value = value.subs({s: teeth[str(s)] for s in value.free_symbols})
-        if value is not None:
-            out[g.name] = int(value)
-    return out
-
-
 def _planet_rules(problem: SearchProblem, sets: Sequence[PlanetSet]) -> list[rules.Rule]:
     if problem.planets is None:
         note = "no --planets given"
@@ -135,13 +123,19 @@ def _planet_rules(problem: SearchProblem, sets: Sequence[PlanetSet]) -> list[rul
 def _gear_columns(
     problem: SearchProblem, teeth: Mapping[str, NDArray[np.int64]], size: int
 ) -> dict[str, NDArray[np.int64]]:
-    """Tooth numbers of every gear (by gear name) at every row; a gear without teeth is left out."""
+    """Tooth numbers of every gear (by gear name) at every row: a number, a tooth symbol or
+    an expression of them; a gear without teeth is left out."""
     out = {}
     for g in problem.train.gears:
-        if isinstance(g.teeth, sympy.Symbol):
-            out[g.name] = teeth[str(g.teeth)]
-        elif g.teeth is not None and sympy.sympify(g.teeth).is_Integer:
-            out[g.name] = np.full(size, int(g.teeth), dtype=np.int64)
+        if g.teeth is None:
+            continue
+        value = sympy.sympify(g.teeth)
+        symbols = sorted(value.free_symbols, key=str)
+        if not {str(s) for s in symbols} <= set(teeth):
+            continue
+        evaluate = sympy.lambdify(symbols, value, "numpy")
+        column = np.broadcast_to(np.asarray(evaluate(*(teeth[str(s)] for s in symbols))), (size,))
+        out[g.name] = column.astype(np.int64)
     return out
 
 
@@ -232,6 +226,9 @@ def _ranked(
     weights = {f.target.state: f.target.weight for f in formulas}
     total = sum(weights.values())
     internal = {g.name for g in problem.train.gears if g.internal}
+    gears = _gear_columns(problem, arrays, len(kept))
+    # The set's size: its largest ring where it has one, else its largest gear.
+    sizes = np.max(np.stack([c for g, c in gears.items() if g in internal] or list(gears.values())), axis=0)
     etas = {s: np.broadcast_to(e, (len(kept),)) for s, e in etas.items()}
     running = rules.runs(etas)
     out = []
@@ -241,8 +238,6 @@ def _ranked(
         efficiencies = {s: float(e[k]) for s, e in etas.items()}
         score = sum(weights[s] * e for s, e in efficiencies.items()) / total
         error = max(float(abs(ratios[f.target.state] - f.target.ratio) / abs(f.target.ratio)) for f in formulas)
-        gear_teeth = _gear_teeth(problem, teeth)
-        rings = [z for g, z in gear_teeth.items() if g in internal]
-        out.append(Candidate(teeth, ratios, efficiencies, score, error, max(rings or gear_teeth.values())))
+        out.append(Candidate(teeth, ratios, efficiencies, score, error, int(sizes[k])))
     out.sort(key=lambda c: (-c.score, c.ratio_error, c.size, tuple(c.teeth.values())))
     return tuple(out)

@@ -313,6 +313,41 @@ def _library(path: Path, program: Program, kind: str) -> ctypes.CDLL:
     return library
 
 
+#: The reasons of the Python module's DesignError, in the order of its message, and the
+#: number the other languages' ``reason`` gives each (a train driven at one port; at several).
+_REASON_WORDS = (
+    ("design point(s) outside the admissible parameters", 1),
+    ("where a port does not turn", 4),
+    ("where no variant's power flow agrees", 2),
+    ("where the train self-locks", 3),
+)
+_SEVERAL_REASON_WORDS = (
+    ("point(s) outside the parameters' ranges", 1),
+    ("on a speed-condition line", 4),
+    ("where no region's loaded forces agree", 2),
+    ("with an efficiency outside (0, 1]", 3),
+)
+
+
+def _python_reasons(case: Case) -> np.ndarray:
+    """Per point, why the Python module (``errors="raise"``) gives no efficiency: the
+    reason whose count its message gives as 1, numbered as ``REASONS`` of the other
+    languages (0 where it gives an efficiency)."""
+    out = np.zeros(len(case.expected))
+    for k in range(len(case.expected)):
+        point = {n: case.points[n][k] for n in case.parameters}
+        port = {} if case.several else {"input": case.ports[int(case.port[k])]}
+        words = _SEVERAL_REASON_WORDS if case.several else _REASON_WORDS
+        try:
+            case.module.efficiency(errors="raise", **port, **point)
+        except case.module.DesignError as exc:
+            found = [re.search(rf"(\d+) {re.escape(said)}", str(exc)) for said, _ in words]
+            counts = [int(m.group(1)) if m else -1 for m in found]
+            assert sorted(counts) == [0, 0, 0, 1], str(exc)
+            out[k] = words[counts.index(1)][1]
+    return out
+
+
 def _compare_compiled(case: Case, library: ctypes.CDLL, program: Program, prefix: str) -> dict[str, object]:
     """The choice and every variant (region) and condition function against the Python module."""
     n = len(case.expected)
@@ -325,6 +360,17 @@ def _compare_compiled(case: Case, library: ctypes.CDLL, program: Program, prefix
         assert all(np.isnan(entry(*case.arguments(k), 2)) for k in range(min(n, 20)))
     compared, worst = _agree(got, case.expected)
     assert compared >= len(case.expected) // 4, "too few points where the efficiency is defined"
+    # Why there is no efficiency: the reason the Python module's DesignError gives.
+    reason = getattr(library, prefix + "reason")
+    ports = [[] if case.several else [int(case.port[k])] for k in range(n)]
+    said = np.array([reason(*case.arguments(k), *ports[k]) for k in range(n)])
+    expected_reasons = _python_reasons(case)
+    differ = said != expected_reasons
+    assert not differ.any(), (
+        f"reasons differ at {np.flatnonzero(differ)[:10]}: got {said[differ][:10]}, "
+        f"the Python module says {expected_reasons[differ][:10]}"
+    )
+    assert set(expected_reasons.tolist()) >= {0.0, 1.0}, "the points reach no refusal"
     formulas = 0
     for routine in program.routines:
         python = getattr(case.module, routine.name, None)

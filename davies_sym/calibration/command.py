@@ -21,6 +21,7 @@ from davies_sym.calibration.least_squares import Fit, fit
 from davies_sym.calibration.measurements import Measurements, read_measurements
 from davies_sym.calibration.report import fit_text, residual_figure
 from davies_sym.calibration.train_model import TrainModel, columns_of, fittable_parameters
+from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
@@ -58,7 +59,10 @@ def parser() -> argparse.ArgumentParser:
 
 
 def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
-    return {name: float(value) for name, value in assignments(pairs, "--at", train.path).items()}
+    """The values of ``--at`` by name, each checked against its symbol's role as every
+    entry point checks a design (`design_values`)."""
+    given = assignments(pairs, "--at", train.path)
+    return {str(symbol): float(value) for symbol, value in design_values(train, given, "--at", ()).items()}
 
 
 def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[str] | None) -> tuple[str, ...]:
@@ -121,11 +125,12 @@ def run(argv: Sequence[str]) -> int:
         return 2
     try:
         train = load(args.train)
+        fixed = _fixed(train, args.at)  # checked before the derivation
         derived = derived_model(train)
         columns = columns_of(derived)
         data = read_measurements(args.data, [*columns, "eta"])
         others = [read_measurements(path, columns, ["eta"]) for path in args.predict or ()]
-        model, result = calibrate(derived, data, args.fit, _fixed(train, args.at))
+        model, result = calibrate(derived, data, args.fit, fixed)
     except CalibrationError as exc:
         print(f"derive calibrate: {exc}", file=sys.stderr)
         return 2

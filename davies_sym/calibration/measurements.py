@@ -209,6 +209,13 @@ class _Table:
                 else:
                     if not math.isfinite(value):
                         self.problem(f"column {name!r}", f"{_shown(cell)} is not a finite number", line)
+                    elif name == "eta" and not 0 < value <= 1:
+                        self.problem(
+                            f"column {name!r}",
+                            f"{_shown(cell)} is not an efficiency: a measured efficiency lies in (0, 1]; "
+                            "correct the row or remove it",
+                            line,
+                        )
             self.numbers[name].append(value)
 
     def result(self) -> Measurements:

@@ -5,7 +5,9 @@ choice, each refusing bad input with a message naming the option."""
 from __future__ import annotations
 
 import argparse
+import math
 from collections.abc import Collection, Iterable, Mapping, Sequence
+from typing import Any
 
 import sympy
 
@@ -101,7 +103,39 @@ def plot_sweeps(
         raise InputError(
             [Problem("--vs", f"{x.name} is swept by --plot already: give --vs another parameter")], train.path
         )
+    swept = {s.name: option for s, option in ((x, "--plot"), (y, "--vs")) if s is not None}
+    for pair in args.at or ():
+        name = pair.partition("=")[0].strip()
+        if name in swept:
+            raise InputError([Problem("--at", f"{name} is swept by {swept[name]}: leave it out of --at")], train.path)
     return x, y
+
+
+def check_sweep_ranges(
+    sweeps: Iterable[Sweep | None], parameters: Iterable[Mapping[str, Any]], source: str | None
+) -> None:
+    """Refuse a sweep that lies wholly outside its parameter's admissible range
+    (``PARAMETERS`` of the formula module: ``low < value <= high``, ``low`` included when
+    ``closed_low``): the figure would have no admissible point."""
+    ranges = {p["name"]: p for p in parameters}
+    for sweep, option in zip(sweeps, ("--plot", "--vs"), strict=False):
+        p = ranges.get(sweep.name) if sweep is not None else None
+        if sweep is None or p is None:
+            continue
+        below = sweep.stop < p["low"] or (sweep.stop == p["low"] and not p["closed_low"])
+        if below or sweep.start > p["high"]:
+            low = "[" if p["closed_low"] else "("
+            high = "inf)" if math.isinf(p["high"]) else f"{p['high']:g}]"
+            raise InputError(
+                [
+                    Problem(
+                        option,
+                        f"{sweep.name} lies in {low}{p['low']:g}, {high} ({p['meaning']}): the interval "
+                        f"{sweep.start:g}:{sweep.stop:g} has no admissible value",
+                    )
+                ],
+                source,
+            )
 
 
 def figure_suffix(path: str, source: str | None) -> str:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import errno
 import io
 import os
 import sys
@@ -24,6 +25,8 @@ Progress = Callable[[str], None]
 def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
     """Before anything is derived: an output goes into an existing folder and never
     replaces an input file."""
+    if not target.strip():
+        raise InputError([Problem(option, "the file name is empty; give a file name")], inputs[0])
     folder = os.path.dirname(os.path.abspath(target))
     if not os.path.isdir(folder):
         # The nearest ancestor that exists says why: a missing folder or a file in the way.
@@ -84,7 +87,12 @@ def _write(outputs: Sequence[tuple[str | None, str | bytes]], options: dict[str,
     not let us write is reported at its option (``-o``, ``--python``) by the name given."""
     for target, content in outputs:
         if target is None:
-            sys.stdout.write(content if isinstance(content, str) else content.decode())
+            try:
+                sys.stdout.write(content if isinstance(content, str) else content.decode())
+            except OSError as exc:
+                if exc.errno == errno.EBADF:  # closed under Python's own stream
+                    raise _StdoutClosed from None
+                raise
             continue
         try:
             write_atomic(target, content)
@@ -108,7 +116,7 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
     from davies_sym.topology.loader import build_train
 
     path = args.files[0]
-    targets = [(target, option) for target, option in ((args.python, "--python"), (args.out, "-o")) if target]
+    targets = [(t, option) for t, option in ((args.python, "--python"), (args.out, "-o")) if t is not None]
     for target, option in targets:
         _check_target(target, option, [path])
     _check_distinct(targets, path)
@@ -153,10 +161,34 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler)
 
 
+class _ClosedOutput(io.TextIOBase):
+    """Standard output when the shell closed it (``derive ... >&-``): Python leaves
+    ``sys.stdout`` None; a write raises `_StdoutClosed` so the command can say so."""
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        raise _StdoutClosed
+
+
+class _StdoutClosed(Exception):
+    """Something was to be printed on a closed standard output."""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    if sys.stdout is None:
+        sys.stdout = _ClosedOutput()
     try:
         return _main(argv)
+    except _StdoutClosed:
+        if sys.stderr is not None:
+            print(
+                "derive: standard output is closed: nothing could be printed; write to a file with -o FILE",
+                file=sys.stderr,
+            )
+        return 2
     except BrokenPipeError:
         # The reader of the output went away (derive ... | head): it has what it wanted.
         # Python would report the pipe again when it flushes stdout at exit: point it nowhere.

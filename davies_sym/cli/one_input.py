@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from collections.abc import Callable, Sequence
+from dataclasses import asdict
 
 import sympy
 
 from davies_sym.cli.arguments import (
     check_emit,
+    check_sweep_ranges,
     eval_port,
     figure_suffix,
     held_values,
@@ -48,6 +51,7 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     train = variants.train
     operating = operating_symbols(variants)
     x, y = plot_sweeps(train, args, [*train.symbols, *map(str, operating)])
+    check_sweep_ranges((x, y), [asdict(p) for p in variants.parameter_table], train.path)
     port = eval_port(train, args)
     # A published value for a name the file no longer has (written as a number) is not a default.
     published = {k: v for k, v in train.published_design(args.state).items() if k in train.symbols}
@@ -68,7 +72,7 @@ def derive_sets(
     if not train.states:
         if state is not None:
             raise InputError([Problem("--state", "the train has no states")], train.path)
-        return [("", derive_variants(train, progress=progress, inputs=inputs))]
+        return _published_complete(train, [("", derive_variants(train, progress=progress, inputs=inputs))])
     names = [st.name for st in train.states]
     if state is not None and state not in names:
         raise InputError([Problem("--state", f"unknown state {state!r} (states: {', '.join(names)})")], train.path)
@@ -84,7 +88,26 @@ def derive_sets(
     if not out and first is not None:
         failures.clear()
         raise first
-    return out
+    return _published_complete(train, out)
+
+
+def _published_complete(train: Train, sets: list[tuple[str, VariantSet]]) -> list[tuple[str, VariantSet]]:
+    """``sets``; a published check (``expected:``) of their states that leaves out a
+    parameter of the formulas can never be evaluated: said on standard error (the
+    derivation stands; a figure's defaults then lack that value)."""
+    for i, check in enumerate(train.expected):
+        for name, vs in sets:
+            missing = vs.missing(check.values) if check.state in (None, name or None) else []
+            if missing:
+                taken = ", ".join(map(str, vs.parameters))
+                problem = train.problem(
+                    f"expected[{i}].values",
+                    f"the check gives no value for {', '.join(missing)} and cannot be evaluated: add "
+                    f"{missing[0]}: NUMBER (the formulas take {taken})",
+                )
+                print(f"derive: warning: {problem.format(train.path)}", file=sys.stderr)
+                break
+    return sets
 
 
 def _state_entry(vs: VariantSet) -> dict[str, object]:

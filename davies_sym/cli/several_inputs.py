@@ -8,7 +8,7 @@ import argparse
 import json
 from collections.abc import Callable
 
-from davies_sym.cli.arguments import check_emit, figure_suffix, held_values, plot_sweeps
+from davies_sym.cli.arguments import check_emit, check_sweep_ranges, figure_suffix, held_values, plot_sweeps
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.emit.languages import emit_code
 from davies_sym.emit.plots import figure_bytes
@@ -78,6 +78,7 @@ def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
     module = several_inputs_formulas(si)
     names = [p["name"] for p in module.PARAMETERS]
     x, y = plot_sweeps(train, args, names)
+    check_sweep_ranges((x, y), module.PARAMETERS, train.path)
     given = assignments(args.at, "--at", train.path)
     unknown = sorted(set(given) - set(names))
     if unknown:

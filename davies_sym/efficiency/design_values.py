@@ -20,6 +20,7 @@ from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.errors import InputError, Problem, shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.checks import friction_coefficient_symbols, mesh_efficiency_symbols, role_problem
+from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
@@ -60,6 +61,7 @@ def design_values(
     efficiencies = mesh_efficiency_symbols(train.couplings)
     coefficients = friction_coefficient_symbols(train.couplings)
     defined = {d.symbol: d for d in train.definitions}
+    solved = solved_coefficients(train)
     problems: list[Problem] = []
     out: dict[sympy.Symbol, sympy.Expr] = {}
     for key, value in values.items():
@@ -69,6 +71,9 @@ def design_values(
             problems.append(
                 Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(sorted(names))})")
             )
+            continue
+        if symbol in solved:
+            problems.append(Problem(option, solved[symbol]))
             continue
         if symbol in defined and not _exact_spelling(defined[symbol], values):
             # The cosine or sine of an angle may stand for it (cos_beta = 3/5, exact); a loss
@@ -94,6 +99,22 @@ def design_values(
         out[symbol] = number
     if problems:
         raise InputError(problems, train.path)
+    return out
+
+
+def solved_coefficients(train: Train) -> dict[sympy.Symbol, str]:
+    """The meshes' friction coefficients, each with why it takes no value: the formulas are
+    in the ordinary efficiency, from which the coefficient is solved (Laus eqs. (32), (34))."""
+    out = {}
+    for c in train.couplings:
+        if isinstance(c, GearMesh):
+            law = c.friction.coulomb if c.friction.coulomb is not None else c.friction.linear
+            if isinstance(law, sympy.Symbol):
+                names = ", ".join(dict.fromkeys(str(e) for e in c.efficiencies or ()))
+                out[law] = (
+                    f"{law} is the friction coefficient of mesh {c.name}, solved from its "
+                    f"ordinary efficiency: give {names or 'the efficiency'} instead"
+                )
     return out
 
 

@@ -157,6 +157,17 @@ class VariantSet:
         used: set[sympy.Symbol] = set(self.symbols) | ratio.free_symbols
         return used
 
+    def missing(self, values: Mapping[sympy.Symbol | str, object]) -> list[str]:
+        """The names a design written as ``values`` (a published check) leaves out: the
+        parameters of the formulas that are neither given, nor implied by the geometry (a
+        dependent radius), nor the operating point (input torque and speed), by name."""
+        given = {str(k) for k in values}
+        implied = {str(r.symbol) for r in resolved_train(self.train).dependent or ()}
+        implied |= {str(s) for s in OPERATING_SYMBOLS}
+        definitions = [d for d in self.train.definitions if str(d.symbol) not in given]
+        needed = sorted_symbols(parameters_of(self._used, definitions))
+        return [str(s) for s in needed if str(s) not in given | implied]
+
     @property
     def parameter_table(self) -> tuple[Parameter, ...]:
         """Meaning, unit and admissible range of each of `parameters` (the modules' ``PARAMETERS``)."""

@@ -21,6 +21,7 @@ import os
 import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
+from functools import partial
 from types import ModuleType
 from typing import Any
 
@@ -32,7 +33,7 @@ from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
-from davies_sym.errors import MissingDependencyError
+from davies_sym.errors import MissingDependencyError, NotCoveredError
 
 POINTS_1D = 400
 POINTS_2D = 240
@@ -48,6 +49,22 @@ class Sweep:
 
     def values(self, count: int) -> np.ndarray:
         return np.linspace(self.start, self.stop, count)
+
+
+def require_drawn(eta: np.ndarray, efficiency: Callable[..., Any], arguments: Mapping[str, Any], swept: str) -> None:
+    """Refuse (`NotCoveredError`) a figure with nothing to draw: the efficiency is NaN at
+    every point (self-locking or outside the variants' regions throughout).  The reason is
+    the module's own, at the sweep's first point."""
+    if np.isfinite(eta).any():
+        return
+    first = {k: np.ravel(v)[0] if isinstance(v, np.ndarray) else v for k, v in arguments.items()}
+    try:
+        efficiency(errors="raise", **first)
+        reason = "the efficiency is not defined there"
+    except Exception as exc:  # the module's DesignError: its message is the reason
+        reason = str(exc)
+    shown = ", ".join(f"{k}={float(v):g}" for k, v in sorted(first.items()))
+    raise NotCoveredError(f"--plot: no point of the sweep of {swept} has an efficiency to draw; at {shown}: {reason}")
 
 
 def formula_module(variants: VariantSet) -> ModuleType:
@@ -218,6 +235,7 @@ def efficiency_figure(
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), xs.shape)
+    require_drawn(eta, partial(module.efficiency, input=input), arguments, sweep.name)
     losses = {
         k: np.broadcast_to(v, xs.shape) for k, v in module.losses(input=input, errors="ignore", **arguments).items()
     }
@@ -248,6 +266,7 @@ def region_figure(
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
     arguments = {k: v for k, v in kwargs.items() if k in {str(s) for s in formula_symbols(variants)}}
     eta = np.broadcast_to(module.efficiency(input=input, errors="ignore", **arguments), gx.shape)
+    require_drawn(eta, partial(module.efficiency, input=input), arguments, f"{x.name} and {y.name}")
     numbers = _variant_numbers(module, arguments, input, gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
     figure = new_figure(7.0, 5.5)

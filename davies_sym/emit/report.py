@@ -179,5 +179,8 @@ def kinematics_text(document: dict[str, Any]) -> str:
         f"{', '.join(document['primary_speeds'])}",
     ]
     lines += [f"  {name} = {expr}" for name, expr in document["kinematics"].items()]
-    lines.append("  (the efficiency with several inputs is not derived yet)")
+    lines.append(
+        f"  (no efficiency: a train of {document['degrees_of_freedom']} degrees of freedom needs as many "
+        "input ports; list them in ports.input, e.g. input: [A, K])"
+    )
     return "\n".join(lines)

@@ -28,6 +28,7 @@ from davies_sym.emit.plots import (
     label,
     map_regions,
     new_figure,
+    require_drawn,
     shade_regions,
 )
 from davies_sym.emit.several_inputs_module import several_inputs_formulas
@@ -52,6 +53,7 @@ def several_region_figure(
     kwargs: dict[str, Any] = {**values, x.name: gx, y.name: gy}
     required = [p["name"] for p in module.PARAMETERS]
     eta = np.broadcast_to(module.efficiency(errors="ignore", **{k: kwargs[k] for k in required}), gx.shape)
+    require_drawn(eta, module.efficiency, {k: kwargs[k] for k in required}, f"{x.name} and {y.name}")
     numbers = np.broadcast_to(module.region(**{k: kwargs[k] for k in required}), gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
     with np.errstate(all="ignore"):
@@ -93,6 +95,7 @@ def several_efficiency_figure(
     kwargs: dict[str, Any] = {**values, sweep.name: xs}
     required = {k: kwargs[k] for k in (p["name"] for p in module.PARAMETERS)}
     eta = np.broadcast_to(module.efficiency(errors="ignore", **required), xs.shape)
+    require_drawn(eta, module.efficiency, required, sweep.name)
     torques = {k: np.broadcast_to(v, xs.shape) for k, v in module.torques(errors="ignore", **required).items()}
     numbers = np.broadcast_to(module.region(**required), xs.shape)
     figure = new_figure(7.5, 6.5)

@@ -278,12 +278,20 @@ class Network:
         return loads
 
     def _check_names(self) -> None:
-        clash = {v.name for v in self.motions} | {v.name for v in self.actions}
-        clash &= set(self.train.symbols)
+        """A symbol of the file named like a magnitude of the network (``t_A``) or the sign
+        of a Coulomb friction force (``sigma_C``): one name would stand for two quantities."""
+        magnitudes = {v.name for v in self.motions} | {v.name for v in self.actions}
+        signs = {f"sigma_{law.coupling}" for law in self.laws if law.law == "coulomb"}
+        clash = (magnitudes | signs) & set(self.train.symbols)
         if clash:
             raise TopologyError(
                 [
-                    Problem("", f"symbol {n!r} is also the name of a motion or action magnitude; rename it")
+                    self.train.symbol_problem(
+                        n,
+                        f"{n} is the name of the "
+                        + ("sign of a friction force" if n in signs else "motion or action magnitude")
+                        + f" of coupling {n.partition('_')[2]} in the formulas; give this symbol another name",
+                    )
                     for n in sorted(clash)
                 ],
                 self.train.path,

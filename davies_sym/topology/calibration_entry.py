@@ -50,6 +50,8 @@ def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | Non
             reader.problem(f"calibrate.start.{name}", f"{name!r} is not among the parameters to fit")
         elif number is None or not number > 0:
             reader.problem(f"calibrate.start.{name}", f"expected a positive number, got {describe(v)}")
+        elif reader.roles.get(str(name)) == "efficiency" and number > 1:
+            reader.problem(f"calibrate.start.{name}", f"{name} is an efficiency: start it in (0, 1], got {describe(v)}")
         else:
             values[str(name)] = float(number)
     return CalibrationDefaults(tuple(names), MappingProxyType(values))

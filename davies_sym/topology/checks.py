@@ -55,6 +55,10 @@ def _read_check(item: Any, path: str, reader: EntryReader, couplings: Mapping[st
     port = texts["input"]
     if port is not None and port not in couplings:
         reader.unknown(f"{path}.input", "coupling", port)
+    elif port is not None and couplings[port].gears is not None:
+        reader.problem(
+            f"{path}.input", f"coupling {port!r} is a gear mesh; the input of a check is a port (a shaft's coupling)"
+        )
     if len(reader.problems) > before or value is None or tolerance is None:
         return None
     return Expected(
@@ -87,7 +91,8 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
         number = _exact(item, where, reader)
         if number is None:
             continue
-        # A value for a name the train does not use (a radius written as a number) is kept.
+        # A value for a name the train does not use (a radius written as a number) is kept:
+        # the design stays whole, and evaluating it gives the value no role.
         why = role_problem(name, reader.symbols.get(name), number, shortened(str(item)), efficiencies, coefficients)
         if why is not None:
             reader.problem(where, why)

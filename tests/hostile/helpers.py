@@ -181,6 +181,30 @@ def assert_refused(
         assert any(e in result.stderr for e in entries), f"the message names none of {entries}:\n{why}"
 
 
+def write(folder: Path, text: str, name: str = "train.yaml") -> Path:
+    """``text`` written as ``folder/name``."""
+    path = folder / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def replaced(text: str, old: str, new: str) -> str:
+    """``text`` with the first ``old`` (which must be there) replaced by ``new``."""
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+def line_of(text: str, needle: str) -> int:
+    """The line (from 1) of the first line of ``text`` holding ``needle``."""
+    return next(k for k, line in enumerate(text.splitlines(), 1) if needle in line)
+
+
+def assert_at(result: Result, path: Path, line: int, entry: str) -> None:
+    """Refused with one line at ``path:line: entry:``."""
+    assert_refused(result, path, (entry,))
+    assert re.search(re.escape(f"{path}:{line}: {entry}:"), result.stderr), result.describe()
+
+
 def assert_not_executed(*markers: Path, result: Result | None = None) -> None:
     for marker in markers:
         assert not marker.exists(), f"PAYLOAD EXECUTED: {marker} was created" + (

@@ -14,14 +14,17 @@ where the efficiency is outside (0, 1].
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+
 import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
-from davies_sym.emit.languages.one_input import range_checks
-from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step
+from davies_sym.emit.languages.one_input import range_checks, working
+from davies_sym.emit.languages.program import NOT_COVERED, Argument, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
 from davies_sym.emit.languages.text import origin_text, parameter_lines
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
@@ -98,7 +101,8 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         "in_ranges", "whether every parameter is in its range", range_checks(table, names), names
     )
     routines.append(in_ranges)
-    routines.append(_choice(si, names, conditions, regions, forces, in_ranges, not_covered))
+    choice = _choice_steps(si, names, conditions, regions, forces, in_ranges)
+    routines += [_choice(choice, names, not_covered), _reason(choice, names)]
     seen: set[str] = set()
     for routine in routines:
         if routine.name in names:
@@ -137,22 +141,35 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         *(f"  {r.name}({', '.join(r.argument_names)}): {r.summary}" for r in routines),
         "",
         f"{not_covered} means: on a speed-condition line, in no region or several, outside the parameters' "
-        "ranges, or an efficiency outside (0, 1].",
+        "ranges, or an efficiency outside (0, 1]; reason(...) says which, as the Python module's DesignError does:",
+        *(f"  {k}: {text}" for k, text in REASONS),
     ]
     return Program(module, tuple(lines), tuple(routines), "efficiency", names, ())
 
 
-def _choice(
+@dataclass(frozen=True)
+class _Choice:
+    """The steps that pick the region: ``ok`` (every parameter in its range),
+    ``off_lines`` (off every speed-condition line), ``chosen`` (the formula of the one
+    region that holds, NaN where none or several do) and ``held``: the conditions under
+    which one alone holds."""
+
+    steps: tuple[Step, ...]
+    ok: sympy.Symbol
+    off_lines: sympy.Symbol
+    chosen: sympy.Symbol
+    held: tuple[sympy.Basic, ...]
+    local: Callable[[str], str]
+
+
+def _choice_steps(
     si: SeveralInputs,
     names: tuple[str, ...],
     conditions: dict[str, Routine],
     regions: dict[int, Routine],
     forces: dict[int, Routine],
     in_ranges: Routine,
-    not_covered: str,
-) -> Routine:
-    """``efficiency(...)``: the region that holds, alone, screened as the Python module's
-    ``_not_covered`` does."""
+) -> _Choice:
     taken = set(names)
 
     def local(base: str) -> str:
@@ -187,18 +204,14 @@ def _choice(
     ]
     chosen = sympy.Symbol(local("chosen"))
     steps.append(Step(chosen.name, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
-    eta = local("eta")
-    steps.append(
-        Step(
-            eta,
-            Kind.REAL,
-            sympy.Piecewise(
-                (chosen, sympy.And(relation(chosen, ">", sympy.Integer(0)), relation(chosen, "<=", UPPER))),
-                (NOT_COVERED, True),
-                evaluate=False,
-            ),
-        )
-    )
+    return _Choice(tuple(steps), ok, off_lines, chosen, tuple(c for _, c in branches), local)
+
+
+def _choice(choice: _Choice, names: tuple[str, ...], not_covered: str) -> Routine:
+    """``efficiency(...)``: the region that holds, alone, screened as the Python module's
+    ``_not_covered`` does."""
+    eta = choice.local("eta")
+    picked = sympy.Piecewise((choice.chosen, working(choice.chosen)), (NOT_COVERED, True), evaluate=False)
     return Routine(
         "efficiency",
         "Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of "
@@ -206,8 +219,45 @@ def _choice(
         "not hold",
         tuple(Argument(n, Kind.REAL) for n in names),
         Kind.REAL,
-        tuple(steps),
+        (*choice.steps, Step(eta, Kind.REAL, picked)),
         sympy.Symbol(eta),
+    )
+
+
+#: Why ``efficiency`` has no value, as ``reason`` numbers it: the reasons of the Python
+#: module's DesignError (`davies_sym.emit.several_inputs_runtime`).
+REASONS = (
+    (0, "an efficiency"),
+    (1, "outside the parameters' ranges (PARAMETERS)"),
+    (2, "no region's loaded forces agree with their assumed signs, or several do"),
+    (3, "an efficiency outside (0, 1]"),
+    (4, "on a speed-condition line"),
+)
+
+
+def _reason(choice: _Choice, names: tuple[str, ...]) -> Routine:
+    """``reason(...)``: why ``efficiency`` has a value or not (`REASONS`), in the order the
+    Python module counts them."""
+    held, code = choice.local("held"), choice.local("code")
+    # Distinct numbers per branch: sympy would merge equal values into one condition.
+    found = sympy.Piecewise(
+        *((sympy.Integer(k), c) for k, c in enumerate(choice.held, 1)), (sympy.Integer(0), True), evaluate=False
+    )
+    number = sympy.Piecewise(
+        (sympy.Integer(1), sympy.Not(choice.ok)),
+        (sympy.Integer(4), sympy.Not(choice.off_lines)),
+        (sympy.Integer(0), working(choice.chosen)),
+        (sympy.Integer(3), relation(sympy.Symbol(held), ">", sympy.Integer(0))),
+        (sympy.Integer(2), True),
+        evaluate=False,
+    )
+    return Routine(
+        "reason",
+        "why efficiency has a value or not: " + "; ".join(f"{k}: {text}" for k, text in REASONS),
+        tuple(Argument(n, Kind.REAL) for n in names),
+        Kind.REAL,
+        (*choice.steps, Step(held, Kind.REAL, found), Step(code, Kind.REAL, number)),
+        sympy.Symbol(code),
     )
 
 

@@ -1,0 +1,194 @@
+"""Bad input found by a second generated sweep of 953 cases, one regression test per class:
+each is refused by the contract of docs/errors.md (exit status 2 with one line
+``FILE[:LINE]: ENTRY: what is wrong and what to write instead``; exit status 3 with the
+reason for a design the formulas do not cover; no traceback), and the Python API refuses
+the same design with the same reason.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+from hostile.helpers import (
+    CATALOG,
+    assert_at,
+    assert_refused,
+    line_of,
+    problem_lines,
+    replaced,
+    run_main,
+    write,
+)
+
+import davies_sym
+
+PAIR = (CATALOG / "simple_pair.yaml").read_text(encoding="utf-8")
+PAIR_DESIGN = ["r1=20", "r2=50", "eta_C=0.98"]
+SR20 = (CATALOG / "sr20_differential.yaml").read_text(encoding="utf-8")
+SR20_DATA = CATALOG / "data" / "sr20_table1.csv"
+
+
+# --- a symbol named like a quantity of the formulas -----------------------------------------------------------
+
+
+def test_a_radius_named_like_the_sign_of_a_friction_force_is_refused_at_its_line(tmp_path):
+    """sigma_C is the sign of mesh C's Coulomb force (Laus eq. (37)); a radius of that name
+    failed deep in the algebra ('two sets of assumptions') without a line."""
+    text = replaced(PAIR, "  1: {link: 1, radius: r1}", "  1: {link: 1, radius: sigma_C}")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, "sigma_C"), "gears.1.radius")
+    assert "sign of a friction force of coupling C" in result.stderr, result.describe()
+
+
+def test_a_mesh_friction_coefficient_given_a_value_is_refused_by_every_entry_point(tmp_path):
+    """zeta_C is solved from the ordinary efficiency eta_C: given besides it, its value was
+    silently ignored (the result was eta_C's whatever zeta_C said)."""
+    result = run_main([CATALOG / "simple_pair.yaml", "--quiet", "--eval", *PAIR_DESIGN, "zeta_C=300"])
+    assert_refused(result, CATALOG / "simple_pair.yaml", ("--eval",), line=False)
+    assert "zeta_C is the friction coefficient of mesh C" in result.stderr and "give eta_C" in result.stderr
+    variants = davies_sym.derive(davies_sym.load(CATALOG / "simple_pair.yaml"))
+    with pytest.raises(davies_sym.InputError, match="zeta_C is the friction coefficient of mesh C"):
+        variants.evaluate({"r1": 20, "r2": 50, "eta_C": 0.98, "zeta_C": 300})
+
+
+# --- published checks -------------------------------------------------------------------------------------------
+
+
+def test_a_check_that_leaves_a_parameter_out_is_said_at_its_line(tmp_path):
+    """A published check without r2 can never be evaluated: said on standard error with
+    its line (it was accepted silently); the derivation itself stands."""
+    text = replaced(PAIR, "values: {r1: 20, r2: 50, eta_C: 0.98}", "values: {r1: 20, eta_C: 0.98}")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert result.returncode == 0 and "eta = eta_C" in result.stdout, result.describe()
+    said = f"derive: warning: {path}:{line_of(text, 'values:')}: expected[0].values: the check gives no value for r2"
+    assert said in result.stderr, result.describe()
+
+
+def test_a_check_whose_input_is_a_mesh_is_refused_at_its_line(tmp_path):
+    text = replaced(PAIR, "    value: 0.98\n", "    value: 0.98\n    input: C\n")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, "input: C"), "expected[0].input")
+    assert "is a gear mesh" in result.stderr, result.describe()
+
+
+def test_a_calibration_start_above_one_for_an_efficiency_is_refused_at_its_line(tmp_path):
+    text = replaced(SR20, "start: {eta_M: 0.95", "start: {eta_M: 1.95")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, "start:"), "calibrate.start.eta_M")
+    assert "eta_M is an efficiency" in result.stderr, result.describe()
+
+
+# --- command-line values ------------------------------------------------------------------------------------------
+
+
+def test_a_dependent_radius_that_breaks_its_relation_is_refused_under_eval():
+    """Tuplin's r4 follows from r1 - r3 = r2 - r4 (35 for 40, 60, 15): 30 is refused under
+    --eval with the relation and both numbers, as every other bad value is."""
+    design = ["r1=40", "r2=60", "r3=15", "r4=30", "eta_C=0.99", "eta_D=0.99"]
+    result = run_main([CATALOG / "tuplin.yaml", "--quiet", "--eval", *design])
+    assert_refused(result, CATALOG / "tuplin.yaml", ("--eval",), line=False)
+    assert "r4 = 30 breaks the relation" in result.stderr and "which gives 35" in result.stderr, result.describe()
+
+
+def test_an_empty_output_name_is_refused_before_the_derivation(tmp_path):
+    for option in ("--python", "-o"):
+        result = run_main([CATALOG / "simple_pair.yaml", "--quiet", option, ""])
+        assert_refused(result, CATALOG / "simple_pair.yaml", (option,), line=False)
+        assert "the file name is empty" in result.stderr, result.describe()
+
+
+def test_a_closed_standard_output_is_said_instead_of_a_traceback():
+    """``derive FILE >&-``: Python leaves sys.stdout None; the text had nowhere to go."""
+    process = subprocess.run(
+        ["sh", "-c", '"$0" -m davies_sym.cli "$1" --quiet >&-', sys.executable, str(CATALOG / "simple_pair.yaml")],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert process.returncode == 2, process.stderr
+    assert "standard output is closed" in process.stderr and "Traceback" not in process.stderr, process.stderr
+
+
+# --- figures ------------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("plot", "at", "option", "words"),
+    [
+        ("r1=-30:-10", ["r2=50", "eta_C=0.98"], "--plot", "r1 lies in (0, inf)"),
+        ("eta_C=1.5:2.5", ["r1=20", "r2=50"], "--plot", "eta_C lies in (0, 1]"),
+        ("r1=10:30", ["r1=5", "r2=50", "eta_C=0.98"], "--at", "r1 is swept by --plot"),
+    ],
+    ids=["radius-all-negative", "efficiency-all-above-one", "swept-and-held"],
+)
+def test_a_sweep_with_nothing_admissible_or_held_twice_is_refused(tmp_path, plot, at, option, words):
+    """These drew an empty figure (or ignored --at) with exit status 0."""
+    figure = tmp_path / "p.png"
+    result = run_main([CATALOG / "simple_pair.yaml", "--quiet", "--plot", plot, "--at", *at, "-o", figure])
+    assert_refused(result, CATALOG / "simple_pair.yaml", (option,), line=False)
+    assert words in result.stderr and not figure.exists(), result.describe()
+
+
+def test_a_sweep_where_the_train_self_locks_throughout_gets_the_reason_and_exit_3(tmp_path):
+    """Tuplin driven at B with mesh efficiencies 0.7 self-locks for r1 in [40, 41] (the
+    design of the issue, r2 = 60, r3 = 15): no efficiency to draw, said with the module's
+    reason at the first point instead of an empty figure."""
+    figure = tmp_path / "p.png"
+    at = ["r2=60", "r3=15", "eta_C=0.7", "eta_D=0.7"]
+    result = run_main(
+        [CATALOG / "tuplin.yaml", "--quiet", "--plot", "r1=40:41", "--at", *at, "--input", "B", "-o", figure]
+    )
+    # As for --eval, the answer (why there is no number) is the last line of the output.
+    assert result.returncode == 3, result.describe()
+    last = result.stdout.splitlines()[-1]
+    assert "--plot" in last and "self-locks" in last and "r1=40" in last and not figure.exists(), result.describe()
+    assert not problem_lines(result), result.describe()
+
+
+# --- calibration ----------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("fit", "at", "words"),
+    [
+        ("D_P", "eta_M=3", "eta_M = 3 is not an efficiency"),
+        ("D_P", "eta_M=0", "eta_M = 0 is not an efficiency"),
+        ("eta_M", "D_P=-1", "D_P = -1 is a friction coefficient"),
+        ("eta_M", "zz=1", "unknown symbol 'zz'"),
+    ],
+    ids=["efficiency-above-one", "efficiency-zero", "negative-drag", "unknown-name"],
+)
+def test_calibration_values_are_checked_as_every_design_is(fit, at, words):
+    """`derive calibrate --at` fitted with these (or failed on 'the data do not determine')."""
+    result = run_main(["calibrate", CATALOG / "sr20_differential.yaml", SR20_DATA, "--quiet", "--fit", fit, "--at", at])
+    assert_refused(result, CATALOG / "sr20_differential.yaml", ("--at",), line=False)
+    assert words in result.stderr, result.describe()
+
+
+@pytest.mark.parametrize("eta", ["1.7731", "-0.7731", "0"])
+def test_a_measured_efficiency_outside_zero_one_is_refused_at_its_row(tmp_path, eta):
+    lines = SR20_DATA.read_text(encoding="utf-8").splitlines()
+    lines[1] = lines[1].replace(",0.7731,", f",{eta},", 1)
+    data = write(tmp_path, "\n".join(lines) + "\n", "rig.csv")
+    result = run_main(["calibrate", CATALOG / "sr20_differential.yaml", data, "--quiet"])
+    assert_refused(result, data, ("column 'eta'",), line=False)
+    assert f"{data}:2: column 'eta':" in result.stderr and "lies in (0, 1]" in result.stderr, result.describe()
+
+
+# --- a train of two degrees of freedom with one input -----------------------------------------------------------
+
+
+def test_two_degrees_of_freedom_with_one_input_print_the_motions_and_say_what_is_missing(tmp_path):
+    """The SR20 differential with one input port: its motions (w_O = (w_A + w_K)/2 in the
+    primary speeds, Mantriota and Pennestri eq. (1)) and why no efficiency follows."""
+    path = write(tmp_path, replaced(SR20, "input: [A, K]", "input: A"))
+    result = run_main([path, "--quiet"])
+    assert result.returncode == 0, result.describe()
+    assert "t_A = -t_K + 2*t_O" in result.stdout, result.describe()
+    assert "2 degrees of freedom needs as many input ports" in result.stdout, result.describe()

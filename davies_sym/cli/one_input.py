@@ -121,7 +121,9 @@ def _state_entry(vs: VariantSet) -> dict[str, object]:
     }
 
 
-def _document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
+def one_input_document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
+    """The text report (or with ``as_json`` the JSON document) of the train's variants, or
+    of each of its states'."""
     if not train.states:
         ((_, vs),) = sets
         analysis = Analysis(train, progress=progress)
@@ -231,7 +233,7 @@ def one_input_outputs(
         if args.latex:
             text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
         else:
-            text = _document(train, sets, args.json, progress)
+            text = one_input_document(train, sets, args.json, progress)
         outputs.append((args.out, text))
     if evaluation is not None:
         state = {"state": args.state} if args.state else {}

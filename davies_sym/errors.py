@@ -8,6 +8,7 @@ interface turns these errors into one-line messages and exit status 2.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 
 
 @dataclass(frozen=True)
@@ -105,14 +106,22 @@ class DerivationError(DaviesError):
     """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""
 
 
+class FitFailure(Enum):
+    """Why measurements cannot support a fit (`CalibrationError.cause`)."""
+
+    ROWS = "rows"  # fewer rows than parameters
+    NON_FINITE = "non-finite"  # the model is undefined at the data
+    CONVERGENCE = "convergence"  # the least-squares solver does not converge
+    UNDETERMINED = "undetermined"  # the data do not determine a parameter
+    ARGUMENTS = "arguments"  # the parameters or start values asked for cannot be fitted
+
+
 class CalibrationError(DaviesError):
     """Measurements that cannot support a fit of the loss parameters: too few rows, a
-    model undefined at the data, no convergence, or a parameter the data do not determine.
+    model undefined at the data, no convergence, or a parameter the data do not determine;
+    ``cause`` says which (for a caller that maps causes to exit statuses)."""
 
-    ``cause`` says which, for a caller that maps causes to exit statuses: ``"rows"``,
-    ``"non-finite"``, ``"convergence"``, ``"undetermined"`` or ``"arguments"``."""
-
-    def __init__(self, message: str, cause: str = ""):
+    def __init__(self, message: str, cause: FitFailure | None = None):
         self.cause = cause
         super().__init__(message)
 

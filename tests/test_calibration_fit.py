@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 from davies_sym.calibration import Fit, fit, fit_text, residual_figure
 from davies_sym.calibration.least_squares import FloatArray
-from davies_sym.errors import CalibrationError, DaviesError
+from davies_sym.errors import CalibrationError, DaviesError, FitFailure
 
 SIGMA = 0.002
 ROWS = 40
@@ -141,7 +141,7 @@ def test_refuses_a_parameter_the_residuals_do_not_change_with() -> None:
         source="rig.csv",
     )
     assert str(error) == "rig.csv: the data do not determine D_K: the residuals do not change with it"
-    assert error.cause == "undetermined"
+    assert error.cause is FitFailure.UNDETERMINED
 
 
 def test_refuses_parameters_determined_only_in_combination() -> None:
@@ -153,7 +153,7 @@ def test_refuses_parameters_determined_only_in_combination() -> None:
     )
     # Two columns that are the same at every row (the operating points never vary x).
     error = _refusal(lambda p: p["a"] + p["b"] * np.ones(ROWS) - y, ["a", "b"], {"a": 0.0, "b": 0.0})
-    assert "do not determine a and b separately" in str(error) and error.cause == "undetermined"
+    assert "do not determine a and b separately" in str(error) and error.cause is FitFailure.UNDETERMINED
 
 
 def test_refuses_fewer_rows_than_parameters() -> None:
@@ -164,7 +164,7 @@ def test_refuses_fewer_rows_than_parameters() -> None:
         source="rig.csv",
     )
     assert str(error) == "rig.csv: 2 rows cannot determine 3 parameters (a, b, c): give at least 3 rows"
-    assert error.cause == "rows"
+    assert error.cause is FitFailure.ROWS
 
 
 def test_refuses_a_residual_that_is_not_finite_at_the_start() -> None:
@@ -174,7 +174,7 @@ def test_refuses_a_residual_that_is_not_finite_at_the_start() -> None:
     assert str(error) == (
         "the residual of row 2 is inf at the start values (e = 0.9, D = -1): the model is not defined there"
     )
-    assert error.cause == "non-finite"
+    assert error.cause is FitFailure.NON_FINITE
 
 
 def test_refuses_a_residual_that_becomes_nan_during_the_fit() -> None:
@@ -200,7 +200,7 @@ def test_refuses_a_fit_that_does_not_converge() -> None:
     assert message.startswith(
         "rig.csv: the fit did not converge (The maximum number of function evaluations is exceeded) after "
     )
-    assert "evaluations; it reached e = " in message and error.cause == "convergence"
+    assert "evaluations; it reached e = " in message and error.cause is FitFailure.CONVERGENCE
 
 
 @pytest.mark.parametrize(
@@ -221,7 +221,7 @@ def test_refuses_bad_arguments(kwargs: dict[str, object], message: str) -> None:
     x, y = _linear_data()
     arguments: dict[str, object] = {"start": {"a": 1.0, "b": 1.0}, **kwargs}
     error = _refusal(lambda p: p["a"] + p["b"] * x - y, ["a", "b"], **arguments)
-    assert str(error) == message and error.cause == "arguments"
+    assert str(error) == message and error.cause is FitFailure.ARGUMENTS
 
 
 def test_text_report_holds_each_value_error_and_the_largest_residuals() -> None:

@@ -22,7 +22,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy.optimize import least_squares
 
-from davies_sym.errors import CalibrationError
+from davies_sym.errors import CalibrationError, FitFailure
 
 FloatArray = npt.NDArray[np.float64]
 Residuals = Callable[[Mapping[str, float]], FloatArray]
@@ -116,7 +116,7 @@ def fit(
         r = np.asarray(residuals(point), dtype=np.float64)
         if r.ndim != 1:
             raise CalibrationError(
-                f"{prefix}the residuals must be one number per row, got shape {r.shape}", "arguments"
+                f"{prefix}the residuals must be one number per row, got shape {r.shape}", FitFailure.ARGUMENTS
             )
         bad = np.flatnonzero(~np.isfinite(r))
         if bad.size:
@@ -129,13 +129,13 @@ def fit(
         raise CalibrationError(
             f"{prefix}the residual of row {exc.row + 1} is {exc.value} at the start values "
             f"({_values(exc.point)}): the model is not defined there",
-            "non-finite",
+            FitFailure.NON_FINITE,
         ) from None
     if rows < len(names):
         raise CalibrationError(
             f"{prefix}{rows} row{'s' if rows != 1 else ''} cannot determine {len(names)} "
             f"parameters ({', '.join(names)}): give at least {len(names)} rows",
-            "rows",
+            FitFailure.ROWS,
         )
     bounded = bool(np.isfinite(low).any() or np.isfinite(high).any())
     try:
@@ -156,7 +156,7 @@ def fit(
         raise CalibrationError(
             f"{prefix}the residual of row {exc.row + 1} became {exc.value} during the fit, "
             f"at {_values(exc.point)}{hint}",
-            "non-finite",
+            FitFailure.NON_FINITE,
         ) from None
     values = tuple(float(v) for v in result.x)
     reached = dict(zip(names, values, strict=True))
@@ -166,7 +166,7 @@ def fit(
         raise CalibrationError(
             f"{prefix}the fit did not converge ({result.message.rstrip('.')}) after "
             f"{result.nfev} evaluations; it reached {_values(reached)}",
-            "convergence",
+            FitFailure.CONVERGENCE,
         )
     r = np.asarray(result.fun, dtype=np.float64)
     r.setflags(write=False)
@@ -224,7 +224,7 @@ def _arguments(
     if max_evaluations is not None and max_evaluations < 1:
         problems.append(f"max_evaluations must be at least 1, got {max_evaluations}")
     if problems:
-        raise CalibrationError(prefix + "; ".join(problems), "arguments")
+        raise CalibrationError(prefix + "; ".join(problems), FitFailure.ARGUMENTS)
     x0 = np.array([float(start[n]) for n in names])
     low = np.array([float(lower.get(n, -np.inf)) for n in names])
     high = np.array([float(upper.get(n, np.inf)) for n in names])
@@ -239,7 +239,7 @@ def _arguments(
         elif not lo <= x <= hi:
             problems.append(f"the start value {n} = {x:g} is outside its bounds ({lo:g} to {hi:g})")
     if problems:
-        raise CalibrationError(prefix + "; ".join(problems), "arguments")
+        raise CalibrationError(prefix + "; ".join(problems), FitFailure.ARGUMENTS)
     return x0, low, high
 
 
@@ -251,7 +251,7 @@ def _check_determined(jacobian: FloatArray, names: tuple[str, ...], prefix: str)
         them = "it" if len(flat) == 1 else "them"
         raise CalibrationError(
             f"{prefix}the data do not determine {', '.join(flat)}: the residuals do not change with {them}",
-            "undetermined",
+            FitFailure.UNDETERMINED,
         )
     # Columns scaled to unit length: the condition then says nothing about units.
     _, singular, right = np.linalg.svd(jacobian / norms, full_matrices=False)
@@ -263,7 +263,7 @@ def _check_determined(jacobian: FloatArray, names: tuple[str, ...], prefix: str)
             f"{prefix}the data do not determine {' and '.join(involved)} separately: the "
             f"residuals change only with a combination of them (condition number of J^T J "
             f"{condition:.2g})",
-            "undetermined",
+            FitFailure.UNDETERMINED,
         )
 
 

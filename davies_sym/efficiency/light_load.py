@@ -39,7 +39,7 @@ from davies_sym.efficiency.region_sampling import Draws, Point, needed_signs
 from davies_sym.efficiency.turning_conditions import MeshRole
 from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.network.analysis import Analysis
-from davies_sym.network.matrices import FrictionLaw
+from davies_sym.network.friction_laws import CoulombLaw, FrictionLaw
 from davies_sym.topology.couplings import Revolute
 
 #: A loaded force at the operating point and the sign a case needs it to have.
@@ -96,7 +96,7 @@ def loaded_laws(analysis: Analysis, roles: Sequence[MeshRole]) -> list[FrictionL
     return [
         law
         for law in analysis.network.laws
-        if is_mesh_law(law, meshes) or (law.law == "coulomb" and not is_mesh_law(law, every))
+        if is_mesh_law(law, meshes) or (isinstance(law, CoulombLaw) and not is_mesh_law(law, every))
     ]
 
 

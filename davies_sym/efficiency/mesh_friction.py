@@ -15,7 +15,7 @@ from collections.abc import Collection, Iterator
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
-from davies_sym.network.matrices import FrictionLaw
+from davies_sym.network.friction_laws import FrictionLaw
 from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
 from davies_sym.topology.model import Train
 
@@ -23,7 +23,7 @@ from davies_sym.topology.model import Train
 def is_mesh_law(law: FrictionLaw, meshes: Collection[str]) -> bool:
     """Whether ``law`` is the own friction law of one of ``meshes`` (the Coulomb or linear
     law its ordinary efficiency replaces); a viscous law or drag on a mesh is not."""
-    return law.coupling in meshes and law.law in ("coulomb", "linear")
+    return law.coupling in meshes and law.load_dependent
 
 
 def only_mesh_laws(laws: Collection[FrictionLaw], meshes: Collection[str]) -> bool:

@@ -16,7 +16,7 @@ import sympy
 from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
-from davies_sym.network.matrices import FrictionLaw
+from davies_sym.network.friction_laws import FrictionLaw
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
@@ -71,7 +71,6 @@ def _efficiency_meanings(train: Train) -> dict[sympy.Symbol, str]:
 
 def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbol, tuple[str, str]]:
     out: dict[sympy.Symbol, tuple[str, str]] = {}
-    units = {"coulomb": "length", "linear": "length", "viscous": "torque / angular speed", "drag": "torque"}
     for law in laws:
         for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = train.coupling(law.coupling)
@@ -79,7 +78,7 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
                 out.setdefault(s, (f"sliding friction coefficient of mesh {law.coupling}", "1"))
                 continue
             what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
-            out.setdefault(s, (f"{law.law} friction coefficient of {what} {law.coupling}", units.get(law.law, "")))
+            out.setdefault(s, (f"{law.name} friction coefficient of {what} {law.coupling}", law.unit))
     return out
 
 

@@ -19,7 +19,7 @@ from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region
 from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.errors import DerivationError
 from davies_sym.network.analysis import Analysis
-from davies_sym.network.matrices import FrictionLaw
+from davies_sym.network.friction_laws import CoulombLaw, FrictionLaw, ViscousLaw
 from davies_sym.topology.couplings import GearMesh
 
 
@@ -40,7 +40,7 @@ class RegionContext:
 def is_loaded(law: FrictionLaw, meshes: Collection[str]) -> bool:
     """Whether a region assumes the sign of the force loading ``law``: a mesh's tooth force
     (it decides the driving gear) or a bearing's Coulomb reaction (the moment's sense)."""
-    return is_mesh_law(law, meshes) or law.law == "coulomb"
+    return is_mesh_law(law, meshes) or isinstance(law, CoulombLaw)
 
 
 def region_forms(
@@ -86,14 +86,14 @@ def region_forms(
             zeta = flows[law.coupling].friction_for(eta, first[law.coupling])
             # T - zeta U = 0 (signed law), over zeta's denominator.
             rows.append({index[law.variable]: zeta.den, index[law.transmitted or ""]: -zeta.num})
-        elif law.law in ("coulomb", "linear"):
+        elif law.load_dependent:
             # A bearing: T = -zeta |U| sign(t) (Laus eq. (21)) with the region's signs of the
             # reaction U and the relative motion t; a linear law is T = zeta U as written.
             transmitted = law.transmitted or ""
-            factor = assumed_sign(law) * sign_of(f"turn {law.coupling}") if law.law == "coulomb" else -1
+            factor = assumed_sign(law) * sign_of(f"turn {law.coupling}") if isinstance(law, CoulombLaw) else -1
             value = ring.rational(factor * law.coefficient)
             rows.append({index[law.variable]: value.den, index[transmitted]: value.num})
-        elif law.law == "viscous":
+        elif isinstance(law, ViscousLaw):
             speed = analysis.motion_magnitudes[law.motion] * ring.rational(law.coefficient)
             rows.append({index[law.variable]: speed.den, const: speed.num})  # T = -b t
         else:

@@ -36,6 +36,7 @@ from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, DragLaw
 from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
@@ -130,7 +131,7 @@ def derive_several_inputs(
             train.path,
         )
     analysis = _SeveralInputAnalysis(
-        train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=[*etas, *speeds, LOAD_TORQUE]
+        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=[*etas, *speeds, LOAD_TORQUE]
     )
     net = analysis.network
     say("speeds in the input speeds (null space of M_N)")
@@ -149,7 +150,7 @@ def derive_several_inputs(
     flows: dict[str, MeshPowerFlow] = {}
     for law in net.laws:
         mesh = train.coupling(law.coupling)
-        if isinstance(mesh, GearMesh) and law.law in ("coulomb", "linear"):
+        if isinstance(mesh, GearMesh) and law.load_dependent:
             flows[mesh.name] = flow = mesh_power_flow(analysis, mesh)
             # Lossless tooth force per unit load torque times its power on the first gear's side
             # in the carrier frame (a linear form in the input speeds).
@@ -157,7 +158,7 @@ def derive_several_inputs(
             sign, form = _primitive(force * flow.transmitted_power[0], analysis, moving)
             k, orientation = conditions.add(form, f"mesh {mesh.name}: which gear drives")
             said[f"mesh {mesh.name}"] = (k, sign * orientation)
-        elif law.law in ("drag", "coulomb") and f"turn {law.coupling}" not in said:
+        elif isinstance(law, (DragLaw, CoulombLaw)) and f"turn {law.coupling}" not in said:
             # A constant drag and a bearing's Coulomb friction oppose the relative motion.
             sign, form = _primitive(motion[law.motion], analysis, moving)
             k, orientation = conditions.add(form, f"coupling {law.coupling} turns forwards")

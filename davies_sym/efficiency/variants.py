@@ -54,6 +54,7 @@ from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.friction_laws import CoulombSigns
 from davies_sym.topology.model import Train
 
 Progress = Callable[[str], None]
@@ -252,7 +253,9 @@ def derive_variants(
             train.path,
         )
     extra = [*etas, *OPERATING_SYMBOLS]
-    analysis = Analysis(train, coulomb_signs="mesh-linear", progress=progress, extra_symbols=extra, layout=layout)
+    analysis = Analysis(
+        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=extra, layout=layout
+    )
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
     derivations: dict[tuple[bool, frozenset[str]], Derivation] = {}
@@ -267,7 +270,7 @@ def derive_variants(
                 ports = train.ports if declared_input else train.ports.swapped()
                 side = Analysis(
                     train.with_ports(ports),
-                    coulomb_signs="mesh-linear",
+                    coulomb_signs=CoulombSigns.MESH_LINEAR,
                     progress=progress,
                     extra_symbols=extra,
                     layout=layout,

@@ -134,7 +134,7 @@ def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
 def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
     """Carrier, lossless virtual power and the per-side powers of ``mesh``."""
     net = analysis.network
-    laws = [law for law in net.laws if law.coupling == mesh.name and law.law in ("coulomb", "linear")]
+    laws = [law for law in net.laws if law.coupling == mesh.name and law.load_dependent]
     if len(laws) != 1:
         raise DerivationError(
             f"mesh {mesh.name} has no load-dependent friction law to express through an ordinary efficiency"

@@ -10,7 +10,7 @@ magnitude fixed by a constitutive equation (`friction_laws`).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -116,6 +116,45 @@ def frame(coupling: Coupling) -> tuple[Vector, Vector, Vector]:
     return a, n, cross(a, n)
 
 
+Directions = list[tuple[str, Vector]]
+
+
+@dataclass(frozen=True)
+class JointKind:
+    """A joint kind (Laus Tables 7-10): its freedoms (``R`` a rotation, ``T`` a
+    translation) and held actions (``F`` a force, ``M`` a moment) in the coupling's frame
+    ``a, n, b``; ``journal``: a pin radius gives it journal-bearing friction; ``virtual``:
+    the free coupling of Laus sec. 4.3.1, which moves along the coordinate axes."""
+
+    screws: Callable[[Vector, Vector, Vector], tuple[Directions, Directions]]
+    journal: bool = False
+    virtual: bool = False
+
+
+_X, _Y, _Z = AXES["x"], AXES["y"], AXES["z"]
+
+#: Every joint kind a machine file may name, by that name, with the freedoms it allows
+#: (Laus sec. 4.1.1 and 4.3.2).
+JOINT_KINDS: Mapping[str, JointKind] = {
+    "revolute": JointKind(
+        lambda a, n, b: ([("R", a)], [("F", a), ("F", n), ("F", b), ("M", n), ("M", b)]), journal=True
+    ),
+    "prismatic": JointKind(lambda a, n, b: ([("T", a)], [("F", n), ("F", b), ("M", a), ("M", n), ("M", b)])),
+    "cylindrical": JointKind(
+        lambda a, n, b: ([("T", a), ("R", a)], [("F", n), ("F", b), ("M", n), ("M", b)]), journal=True
+    ),
+    "universal": JointKind(
+        lambda a, n, b: ([("R", a), ("R", n)], [("M", b), ("F", a), ("F", n), ("F", b)]), journal=True
+    ),
+    "spherical": JointKind(lambda a, n, b: ([("R", _X), ("R", _Y), ("R", _Z)], [("F", _X), ("F", _Y), ("F", _Z)])),
+    "square_annulus": JointKind(lambda a, n, b: ([("T", a), ("R", n), ("R", b)], [("M", a), ("F", n), ("F", b)])),
+    "round_annulus": JointKind(lambda a, n, b: ([("T", a), ("R", a), ("R", n), ("R", b)], [("F", n), ("F", b)])),
+    "free": JointKind(
+        lambda a, n, b: ([("R", _X), ("R", _Y), ("R", _Z), ("T", _X), ("T", _Y), ("T", _Z)], []), virtual=True
+    ),
+}
+
+
 def joint_screws(coupling: Coupling, coordinate_names: bool = True, zero: ZeroTest = exactly_zero) -> JointScrews:
     """Freedoms, constraint actions and friction actions of ``coupling`` (Laus Tables 7-10).
 
@@ -124,34 +163,10 @@ def joint_screws(coupling: Coupling, coordinate_names: bool = True, zero: ZeroTe
     (``p_A1``, ``Q_A2``, Table 10).  ``zero`` tests a coordinate for zero (exact for
     closed forms, to rounding for the numeric solution)."""
     p = coupling.at
-    a, n, b = frame(coupling)
-    kind = coupling.kind
-    if kind == "revolute":
-        free = [("R", a)]
-        held = [("F", a), ("F", n), ("F", b), ("M", n), ("M", b)]
-    elif kind == "prismatic":
-        free = [("T", a)]
-        held = [("F", n), ("F", b), ("M", a), ("M", n), ("M", b)]
-    elif kind == "cylindrical":
-        free = [("T", a), ("R", a)]
-        held = [("F", n), ("F", b), ("M", n), ("M", b)]
-    elif kind == "universal":
-        free = [("R", a), ("R", n)]
-        held = [("M", b), ("F", a), ("F", n), ("F", b)]
-    elif kind == "spherical":
-        free = [("R", AXES["x"]), ("R", AXES["y"]), ("R", AXES["z"])]
-        held = [("F", AXES["x"]), ("F", AXES["y"]), ("F", AXES["z"])]
-    elif kind == "square_annulus":
-        free = [("T", a), ("R", n), ("R", b)]
-        held = [("M", a), ("F", n), ("F", b)]
-    elif kind == "round_annulus":
-        free = [("T", a), ("R", a), ("R", n), ("R", b)]
-        held = [("F", n), ("F", b)]
-    else:  # free (a virtual coupling, Laus sec. 4.3.1)
-        free = [("R", AXES[c]) for c in "xyz"] + [("T", AXES[c]) for c in "xyz"]
-        held = []
+    kind = JOINT_KINDS[coupling.kind]
+    free, held = kind.screws(*frame(coupling))
     # A free (virtual) coupling moves along the coordinate axes: Laus's r_M ... w_M.
-    coordinate_names = coordinate_names or kind == "free"
+    coordinate_names = coordinate_names or kind.virtual
     names = _Names(coupling.name)
     motion_names = names.plan(
         [
@@ -210,7 +225,7 @@ def _friction(
             shift = (half * moment[0], half * moment[1], half * moment[2], 0, 0, 0)
             label = friction_name(freedom) + (str(i) if len(load) > 1 else "")
             out.append(FrictionAction(label, coupling.name, base, freedom, law.mu, ((name, weight),), resultant, shift))
-    if law.pin_radius is not None and coupling.kind in ("revolute", "universal", "cylindrical"):
+    if law.pin_radius is not None and JOINT_KINDS[coupling.kind].journal:
         exact = zero is exactly_zero
         multipliers = (PIN_MULTIPLIERS if exact else _FLOAT_MULTIPLIERS)[law.surfaces]
         for freedom, d in turning:

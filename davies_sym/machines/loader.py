@@ -12,7 +12,8 @@ from typing import Any
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
-from davies_sym.machines.model import KINDS, Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
+from davies_sym.machines.joints import JOINT_KINDS
+from davies_sym.machines.model import Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
 from davies_sym.machines.vectors import AXES, Vector, parse_scalar, parse_vector
 from davies_sym.topology.expressions import ExpressionError
 from davies_sym.topology.yaml_source import SourceDocument
@@ -231,8 +232,8 @@ def _coupling(r: _Reader, name: str, written: object, links: list[str]) -> Coupl
         if key not in _COUPLING_KEYS:
             r.problem(f"{entry}.{key}", f"unknown entry {key!r} (write {', '.join(sorted(_COUPLING_KEYS))})")
     kind = spec.get("type")
-    if kind not in KINDS:
-        r.problem(f"{entry}.type", f"unknown coupling type {kind!r}; write one of {', '.join(KINDS)}")
+    if not isinstance(kind, str) or kind not in JOINT_KINDS:
+        r.problem(f"{entry}.type", f"unknown coupling type {kind!r}; write one of {', '.join(JOINT_KINDS)}")
         return None
     ends = r.names(f"{entry}.links", spec.get("links"))
     if len(ends) != 2 or ends[0] == ends[1] or any(e not in links for e in ends):

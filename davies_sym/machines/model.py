@@ -8,9 +8,6 @@ import sympy
 
 from davies_sym.machines.vectors import Vector
 
-#: Coupling kinds and the freedoms they allow (Laus sec. 4.1.1 and 4.3.2).
-KINDS = ("revolute", "prismatic", "cylindrical", "universal", "spherical", "square_annulus", "round_annulus", "free")
-
 
 @dataclass(frozen=True)
 class Friction:

@@ -22,7 +22,8 @@ from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.analysis_display import analysis_latex
-from davies_sym.network.matrices import SOURCE_LAWS, ActionVariable, FrictionLaw, Network
+from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, ViscousLaw, coulomb_mode
+from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
@@ -54,18 +55,17 @@ class Analysis:
         train: Train,
         tree: Sequence[str] | None = None,
         action_tree: Sequence[str] | None = None,
-        coulomb_signs: str = "resolve",
+        coulomb_signs: CoulombSigns | str = CoulombSigns.RESOLVE,
         progress: Progress | None = None,
         extra_symbols: Sequence[sympy.Symbol] = (),
         layout: Layout | None = None,
         reversed_coulomb: frozenset[str] = frozenset(),
     ):
-        if coulomb_signs not in ("resolve", "symbolic", "mesh-linear"):
-            raise ValueError("coulomb_signs must be 'resolve', 'symbolic' or 'mesh-linear'")
+        mode = coulomb_mode(coulomb_signs)
         if layout is None:
             train = resolved_train(train)  # the formulas hold on the geometric constraints
         self.train = train
-        self.coulomb_signs = coulomb_signs
+        self.coulomb_signs = mode
         self.reversed_coulomb = reversed_coulomb
         self._progress = progress or (lambda message: None)
         self._progress("building the coupling network")
@@ -80,7 +80,9 @@ class Analysis:
             substitutions.append(joint_substitution(constraints))
         self.oracle = SignOracle(net.layout.positive_facts, substitutions)
         self.sign_symbols = {
-            law.coupling: make_symbol(f"sigma_{law.coupling}", "sign") for law in net.laws if law.law == "coulomb"
+            law.coupling: make_symbol(f"sigma_{law.coupling}", "sign")
+            for law in net.laws
+            if isinstance(law, CoulombLaw)
         }
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
         symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
@@ -240,13 +242,15 @@ class Analysis:
         out: dict[str, sympy.Expr] = {}
         conditions: list[SignCondition] = []
         for law in self.network.laws:
-            if law.law != "coulomb":
+            if not isinstance(law, CoulombLaw):
                 continue
             symbol = self.sign_symbols[law.coupling]
-            if self.coulomb_signs == "symbolic":
+            if self.coulomb_signs is CoulombSigns.SYMBOLIC:
                 out[law.coupling] = symbol
                 continue
-            if self.coulomb_signs == "mesh-linear" and isinstance(self.train.coupling(law.coupling), GearMesh):
+            if self.coulomb_signs is CoulombSigns.MESH_LINEAR and isinstance(
+                self.train.coupling(law.coupling), GearMesh
+            ):
                 out[law.coupling] = sympy.Integer(-1)  # T + (-1) zeta U = 0, i.e. T = zeta U
                 continue
             assert law.transmitted is not None
@@ -257,7 +261,7 @@ class Analysis:
             flip = -1 if law.coupling in self.reversed_coulomb else 1
             if sign in (1, -1):
                 out[law.coupling] = sympy.Integer(sign * flip)
-            elif self.coulomb_signs == "mesh-linear":  # geometry decides: variants derive both senses
+            elif self.coulomb_signs is CoulombSigns.MESH_LINEAR:  # geometry decides: variants derive both senses
                 out[law.coupling] = sympy.Integer(flip)
             else:
                 out[law.coupling] = flip * symbol
@@ -266,16 +270,8 @@ class Analysis:
 
     # -- augmented action matrix (eqs. (22), (40), (51)-(52)) ------------------------
     def _law_row(self, law: FrictionLaw) -> dict[str, sympy.Expr]:
-        if law.law == "coulomb":
-            assert law.transmitted is not None
-            return {
-                law.variable: sympy.Integer(1),
-                law.transmitted: self.coulomb_sign_values[law.coupling] * law.coefficient,
-            }
-        if law.law == "linear":
-            assert law.transmitted is not None
-            return {law.variable: sympy.Integer(1), law.transmitted: -law.coefficient}
-        return {law.variable: sympy.Integer(1)}
+        sign = self.coulomb_sign_values[law.coupling] if isinstance(law, CoulombLaw) else sympy.Integer(1)
+        return law.row(sign)
 
     @cached_property
     def augmented_action_matrix(self) -> sympy.Matrix:
@@ -283,9 +279,7 @@ class Analysis:
         net = self.network
         names = [v.name for v in net.actions]
         rows = []
-        ordered = [law for law in net.laws if law.law not in SOURCE_LAWS] + [
-            law for law in net.laws if law.law in SOURCE_LAWS
-        ]
+        ordered = [law for law in net.laws if not law.source] + [law for law in net.laws if law.source]
         for law in ordered:
             entries = self._law_row(law)
             rows.append([entries.get(n, 0) for n in names])
@@ -298,11 +292,10 @@ class Analysis:
         T = -D sign(t) for a constant drag."""
         values = []
         for law in self.network.laws:  # in the order of the source rows of D_A
-            if law.law == "viscous":
-                speed = self.motion_magnitudes[law.motion].to_expr()
-                values.append(-law.coefficient * speed)
-            elif law.law == "drag":
-                values.append(-law.coefficient * self._direction(law))
+            if isinstance(law, ViscousLaw):
+                values.append(law.source_term(self.motion_magnitudes[law.motion].to_expr(), 1))
+            elif law.source:
+                values.append(law.source_term(sympy.Integer(0), self._direction(law)))
         return sympy.Matrix(values)
 
     def _direction(self, law: FrictionLaw) -> int:
@@ -430,7 +423,7 @@ def analyse(
     *,
     tree: Sequence[str] | None = None,
     action_tree: Sequence[str] | None = None,
-    coulomb_signs: str = "resolve",
+    coulomb_signs: CoulombSigns | str = CoulombSigns.RESOLVE,
     progress: Progress | None = None,
     extra_symbols: Sequence[sympy.Symbol] = (),
     layout: Layout | None = None,

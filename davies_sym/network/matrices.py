@@ -21,6 +21,7 @@ from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
 from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws, written_square_root
+from davies_sym.network.friction_laws import LOSS_ROLES, CoulombLaw, DragLaw, FrictionLaw, LinearLaw, ViscousLaw
 from davies_sym.network.screw_system import (
     CouplingScrewError,
     ReducedCoupling,
@@ -34,12 +35,6 @@ from davies_sym.topology.couplings import Coupling, GearMesh, Revolute, ScrewCou
 from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
 from davies_sym.topology.symbols import make_symbol
-
-#: Roles of the action variables a lossless network leaves out.
-LOSS_ROLES = ("friction", "viscous", "drag")
-
-#: Laws that are dependent sources (their torque follows from the motion, Laus eq. (51)).
-SOURCE_LAWS = ("viscous", "drag")
 
 
 @dataclass(frozen=True)
@@ -68,23 +63,6 @@ class ActionVariable:
     @property
     def symbol(self) -> sympy.Symbol:
         return make_symbol(self.name, "magnitude")
-
-
-@dataclass(frozen=True)
-class FrictionLaw:
-    """One friction element: its torque variable, law and coefficient (Laus Table 2).
-
-    ``transmitted`` is the action whose magnitude loads a Coulomb or linear law (the
-    tooth force of a mesh, the reaction of a bearing); ``motion`` the relative motion
-    the friction opposes.
-    """
-
-    coupling: str
-    variable: str
-    law: str
-    coefficient: sympy.Expr
-    motion: str
-    transmitted: str | None
 
 
 def _unique(names: list[str]) -> list[str]:
@@ -197,24 +175,31 @@ class Network:
             if has_port:
                 actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
             constraints = self._constraint_actions(c, red, base)
-            load_law = (
-                "coulomb" if c.friction.coulomb is not None else "linear" if c.friction.linear is not None else None
+            # The load-dependent law (Coulomb, else linear), then the sources (Laus Table 2).
+            loaded: tuple[type[FrictionLaw], sympy.Expr] | None = (
+                (CoulombLaw, c.friction.coulomb)
+                if c.friction.coulomb is not None
+                else (LinearLaw, c.friction.linear)
+                if c.friction.linear is not None
+                else None
             )
-            transmitted = self._transmitted(c, constraints) if load_law is not None else None
-            if load_law is not None:
+            transmitted = self._transmitted(c, constraints) if loaded is not None else None
+            if loaded is not None:
                 name = f"{base}star_{c.name}" if has_port else f"{base}_{c.name}"
-                actions.append(ActionVariable(name, c.name, wrench, "friction"))
-                coefficient = c.friction.coulomb if load_law == "coulomb" else c.friction.linear
-                laws.append(FrictionLaw(c.name, name, load_law, coefficient, cm[0].name, transmitted))
+                law = loaded[0](c.name, name, loaded[1], cm[0].name, transmitted)
+                actions.append(ActionVariable(name, c.name, wrench, law.role))
+                laws.append(law)
             if c.friction.viscous is not None:
-                name = f"{base}ddag_{c.name}" if (has_port or load_law) else f"{base}_{c.name}"
-                actions.append(ActionVariable(name, c.name, wrench, "viscous"))
-                laws.append(FrictionLaw(c.name, name, "viscous", c.friction.viscous, cm[0].name, None))
+                name = f"{base}ddag_{c.name}" if (has_port or loaded) else f"{base}_{c.name}"
+                law = ViscousLaw(c.name, name, c.friction.viscous, cm[0].name, None)
+                actions.append(ActionVariable(name, c.name, wrench, law.role))
+                laws.append(law)
             if c.friction.drag is not None:
-                others = has_port or load_law or c.friction.viscous is not None
+                others = has_port or loaded or c.friction.viscous is not None
                 name = f"{base}drag_{c.name}" if others else f"{base}_{c.name}"
-                actions.append(ActionVariable(name, c.name, wrench, "drag"))
-                laws.append(FrictionLaw(c.name, name, "drag", c.friction.drag, cm[0].name, None))
+                law = DragLaw(c.name, name, c.friction.drag, cm[0].name, None)
+                actions.append(ActionVariable(name, c.name, wrench, law.role))
+                laws.append(law)
             actions += constraints
         return tuple(motions), tuple(actions), tuple(laws)
 
@@ -281,7 +266,7 @@ class Network:
         """A symbol of the file named like a magnitude of the network (``t_A``) or the sign
         of a Coulomb friction force (``sigma_C``): one name would stand for two quantities."""
         magnitudes = {v.name for v in self.motions} | {v.name for v in self.actions}
-        signs = {f"sigma_{law.coupling}" for law in self.laws if law.law == "coulomb"}
+        signs = {f"sigma_{law.coupling}" for law in self.laws if isinstance(law, CoulombLaw)}
         clash = (magnitudes | signs) & set(self.train.symbols)
         if clash:
             raise TopologyError(

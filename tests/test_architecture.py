@@ -144,3 +144,40 @@ def test_public_api_is_listed() -> None:
     }
     for name in davies_sym.__all__:
         assert hasattr(davies_sym, name), name
+
+
+#: The modules that may test a coupling's class: the kind classes and their registry,
+#: which answers the stages' questions by kind (`davies_sym.topology.coupling_kinds`).
+KIND_MODULES = {"topology/couplings.py", "topology/skew_mesh.py", "topology/coupling_kinds.py"}
+
+
+def _coupling_classes() -> set[str]:
+    from davies_sym.topology.coupling_kinds import KINDS
+    from davies_sym.topology.couplings import Coupling
+
+    return {base.__name__ for kind in KINDS.values() for base in kind.__mro__ if issubclass(base, Coupling)}
+
+
+def _classes_tested(node: ast.Call) -> set[str]:
+    """The class names ``isinstance(x, C)`` or ``isinstance(x, (C, D))`` tests."""
+    if not (isinstance(node.func, ast.Name) and node.func.id == "isinstance" and len(node.args) == 2):
+        return set()
+    second = node.args[1]
+    parts = second.elts if isinstance(second, ast.Tuple) else [second]
+    return {p.id if isinstance(p, ast.Name) else p.attr for p in parts if isinstance(p, (ast.Name, ast.Attribute))}
+
+
+def test_no_stage_dispatches_on_a_coupling_class() -> None:
+    """What a coupling kind is lives in its kind module: a stage asks the registry for a
+    train's meshes or bearings, and a coupling for its own members, never tests its class."""
+    classes = _coupling_classes()
+    assert {"GearMesh", "Revolute", "Prismatic", "SkewMesh"} <= classes
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        relative = path.relative_to(PACKAGE).as_posix()
+        if relative in KIND_MODULES:
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call) and _classes_tested(node) & classes:
+                found.append(f"{relative}:{node.lineno}")
+    assert not found, f"isinstance on a coupling class outside the kind modules: {found}"

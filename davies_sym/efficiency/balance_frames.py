@@ -22,7 +22,8 @@ import sympy
 from davies_sym.algebra.screws import Vector, cross
 from davies_sym.errors import DerivationError
 from davies_sym.geometry.layout import Layout
-from davies_sym.topology.couplings import GearMesh, Prismatic, Revolute
+from davies_sym.topology.coupling_kinds import bearings, gear_meshes, sliders
+from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
 Values = Mapping[sympy.Symbol, sympy.Expr]
@@ -102,10 +103,12 @@ class PlanarFrames(Frames):
         def pt(point: Vector) -> Point2:
             return (number(point[0]), number(point[1]))
 
-        self.meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
-        self.sliders = [c for c in train.couplings if isinstance(c, Prismatic)]
+        self.meshes = gear_meshes(train.couplings)
+        self.sliders = sliders(train.couplings)
+        self.revolutes = bearings(train.couplings)
         lossy = [c.name for c in self.sliders if not c.friction.lossless]
-        others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Prismatic, Revolute))]
+        known = {c.name for c in (*self.meshes, *self.sliders, *self.revolutes)}
+        others = [c.name for c in train.couplings if c.name not in known]
         if lossy or others:
             raise DerivationError(
                 f"virtual-power balance: couplings {lossy + others} are outside its scope "
@@ -115,7 +118,6 @@ class PlanarFrames(Frames):
         self.gear_axis = {g.name: pt(layout.gear_centres[g.name]) for g in train.gears}
         self.pitch = {m.name: pt(layout.coupling_points[m.name]) for m in self.meshes}
         self.tangent = {m.name: pt(layout.mesh_tangents[m.name]) for m in self.meshes}
-        self.revolutes = [c for c in train.couplings if isinstance(c, Revolute)]
         self.bearing_axis = {c.name: pt(layout.coupling_points[c.name]) for c in self.revolutes}
         self.axis = self._member_axes()
         self.carriers = {m.name: self._carrier(m) for m in self.meshes}
@@ -241,18 +243,18 @@ class ConicalFrames(Frames):
             return tuple(number(x) for x in v)
 
         main = vec(layout.axis)
-        self.meshes = [c for c in train.couplings if isinstance(c, GearMesh)]
-        others = [c.name for c in train.couplings if not isinstance(c, (GearMesh, Revolute))]
+        self.meshes = gear_meshes(train.couplings)
+        known = {c.name for c in (*self.meshes, *bearings(train.couplings))}
+        others = [c.name for c in train.couplings if c.name not in known]
         if others:
             raise DerivationError(f"virtual-power balance: couplings {others} are outside its scope in a bevel train")
         axis = {g.link: vec(layout.gear_axes[g.name]) for g in train.gears}
         self.carrier_of: dict[str, str] = {}
-        for c in train.couplings:
-            if isinstance(c, Revolute):
-                bearing = vec(layout.coupling_axes[c.name])
-                for planet, holder in (c.links, c.links[::-1]):
-                    if planet in axis and not _parallel(axis[planet], main) and _parallel(bearing, axis[planet]):
-                        self.carrier_of[planet] = holder
+        for c in bearings(train.couplings):
+            bearing = vec(layout.coupling_axes[c.name])
+            for planet, holder in (c.links, c.links[::-1]):
+                if planet in axis and not _parallel(axis[planet], main) and _parallel(bearing, axis[planet]):
+                    self.carrier_of[planet] = holder
         self.carriers, self.arms = {}, {}
         for m in self.meshes:
             point, tangent = vec(layout.coupling_points[m.name]), vec(layout.mesh_tangents[m.name])

@@ -20,7 +20,7 @@ from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.errors import InputError, Problem, shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.checks import friction_coefficient_symbols, mesh_efficiency_symbols, role_problem
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
@@ -106,15 +106,14 @@ def solved_coefficients(train: Train) -> dict[sympy.Symbol, str]:
     """The meshes' friction coefficients, each with why it takes no value: the formulas are
     in the ordinary efficiency, from which the coefficient is solved (Laus eqs. (32), (34))."""
     out = {}
-    for c in train.couplings:
-        if isinstance(c, GearMesh):
-            law = c.friction.coulomb if c.friction.coulomb is not None else c.friction.linear
-            if isinstance(law, sympy.Symbol):
-                names = ", ".join(dict.fromkeys(str(e) for e in c.efficiencies or ()))
-                out[law] = (
-                    f"{law} is the friction coefficient of mesh {c.name}, solved from its "
-                    f"ordinary efficiency: give {names or 'the efficiency'} instead"
-                )
+    for c in gear_meshes(train.couplings):
+        law = c.friction.coulomb if c.friction.coulomb is not None else c.friction.linear
+        if isinstance(law, sympy.Symbol):
+            names = ", ".join(dict.fromkeys(str(e) for e in c.efficiencies or ()))
+            out[law] = (
+                f"{law} is the friction coefficient of mesh {c.name}, solved from its "
+                f"ordinary efficiency: give {names or 'the efficiency'} instead"
+            )
     return out
 
 

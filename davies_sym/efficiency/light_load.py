@@ -40,7 +40,7 @@ from davies_sym.efficiency.turning_conditions import MeshRole
 from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.friction_laws import CoulombLaw, FrictionLaw
-from davies_sym.topology.couplings import Revolute
+from davies_sym.topology.coupling_kinds import as_bearing
 
 #: A loaded force at the operating point and the sign a case needs it to have.
 LoadedForces = Mapping[str, tuple[RationalFunction, int]]
@@ -244,7 +244,7 @@ def bearings_agree(
     variant takes at ``values``: where the geometry reverses one (opposed helical thrusts)
     another variant holds, and the value there says nothing of self-locking."""
     for name, (force, needed) in loaded_forces.items():
-        if not isinstance(analysis.train.coupling(name), Revolute):
+        if as_bearing(analysis.train.coupling(name)) is None:
             continue
         try:
             if (force.evaluate(values) > 0) != (needed > 0):

@@ -16,7 +16,8 @@ import sympy
 
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.network.friction_laws import FrictionLaw
-from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
+from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.couplings import Coupling, GearMesh
 from davies_sym.topology.model import Train
 
 
@@ -35,7 +36,7 @@ def only_mesh_laws(laws: Collection[FrictionLaw], meshes: Collection[str]) -> bo
 def check_mesh_friction(train: Train) -> None:
     """Raise `TopologyError` (every problem, located) unless each mesh of ``train``
     has a load-dependent friction law with a symbol of its own."""
-    problems = [p for c in train.couplings if isinstance(c, GearMesh) for p in _problems(train, c)]
+    problems = [p for c in gear_meshes(train.couplings) for p in _problems(train, c)]
     if problems:
         raise TopologyError(problems, train.path)
 
@@ -83,11 +84,4 @@ def _other_quantities(train: Train, mesh: GearMesh) -> Iterator[sympy.Expr]:
 def _coupling_quantities(c: Coupling, own: bool) -> Iterator[sympy.Expr]:
     laws = (c.friction.viscous,) if own else (c.friction.coulomb, c.friction.linear, c.friction.viscous)
     yield from (x for x in laws if x is not None)
-    if isinstance(c, GearMesh) and c.efficiencies is not None:
-        yield from c.efficiencies
-    if isinstance(c, Revolute) and c.at is not None:
-        yield c.at
-    if isinstance(c, Prismatic):
-        yield from c.direction
-    if isinstance(c, ScrewCoupling):
-        yield from (x for s in (*c.motion_screws, *c.action_screws) for x in s.screw)
+    yield from c.written_quantities

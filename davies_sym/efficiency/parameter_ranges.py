@@ -17,9 +17,8 @@ from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
 from davies_sym.network.friction_laws import FrictionLaw
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import as_skew_mesh, gear_meshes
 from davies_sym.topology.model import Train
-from davies_sym.topology.skew_mesh import SkewMesh
 
 
 @dataclass(frozen=True)
@@ -52,8 +51,8 @@ def _gear_meanings(train: Train) -> dict[sympy.Symbol, str]:
 
 def _efficiency_meanings(train: Train) -> dict[sympy.Symbol, str]:
     out: dict[sympy.Symbol, str] = {}
-    for mesh in train.couplings:
-        if not isinstance(mesh, GearMesh) or mesh.efficiencies is None or mesh.gears is None:
+    for mesh in gear_meshes(train.couplings):
+        if mesh.efficiencies is None or mesh.gears is None:
             continue
         first, second = mesh.gears
         both = mesh.efficiencies[0] == mesh.efficiencies[1]
@@ -74,11 +73,10 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
     for law in laws:
         for s in sorted_symbols(law.coefficient.free_symbols):
             coupling = train.coupling(law.coupling)
-            if isinstance(coupling, SkewMesh):  # mu of a sliding contact: a plain number
+            if as_skew_mesh(coupling) is not None:  # mu of a sliding contact: a plain number
                 out.setdefault(s, (f"sliding friction coefficient of mesh {law.coupling}", "1"))
                 continue
-            what = "mesh" if isinstance(coupling, GearMesh) else "coupling"
-            out.setdefault(s, (f"{law.name} friction coefficient of {what} {law.coupling}", law.unit))
+            out.setdefault(s, (f"{law.name} friction coefficient of {coupling.noun} {law.coupling}", law.unit))
     return out
 
 

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import sympy
 
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis
@@ -87,8 +87,8 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
     turning conditions (named c1, c2, ... in mesh order)."""
     roles: list[MeshRole] = []
     conditions: list[TurningCondition] = []
-    for c in analysis.train.couplings:
-        if not isinstance(c, GearMesh) or c.efficiencies is None:
+    for c in gear_meshes(analysis.train.couplings):
+        if c.efficiencies is None:
             continue
         if c.friction.coulomb is None and c.friction.linear is None:
             continue

@@ -24,6 +24,7 @@ from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.screws import rotation_twist
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
 from davies_sym.errors import DerivationError, TopologyError
+from davies_sym.topology.coupling_kinds import as_gear_mesh
 from davies_sym.topology.couplings import GearMesh
 
 if TYPE_CHECKING:
@@ -125,8 +126,8 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, 
 
 def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
     """`mesh_power_flow` of the mesh called ``name`` in the analysis's train."""
-    mesh = analysis.train.coupling(name)
-    if not isinstance(mesh, GearMesh):
+    mesh = as_gear_mesh(analysis.train.coupling(name))
+    if mesh is None:
         raise DerivationError(f"coupling {name} is not a gear mesh: it has no ordinary efficiency")
     return mesh_power_flow(analysis, mesh)
 

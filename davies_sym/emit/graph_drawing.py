@@ -10,13 +10,12 @@ from typing import Any
 import networkx as nx
 
 from davies_sym.emit.plots import new_figure
-from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Train
 
 
 def _kind(train: Train, name: str) -> str:
-    coupling = train.coupling(name)
-    return "mesh" if isinstance(coupling, GearMesh) else type(coupling).__name__.lower()
+    """The coupling's type as the file writes it (``revolute``, ``mesh``, ``worm`` ...)."""
+    return train.coupling(name).kind
 
 
 def coupling_graph_figure(train: Train) -> Any:
@@ -37,7 +36,7 @@ def coupling_graph_figure(train: Train) -> Any:
         index = pairs.get(key, 0)
         pairs[key] = index + 1
         bend = 0.0 if index == 0 else (0.25 * ((index + 1) // 2) * (1 if index % 2 else -1))
-        colour = "tab:red" if c.name in ports else ("tab:blue" if _kind(train, c.name) == "mesh" else "dimgray")
+        colour = "tab:red" if c.name in ports else ("tab:blue" if c.noun == "mesh" else "dimgray")
         axis.annotate(
             "",
             xy=positions[b],

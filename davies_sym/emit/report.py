@@ -9,7 +9,6 @@ import sympy
 
 from davies_sym.algebra.radicals import restore
 from davies_sym.network.analysis import Analysis
-from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.symbol_display import latex as display_latex
 from davies_sym.topology.symbols import make_symbol
 
@@ -82,10 +81,8 @@ def train_document(analysis: Analysis) -> dict[str, Any]:
     couplings = []
     for c in train.couplings:
         entry: dict[str, Any] = {"name": c.name, "type": c.kind, "links": list(c.links)}
-        if isinstance(c, GearMesh):
-            entry["gears"] = list(c.gears)
-            entry["mesh"] = "internal" if c.internal else "external"
-        if isinstance(c, (Revolute, GearMesh)):
+        entry.update(c.report_fields())
+        if c.located:
             point = net.layout.coupling_points[c.name]
             entry["position"] = [sympy.sstr(v) for v in point]
         entry["friction"] = _friction(c)

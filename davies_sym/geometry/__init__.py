@@ -22,7 +22,7 @@ from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
 from davies_sym.geometry.skew import skew_layout, skew_meshes
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Train
 
 __all__ = ["GeometricConstraint", "Layout", "train_layout"]
@@ -59,7 +59,7 @@ def _layout(train: Train) -> Layout:
 
 def _helical(layout: Layout, train: Train) -> Layout:
     """``layout`` marked as carrying thrust when a mesh is helical (parallel axes only)."""
-    helical = [c for c in train.couplings if isinstance(c, GearMesh) and c.helix is not None]
+    helical = [c for c in gear_meshes(train.couplings) if c.helix is not None]
     if not helical:
         return layout
     if layout.gear_axes:

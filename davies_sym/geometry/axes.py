@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from itertools import product
 
 from davies_sym.errors import GeometryError
+from davies_sym.topology.coupling_kinds import bearings, gear_meshes
 from davies_sym.topology.couplings import GearMesh, Revolute
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Train
@@ -60,8 +61,8 @@ class AxisStructure:
 
 def axis_structure(train: Train) -> AxisStructure:
     """The bearing tree, the mesh carriers and the axis classes of ``train``."""
-    revolutes = sorted((c for c in train.couplings if isinstance(c, Revolute)), key=lambda c: c.name)
-    meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
+    revolutes = sorted(bearings(train.couplings), key=lambda c: c.name)
+    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     parent, depth, tree = _bearing_tree(train, revolutes)
     coaxial = LinkGroups(sorted(train.link_names))
     bearing_on: dict[str, str] = {}
@@ -208,9 +209,7 @@ def _root(train: Train, axis: Mapping[str, str], bearing_axis: Mapping[str, str]
     geared = {axis[g.link] for g in train.gears}
     if axis[train.reference] in geared:
         return axis[train.reference]
-    stated = any(
-        isinstance(c, Revolute) and c.at is not None and bearing_axis.get(c.name) in geared for c in train.couplings
-    )
+    stated = any(c.at is not None and bearing_axis.get(c.name) in geared for c in bearings(train.couplings))
     if stated or not geared:
         return axis[train.reference]
     return min(geared)

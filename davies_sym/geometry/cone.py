@@ -17,7 +17,7 @@ from davies_sym.algebra.screws import Vector, cross, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import axis_structure
 from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout
-from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.model import Gear, Train
 
 
@@ -74,8 +74,8 @@ def _tilted_axis(
     """
     entry = f"gears.{gear.name}.axis"
     partners = []
-    for c in train.couplings:
-        if isinstance(c, GearMesh) and gear.name in c.gears:
+    for c in gear_meshes(train.couplings):
+        if gear.name in c.gears:
             other = train.gear(c.gears[1] if c.gears[0] == gear.name else c.gears[0])
             if other.link in axes:
                 partners.append(other)
@@ -131,8 +131,9 @@ def conical_layout(train: Train) -> Layout:
     tangents: dict[str, Vector] = {}
     cone_distance: dict[str, tuple[str, sympy.Expr]] = {}
     for c in train.couplings:
-        if isinstance(c, GearMesh):
-            g, h = (train.gear(n) for n in c.gears)
+        mesh = as_gear_mesh(c)
+        if mesh is not None:
+            g, h = (train.gear(n) for n in mesh.gears)
             a, b = gear_axes[g.name], gear_axes[h.name]
             normal = vector([radicals.reduce(x) for x in cross(a, b)])
             if all(x == 0 for x in normal):
@@ -163,7 +164,7 @@ def conical_layout(train: Train) -> Layout:
                         )
                 else:
                     cone_distance[gear.name] = (c.name, distance)
-        elif isinstance(c, Revolute):
+        elif as_bearing(c) is not None:
             # The bearing turns about the axis of the link it holds (its axis class).
             holder = next(
                 (link for link in sorted(axes) if structure.axis[link] == structure.bearing_axis[c.name]), None

@@ -26,7 +26,7 @@ from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.axes import axis_structure
 from davies_sym.geometry.layout import GeometricConstraint, solve_linear
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Relation, Train
 
 
@@ -96,13 +96,12 @@ def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
     layout, which has built the same axis structure)."""
     frames = axis_structure(train).meshes
     out: dict[str, list[sympy.Symbol]] = {}
-    for c in train.couplings:
-        if isinstance(c, GearMesh):
-            order = list(c.gears)
-            frame = frames.get(c.name)
-            if frame is not None and frame.planet == 1:
-                order = order[::-1]  # the planet's gear first
-            out[c.name] = [s for g in order for s in sorted_symbols(train.gear(g).radius.free_symbols)]
+    for c in gear_meshes(train.couplings):
+        order = list(c.gears)
+        frame = frames.get(c.name)
+        if frame is not None and frame.planet == 1:
+            order = order[::-1]  # the planet's gear first
+        out[c.name] = [s for g in order for s in sorted_symbols(train.gear(g).radius.free_symbols)]
     return out
 
 

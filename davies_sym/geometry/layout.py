@@ -14,7 +14,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.topology.couplings import Revolute
+from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Train
 
@@ -80,8 +80,8 @@ def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
     that names no axis: coaxial members)."""
     geared = {g.link for g in train.gears}
     groups = LinkGroups(list(train.link_names))
-    for c in train.couplings:
-        if isinstance(c, Revolute) and c.axis is None and c.links[0] in geared and c.links[1] in geared:
+    for c in bearings(train.couplings):
+        if c.axis is None and c.links[0] in geared and c.links[1] in geared:
             groups.union(*c.links)
     return geared, groups
 

@@ -29,7 +29,9 @@ from davies_sym.geometry.layout import (
     line_point,
     loop_through,
 )
-from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
+from davies_sym.topology.coupling_kinds import bearings as all_bearings
+from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Gear, Train
 
 
@@ -65,9 +67,7 @@ def place_classes(
     `at` there, then mesh by mesh (in name order) outward; a class nothing reaches is on
     the main axis when no gear turns about it.  ``via`` records which mesh placed each class from which."""
     positions: dict[str, sympy.Expr] = {structure.root: sympy.Integer(0)}
-    bearings = sorted(
-        (c for c in train.couplings if isinstance(c, Revolute) and c.at is not None), key=lambda c: c.name
-    )
+    bearings = sorted((c for c in all_bearings(train.couplings) if c.at is not None), key=lambda c: c.name)
     geared = {structure.axis[g.link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
@@ -122,7 +122,7 @@ def planar_line_layout(train: Train) -> Layout:
     """Derive axis positions, pitch points and geometric constraints of a planar train."""
     problems: list[Problem] = []
     structure = axis_structure(train)
-    meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
+    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
     via: dict[str, tuple[str, str]] = {}
     positions = place_classes(train, structure, meshes, gears, problems, via)
@@ -171,23 +171,24 @@ def planar_line_layout(train: Train) -> Layout:
             loop=loop_through(via, ends[0], ends[1], mesh.name),
         )
     for c in train.couplings:
-        if isinstance(c, Revolute):
+        bearing = as_bearing(c)
+        if bearing is not None:
             y = positions[structure.bearing_axis[c.name]]
-            if c.at is not None:
+            if bearing.at is not None:
                 # Where the meshes fix this axis, the bearing's `at` is a constraint.
                 add_constraint(
                     train,
                     constraints,
                     problems,
                     y,
-                    c.at,
+                    bearing.at,
                     c.name,
                     oracle,
                     f"couplings.{c.name}.at",
-                    f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {y}",
+                    f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {y}",
                 )
             points[c.name] = line_point(y)
-        elif not isinstance(c, GearMesh):
+        elif as_gear_mesh(c) is None:
             points[c.name] = line_point(sympy.Integer(0))
     if problems:
         raise GeometryError(problems, train.path)

@@ -25,7 +25,9 @@ from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure, axis_structure
 from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constraint
 from davies_sym.geometry.line import centre_distance, side_of_second
-from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
+from davies_sym.topology.coupling_kinds import bearings as all_bearings
+from davies_sym.topology.couplings import GearMesh
 from davies_sym.topology.model import Gear, Train
 
 Point = tuple[sympy.Expr, sympy.Expr]
@@ -36,18 +38,14 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     ``direction`` (x, y) is the placement direction of the planets."""
     problems: list[Problem] = []
     radicals = RadicalTable(
-        facts=[
-            centre_distance(m, {g.name: g for g in train.gears})
-            for m in train.couplings
-            if isinstance(m, GearMesh) and m.internal
-        ]
+        facts=[centre_distance(m, {g.name: g for g in train.gears}) for m in gear_meshes(train.couplings) if m.internal]
     )
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
     structure = axis_structure(train)
     gears = {g.name: g for g in train.gears}
-    meshes = sorted((c for c in train.couplings if isinstance(c, GearMesh)), key=lambda c: c.name)
+    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
     positions = _place_classes(train, structure, meshes, gears, unit, radicals, problems, used)
     if problems:
@@ -90,23 +88,24 @@ def plane_layout(train: Train, direction: Point) -> Layout:
         tangents[mesh.name] = vector((u[1], -u[0], 0))
         normals[mesh.name] = vector((u[0], u[1], 0))
     for c in train.couplings:
-        if isinstance(c, Revolute):
+        bearing = as_bearing(c)
+        if bearing is not None:
             point = positions[structure.bearing_axis[c.name]]
-            if c.at is not None:
+            if bearing.at is not None:
                 along = radicals.reduce(point[0] * unit[0] + point[1] * unit[1])
                 add_constraint(
                     train,
                     constraints,
                     problems,
                     along,
-                    c.at,
+                    bearing.at,
                     c.name,
                     oracle,
                     f"couplings.{c.name}.at",
-                    f"inconsistent geometry: `at` is {c.at} but the gears put this axis at {along}",
+                    f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {along}",
                 )
             points[c.name] = vector((*point, 0))
-        elif not isinstance(c, GearMesh):
+        elif as_gear_mesh(c) is None:
             points[c.name] = vector((0, 0, 0))
     if problems:
         raise GeometryError(problems, train.path)
@@ -141,9 +140,7 @@ def _place_classes(
     ``used`` collects the meshes that placed a class (the others close loops)."""
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
-    bearings = sorted(
-        (c for c in train.couplings if isinstance(c, Revolute) and c.at is not None), key=lambda c: c.name
-    )
+    bearings = sorted((c for c in all_bearings(train.couplings) if c.at is not None), key=lambda c: c.name)
     geared = {structure.axis[g.link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:

@@ -20,6 +20,7 @@ import sympy
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.layout import X_AXIS, Layout
+from davies_sym.topology import coupling_kinds
 from davies_sym.topology.couplings import Revolute
 from davies_sym.topology.model import Train
 from davies_sym.topology.skew_mesh import SkewMesh
@@ -27,7 +28,7 @@ from davies_sym.topology.skew_mesh import SkewMesh
 
 def skew_meshes(train: Train) -> list[SkewMesh]:
     """The skew meshes of ``train``, by name."""
-    return sorted((c for c in train.couplings if isinstance(c, SkewMesh)), key=lambda c: c.name)
+    return sorted(coupling_kinds.skew_meshes(train.couplings), key=lambda c: c.name)
 
 
 def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
@@ -82,7 +83,7 @@ def _plus(point: Vector, distance: sympy.Expr, direction: Vector) -> Vector:
 
 
 def _bearings(train: Train, link: str) -> list[Revolute]:
-    return [c for c in train.couplings if isinstance(c, Revolute) and link in c.links]
+    return [c for c in coupling_kinds.bearings(train.couplings) if link in c.links]
 
 
 def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, SkewMesh]) -> None:
@@ -128,7 +129,7 @@ def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, Ske
                     train.problem(f"couplings.{bearing.name}", "a revolute between two worm links is not supported")
                 )
         for c in train.couplings:
-            if worm.link in c.links and not isinstance(c, (Revolute, SkewMesh)):
+            if worm.link in c.links and coupling_kinds.as_bearing(c) is None and coupling_kinds.as_skew_mesh(c) is None:
                 problems.append(
                     train.problem(
                         f"couplings.{c.name}", f"link {worm.link!r} of a worm joins only revolutes and its mesh"

@@ -27,7 +27,7 @@ from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.coupling_kinds import as_gear_mesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
 
@@ -248,9 +248,8 @@ class Analysis:
             if self.coulomb_signs is CoulombSigns.SYMBOLIC:
                 out[law.coupling] = symbol
                 continue
-            if self.coulomb_signs is CoulombSigns.MESH_LINEAR and isinstance(
-                self.train.coupling(law.coupling), GearMesh
-            ):
+            mesh = as_gear_mesh(self.train.coupling(law.coupling)) is not None
+            if self.coulomb_signs is CoulombSigns.MESH_LINEAR and mesh:
                 out[law.coupling] = sympy.Integer(-1)  # T + (-1) zeta U = 0, i.e. T = zeta U
                 continue
             assert law.transmitted is not None

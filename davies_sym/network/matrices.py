@@ -31,9 +31,9 @@ from davies_sym.network.screw_system import (
     reduce_coupling,
 )
 from davies_sym.network.shared_screws import shared_screws
-from davies_sym.topology.couplings import Coupling, GearMesh, Revolute, ScrewCoupling
+from davies_sym.topology.coupling_kinds import as_bearing, as_written_screws
+from davies_sym.topology.couplings import Coupling, Revolute, ScrewCoupling
 from davies_sym.topology.model import Train
-from davies_sym.topology.skew_mesh import SkewMesh
 from davies_sym.topology.symbols import make_symbol
 
 
@@ -107,15 +107,16 @@ class Network:
         self._friction_wrenches = {name: s.friction for name, s in full.items() if s.friction is not None}
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:
-            if isinstance(c, ScrewCoupling):
-                _check_reciprocal(train, c, full[c.name])
+            written = as_written_screws(c)
+            if written is not None:
+                _check_reciprocal(train, written, full[c.name])
             try:
                 if shared is not None:
                     self.reduced[c.name] = shared.reduced(self.system, c.name)
                 else:
                     self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
             except CouplingScrewError as exc:
-                entry = f"couplings.{c.name}" + (".motions" if isinstance(c, ScrewCoupling) else "")
+                entry = f"couplings.{c.name}" + (".motions" if written is not None else "")
                 raise TopologyError([train.problem(entry, exc.reason)], train.path) from exc
         self.motions, self.actions, self.laws = self._variables()
         self._check_names()
@@ -156,7 +157,8 @@ class Network:
             cm = [MotionVariable(f"{n}_{c.name}", c.name, m.screw) for n, m in zip(names, red.motions, strict=True)]
             motions += cm
             needs_axis = c.name in ports or not c.friction.lossless
-            if needs_axis and (len(cm) > 1 and not isinstance(c, (GearMesh, SkewMesh))):
+            # A mesh (a coupling of two gears) has several freedoms; its friction opposes the first.
+            if needs_axis and (len(cm) > 1 and c.gears is None):
                 raise DerivationError(
                     f"coupling {c.name}: ports and friction need a coupling with one "
                     f"freedom, it has {len(cm)} in this screw system"
@@ -215,17 +217,18 @@ class Network:
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.
-        if isinstance(c, (GearMesh, SkewMesh)):
+        if c.gears is not None:
             return constraints[0].name
         what = "reaction force"
-        if isinstance(c, Revolute):
-            loads = self._bearing_loads(c, constraints)
+        bearing = as_bearing(c)
+        if bearing is not None:
+            loads = self._bearing_loads(bearing, constraints)
             if len(loads) == 1:
                 return loads[0].name
             if c.friction.load == "radial" and len(constraints) == 1:
                 return constraints[0].name  # the one reaction the screw system leaves it
             if not loads:
-                raise TopologyError([self._no_load(c)], self.train.path)
+                raise TopologyError([self._no_load(bearing)], self.train.path)
             constraints, what = loads, f"{c.friction.load} reaction force"
         elif len(constraints) == 1:
             return constraints[0].name

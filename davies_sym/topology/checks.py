@@ -16,7 +16,8 @@ import sympy
 
 from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.errors import shortened
-from davies_sym.topology.couplings import Coupling, GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.expressions import ExpressionError, check_name, parse_expression
 from davies_sym.topology.model import Expected
@@ -103,13 +104,7 @@ def _read_values(value: Any, path: str, reader: EntryReader, couplings: Mapping[
 
 def mesh_efficiency_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:
     """The symbols written as a mesh's ordinary efficiency."""
-    return {
-        e
-        for c in couplings
-        if isinstance(c, GearMesh) and c.efficiencies
-        for e in c.efficiencies
-        if isinstance(e, sympy.Symbol)
-    }
+    return {e for c in gear_meshes(couplings) if c.efficiencies for e in c.efficiencies if isinstance(e, sympy.Symbol)}
 
 
 def friction_coefficient_symbols(couplings: Iterable[Coupling]) -> set[sympy.Symbol]:

@@ -1,12 +1,57 @@
-"""Every coupling kind a topology file may name in ``type:``, by that name."""
+"""Every coupling kind a topology file may name in ``type:``, by that name, and the
+queries the later stages ask of a train's couplings by kind.
+
+The kind classes (`davies_sym.topology.couplings`, `davies_sym.topology.skew_mesh`) and
+this registry are the only modules that test a coupling's class: the stages ask for the
+meshes, bearings or sliders of a train here, and everything else of a kind through its
+own members (`Coupling.written_quantities`, `Coupling.noun`, ...).
+"""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 
 from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
-from davies_sym.topology.skew_mesh import CrossedHelicalMesh, WormMesh
+from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
 
 KINDS: Mapping[str, type[Coupling]] = {
     k.kind: k for k in (Revolute, GearMesh, WormMesh, CrossedHelicalMesh, Prismatic, ScrewCoupling)
 }
+
+
+def gear_meshes(couplings: Iterable[Coupling]) -> list[GearMesh]:
+    """The meshes of gears on parallel or intersecting axes (spur, helical, bevel), in order."""
+    return [c for c in couplings if isinstance(c, GearMesh)]
+
+
+def as_gear_mesh(coupling: Coupling) -> GearMesh | None:
+    """``coupling`` if it is a mesh of gears on parallel or intersecting axes, else None."""
+    return coupling if isinstance(coupling, GearMesh) else None
+
+
+def skew_meshes(couplings: Iterable[Coupling]) -> list[SkewMesh]:
+    """The meshes of gears on skew axes (worm and wheel, crossed helical), in order."""
+    return [c for c in couplings if isinstance(c, SkewMesh)]
+
+
+def as_skew_mesh(coupling: Coupling) -> SkewMesh | None:
+    return coupling if isinstance(coupling, SkewMesh) else None
+
+
+def bearings(couplings: Iterable[Coupling]) -> list[Revolute]:
+    """The revolute pairs, in order."""
+    return [c for c in couplings if isinstance(c, Revolute)]
+
+
+def as_bearing(coupling: Coupling) -> Revolute | None:
+    return coupling if isinstance(coupling, Revolute) else None
+
+
+def sliders(couplings: Iterable[Coupling]) -> list[Prismatic]:
+    """The prismatic pairs, in order."""
+    return [c for c in couplings if isinstance(c, Prismatic)]
+
+
+def as_written_screws(coupling: Coupling) -> ScrewCoupling | None:
+    """``coupling`` if it is written as its screws (the low-level kind), else None."""
+    return coupling if isinstance(coupling, ScrewCoupling) else None

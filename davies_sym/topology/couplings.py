@@ -64,6 +64,21 @@ class Coupling:
         """Symbols of this coupling's laws that a loss model defines."""
         return self.friction.definitions
 
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        """The quantities its entry writes besides its friction laws: a position, a
+        direction, screws, ordinary efficiencies."""
+        return ()
+
+    #: What the reports call it: ``mesh`` for a coupling of two gears.
+    noun: ClassVar[str] = "coupling"
+    #: Whether the reports give its point of the layout (a bearing's, a mesh's pitch point).
+    located: ClassVar[bool] = False
+
+    def report_fields(self) -> dict[str, Any]:
+        """What the JSON report says of it besides its name, type, links and laws."""
+        return {}
+
 
 def _read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tuple[str, str] | None:
     if "links" not in entry:
@@ -90,6 +105,7 @@ class Revolute(Coupling):
     axis: str | None = None
 
     kind: ClassVar[str] = "revolute"
+    located: ClassVar[bool] = True
     DOC: ClassVar[str] = (
         "Revolute pair between two links. Its axis is parallel to the gear "
         "axes; its position is that of the gears of either link, or `at`."
@@ -124,6 +140,10 @@ class Revolute(Coupling):
             axis = None
         return None if links is None else cls(name, links, friction, at, axis)
 
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        return () if self.at is None else (self.at,)
+
 
 @dataclass(frozen=True)
 class GearMesh(Coupling):
@@ -154,6 +174,8 @@ class GearMesh(Coupling):
     hand: int = 1
 
     kind: ClassVar[str] = "mesh"
+    noun: ClassVar[str] = "mesh"
+    located: ClassVar[bool] = True
     DOC: ClassVar[str] = (
         "Gear mesh between two gears. The edge goes from the link of the first gear "
         "to the link of the second. External or internal is derived from the gears "
@@ -201,6 +223,13 @@ class GearMesh(Coupling):
     def definitions(self) -> tuple[Definition, ...]:
         angles = tuple(d for a in self.angles for d in a.definitions)
         return self.friction.definitions + self.efficiency_definitions + angles
+
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        return () if self.efficiencies is None else tuple(self.efficiencies)
+
+    def report_fields(self) -> dict[str, Any]:
+        return {"gears": list(self.gears), "mesh": "internal" if self.internal else "external"}
 
     @classmethod
     def from_entry(
@@ -275,6 +304,10 @@ class Prismatic(Coupling):
             return None
         return cls(name, links, friction, direction)
 
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        return tuple(self.direction)
+
 
 def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
     """A direction: ``x``, ``y``, ``z`` (``-x`` ...), or a list of three quantities."""
@@ -333,6 +366,10 @@ class ScrewCoupling(Coupling):
             reader.problem(f"{path}.motions", "a coupling needs at least one motion screw")
             return None
         return cls(name, links, friction, motions, actions)
+
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        return tuple(x for s in (*self.motion_screws, *self.action_screws) for x in s.screw)
 
 
 def _read_screws(

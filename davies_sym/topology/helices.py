@@ -12,7 +12,8 @@ from collections.abc import Mapping
 
 import sympy
 
-from davies_sym.topology.couplings import Coupling, GearMesh
+from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.entries import EntryReader
 
 #: A gear's helix as one mesh describes it: (angle or None for spur teeth, hand, mesh).
@@ -23,9 +24,7 @@ def check_helices(couplings: Mapping[str, Coupling], reader: EntryReader) -> Non
     """Record a problem for each mesh that gives one of its gears another helix than an
     earlier mesh of that gear."""
     seen: dict[str, _Helix] = {}
-    for mesh in couplings.values():
-        if not isinstance(mesh, GearMesh):
-            continue
+    for mesh in gear_meshes(couplings.values()):
         angle = None if mesh.helix is None else mesh.helix.angle
         second_hand = mesh.hand if mesh.internal else -mesh.hand
         for gear, hand in zip(mesh.gears, (mesh.hand, second_hand), strict=True):

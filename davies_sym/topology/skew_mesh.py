@@ -58,6 +58,8 @@ class SkewMesh(Coupling):
 
     DOC: ClassVar[str] = ""
 
+    noun: ClassVar[str] = "mesh"
+
     @property
     def gears(self) -> tuple[str, str]:
         return self.mesh_gears

@@ -13,7 +13,8 @@ from dataclasses import replace
 from types import MappingProxyType
 
 from davies_sym.errors import Problem, TopologyError
-from davies_sym.topology.couplings import Coupling, Revolute
+from davies_sym.topology.coupling_kinds import as_bearing, bearings
+from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Link, Ports, State, Train
 from davies_sym.topology.schema import PORT_KEYS
@@ -51,7 +52,7 @@ def train_in_state(train: Train, state: State) -> Train:
         if ends[0] == ends[1]:
             continue
         twin = next(
-            (d for d in couplings if isinstance(d, Revolute) and isinstance(c, Revolute) and set(d.links) == set(ends)),
+            (d for d in bearings(couplings) if as_bearing(c) is not None and set(d.links) == set(ends)),
             None,
         )
         if twin is not None:

@@ -148,7 +148,15 @@ def test_public_api_is_listed() -> None:
 
 #: The modules that may test a coupling's class: the kind classes and their registry,
 #: which answers the stages' questions by kind (`davies_sym.topology.coupling_kinds`).
-KIND_MODULES = {"topology/couplings.py", "topology/skew_mesh.py", "topology/coupling_kinds.py"}
+KIND_MODULES = {
+    "topology/couplings.py",
+    "topology/revolute.py",
+    "topology/gear_mesh.py",
+    "topology/prismatic.py",
+    "topology/screw_coupling.py",
+    "topology/skew_mesh.py",
+    "topology/coupling_kinds.py",
+}
 
 
 def _coupling_classes() -> set[str]:

@@ -13,7 +13,7 @@ from davies_sym.efficiency.absolute_motion import (
     twists_equal,
 )
 from davies_sym.efficiency.virtual_power import mesh_power_flow
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 
 from conftest import S, catalog_path, catalog_trains, equal
 

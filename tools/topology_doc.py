@@ -32,8 +32,9 @@ An entry that takes a list (`links`, `independent`, a state's `brake`, `free` an
 `clutch`, `calibrate.fit`) takes one item written alone as the list of that item:
 `brake: c2` is `brake: [c2]`.
 
-This page is generated from `davies_sym/schema.py` and `davies_sym/couplings.py`
-(`python3 tools/topology_doc.py`); a test fails when it is out of date.
+This page is generated from `davies_sym/topology/schema.py` and the coupling kinds
+registered in `davies_sym/topology/coupling_kinds.py` (`python3 tools/topology_doc.py`);
+a test fails when it is out of date.
 
 ## Example: Laus Fig. 7 (Tuplin's two-annulus train)
 

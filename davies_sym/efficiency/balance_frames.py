@@ -23,7 +23,7 @@ from davies_sym.algebra.screws import Vector, cross
 from davies_sym.errors import DerivationError
 from davies_sym.geometry.layout import Layout
 from davies_sym.topology.coupling_kinds import bearings, gear_meshes, sliders
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
 
 Values = Mapping[sympy.Symbol, sympy.Expr]

@@ -17,7 +17,8 @@ import sympy
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.network.friction_laws import FrictionLaw
 from davies_sym.topology.coupling_kinds import gear_meshes
-from davies_sym.topology.couplings import Coupling, GearMesh
+from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
 
 

@@ -25,7 +25,7 @@ from davies_sym.algebra.screws import rotation_twist
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
 from davies_sym.errors import DerivationError, TopologyError
 from davies_sym.topology.coupling_kinds import as_gear_mesh
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis

@@ -45,7 +45,7 @@ from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
 
 Torques = dict[str, tuple[sympy.Expr, sympy.Expr]]

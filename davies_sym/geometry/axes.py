@@ -22,9 +22,10 @@ from itertools import product
 
 from davies_sym.errors import GeometryError
 from davies_sym.topology.coupling_kinds import bearings, gear_meshes
-from davies_sym.topology.couplings import GearMesh, Revolute
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Train
+from davies_sym.topology.revolute import Revolute
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ from davies_sym.geometry.layout import (
 )
 from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Gear, Train
 
 

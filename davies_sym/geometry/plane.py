@@ -27,7 +27,7 @@ from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constrai
 from davies_sym.geometry.line import centre_distance, side_of_second
 from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
-from davies_sym.topology.couplings import GearMesh
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Gear, Train
 
 Point = tuple[sympy.Expr, sympy.Expr]

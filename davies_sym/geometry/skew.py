@@ -21,8 +21,8 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.layout import X_AXIS, Layout
 from davies_sym.topology import coupling_kinds
-from davies_sym.topology.couplings import Revolute
 from davies_sym.topology.model import Train
+from davies_sym.topology.revolute import Revolute
 from davies_sym.topology.skew_mesh import SkewMesh
 
 

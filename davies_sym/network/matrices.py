@@ -20,7 +20,7 @@ from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
-from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws, written_square_root
+from davies_sym.network.coupling_screws import coupling_screws, written_square_root
 from davies_sym.network.friction_laws import LOSS_ROLES, CoulombLaw, DragLaw, FrictionLaw, LinearLaw, ViscousLaw
 from davies_sym.network.screw_system import (
     CouplingScrewError,
@@ -32,8 +32,11 @@ from davies_sym.network.screw_system import (
 )
 from davies_sym.network.shared_screws import shared_screws
 from davies_sym.topology.coupling_kinds import as_bearing, as_written_screws
-from davies_sym.topology.couplings import Coupling, Revolute, ScrewCoupling
+from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.kind_screws import CouplingScrews
 from davies_sym.topology.model import Train
+from davies_sym.topology.revolute import Revolute
+from davies_sym.topology.screw_coupling import ScrewCoupling
 from davies_sym.topology.symbols import make_symbol
 
 

@@ -24,7 +24,7 @@ from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import TWIST_COORDINATES, WRENCH_COORDINATES, NamedScrew, Screw, power
 from davies_sym.errors import DerivationError
-from davies_sym.network.coupling_screws import CouplingScrews
+from davies_sym.topology.kind_screws import CouplingScrews
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from dataclasses import replace
 import sympy
 
 from davies_sym.geometry import train_layout
-from davies_sym.network.coupling_screws import CouplingScrews, coupling_screws, written_square_root
+from davies_sym.network.coupling_screws import coupling_screws, written_square_root
 from davies_sym.network.screw_system import (
     ReducedCoupling,
     ScrewSystem,
@@ -26,6 +26,7 @@ from davies_sym.network.screw_system import (
     minimal_screw_system,
     reduce_coupling,
 )
+from davies_sym.topology.kind_screws import CouplingScrews
 from davies_sym.topology.model import Train
 
 #: The key of the shared screw work in a whole train's ``memo``.

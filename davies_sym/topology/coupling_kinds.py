@@ -11,7 +11,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
-from davies_sym.topology.couplings import Coupling, GearMesh, Prismatic, Revolute, ScrewCoupling
+from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.gear_mesh import GearMesh
+from davies_sym.topology.prismatic import Prismatic
+from davies_sym.topology.revolute import Revolute
+from davies_sym.topology.screw_coupling import ScrewCoupling
 from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
 
 KINDS: Mapping[str, type[Coupling]] = {

@@ -16,11 +16,22 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import sympy
 
+from davies_sym.algebra.screws import (
+    AXES,
+    UNIT,
+    NamedScrew,
+    cross,
+    force_wrench,
+    rotation_magnitude_name,
+    rotation_twist,
+    translation_twist,
+)
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.angles import AngleFunctions, read_angle
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.entries import describe
 from davies_sym.topology.gear import Gear
+from davies_sym.topology.kind_screws import CouplingScrews, Placement, point_constraints
 from davies_sym.topology.loss_entries import Friction, read_friction
 from davies_sym.topology.mesh_entries import read_gear_pair
 from davies_sym.topology.schema import Field
@@ -79,6 +90,21 @@ class SkewMesh(Coupling):
     @property
     def definitions(self) -> tuple[Definition, ...]:
         return self.friction.definitions + tuple(d for a in self.angles for d in a.definitions)
+
+    def screws(self, place: Placement) -> CouplingScrews:
+        """A point contact at the pitch point.  The sliding along the tooth line is the
+        first motion (the one its friction opposes); the sliding across it and the
+        rotations about lines through the pitch point are the other four freedoms; the
+        normal force is the action, and the friction force acts along the tooth line at
+        the pitch point."""
+        point = place.coupling_points[self.name]
+        tooth_line, normal = place.mesh_tangents[self.name], place.mesh_normals[self.name]
+        sliding = NamedScrew("q", translation_twist(tooth_line))
+        across = NamedScrew("q", translation_twist(cross(normal, tooth_line)))
+        tilts = tuple(NamedScrew(rotation_magnitude_name(UNIT[a]), rotation_twist(UNIT[a], point)) for a in AXES)
+        friction = NamedScrew("F", force_wrench(tooth_line, point))
+        pressing = NamedScrew("N", force_wrench(normal, point))
+        return CouplingScrews((sliding,), (across, *tilts), (pressing, *point_constraints(point)), friction)
 
     @classmethod
     def _gear_pair(

@@ -1,0 +1,230 @@
+"""The gear mesh of two gears on parallel or intersecting axes: spur, helical, bevel
+(Laus Table 3, coupling C; section 3.3.1)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, ClassVar
+
+import sympy
+
+from davies_sym.algebra.screws import (
+    NamedScrew,
+    cross,
+    force_magnitude_name,
+    force_wrench,
+    rotation_magnitude_name,
+    rotation_twist,
+    translation_magnitude_name,
+    translation_twist,
+    vector,
+)
+from davies_sym.errors import DerivationError, shortened
+from davies_sym.losses.definitions import Definition
+from davies_sym.topology.angles import AngleFunctions
+from davies_sym.topology.couplings import Coupling
+from davies_sym.topology.gear import Gear
+from davies_sym.topology.kind_screws import CouplingScrews, Placement, point_constraints
+from davies_sym.topology.loss_entries import Friction, read_friction, tooth_contact
+from davies_sym.topology.mesh_entries import annulus_larger, read_efficiencies, read_gear_pair, read_helix
+from davies_sym.topology.schema import Field
+
+if TYPE_CHECKING:
+    from davies_sym.topology.entries import EntryReader
+
+
+@dataclass(frozen=True)
+class GearMesh(Coupling):
+    """A gear mesh between two gears on different links, external or internal.
+
+    The relative motion is a rotation about the pitch line (Laus Table 3, coupling C);
+    the transmitted action is the tooth force along the common tangent at the pitch
+    point (pressure angle taken as zero, Laus section 3.3.1), and the friction is a
+    torque about the pitch line (Theorem 1).  The separating motion along the centre
+    line is a secondary freedom: it is kept in planar systems of order 3.
+
+    Helical gears (``helix``) on parallel axes: the tooth force is normal to the tooth
+    line, so besides its tangential part ``F`` it pushes the gears apart along their
+    axes by ``F tan(beta)``, the thrust the bearings take; the teeth may slide along the
+    tooth line.  ``hand`` is +1 when the first gear is right-handed (the second is then
+    left-handed on an external mesh, right-handed on an internal one).
+    """
+
+    mesh_gears: tuple[str, str] = ("", "")
+    internal: bool = False
+    #: Ordinary efficiencies: (first gear drives, second gear drives), Laus eqs. (32), (34).
+    efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
+    #: The efficiencies as functions of the tooth geometry (Laus App. A), when given so.
+    efficiency_definitions: tuple[Definition, ...] = ()
+    #: cos and sin of the helix angle at the pitch radius (helical gears), else None.
+    helix: AngleFunctions | None = None
+    #: +1: the first gear is right-handed, -1: left-handed.
+    hand: int = 1
+
+    kind: ClassVar[str] = "mesh"
+    noun: ClassVar[str] = "mesh"
+    located: ClassVar[bool] = True
+    DOC: ClassVar[str] = (
+        "Gear mesh between two gears. The edge goes from the link of the first gear "
+        "to the link of the second. External or internal is derived from the gears "
+        "(`internal: true` marks an annulus); `mesh` may state it as a check."
+    )
+    FIELDS: ClassVar[tuple[Field, ...]] = (
+        Field("gears", "[gear, gear]", True, "The two meshing gears."),
+        Field("mesh", "`external` or `internal`", False, "Checked against the gears."),
+        Field(
+            "efficiency",
+            "symbol or number, a list of two, or a mapping",
+            False,
+            "Ordinary efficiency of the mesh (carrier held). One value serves both power "
+            "directions; a list gives [first gear drives, second gear drives]; a mapping derives both "
+            "from the tooth geometry of an external spur mesh (Laus App. A, eq. (136)): "
+            "`eta_<coupling>_<gear>_<gear>` (driver first), see *Tooth contact*. "
+            "Default: `eta_<coupling>`.",
+        ),
+        Field(
+            "helix_angle",
+            "symbol or number",
+            False,
+            "Helix angle beta of helical gears at the pitch radius, between 0 and 90 degrees (numbers are "
+            "degrees, symbols radians): the tooth force then thrusts along the axes by F tan(beta), which "
+            "the bearings take (see `thrust` friction). Default: spur gears.",
+        ),
+        Field(
+            "hand",
+            "`right` or `left`",
+            False,
+            "Hand of the first gear's helix (the second gear has the other hand on an external mesh, the "
+            "same on an internal one); it sets the direction of the thrust. Default: `right`.",
+        ),
+    )
+
+    @property
+    def gears(self) -> tuple[str, str]:
+        return self.mesh_gears
+
+    @property
+    def angles(self) -> tuple[AngleFunctions, ...]:
+        return () if self.helix is None else (self.helix,)
+
+    @property
+    def definitions(self) -> tuple[Definition, ...]:
+        angles = tuple(d for a in self.angles for d in a.definitions)
+        return self.friction.definitions + self.efficiency_definitions + angles
+
+    @property
+    def written_quantities(self) -> tuple[sympy.Expr, ...]:
+        return () if self.efficiencies is None else tuple(self.efficiencies)
+
+    def report_fields(self) -> dict[str, Any]:
+        return {"gears": list(self.gears), "mesh": "internal" if self.internal else "external"}
+
+    def screws(self, place: Placement) -> CouplingScrews:
+        """A mesh: rotation about the pitch line, tooth force along the common tangent
+        first; the separating motion along the centre line is a secondary freedom (kept
+        in planar systems of order 3).  Where the gears carry thrust or the layout is
+        spatial the teeth touch at the pitch point only: the translation along the axis
+        and the tilts about the tangent and the centre line are freedoms too, so the
+        bearings alone hold the gears out of their plane.  Helical teeth
+        (`_helical_screws`) slide along the tooth line instead of the axis."""
+        point, axis = place.coupling_points[self.name], place.coupling_axes.get(self.name, place.axis)
+        tangent, normal = place.mesh_tangents[self.name], place.mesh_normals[self.name]
+        motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
+        if self.helix is not None:
+            return self._helical_screws(place, motion)
+        separating = [NamedScrew(translation_magnitude_name(normal), translation_twist(normal))]
+        if place.spatial or place.thrust:
+            separating += [
+                NamedScrew(translation_magnitude_name(axis), translation_twist(axis)),
+                NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point)),
+                NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
+            ]
+        return CouplingScrews((motion,), tuple(separating), point_constraints(point, (tangent,)))
+
+    def _helical_screws(self, place: Placement, motion: NamedScrew) -> CouplingScrews:
+        """A helical mesh on parallel axes, pressure angle zero as for spur gears.
+
+        On the first gear's pitch cylinder the tooth line of a right-hand helix runs
+        along ``sin(beta) e_theta + cos(beta) e_z`` (``e_theta`` the direction of the
+        gear's rotation about its axis at the pitch point); the tooth force is normal to
+        it in the pitch plane, ``cos(beta) e_theta - sin(beta) e_z``.  Its magnitude is
+        counted by the tangential part, so the wrench is the tangential unit force plus
+        ``tan(beta)`` of it along the axis: the mesh law and its efficiency keep their
+        meaning, and the thrust reaches the bearings.  Sliding along the tooth line and
+        tilting about the tangent are freedoms the screw system must hold, or the thrust
+        would have nowhere to go."""
+        assert self.helix is not None
+        point, axis = place.coupling_points[self.name], place.coupling_axes.get(self.name, place.axis)
+        tangent, normal = place.mesh_tangents[self.name], place.mesh_normals[self.name]
+        centre = place.gear_centres[self.gears[0]]
+        # +1 when the tangent is the first gear's e_theta at the pitch point, -1 when opposite.
+        radial = vector([p - q for p, q in zip(point, centre, strict=True)])
+        along = sympy.cancel(sum(a * b for a, b in zip(tangent, cross(axis, radial), strict=True)))
+        orientation = sympy.sign(along)
+        if orientation not in (1, -1):
+            raise DerivationError(
+                f"mesh {self.name}: the sense of its first gear's rotation at the pitch point is unknown"
+            )
+        lean = -int(orientation) * self.hand  # the axial part of e_theta-normal, per unit along the tangent
+        cos, sin = self.helix.cos, self.helix.sin
+        force = vector([t + lean * sin / cos * a for t, a in zip(tangent, axis, strict=True)])
+        tooth_line = vector([-lean * sin * t + cos * a for t, a in zip(tangent, axis, strict=True)])
+        sliding = NamedScrew("q", translation_twist(tooth_line))
+        tilt = NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point))
+        secondary = (
+            NamedScrew(translation_magnitude_name(normal), translation_twist(normal)),
+            sliding,
+            tilt,
+            NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
+        )
+        pressing = NamedScrew(force_magnitude_name(tangent), force_wrench(force, point))
+        return CouplingScrews((motion,), secondary, (pressing, *point_constraints(point)), spans=(sliding, tilt))
+
+    @classmethod
+    def from_entry(
+        cls, name: str, entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear]
+    ) -> GearMesh | None:
+        pair = read_gear_pair(entry, path, reader, gears)
+        if pair is None:
+            return None
+        g1, g2 = pair
+        if g1.internal and g2.internal:
+            reader.problem(f"{path}.gears", "two internal gears cannot mesh")
+            return None
+        internal = g1.internal or g2.internal
+        if internal and not annulus_larger(g1 if g1.internal else g2, g2 if g1.internal else g1, path, reader):
+            return None
+        stated = entry.get("mesh")
+        if stated is not None and stated not in ("external", "internal"):
+            reader.problem(f"{path}.mesh", f"expected `external` or `internal`, got {shortened(str(stated))}")
+        elif stated is not None and (stated == "internal") != internal:
+            reader.problem(
+                f"{path}.mesh",
+                f"stated {shortened(str(stated))} but the gears make an {'internal' if internal else 'external'} mesh",
+            )
+        for own, meaning, role, given in (
+            (f"zeta_{name}", "mesh friction coefficient", "friction", "friction" in entry),
+            (f"eta_{name}", "ordinary efficiency", "efficiency", "efficiency" in entry),
+        ):
+            elsewhere = reader.written.get(own)
+            if not given and elsewhere is not None and not elsewhere.startswith(path):
+                # The mesh's own symbol, already written in another role (a radius called eta_G):
+                # said once, where it was written.
+                reader.problem(
+                    elsewhere, f"{own} is the name of the {meaning} of mesh {name}; give this symbol another name"
+                )
+                reader.roles[own] = role
+        default = Friction(coulomb=reader.quantity(f"zeta_{name}", path, "friction"))
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, default, name)
+        value = entry.get("efficiency", f"eta_{name}")
+        definitions: tuple[Definition, ...] = ()
+        if isinstance(value, Mapping):
+            definitions = tooth_contact(value, f"{path}.efficiency", reader, name, (g1, g2))
+            efficiencies = (definitions[0].symbol, definitions[1].symbol) if definitions else None
+        else:
+            efficiencies = read_efficiencies(value, f"{path}.efficiency", reader)
+        helix, hand = read_helix(entry, path, reader, name)
+        return cls(
+            name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions, helix, hand
+        )

@@ -192,3 +192,43 @@ def test_two_degrees_of_freedom_with_one_input_print_the_motions_and_say_what_is
     assert result.returncode == 0, result.describe()
     assert "t_A = -t_K + 2*t_O" in result.stdout, result.describe()
     assert "2 degrees of freedom needs as many input ports" in result.stdout, result.describe()
+
+
+def test_a_sweep_of_a_mesh_friction_coefficient_is_refused_as_its_value_is(tmp_path):
+    """--plot zeta_C drew a flat line (the formulas are in eta_C), exit 0."""
+    result = run_main(
+        [
+            CATALOG / "simple_pair.yaml",
+            "--quiet",
+            "--plot",
+            "zeta_C=0:1",
+            "--at",
+            "r1=20",
+            "r2=50",
+            "-o",
+            tmp_path / "p.png",
+        ]
+    )
+    assert_refused(result, CATALOG / "simple_pair.yaml", ("--plot",), line=False)
+    assert "zeta_C is the friction coefficient of mesh C" in result.stderr, result.describe()
+
+
+def test_naming_the_output_of_a_train_driven_at_several_ports_changes_nothing():
+    """SR20 (Mantriota and Pennestri 2003, Table I row 1): --output O is its output already."""
+    design = ["omega_A=309", "omega_K=51", "tau_out=5.08", "eta_M=0.957", "D_P=0.639"]
+    plain = run_main([CATALOG / "sr20_differential.yaml", "--quiet", "--eval", *design])
+    named = run_main([CATALOG / "sr20_differential.yaml", "--quiet", "--eval", *design, "--output", "O"])
+    assert plain.returncode == named.returncode == 0, named.describe()
+    assert plain.stdout == named.stdout and 0 < float(named.stdout.splitlines()[-1]) < 1
+    other = run_main([CATALOG / "sr20_differential.yaml", "--quiet", "--eval", *design, "--output", "A"])
+    assert_refused(other, CATALOG / "sr20_differential.yaml", ("--output",), line=False)
+
+
+def test_an_output_named_by_a_link_to_the_input_is_refused_by_both_names(tmp_path):
+    source = write(tmp_path, PAIR, "pair.yaml")
+    link = tmp_path / "link.tex"
+    link.symlink_to(source)
+    result = run_main([source, "--quiet", "--latex", "-o", link])
+    assert_refused(result, source, ("-o",), line=False)
+    assert f"refusing to overwrite the input file {source} ({link} names it)" in result.stderr, result.describe()
+    assert source.read_text(encoding="utf-8") == PAIR

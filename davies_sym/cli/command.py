@@ -43,7 +43,8 @@ def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
         raise InputError([Problem(option, f"{_path_text(target)} is a folder; give a file name")], inputs[0])
     for path in inputs:
         if os.path.exists(target) and os.path.exists(path) and os.path.samefile(target, path):
-            raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}")], path)
+            named = "" if target == path else f" ({_path_text(target)} names it)"
+            raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}{named}")], path)
 
 
 def _check_distinct(targets: Sequence[tuple[str, str]], source: str) -> None:

@@ -22,6 +22,7 @@ from davies_sym.cli.arguments import (
     values,
 )
 from davies_sym.cli.messages import message
+from davies_sym.efficiency.design_values import solved_coefficients
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import file_parameters, formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
@@ -50,6 +51,11 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
     train = variants.train
     operating = operating_symbols(variants)
+    solved = {str(k): why for k, why in solved_coefficients(train).items()}
+    for option, text in (("--plot", args.plot), ("--vs", args.vs)):
+        name = (text or "").partition("=")[0].strip()
+        if name in solved:  # a mesh's friction coefficient: the formulas are in its efficiency
+            raise InputError([Problem(option, solved[name])], train.path)
     x, y = plot_sweeps(train, args, [*train.symbols, *map(str, operating)])
     check_sweep_ranges((x, y), [asdict(p) for p in variants.parameter_table], train.path)
     port = eval_port(train, args)

@@ -55,7 +55,8 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
             [Problem("--state", "operating states are derived for trains of one degree of freedom only")], train.path
         )
     for option, given in (("--input", args.input), ("--output", args.output)):
-        if given is not None:
+        # Naming the train's own output says nothing new: it is the output already.
+        if given is not None and not (option == "--output" and given == train.ports.output):
             raise InputError(
                 [
                     Problem(

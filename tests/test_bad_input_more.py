@@ -232,3 +232,75 @@ def test_an_output_named_by_a_link_to_the_input_is_refused_by_both_names(tmp_pat
     assert_refused(result, source, ("-o",), line=False)
     assert f"refusing to overwrite the input file {source} ({link} names it)" in result.stderr, result.describe()
     assert source.read_text(encoding="utf-8") == PAIR
+
+
+WORM = (CATALOG / "worm_drive.yaml").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("source", "old", "new", "at", "entry", "words"),
+    [
+        (PAIR, "radius: r2}", "radius: r2#big}", "r2#big", "gears.2.radius", "'#' is not part"),
+        (PAIR, "radius: r2}", "radius: r2, module: 2}", "module: 2", "gears.2.module", "goes with"),
+        (
+            PAIR,
+            "  2: {description: gear 2}\n",
+            "  2: {description: gear 2}\n  3: {description: spare}\n",
+            "spare",
+            "links.3",
+            "no coupling joins link '3'",
+        ),
+        (
+            PAIR,
+            "  C: {type: mesh",
+            "  D: {type: revolute, links: [0, 1]}\n  C: {type: mesh",
+            "D: {type",
+            "couplings.D",
+            "U_D stay free",
+        ),
+        (WORM, "lead_angle: gamma", "lead_angle: -gamma", "-gamma", "couplings.W.lead_angle", "is negative"),
+        (
+            WORM,
+            "{link: 1, radius: 1}",
+            "{link: 1, radius: 1, internal: true}",
+            "internal: true",
+            "gears.worm.internal",
+            "skew axes",
+        ),
+    ],
+    ids=[
+        "hash-in-a-radius",
+        "module-beside-radius",
+        "lone-link",
+        "twin-bearing",
+        "negative-lead-angle",
+        "internal-worm",
+    ],
+)
+def test_a_second_sweep_of_file_mistakes_is_refused_at_the_entry_written(tmp_path, source, old, new, at, entry, words):
+    """`r2#big` read as r2 (Python's parser dropped a comment), a module beside a radius and
+    a negative symbolic lead angle were accepted; a lone link, a second bearing and an
+    internal worm were refused at the wrong entry."""
+    text = replaced(source, old, new)
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, at), entry)
+    assert words in result.stderr, result.describe()
+
+
+def test_a_bearing_coefficient_beyond_a_double_still_gives_a_module(tmp_path):
+    """coulomb: 1e-300 made the module writer recurse without end on a 301-digit number;
+    the module now gives the efficiency, which tends to eta_C as the loss vanishes."""
+    text = replaced(
+        PAIR,
+        "  A: {type: revolute, links: [0, 1]}",
+        "  A: {type: revolute, links: [0, 1], friction: {coulomb: 1e-300}}",
+    )
+    path = write(tmp_path, text)
+    module = tmp_path / "m.py"
+    result = run_main([path, "--quiet", "--python", module])
+    assert result.returncode == 0, result.describe()
+    namespace: dict[str, object] = {}
+    exec(compile(module.read_text(encoding="utf-8"), str(module), "exec"), namespace)
+    value = namespace["efficiency"](r1=20.0, r2=50.0, eta_C=0.98)  # type: ignore[operator]
+    assert abs(float(value) - 0.98) < 1e-12

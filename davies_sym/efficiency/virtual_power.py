@@ -143,9 +143,15 @@ def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
     law = laws[0]
     lossless = net.coupling_actions(mesh.name, lossless=True)
     if len(lossless) != 1 or law.transmitted != lossless[0].name:
-        raise DerivationError(
-            f"mesh {mesh.name} transmits {len(lossless)} actions in this screw "
-            "system; its ordinary efficiency needs exactly one (the tooth force)"
+        raise TopologyError(
+            [
+                analysis.train.problem(
+                    f"couplings.{mesh.name}",
+                    f"mesh {mesh.name} transmits {len(lossless)} actions in this screw system; its ordinary "
+                    "efficiency needs exactly one (the tooth force): does a coupling move out of the gears' plane?",
+                )
+            ],
+            analysis.train.path,
         )
     carrier, sides = find_carrier(analysis, mesh)
     ring = analysis.ring

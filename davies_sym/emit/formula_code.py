@@ -179,6 +179,8 @@ def _fitted(
             parts.append(symbol)
         if len(parts) == len(args):  # no group formed: every argument alone is long
             parts = [_temporary(a, fresh, steps) for a in args]
+            if parts == args:  # long atoms (a number of hundreds of digits): nothing to move
+                return expr.func(*parts)
         return _fitted(expr.func(*parts), fresh, steps)
     rebuilt = expr.func(*args)
     if _width(rebuilt) <= _BUDGET:

@@ -201,10 +201,11 @@ class Analysis:
             )
         others = [cols[j].name for j in free if j != index]
         if others:
+            first = next(cols[j].coupling for j in free if j != index)
             raise MobilityError(
                 [
                     self.train.problem(
-                        "couplings",
+                        f"couplings.{first}",
                         f"the actions are not determined by the input: {', '.join(others)} stay free "
                         "(the network is overconstrained in this screw system, or a port is missing)",
                     )

@@ -65,6 +65,10 @@ def read_angle(
         # No symbol names this angle: c_ and s_, so that no output shows cos of a symbol.
         names = f"c_{what}_{coupling}", f"s_{what}_{coupling}"
     else:
+        if read.could_extract_minus_sign():
+            # A symbol stands for the size of its angle: its negative is no angle of the range.
+            reader.problem(path, f"{shortened(str(value), 40)} is negative: write the angle itself, in (0, pi/2)")
+            return None
         angle = read
         stem = str(read) if isinstance(read, sympy.Symbol) else f"{what}_{coupling}"
         names = f"cos_{stem}", f"sin_{stem}"

@@ -121,6 +121,11 @@ def parse_expression(text: str, symbol: Callable[[str], sympy.Symbol] | None = N
         raise ExpressionError("expected a number or an expression, got an empty text")
     if _nesting(text) > MAX_DEPTH:
         raise ExpressionError(f"{shortened(text)} is nested too deeply (at most {MAX_DEPTH} levels)")
+    if "#" in text:
+        # Python's parser would drop the rest as a comment; in YAML a comment needs a space before '#'.
+        raise ExpressionError(
+            f"{shortened(text)}: '#' is not part of an expression (a YAML comment needs a space before it)"
+        )
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except (SyntaxError, ValueError, RecursionError, MemoryError):

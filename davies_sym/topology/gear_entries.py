@@ -62,6 +62,10 @@ def _read_size(
         reader.problem(path, "give either `radius` or `teeth` with `module`")
         return None, None, None
     if has_radius:
+        if "module" in entry:
+            # A module sizes a gear only with its teeth: beside a radius it would say nothing.
+            reader.problem(f"{path}.module", "`module` goes with `teeth`; with `radius` leave it out")
+            return None, None, None
         return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, None
     teeth = entry["teeth"]
     if isinstance(teeth, str):

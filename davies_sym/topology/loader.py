@@ -284,10 +284,12 @@ def _check_connected(links: list[Link], couplings: Mapping[str, Coupling], reade
     graph.add_edges_from(c.links for c in couplings.values())
     if not nx.is_connected(graph):
         parts = sorted((sorted(map(str, part)) for part in nx.connected_components(graph)), key=len)
-        reader.problem(
-            "couplings",
-            "the coupling graph is not connected: " + " | ".join(", ".join(p) for p in parts) + " are separate",
-        )
+        said = "the coupling graph is not connected: " + " | ".join(", ".join(p) for p in parts) + " are separate"
+        lonely = [p[0] for p in parts if len(p) == 1 and graph.degree(p[0]) == 0]
+        if lonely:  # a link no coupling joins: said at the link itself
+            reader.problem(f"links.{lonely[0]}", f"no coupling joins link {lonely[0]!r} ({said}); join it or remove it")
+        else:
+            reader.problem("couplings", said)
 
 
 def _read_reference(

@@ -118,8 +118,9 @@ class SkewMesh(Coupling):
         internal = [g.name for g in (g1, g2) if g.internal]
         if internal:
             reader.problem(
-                f"{path}.gears",
-                f"gear {internal[0]!r} is internal: gears on skew axes are external; remove `internal: true`",
+                f"gears.{internal[0]}.internal",
+                f"gear {internal[0]!r} meshes in {path} on skew axes, where gears are external; "
+                "remove `internal: true`",
             )
             return None
         return g1, g2

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from collections.abc import Sequence
 
@@ -20,7 +21,7 @@ import numpy as np
 from davies_sym.calibration.least_squares import Fit, fit
 from davies_sym.calibration.measurements import Measurements, read_measurements
 from davies_sym.calibration.report import fit_text, residual_figure
-from davies_sym.calibration.train_model import TrainModel, columns_of, fittable_parameters
+from davies_sym.calibration.train_model import TrainModel, check_loaded, columns_of, fittable_parameters
 from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
@@ -56,6 +57,26 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (.png, .svg or .pdf)")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
+
+
+def _refused_options(args: argparse.Namespace) -> str | None:
+    """Why the options cannot be taken as written (``OPTION: what is wrong``), or None:
+    an empty or unsuitable figure name, a figure over an input, a parameter both fitted
+    and held."""
+    if args.out is not None:
+        if not args.out.strip():
+            return "-o: the file name is empty; give the figure's file (.png, .svg or .pdf)"
+        if figure_format(args.out) is None:
+            return f"-o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the format)"
+        for given in (args.train, args.data, *(args.predict or ())):
+            if os.path.exists(args.out) and os.path.exists(given) and os.path.samefile(args.out, given):
+                return f"-o: refusing to overwrite the input file {given}"
+    fitted = set(args.fit or ())
+    held = [pair.partition("=")[0].strip() for pair in args.at]
+    both = [name for name in held if name in fitted]
+    if both:
+        return f"--at: {both[0]} is fitted (--fit {both[0]}): give it to one of --fit and --at"
+    return None
 
 
 def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
@@ -116,20 +137,21 @@ def calibrate(
 def run(argv: Sequence[str]) -> int:
     """The ``derive calibrate`` command; returns the exit status (0, or 2 for bad input)."""
     args = parser().parse_args(argv)
-    suffix = figure_format(args.out) if args.out else ".png"
-    if suffix is None:
-        print(
-            f"input error: -o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the format)",
-            file=sys.stderr,
-        )
+    refusal = _refused_options(args)
+    if refusal is not None:
+        print(f"input error: {args.train}: {refusal}", file=sys.stderr)
         return 2
+    suffix = (figure_format(args.out) if args.out else None) or ".png"
     try:
         train = load(args.train)
         fixed = _fixed(train, args.at)  # checked before the derivation
         derived = derived_model(train)
         columns = columns_of(derived)
         data = read_measurements(args.data, [*columns, "eta"])
+        check_loaded(derived, data)
         others = [read_measurements(path, columns, ["eta"]) for path in args.predict or ()]
+        for other in others:
+            check_loaded(derived, other)
         model, result = calibrate(derived, data, args.fit, fixed)
     except CalibrationError as exc:
         print(f"derive calibrate: {exc}", file=sys.stderr)

@@ -29,7 +29,7 @@ from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.several_inputs_module import several_inputs_formulas
-from davies_sym.errors import InputError, Problem
+from davies_sym.errors import InputError, MeasurementError, Problem
 from davies_sym.losses.definitions import substituted
 
 FloatArray = npt.NDArray[np.float64]
@@ -112,6 +112,26 @@ def columns_of(derived: VariantSet | SeveralInputs) -> tuple[str, ...]:
     if isinstance(derived, SeveralInputs):
         return (*(f"w_{p}" for p in train.ports.inputs), f"T_{train.ports.output}")
     return (f"w_{train.ports.input}", f"T_{train.ports.input}")
+
+
+def check_loaded(derived: VariantSet | SeveralInputs, data: Measurements) -> None:
+    """Refuse (`MeasurementError`, at each row's line) rows of ``data`` whose torque the
+    formulas take (the input's, or the load of a train driven on several shafts) is zero:
+    no power crosses the train there, so it has no efficiency to fit."""
+    column = columns_of(derived)[-1]
+    rows = np.flatnonzero(data.column(column) == 0)
+    if rows.size:
+        raise MeasurementError(
+            [
+                Problem(
+                    f"column {column!r}",
+                    "0: no power crosses the train, so it has no efficiency; remove the row",
+                    data.lines[k],
+                )
+                for k in rows[:5].tolist()
+            ],
+            data.path,
+        )
 
 
 def fittable_parameters(derived: VariantSet | SeveralInputs) -> Sequence[str]:

@@ -6,12 +6,12 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import errno
 import io
 import os
 import sys
 import tempfile
 from collections.abc import Callable, Sequence
+from typing import Any
 
 from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import message, status_json
@@ -88,12 +88,7 @@ def _write(outputs: Sequence[tuple[str | None, str | bytes]], options: dict[str,
     not let us write is reported at its option (``-o``, ``--python``) by the name given."""
     for target, content in outputs:
         if target is None:
-            try:
-                sys.stdout.write(content if isinstance(content, str) else content.decode())
-            except OSError as exc:
-                if exc.errno == errno.EBADF:  # closed under Python's own stream
-                    raise _StdoutClosed from None
-                raise
+            sys.stdout.write(content if isinstance(content, str) else content.decode())
             continue
         try:
             write_atomic(target, content)
@@ -162,40 +157,67 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler)
 
 
-class _ClosedOutput(io.TextIOBase):
-    """Standard output when the shell closed it (``derive ... >&-``): Python leaves
-    ``sys.stdout`` None; a write raises `_StdoutClosed` so the command can say so."""
+class _StdoutFailed(Exception):
+    """Standard output took no text: closed by the shell (``derive ... >&-``), or the
+    system refused the write (``> /dev/full``)."""
+
+
+class _GuardedOutput(io.TextIOBase):
+    """Standard output for the command: a failed write or flush raises `_StdoutFailed`
+    (a reader that went away still raises BrokenPipeError); ``None`` when the shell
+    closed it, where Python leaves ``sys.stdout`` None."""
+
+    def __init__(self, stream: Any) -> None:
+        self.stream = stream
 
     def writable(self) -> bool:
         return True
 
     def write(self, text: str) -> int:
-        raise _StdoutClosed
+        return int(self._guarded(lambda: self.stream.write(text)))
 
+    def flush(self) -> None:
+        if self.stream is not None:
+            self._guarded(self.stream.flush)
 
-class _StdoutClosed(Exception):
-    """Something was to be printed on a closed standard output."""
+    def _guarded(self, action: Callable[[], Any]) -> Any:
+        if self.stream is None:
+            raise _StdoutFailed("it is closed")
+        try:
+            return action()
+        except BrokenPipeError:
+            raise
+        except (OSError, ValueError) as exc:  # ValueError: a closed file object
+            raise _StdoutFailed(getattr(exc, "strerror", None) or str(exc)) from None
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
-    if sys.stdout is None:
-        sys.stdout = _ClosedOutput()
+    real = sys.stdout
+    sys.stdout = _GuardedOutput(real)
     try:
-        return _main(argv)
-    except _StdoutClosed:
+        status = _main(argv)
+        sys.stdout.flush()  # buffered text meets a full device only here
+        return status
+    except _StdoutFailed as exc:
         if sys.stderr is not None:
             print(
-                "derive: standard output is closed: nothing could be printed; write to a file with -o FILE",
+                f"derive: cannot write to standard output ({exc}): write to a file with -o FILE",
                 file=sys.stderr,
             )
+        if real is not None:  # what is still buffered would fail again at exit
+            with contextlib.suppress(OSError, ValueError, io.UnsupportedOperation):
+                os.dup2(os.open(os.devnull, os.O_WRONLY), real.fileno())
         return 2
     except BrokenPipeError:
         # The reader of the output went away (derive ... | head): it has what it wanted.
         # Python would report the pipe again when it flushes stdout at exit: point it nowhere.
-        with contextlib.suppress(OSError, ValueError, io.UnsupportedOperation):
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        if real is not None:
+            with contextlib.suppress(OSError, ValueError, io.UnsupportedOperation):
+                os.dup2(os.open(os.devnull, os.O_WRONLY), real.fileno())
         return 0
+    finally:
+        sys.stdout = real
 
 
 def _main(argv: Sequence[str] | None) -> int:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import numbers
 from collections.abc import Collection, Mapping
+from decimal import Decimal
 
 import sympy
 
@@ -39,11 +40,20 @@ def _exact(value: object) -> sympy.Expr:
             return parse_expression(value)  # the safe grammar, never Python
         except ExpressionError as exc:
             raise ValueError(str(exc)) from None
+    if isinstance(value, bool):
+        raise ValueError("a truth value is not a number")
     number = exact_number(value)  # int, float as written
     if number is not None:
         return number
     if isinstance(value, numbers.Rational):  # Fraction, numpy integers
         return sympy.Rational(int(value.numerator), int(value.denominator))
+    if isinstance(value, numbers.Real):  # numpy floats of any width: the binary number itself
+        number = exact_number(float(value))
+        if number is None:
+            raise ValueError("not a finite number")
+        return number
+    if isinstance(value, Decimal) and value.is_finite():
+        return sympy.Rational(str(value))
     raise ValueError("not a number (a number or a text such as '1/3')")
 
 
@@ -65,7 +75,9 @@ def design_values(
     problems: list[Problem] = []
     out: dict[sympy.Symbol, sympy.Expr] = {}
     for key, value in values.items():
-        symbol = names.get(key) if isinstance(key, str) else key
+        # A symbol made elsewhere (sympy.Symbol("r1"), without the train's assumptions) is
+        # the train's symbol of that name.
+        symbol = names.get(key) if isinstance(key, str) else key if key in symbols else names.get(str(key))
         name = str(key)
         if symbol is None or symbol not in symbols:
             problems.append(

@@ -49,7 +49,7 @@ from davies_sym.efficiency.variant_checks import checked_variant
 from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
-from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem
+from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem, shortened
 from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed, parameters_of
@@ -223,6 +223,11 @@ def derive_variants(
     (``layout``: a geometry other than the one derived from the train; ``inputs``: only
     the variants with these input ports, e.g. for one evaluation)."""
     say = progress or (lambda message: None)
+    ports = (train.ports.input, train.ports.output)
+    strangers = [p for p in inputs or () if p not in ports]
+    if strangers:  # refused as --input refuses them
+        why = f"{shortened(strangers[0])} is not a port (ports: {', '.join(ports)})"
+        raise InputError([Problem("--input", why)], train.path)
     if len(train.ports.inputs) > 1:
         # One efficiency per input port is this function's answer; several inputs have regions.
         raise InputError(

@@ -36,15 +36,17 @@ from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.balance_frames import ConicalFrames, Frames, PlanarFrames, Row, Values, exact, is_zero
-from davies_sym.efficiency.design_point import check_working
+from davies_sym.efficiency.design_point import check_working, turning_ratio
 from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.empty_regions import check_facts, geometry_facts
-from davies_sym.errors import DerivationError
+from davies_sym.efficiency.parameter_domain import efficiency_symbols
+from davies_sym.errors import DerivationError, InputError, MissingValuesError, Problem, shortened
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
-from davies_sym.losses.definitions import completed
+from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
 
@@ -83,6 +85,11 @@ def balance_at(
 ) -> BalanceResult:
     """The balance of `virtual_power_balance` at any design, a self-locking one included
     (its efficiency then is not in (0, 1])."""
+    ports = (train.ports.input, train.ports.output)
+    if input is not None and input not in ports:  # refused as --input refuses it
+        raise InputError(
+            [Problem("--input", f"{shortened(input)} is not a port (ports: {', '.join(ports)})")], train.path
+        )
     given = design_values(train, values)
     if layout is None:
         train = resolved_train(train)
@@ -90,7 +97,9 @@ def balance_at(
         layout = train_layout(train)
         # The derived geometry admits the designs every entry point admits (a ring larger than its sun).
         check_facts(geometry_facts(train, layout, ()), given, train.path)
+    _check_given(train, given)
     values = completed(given, train.definitions)  # a mesh efficiency from its tooth geometry
+    _check_algebraic(values)
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
     conical = any(g.axis is not None or g.tilted for g in train.gears)
@@ -107,6 +116,10 @@ def balance_at(
             frames.speed(row, col, link, carriers[m.name], sign * arm)
         rows.append(row)
     w = _speeds(train, port_in, links, [*rows, *frames.extra_kinematics(col)])
+    out_a, out_b = train.coupling(port_out).links
+    out_speed = exact(w[out_b] - w[out_a])
+    # A port that does not turn is refused as every entry point refuses it (the input turns at 1).
+    turning_ratio(sympy.zoo if is_zero(out_speed) else 1 / out_speed, {}, port_in, port_out, True)
 
     def rel(link: str, carrier: str) -> sympy.Expr:
         return frames.relative(w, link, carrier)
@@ -131,6 +144,30 @@ def balance_at(
         return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
 
     return _balance_result(train, meshes, carriers, w, rel, solve, port_in, port_out)
+
+
+def _check_given(train: Train, given: Mapping[sympy.Symbol, sympy.Expr]) -> None:
+    """Refuse (`MissingValuesError`, as `VariantSet.design_point` words it) a design that
+    leaves out a radius or a mesh efficiency (or a parameter of one defined by the teeth)."""
+    needed: set[sympy.Basic] = set(efficiency_symbols(train))
+    for g in train.gears:
+        needed |= g.radius.free_symbols
+    missing = [str(s) for s in sorted_symbols(parameters_of(needed, train.definitions)) if s not in given]
+    if missing:
+        raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
+
+
+def _check_algebraic(values: Mapping[sympy.Symbol, sympy.Expr]) -> None:
+    """The balance works in exact numbers with square roots: a value with a logarithm or
+    a trigonometric function of a number (an efficiency from the tooth geometry) is
+    outside its scope, said as its other limits are (`DerivationError`)."""
+    for symbol, value in values.items():
+        functions = sorted({type(f).__name__ for f in sympy.sympify(value).atoms(sympy.Function)})
+        if functions:
+            raise DerivationError(
+                f"virtual-power balance: {symbol} is not an algebraic number at these values (it holds "
+                f"{', '.join(functions)}); the balance works in exact numbers with square roots"
+            )
 
 
 def _solve_exact(rows: list[list[sympy.Expr]], rhs: list[sympy.Expr], failure: str) -> list[sympy.Expr]:

@@ -133,7 +133,9 @@ def _check_outputs(args: argparse.Namespace) -> None:
     if args.plot and not args.out:
         problems.append(Problem("--plot", "name the figure's file with -o FRONT.png"))
     for option, path in (("-o", args.out), ("--write-best", args.write_best)):
-        if path and _same_file(path, args.train):
+        if path is not None and not path.strip():
+            problems.append(Problem(option, "the file name is empty; give a file name"))
+        elif path and _same_file(path, args.train):
             problems.append(Problem(option, f"{path} is the train file itself: name another file"))
     if args.out and args.write_best and _same_file(args.out, args.write_best):
         problems.append(Problem("--write-best", "-o and --write-best name the same file"))

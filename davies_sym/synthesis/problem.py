@@ -95,6 +95,11 @@ def _bounds(
     return out
 
 
+#: Largest speed ratio a target may name: far beyond any worm drive (a few thousand), and
+#: small enough that the windows' integer bounds stay exact and bounded.
+LARGEST_RATIO = 1_000_000
+
+
 def _targets(
     train: Train, targets: Sequence[tuple[str | None, Fraction]], weights: Mapping[str, float]
 ) -> tuple[Target, ...]:
@@ -104,6 +109,10 @@ def _targets(
         if ratio == 0:
             problems.append(
                 Problem("--target", "a speed ratio of 0 is not a transmission: give the input over output speed")
+            )
+        elif abs(ratio) > LARGEST_RATIO:
+            problems.append(
+                Problem("--target", f"a speed ratio beyond {LARGEST_RATIO:,} in magnitude is no gear train's")
             )
         if states and state is None:
             problems.append(Problem("--target", f"the train has states ({', '.join(states)}): write STATE=RATIO"))

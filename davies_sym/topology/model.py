@@ -11,7 +11,7 @@ from types import MappingProxyType
 
 import sympy
 
-from davies_sym.errors import Problem
+from davies_sym.errors import InputError, Problem
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.calibration_entry import CalibrationDefaults
 from davies_sym.topology.couplings import Coupling
@@ -189,10 +189,12 @@ class Train:
         return tuple(link.name for link in self.links)
 
     def state(self, name: str) -> State:
+        """The operating state ``name``; an unknown one is refused as ``--state`` refuses it."""
         for st in self.states:
             if st.name == name:
                 return st
-        raise KeyError(name)
+        known = ", ".join(st.name for st in self.states) or "none"
+        raise InputError([Problem("--state", f"unknown state {name!r} (states: {known})")], self.path)
 
     def published_design(self, state: str | None = None) -> Mapping[str, str]:
         """Parameter values of the first published check of ``state`` (or of a check

@@ -56,8 +56,9 @@ def exact_number(value: object) -> sympy.Rational | None:
     if isinstance(value, float):
         if not math.isfinite(value):
             return None
-        # repr gives the shortest decimal that round-trips: 0.99 -> 99/100 exactly.
-        return sympy.Rational(repr(value))
+        # repr gives the shortest decimal that round-trips: 0.99 -> 99/100 exactly (of the
+        # float itself: numpy's float64 writes its type around the number).
+        return sympy.Rational(repr(float(value)))
     if isinstance(value, str):
         text = value.strip()
         if not _PLAIN_NUMBER.fullmatch(text):

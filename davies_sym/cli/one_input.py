@@ -7,7 +7,7 @@ import argparse
 import json
 import sys
 from collections.abc import Callable, Sequence
-from dataclasses import asdict
+from dataclasses import asdict, replace
 
 import sympy
 
@@ -89,12 +89,24 @@ def derive_sets(
         try:
             out.append((st.name, derive_variants(train_in_state(train, st), progress=progress, inputs=inputs)))
         except DaviesError as exc:
-            first = first or exc
+            first = first or _in_state(exc, st.name)
             failures += [f"{line} (state {st.name})" for line in message(exc, train.path or "").splitlines()]
     if not out and first is not None:
         failures.clear()
         raise first
     return _published_complete(train, out)
+
+
+def _in_state(error: DaviesError, state: str) -> DaviesError:
+    """``error`` of the train in operating state ``state``, its problems saying so where
+    they do not point at the state's own entry (a geometry the state's brakes leave)."""
+    if not isinstance(error, InputError):
+        return error
+    problems = [
+        p if p.entry.startswith(f"states.{state}") else replace(p, message=f"{p.message} (state {state})")
+        for p in error.problems
+    ]
+    return type(error)(problems, error.source)
 
 
 def _published_complete(train: Train, sets: list[tuple[str, VariantSet]]) -> list[tuple[str, VariantSet]]:

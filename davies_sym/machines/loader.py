@@ -12,6 +12,7 @@ from typing import Any
 import sympy
 
 from davies_sym.errors import Problem, TopologyError
+from davies_sym.machines import entry_checks
 from davies_sym.machines.joints import JOINT_KINDS
 from davies_sym.machines.model import Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
 from davies_sym.machines.vectors import AXES, Vector, parse_scalar, parse_vector
@@ -66,6 +67,10 @@ class _Reader:
     def problem(self, entry: str, message: str) -> None:
         self.problems.append(Problem(entry, message, self.doc.line(entry)))
 
+    def said(self, problems: list[tuple[str, str]]) -> None:
+        for entry, message in problems:
+            self.problem(entry, message)
+
     def guarded(self, entry: str, read: Callable[[], Any]) -> Any:
         try:
             return read()
@@ -117,10 +122,13 @@ def build_machine(doc: SourceDocument) -> Machine:
         r.problem("format", "only format 1 is known; write format: 1")
     r.declare_positive(r.names("positive", data.get("positive", [])))
     links = r.names("links", data.get("links"))
+    r.said(entry_checks.repeated(links, "links"))
     reference = str(data.get("reference", links[0] if links else ""))
     if links and reference not in links:
         r.problem("reference", f"the reference link {reference!r} is not among the links {links}")
-    position = tuple(r.symbol(n) for n in r.names("position", data.get("position", [])))
+    position_names = r.names("position", data.get("position", []))
+    r.said(entry_checks.repeated(position_names, "position"))
+    position = tuple(dict.fromkeys(r.symbol(n) for n in position_names))
     values: dict[sympy.Symbol, sympy.Expr] = {}
     for name, written in r.mapping("values", data.get("values")).items():
         value = r.scalar(f"values.{name}", written)
@@ -160,6 +168,14 @@ def build_machine(doc: SourceDocument) -> Machine:
     }
     cycle = _cycle(r, data.get("cycle"), port_names) if "cycle" in data else None
     expected = tuple(e for i, written in enumerate(data.get("expected") or []) if (e := _expected(r, i, written)))
+    coefficients = {s for c in couplings if c.friction is not None for s in c.friction.mu.free_symbols}
+    r.said(entry_checks.value_problems(values, coefficients))
+    for task in tasks.values():
+        r.said(entry_checks.task_problems(task, position, values, names))
+    if cycle is not None:
+        r.said(entry_checks.cycle_problems(cycle, position, values))
+    for i, check in enumerate(expected):
+        r.said(entry_checks.expected_problems(check, i, tasks))
     if not couplings and not r.problems:
         r.problem("couplings", "a machine needs couplings")
     if r.problems:
@@ -254,6 +270,9 @@ def _coupling(r: _Reader, name: str, written: object, links: list[str]) -> Coupl
             r.problem(entry, f"a {kind} coupling needs axis: (a direction, e.g. z or [0, 0, 1])")
         if "normal" in spec:
             normal = r.vector(f"{entry}.normal", spec["normal"])
+    for what, direction in (("axis", axis), ("normal", normal)):
+        if direction is not None and all(x == 0 for x in direction):
+            r.problem(f"{entry}.{what}", f"the {what} must not be the zero vector")
     if kind == "universal" and "axes" not in spec:
         r.problem(entry, "a universal joint needs axes: [first, second] (its two pin axes)")
     friction = _friction(r, f"{entry}.friction", spec["friction"], kind) if "friction" in spec else None
@@ -296,6 +315,7 @@ def _friction(r: _Reader, entry: str, written: object, kind: str) -> Friction | 
 def _port(r: _Reader, name: str, written: object, couplings: set[str]) -> Port | None:
     entry = f"ports.{name}"
     spec = r.mapping(entry, written)
+    r.said(entry_checks.unknown_keys(spec, entry_checks.PORT_KEYS, entry))
     coupling = str(spec.get("coupling", ""))
     if coupling not in couplings:
         r.problem(f"{entry}.coupling", f"name the coupling of the port, one of {', '.join(sorted(couplings))}")
@@ -310,6 +330,7 @@ def _port(r: _Reader, name: str, written: object, couplings: set[str]) -> Port |
 def _task(r: _Reader, name: str, written: object, ports: tuple[Port, ...]) -> Task | None:
     entry = f"tasks.{name}"
     spec = r.mapping(entry, written)
+    r.said(entry_checks.unknown_keys(spec, entry_checks.TASK_KEYS, entry))
     time = spec.get("time")
     if not isinstance(time, list) or len(time) != 2:
         r.problem(f"{entry}.time", "write time: [start, stop] in seconds")
@@ -336,6 +357,7 @@ def _task(r: _Reader, name: str, written: object, ports: tuple[Port, ...]) -> Ta
 
 def _cycle(r: _Reader, written: object, ports: list[str]) -> Cycle | None:
     spec = r.mapping("cycle", written)
+    r.said(entry_checks.unknown_keys(spec, entry_checks.CYCLE_KEYS, "cycle"))
     variable = r.symbol(str(spec.get("variable", "theta")))
     start, stop = r.scalar("cycle.from", spec.get("from", "-pi")), r.scalar("cycle.to", spec.get("to", "pi"))
     steady = str(spec.get("steady", ""))
@@ -349,6 +371,7 @@ def _cycle(r: _Reader, written: object, ports: list[str]) -> Cycle | None:
 def _expected(r: _Reader, index: int, written: object) -> Expected | None:
     entry = f"expected.{index}"
     spec = r.mapping(entry, written)
+    r.said(entry_checks.unknown_keys(spec, entry_checks.EXPECTED_KEYS, entry))
     try:
         return Expected(
             quantity=str(spec["quantity"]),

@@ -3,6 +3,7 @@ fits when the command line names none, and where the fit starts."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -48,7 +49,7 @@ def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | Non
         number = exact_number(v)
         if name not in names:
             reader.problem(f"calibrate.start.{name}", f"{name!r} is not among the parameters to fit")
-        elif number is None or not number > 0:
+        elif number is None or not number > 0 or not math.isfinite(float(number)):
             reader.problem(f"calibrate.start.{name}", f"expected a positive number, got {describe(v)}")
         elif reader.roles.get(str(name)) == "efficiency" and number > 1:
             reader.problem(f"calibrate.start.{name}", f"{name} is an efficiency: start it in (0, 1], got {describe(v)}")

@@ -46,6 +46,8 @@ def _read_check(item: Any, path: str, reader: EntryReader, couplings: Mapping[st
         reader.problem(f"{path}.quantity", f"unknown quantity {describe(entry['quantity'])}; write `efficiency`")
     values = _read_values(entry.get("values", {}), f"{path}.values", reader, couplings)
     value = _number(entry.get("value"), f"{path}.value", reader) if "value" in entry else None
+    if value is not None and not 0 < value <= 1:
+        reader.problem(f"{path}.value", f"a published efficiency lies in (0, 1], got {value:g}")
     tolerance = _number(entry.get("tolerance", DEFAULT_TOLERANCE), f"{path}.tolerance", reader)
     if tolerance is not None and not tolerance > 0:
         reader.problem(f"{path}.tolerance", f"the tolerance must be positive, got {tolerance:g}")

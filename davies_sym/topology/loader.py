@@ -149,15 +149,24 @@ def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None
     if not value:
         reader.problem("independent", "expected a list of symbols, got an empty list")
         return None
-    names = []
+    names: list[str] = []
     for i, item in enumerate(value):
+        entry = "independent" if bare else f"independent[{i}]"
         if not isinstance(item, str) or item not in reader.symbols:
             known = ", ".join(sorted(reader.symbols)[:20])
-            entry = "independent" if bare else f"independent[{i}]"
             reader.problem(entry, f"{describe(item)} is not a symbol of the train (symbols: {known})")
+        elif item in names:
+            reader.problem(entry, f"{item!r} is written twice: write each symbol once")
+        elif reader.roles.get(item) not in GEOMETRY_ROLES:
+            # The geometric constraints tie sizes; a loss coefficient or an angle stays free anyway.
+            reader.problem(entry, f"{item!r} is no size of the geometry: list radii, tooth numbers or positions")
         else:
             names.append(item)
     return tuple(names)
+
+
+#: The roles of the symbols the geometric constraints tie (``independent:`` chooses among them).
+GEOMETRY_ROLES = frozenset({"length", "teeth", "position"})
 
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:

@@ -422,3 +422,53 @@ def test_derive_and_a_state_lookup_refuse_unknown_names_as_the_options_do():
     states = davies_sym.load(DATA / "two_states.yaml")
     error = _refusal(lambda: states.state("nope"))
     assert isinstance(error, davies_sym.InputError) and "unknown state 'nope'" in str(error)
+
+
+TUPLIN = (CATALOG / "tuplin.yaml").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("source", "old", "new", "at", "entry", "words"),
+    [
+        (PAIR, "    value: 0.98\n", "    value: 1.5\n", "value: 1.5", "expected[0].value", "lies in (0, 1]"),
+        (PAIR, "    value: 0.98\n", "    value: -0.2\n", "value: -0.2", "expected[0].value", "lies in (0, 1]"),
+        (
+            TUPLIN,
+            "degrees_of_freedom: 1\n",
+            "degrees_of_freedom: 1\nindependent: [r1, r1, r2]\n",
+            "independent:",
+            "independent[1]",
+            "written twice",
+        ),
+        (
+            TUPLIN,
+            "degrees_of_freedom: 1\n",
+            "degrees_of_freedom: 1\nindependent: [r1, r2, eta_C]\n",
+            "independent:",
+            "independent[2]",
+            "no size of the geometry",
+        ),
+        (SR20, "D_P: 0.1}", "D_P: 1e400}", "start:", "calibrate.start.D_P", "expected a positive number"),
+    ],
+    ids=["check-above-one", "check-negative", "independent-twice", "independent-efficiency", "start-infinite"],
+)
+def test_a_train_file_value_out_of_its_role_is_refused_at_its_entry(tmp_path, source, old, new, at, entry, words):
+    """Accepted before: a published efficiency of 1.5 or -0.2, a symbol listed twice or a
+    mesh efficiency among the independent sizes, a calibration start of 1e400."""
+    text = replaced(source, old, new)
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, at), entry)
+    assert words in result.stderr, result.describe()
+
+
+def test_a_state_that_cannot_derive_names_itself(tmp_path):
+    """The Wolfrom train with its carrier free has no geometry; the message said which
+    mesh but not which state."""
+    text = replaced(
+        (CATALOG / "wolfrom.yaml").read_text(encoding="utf-8"),
+        "degrees_of_freedom: 1\n",
+        "degrees_of_freedom: 1\nstates:\n  nocar: {input: A, output: B, free: [c]}\n",
+    )
+    result = run_main([write(tmp_path, text), "--quiet", "--state", "nocar"])
+    assert result.returncode == 2 and "(state nocar)" in result.stderr, result.describe()

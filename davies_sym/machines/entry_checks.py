@@ -111,7 +111,7 @@ def cycle_problems(cycle: Cycle, position: Collection[sympy.Symbol], values: Map
 
 def expected_problems(check: Expected, index: int, tasks: Collection[str]) -> Said:
     """A published check states a known quantity, a finite value and a task that exists."""
-    entry = f"expected.{index}"
+    entry = f"expected[{index}]"
     out: Said = []
     if check.quantity not in QUANTITIES:
         out.append((f"{entry}.quantity", f"unknown quantity {check.quantity!r} (write one of {', '.join(QUANTITIES)})"))

@@ -369,7 +369,7 @@ def _cycle(r: _Reader, written: object, ports: list[str]) -> Cycle | None:
 
 
 def _expected(r: _Reader, index: int, written: object) -> Expected | None:
-    entry = f"expected.{index}"
+    entry = f"expected[{index}]"
     spec = r.mapping(entry, written)
     r.said(entry_checks.unknown_keys(spec, entry_checks.EXPECTED_KEYS, entry))
     try:

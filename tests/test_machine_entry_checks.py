@@ -95,3 +95,25 @@ def test_a_machine_mistake_is_refused_at_its_entry(tmp_path, source, old, new, a
     result = run_main([path, "--quiet"])
     assert_at(result, path, line_of(text, at), entry)
     assert words in result.stderr, result.describe()
+
+
+def test_a_normal_along_the_axis_is_refused_at_its_entry(tmp_path):
+    """The slider crank's slide D with its normal along its axis: no frame (it derived to
+    'no closed form' with exit 0)."""
+    line = next(x for x in SLIDER.splitlines() if x.strip().startswith("D: {type"))
+    axis = "x" if "axis: x" in line else line.split("axis: ")[1].split(",")[0].split("}")[0]
+    text = replaced(SLIDER, line, line.replace(f"axis: {axis}", f"axis: {axis}, normal: {axis}"))
+    path = write(tmp_path, text, "machine.yaml")
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, "normal:"), "couplings.D.normal")
+    assert "parallel to the axis" in result.stderr, result.describe()
+
+
+def test_a_task_whose_loads_do_no_work_has_no_efficiency(tmp_path):
+    """Laus's lift with no payload: the drive supplies nothing, so the task efficiency is
+    not a number (it printed nan with exit 0); exit 3 with the reason."""
+    text = replaced(UPU, "loads: {payload: -W}\n  lift_half", "loads: {payload: 0}\n  lift_half")
+    path = write(tmp_path, text, "machine.yaml")
+    result = run_main([path, "--quiet", "--task", "lift"])
+    assert result.returncode == 3, result.describe()
+    assert "the drive supplies no energy over the task" in result.stdout + result.stderr, result.describe()

@@ -11,6 +11,7 @@ from typing import Any
 
 import sympy
 
+from davies_sym.algebra.screws import cross
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.machines import entry_checks
 from davies_sym.machines.joints import JOINT_KINDS
@@ -273,6 +274,8 @@ def _coupling(r: _Reader, name: str, written: object, links: list[str]) -> Coupl
     for what, direction in (("axis", axis), ("normal", normal)):
         if direction is not None and all(x == 0 for x in direction):
             r.problem(f"{entry}.{what}", f"the {what} must not be the zero vector")
+    if axis is not None and normal is not None and all(sympy.expand(x) == 0 for x in cross(axis, normal)):
+        r.problem(f"{entry}.normal", "the normal must not be parallel to the axis: give a direction across it")
     if kind == "universal" and "axes" not in spec:
         r.problem(entry, "a universal joint needs axes: [first, second] (its two pin axes)")
     friction = _friction(r, f"{entry}.friction", spec["friction"], kind) if "friction" in spec else None

@@ -169,5 +169,9 @@ def _energies(task: str, steps: list[TaskStep], loads: tuple[str, ...], times: n
     if abs(delivered) <= 1e-9 * abs(supplied):
         delivered = 0.0  # a closed path: the loads end where they started
     lost = {c: -integral([s.friction_power[c] for s in steps]) for c in steps[0].friction_power}
-    efficiency = delivered / supplied if supplied > 0 else float("nan")
+    if not supplied > 0:
+        raise NotCoveredError(
+            f"task {task}: the drive supplies no energy over the task (the loads do no work against it): no efficiency"
+        )
+    efficiency = delivered / supplied
     return TaskResult(task, tuple(steps), drivers, loads, supplied, delivered, lost, efficiency)

@@ -380,7 +380,7 @@ def _check_reciprocal(train: Train, c: ScrewCoupling, screws: CouplingScrews) ->
         for m in screws.motions:
             if sympy.expand(power(a.screw, m.screw)) != 0:
                 problems.append(
-                    Problem(
+                    train.problem(
                         f"couplings.{c.name}.actions",
                         f"action {a.name!r} does work on "
                         f"motion {m.name!r} (power {sympy.expand(power(a.screw, m.screw))}); "

@@ -72,6 +72,15 @@ UPU = (CATALOG / "three_upu.yaml").read_text(encoding="utf-8")
             "tasks.lift.path.M_w",
             "M_w is not a position variable",
         ),
+        (
+            UPU,
+            "drive: M\n    loads: {payload: -W}\n  lift_half",
+            "drive: C\n    loads: {payload: -W}\n  lift_half",
+            "drive: C",
+            "tasks.lift.drive",
+            "freedoms for 3 position variables",
+        ),
+        (FOUR_BAR, "position: theta", "position: phi", "position: phi", "position", "phi moves nothing"),
     ],
     ids=[
         "negative-mu",
@@ -87,6 +96,8 @@ UPU = (CATALOG / "three_upu.yaml").read_text(encoding="utf-8")
         "no-loads",
         "unknown-drive",
         "path-extra",
+        "drive-freedoms",
+        "position-unused",
     ],
 )
 def test_a_machine_mistake_is_refused_at_its_entry(tmp_path, source, old, new, at, entry, words):

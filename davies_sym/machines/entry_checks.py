@@ -12,6 +12,8 @@ from typing import Any
 
 import sympy
 
+from davies_sym.algebra.screws import UNIT
+from davies_sym.machines.joints import JOINT_KINDS
 from davies_sym.machines.model import Cycle, Expected, Task
 
 Said = list[tuple[str, str]]
@@ -60,7 +62,7 @@ def task_problems(
     task: Task,
     position: Collection[sympy.Symbol],
     values: Mapping[sympy.Symbol, sympy.Expr],
-    couplings: Collection[str],
+    couplings: Mapping[str, str],
 ) -> Said:
     """The time interval and step (numbers, stop after start, a bounded count), the drive (a
     coupling), the path (a function of t for every position variable, no other) and the
@@ -76,6 +78,18 @@ def task_problems(
         out.append((f"{entry}.step", f"{(stop - start) / step:.0f} steps is too many (at most {MAX_STEPS})"))
     if task.drive not in couplings:
         out.append((f"{entry}.drive", f"name the coupling the path moves, one of {', '.join(sorted(couplings))}"))
+    elif not JOINT_KINDS[couplings[task.drive]].virtual:
+        # The drive's freedoms turn or slide at the rates of the position variables, one each.
+        axes = (UNIT["z"], UNIT["x"], UNIT["y"])
+        freedoms = len(JOINT_KINDS[couplings[task.drive]].screws(*axes)[0])
+        if freedoms != len(position):
+            out.append(
+                (
+                    f"{entry}.drive",
+                    f"{task.drive} has {freedoms} freedoms for {len(position)} position variables; drive a free "
+                    "coupling or one with a freedom per variable",
+                )
+            )
     names = {s.name for s in position}
     known = {TIME_NAME, *(s.name for s in values)}
     for symbol, expr in task.path.items():

@@ -171,8 +171,14 @@ def build_machine(doc: SourceDocument) -> Machine:
     expected = tuple(e for i, written in enumerate(data.get("expected") or []) if (e := _expected(r, i, written)))
     coefficients = {s for c in couplings if c.friction is not None for s in c.friction.mu.free_symbols}
     r.said(entry_checks.value_problems(values, coefficients))
+    kinds = {c.name: c.kind for c in couplings}
     for task in tasks.values():
-        r.said(entry_checks.task_problems(task, position, values, names))
+        r.said(entry_checks.task_problems(task, position, values, kinds))
+    written = {s for v in r.vectors.values() for x in v for s in x.free_symbols}
+    written |= {s for c in couplings for x in c.at for s in x.free_symbols}
+    unused = [s.name for s in position if s not in written]
+    if couplings and unused:
+        r.problem("position", f"{', '.join(unused)} moves nothing: no vector or coupling is written in it")
     if cycle is not None:
         r.said(entry_checks.cycle_problems(cycle, position, values))
     for i, check in enumerate(expected):

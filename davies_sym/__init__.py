@@ -47,7 +47,7 @@ if TYPE_CHECKING:
     from davies_sym.efficiency.power_flow_regions import OperatingPoint, SeveralInputs
     from davies_sym.efficiency.several_inputs import derive_several_inputs
     from davies_sym.efficiency.turning_conditions import TurningCondition
-    from davies_sym.efficiency.variant import Variant
+    from davies_sym.efficiency.variant_result import Variant
     from davies_sym.efficiency.variants import VariantSet, derive_variants
     from davies_sym.network.analysis import Analysis, analyse
     from davies_sym.network.sign_condition import SignCondition
@@ -67,7 +67,7 @@ _LAZY = {
     "SeveralInputs": "davies_sym.efficiency.power_flow_regions",
     "derive_several_inputs": "davies_sym.efficiency.several_inputs",
     "TurningCondition": "davies_sym.efficiency.turning_conditions",
-    "Variant": "davies_sym.efficiency.variant",
+    "Variant": "davies_sym.efficiency.variant_result",
     "VariantSet": "davies_sym.efficiency.variants",
     "derive_variants": "davies_sym.efficiency.variants",
     "Analysis": "davies_sym.network.analysis",

@@ -25,7 +25,7 @@ from scipy.optimize import linprog
 import davies_sym
 from davies_sym.algebra.linear_regions import Inequality, Requirement, empty_region, feasible
 from davies_sym.efficiency.parameter_domain import ParameterDomain
-from davies_sym.efficiency.variant import ExcludedVariant
+from davies_sym.efficiency.variant_result import ExcludedVariant
 from davies_sym.efficiency.variants import derive_variants
 from davies_sym.topology.states import train_in_state
 

@@ -17,7 +17,7 @@ import sympy
 
 import davies_sym
 from davies_sym.algebra.linalg import exact_rank
-from davies_sym.algebra.radical import Radical
+from davies_sym.algebra.square_root_symbol import Radical
 from davies_sym.geometry import train_layout
 from davies_sym.network import null_space
 from davies_sym.network.analysis import Analysis

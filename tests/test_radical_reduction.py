@@ -11,7 +11,7 @@ import pytest
 import sympy
 
 from davies_sym.algebra.polynomials import PolynomialRing
-from davies_sym.algebra.radical import Radical
+from davies_sym.algebra.square_root_symbol import Radical
 
 A, B, C = sympy.symbols("a b c", positive=True)
 S, T = sympy.symbols("s t", positive=True)

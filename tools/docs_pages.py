@@ -329,7 +329,7 @@ API_MODULES = (
     "davies_sym.topology.model",
     "davies_sym.network.analysis",
     "davies_sym.efficiency.variants",
-    "davies_sym.efficiency.variant",
+    "davies_sym.efficiency.variant_result",
     "davies_sym.efficiency.turning_conditions",
     "davies_sym.efficiency.several_inputs",
     "davies_sym.efficiency.virtual_power",

@@ -19,7 +19,7 @@ from flint import fmpz_mpoly
 
 from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
-from davies_sym.algebra.radical import Radical
+from davies_sym.algebra.square_root_symbol import Radical
 
 Row = dict[int, fmpz_mpoly]
 Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]

@@ -25,7 +25,7 @@ from davies_sym.algebra.products import (
     homogenised,
     lowest_terms,
 )
-from davies_sym.algebra.radical import Radical
+from davies_sym.algebra.square_root_symbol import Radical
 from davies_sym.algebra.symbol_order import describe_assumptions, symbol_key
 from davies_sym.errors import DerivationError
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 import sympy
 
 from davies_sym.algebra.polynomials import PolynomialRing
-from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.signs import SignOracle
+from davies_sym.algebra.square_root_symbol import Radical
 
 __all__ = ["Radical", "RadicalError", "RadicalTable", "has_square_root", "restore"]
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.algebra.exact_sign import UndecidedSign, is_real_number, number_sign
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.errors import DesignError, NotCoveredError, Problem
 from davies_sym.geometry.layout import GeometricConstraint
 

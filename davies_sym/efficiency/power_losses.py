@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.light_load import Derivation
 from davies_sym.efficiency.operating_point import at_operating_point, substituted
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.network.analysis import Analysis
 

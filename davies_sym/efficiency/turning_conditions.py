@@ -95,18 +95,29 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
         flow = mesh_power_flow(analysis, c)
         if flow.flow_ratio.is_zero():
             # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
-            roles.append(MeshRole(c.name, flow, 1, None, 1, c.efficiencies, idle=True))
+            roles.append(
+                MeshRole(c.name, flow, fixed=1, condition=None, orientation=1, efficiencies=c.efficiencies, idle=True)
+            )
             continue
         content, factors = flow.flow_ratio.factor_list()
         sign, undecided = analysis.oracle.classify(content, factors)
         if sign in (1, -1):
-            roles.append(MeshRole(c.name, flow, sign, None, 1, c.efficiencies))
+            roles.append(MeshRole(c.name, flow, fixed=sign, condition=None, orientation=1, efficiencies=c.efficiencies))
             continue
         orientation, general = _normalised(sympy.expand(undecided))
         shorter = _shorter(analysis, general)
         if shorter.is_number:
             # Decided on the geometric constraints only.
-            roles.append(MeshRole(c.name, flow, orientation * (1 if shorter > 0 else -1), None, 1, c.efficiencies))
+            roles.append(
+                MeshRole(
+                    c.name,
+                    flow,
+                    fixed=orientation * (1 if shorter > 0 else -1),
+                    condition=None,
+                    orientation=1,
+                    efficiencies=c.efficiencies,
+                )
+            )
             continue
         simple_sign, simplified = _normalised(shorter)
         orientation *= simple_sign
@@ -115,13 +126,22 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
             opposite = sympy.expand(existing.simplified + simplified) == 0
             if same or opposite:
                 roles.append(
-                    MeshRole(c.name, flow, None, existing.name, orientation * (1 if same else -1), c.efficiencies)
+                    MeshRole(
+                        c.name,
+                        flow,
+                        fixed=None,
+                        condition=existing.name,
+                        orientation=orientation * (1 if same else -1),
+                        efficiencies=c.efficiencies,
+                    )
                 )
                 break
         else:
             name = f"c{len(conditions) + 1}"
             conditions.append(TurningCondition(name, simple_sign * general, simplified))
-            roles.append(MeshRole(c.name, flow, None, name, orientation, c.efficiencies))
+            roles.append(
+                MeshRole(c.name, flow, fixed=None, condition=name, orientation=orientation, efficiencies=c.efficiencies)
+            )
     return roles, conditions
 
 

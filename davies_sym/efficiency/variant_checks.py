@@ -15,7 +15,7 @@ from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.light_load import bearings_agree
 from davies_sym.efficiency.parameter_domain import Point
 from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.network.analysis import Analysis
 
 #: Ordinary efficiency used for the partial-derivative check (Glover's external value).

@@ -20,7 +20,7 @@ import sympy
 from davies_sym.algebra.exact_sign import UndecidedSign, is_real_number, number_sign
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variant import ExcludedVariant, Variant
+from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.errors import DerivationError, DesignError, MissingValuesError, NotCoveredError, Problem
 
 Values = Mapping[sympy.Symbol, sympy.Expr]

@@ -8,7 +8,7 @@ import html
 from collections.abc import Sequence
 
 from davies_sym.efficiency.turning_conditions import TurningCondition
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.topology.symbol_display import latex
 
 

@@ -44,10 +44,10 @@ from davies_sym.efficiency.operating_point import (
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, Parameter, parameters_of_train, range_problem
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from davies_sym.efficiency.variant import ExcludedVariant, Variant
 from davies_sym.efficiency.variant_checks import checked_variant
 from davies_sym.efficiency.variant_choice import holding_variant
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
+from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem, shortened
 from davies_sym.geometry.dependent import resolved_train, with_dependent

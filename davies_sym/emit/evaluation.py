@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import sympy
 
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.variant_report import condition_text
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy
 
-from davies_sym.efficiency.variant import ExcludedVariant, Variant
+from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.latex_lines import LINE_WIDTH, display, fits, numbered
 from davies_sym.emit.variant_report import variant_forces

@@ -36,7 +36,7 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
-from davies_sym.efficiency.variant import ExcludedVariant, Variant
+from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source

@@ -6,7 +6,7 @@ from typing import Any
 
 import sympy
 
-from davies_sym.efficiency.variant import ExcludedVariant, Variant
+from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.force_conditions import force_conditions, force_text
 from davies_sym.topology.symbol_display import latex as display_latex

@@ -20,9 +20,9 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.algebra.linalg import exact_rank
-from davies_sym.algebra.radical import Radical
 from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import TWIST_COORDINATES, WRENCH_COORDINATES, NamedScrew, Screw, power
+from davies_sym.algebra.square_root_symbol import Radical
 from davies_sym.errors import DerivationError
 from davies_sym.topology.kind_screws import CouplingScrews
 

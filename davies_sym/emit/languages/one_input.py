@@ -26,7 +26,7 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
-from davies_sym.efficiency.variant import Variant
+from davies_sym.efficiency.variant_result import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.program import NOT_COVERED, UPPER, Argument, Kind, Program, Routine, Step

@@ -17,7 +17,7 @@ import davies_sym.network.shared_screws as shared_module
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.matrices import Network
-from davies_sym.network.shared_screws import MEMO_KEY, SharedScrews, shared_screws
+from davies_sym.network.shared_screws import SharedScrews, computed_shared_screws, shared_screws
 from davies_sym.topology.model import Train
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -76,7 +76,7 @@ def test_coupling_screws_computed_once_per_whole_train(path: str, monkeypatch: p
     kept = {(id(s.whole), c.name) for s in states for c in s.couplings}
     assert len(calls) == len(set(calls)) == len(kept)
     for whole in wholes.values():
-        assert isinstance(whole, Train) and isinstance(whole.memo[MEMO_KEY], SharedScrews)
+        assert isinstance(whole, Train) and isinstance(computed_shared_screws(whole), SharedScrews)
 
 
 @pytest.mark.parametrize("path", FILES)
@@ -109,7 +109,7 @@ def test_a_given_layout_or_a_train_on_its_own_takes_nothing_shared() -> None:
     state = _states("catalog/simpson.yaml")[0]
     assert state.whole is not None
     Network(state, layout=train_layout(state))
-    assert MEMO_KEY not in state.whole.memo
+    assert computed_shared_screws(state.whole) is None
     alone = resolved_train(davies_sym.load(ROOT / "catalog/tuplin.yaml"))
     assert shared_screws(alone) is None
 

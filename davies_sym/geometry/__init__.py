@@ -16,6 +16,7 @@ from dataclasses import replace
 import sympy
 
 from davies_sym.algebra.screws import Vector
+from davies_sym.caches import IdentityCache
 from davies_sym.errors import GeometryError
 from davies_sym.geometry.cone import conical_layout
 from davies_sym.geometry.layout import GeometricConstraint, Layout
@@ -33,9 +34,14 @@ def train_layout(train: Train) -> Layout:
 
     A train in an operating state keeps the geometry of the whole train (its brakes and
     clutches join members without moving an axis), restricted to what the state keeps."""
-    known = train.memo.get("layout")
-    if isinstance(known, Layout):
-        return known
+    return _LAYOUTS.get(train, lambda: _derived_layout(train))
+
+
+#: The layout of each train, derived once while the train lives.
+_LAYOUTS: IdentityCache[Train, Layout] = IdentityCache()
+
+
+def _derived_layout(train: Train) -> Layout:
     if train.whole is not None:
         layout = _restricted(train_layout(train.whole), train)
     else:
@@ -43,7 +49,6 @@ def train_layout(train: Train) -> Layout:
         # A radius solved from a constraint is a length: its expression is positive.
         facts = tuple(r.expression for r in train.dependent or ())
         layout = replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
-    train.memo["layout"] = layout
     return layout
 
 

@@ -22,6 +22,7 @@ import sympy
 
 from davies_sym.algebra.signs import without_positive_factors
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.caches import IdentityCache
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.axes import axis_structure
@@ -35,16 +36,18 @@ def resolved_train(train: Train) -> Train:
     into the gear radii (a state: the constraints of its whole train)."""
     if train.dependent is not None:
         return train
-    known = train.memo.get("resolved")
-    if isinstance(known, Train):
-        return known
+    return _RESOLVED.get(train, lambda: _resolved(train))
+
+
+#: The resolved form of each train, derived once while the train lives.
+_RESOLVED: IdentityCache[Train, Train] = IdentityCache()
+
+
+def _resolved(train: Train) -> Train:
     if train.whole is not None:
         whole = resolved_train(train.whole)
-        resolved = _substituted(replace(train, whole=whole), whole.dependent or ())
-    else:
-        resolved = _substituted(train, _solve(train, train_layout(train).constraints))
-    train.memo["resolved"] = resolved
-    return resolved
+        return _substituted(replace(train, whole=whole), whole.dependent or ())
+    return _substituted(train, _solve(train, train_layout(train).constraints))
 
 
 def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:

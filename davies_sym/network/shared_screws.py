@@ -17,6 +17,7 @@ from dataclasses import replace
 
 import sympy
 
+from davies_sym.caches import IdentityCache
 from davies_sym.geometry import train_layout
 from davies_sym.network.coupling_screws import coupling_screws, written_square_root
 from davies_sym.network.screw_system import (
@@ -28,9 +29,6 @@ from davies_sym.network.screw_system import (
 )
 from davies_sym.topology.kind_screws import CouplingScrews
 from davies_sym.topology.model import Train
-
-#: The key of the shared screw work in a whole train's ``memo``.
-MEMO_KEY = "coupling screws"
 
 
 class SharedScrews:
@@ -85,6 +83,15 @@ class SharedScrews:
         return known
 
 
+#: The screw work of each whole train, shared by its states while the whole train lives.
+_SHARED: IdentityCache[Train, SharedScrews] = IdentityCache()
+
+
+def computed_shared_screws(whole: Train) -> SharedScrews | None:
+    """The shared screw work of ``whole`` if its states have worked it out, else None."""
+    return _SHARED.peek(whole)
+
+
 def shared_screws(train: Train) -> SharedScrews | None:
     """The shared screw work of ``train``'s whole train, when ``train`` is a state whose
     couplings are its whole's with other ends (the only difference `coupling_screws`
@@ -92,10 +99,7 @@ def shared_screws(train: Train) -> SharedScrews | None:
     whole = train.whole
     if whole is None:
         return None
-    shared = whole.memo.get(MEMO_KEY)
-    if not isinstance(shared, SharedScrews):
-        shared = SharedScrews(whole)
-        whole.memo[MEMO_KEY] = shared
+    shared = _SHARED.get(whole, lambda: SharedScrews(whole))
     for c in train.couplings:
         own = shared.couplings.get(c.name)
         if own is None or replace(c, links=own.links) != own:

@@ -134,10 +134,6 @@ class Train:
     #: operating state has its ports at ``states.NAME`` (``ports.input`` ->
     #: ``states.NAME.input``), so a problem with them points at the state's own entry.
     renamed: Mapping[str, str] = field(default_factory=lambda: MappingProxyType({}))
-    #: What the later stages derived from this very train (its layout, its resolved form),
-    #: kept with it: the train is immutable, so they hold for its lifetime, and the states
-    #: of one file share their whole train's.  Not copied by ``dataclasses.replace``.
-    memo: dict[object, object] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def definitions(self) -> tuple[Definition, ...]:

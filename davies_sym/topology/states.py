@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import replace
 from types import MappingProxyType
 
+from davies_sym.caches import IdentityCache
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.topology.coupling_kinds import as_bearing, bearings
 from davies_sym.topology.couplings import Coupling
@@ -107,15 +108,14 @@ def train_in_state(train: Train, state: State) -> Train:
 def _without(train: Train, free: set[str], ports: Ports) -> Train:
     """``train`` without the ``free`` members and their gears and couplings: the geometry a
     state keeps (brakes and clutches join members without moving axes; free members take
-    no part, so no axis of the state depends on theirs).  Kept in ``train.memo``, so the
+    no part, so no axis of the state depends on theirs).  Cached with the train, so the
     states that free the same members share one whole train: its layout is solved once,
     its coupling screws and screw systems worked out once (`davies_sym.network.shared_screws`)."""
-    key = ("without", frozenset(free), ports)
-    known = train.memo.get(key)
-    if isinstance(known, type(train)):
-        return known
-    train.memo[key] = reduced = _reduced(train, free, ports)
-    return reduced
+    return _WITHOUT.get(train, lambda: _reduced(train, free, ports), (frozenset(free), ports))
+
+
+#: The reduced train of each set of free members and ports, while the whole train lives.
+_WITHOUT: IdentityCache[Train, Train] = IdentityCache()
 
 
 def _reduced(train: Train, free: set[str], ports: Ports) -> Train:

@@ -26,7 +26,7 @@ from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
-from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.emit.plots import figure_format
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
 from davies_sym.topology.expressions import assignments
@@ -69,7 +69,7 @@ def _refused_options(args: argparse.Namespace) -> str | None:
         if figure_format(args.out) is None:
             return f"-o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the format)"
         for given in (args.train, args.data, *(args.predict or ())):
-            if os.path.exists(args.out) and os.path.exists(given) and os.path.samefile(args.out, given):
+            if os.path.exists(given) and same_file(args.out, given):
                 return f"-o: refusing to overwrite the input file {given}"
     fitted = set(args.fit or ())
     held = [pair.partition("=")[0].strip() for pair in args.at]

@@ -5,13 +5,12 @@ choice, each refusing bad input with a message naming the option."""
 from __future__ import annotations
 
 import argparse
-import math
 from collections.abc import Collection, Iterable, Mapping, Sequence
-from typing import Any
 
 import sympy
 
 from davies_sym.efficiency.design_values import design_values
+from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.emit.plots import Sweep, figure_format
 from davies_sym.errors import InputError, Problem, shortened
 from davies_sym.topology.model import Train
@@ -111,26 +110,21 @@ def plot_sweeps(
     return x, y
 
 
-def check_sweep_ranges(
-    sweeps: Iterable[Sweep | None], parameters: Iterable[Mapping[str, Any]], source: str | None
-) -> None:
-    """Refuse a sweep that lies wholly outside its parameter's admissible range
-    (``PARAMETERS`` of the formula module: ``low < value <= high``, ``low`` included when
-    ``closed_low``): the figure would have no admissible point."""
-    ranges = {p["name"]: p for p in parameters}
+def check_sweep_ranges(sweeps: Iterable[Sweep | None], parameters: Iterable[Parameter], source: str | None) -> None:
+    """Refuse a sweep that lies wholly outside its parameter's admissible range (the
+    formula module's ``PARAMETERS``): the figure would have no admissible point."""
+    ranges = {p.name: p for p in parameters}
     for sweep, option in zip(sweeps, ("--plot", "--vs"), strict=False):
         p = ranges.get(sweep.name) if sweep is not None else None
         if sweep is None or p is None:
             continue
-        below = sweep.stop < p["low"] or (sweep.stop == p["low"] and not p["closed_low"])
-        if below or sweep.start > p["high"]:
-            low = "[" if p["closed_low"] else "("
-            high = "inf)" if math.isinf(p["high"]) else f"{p['high']:g}]"
+        below = sweep.stop < p.low or (sweep.stop == p.low and not p.closed_low)
+        if below or sweep.start > p.high:
             raise InputError(
                 [
                     Problem(
                         option,
-                        f"{sweep.name} lies in {low}{p['low']:g}, {high} ({p['meaning']}): the interval "
+                        f"{sweep.name} lies in {p.range_text} ({p.meaning}): the interval "
                         f"{sweep.start:g}:{sweep.stop:g} has no admissible value",
                     )
                 ],

@@ -16,7 +16,7 @@ from typing import Any
 from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import message, status_json
 from davies_sym.cli.parser import parser
-from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
 
 Progress = Callable[[str], None]
@@ -42,7 +42,7 @@ def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
     if os.path.isdir(target):
         raise InputError([Problem(option, f"{_path_text(target)} is a folder; give a file name")], inputs[0])
     for path in inputs:
-        if os.path.exists(target) and os.path.exists(path) and os.path.samefile(target, path):
+        if os.path.exists(path) and same_file(target, path):
             named = "" if target == path else f" ({_path_text(target)} names it)"
             raise InputError([Problem(option, f"refusing to overwrite the input file {_path_text(path)}{named}")], path)
 
@@ -52,10 +52,7 @@ def _check_distinct(targets: Sequence[tuple[str, str]], source: str) -> None:
     file, however the paths are written (relative, ``..``, a symbolic or hard link)."""
     for k, (target, option) in enumerate(targets):
         for other, first in targets[:k]:
-            same = os.path.realpath(target) == os.path.realpath(other) or (
-                os.path.exists(target) and os.path.exists(other) and os.path.samefile(target, other)
-            )
-            if same:
+            if same_file(target, other):
                 raise InputError(
                     [
                         Problem(

@@ -16,7 +16,7 @@ from davies_sym.cli.machine_input import machine_derivations
 from davies_sym.cli.messages import message
 from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
-from davies_sym.emit.atomic import write_atomic
+from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, MissingDependencyError, Problem, TopologyError
 from davies_sym.machines.loader import build_machine, is_machine
 from davies_sym.topology.documents import document_from_bytes, read_train_file
@@ -126,7 +126,7 @@ def _clash(directory: str, stem: str, files: Sequence[str]) -> str | None:
     inputs = [f for f in files if os.path.exists(f)]
     outputs = [os.path.join(directory, f"{stem}{suffix}") for suffix in (".tex", ".py", ".txt")]
     outputs += [os.path.join(directory, o) for o in os.listdir(directory) if o.startswith(f"{stem}_")]
-    return next((o for o in outputs if os.path.exists(o) and any(os.path.samefile(o, f) for f in inputs)), None)
+    return next((o for o in outputs if os.path.exists(o) and any(same_file(o, f) for f in inputs)), None)
 
 
 def _tasks(directory: str, files: Sequence[str]) -> tuple[list[Task], list[str]]:

@@ -7,7 +7,7 @@ import argparse
 import json
 import sys
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, replace
+from dataclasses import replace
 
 import sympy
 
@@ -57,7 +57,7 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
         if name in solved:  # a mesh's friction coefficient: the formulas are in its efficiency
             raise InputError([Problem(option, solved[name])], train.path)
     x, y = plot_sweeps(train, args, [*train.symbols, *map(str, operating)])
-    check_sweep_ranges((x, y), [asdict(p) for p in variants.parameter_table], train.path)
+    check_sweep_ranges((x, y), variants.parameter_table, train.path)
     port = eval_port(train, args)
     # A published value for a name the file no longer has (written as a number) is not a default.
     published = {k: v for k, v in train.published_design(args.state).items() if k in train.symbols}

@@ -9,6 +9,7 @@ import json
 from collections.abc import Callable
 
 from davies_sym.cli.arguments import check_emit, check_sweep_ranges, figure_suffix, held_values, plot_sweeps
+from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.emit.languages import emit_code
 from davies_sym.emit.plots import figure_bytes
@@ -79,7 +80,7 @@ def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
     module = several_inputs_formulas(si)
     names = [p["name"] for p in module.PARAMETERS]
     x, y = plot_sweeps(train, args, names)
-    check_sweep_ranges((x, y), module.PARAMETERS, train.path)
+    check_sweep_ranges((x, y), [Parameter(**p) for p in module.PARAMETERS], train.path)
     given = assignments(args.at, "--at", train.path)
     unknown = sorted(set(given) - set(names))
     if unknown:

@@ -119,7 +119,7 @@ def solved_coefficients(train: Train) -> dict[sympy.Symbol, str]:
     in the ordinary efficiency, from which the coefficient is solved (Laus eqs. (32), (34))."""
     out = {}
     for c in gear_meshes(train.couplings):
-        law = c.friction.coulomb if c.friction.coulomb is not None else c.friction.linear
+        law = c.friction.loaded[1] if c.friction.loaded is not None else None
         if isinstance(law, sympy.Symbol):
             names = ", ".join(dict.fromkeys(str(e) for e in c.efficiencies or ()))
             out[law] = (

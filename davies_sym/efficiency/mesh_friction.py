@@ -43,10 +43,8 @@ def check_mesh_friction(train: Train) -> None:
 
 
 def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
-    law = "coulomb" if mesh.friction.coulomb is not None else "linear"
-    coefficient = mesh.friction.coulomb if mesh.friction.coulomb is not None else mesh.friction.linear
     entry = f"couplings.{mesh.name}.friction"
-    if coefficient is None:
+    if mesh.friction.loaded is None:
         return [
             train.problem(
                 entry,
@@ -54,6 +52,7 @@ def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
                 f"efficiency is derived; remove `friction:` (the default is coulomb: zeta_{mesh.name})",
             )
         ]
+    law, coefficient = mesh.friction.loaded
     if not isinstance(coefficient, sympy.Symbol):
         return [
             train.problem(

@@ -7,6 +7,14 @@ import stat
 import tempfile
 
 
+def same_file(a: str | os.PathLike[str], b: str | os.PathLike[str]) -> bool:
+    """Whether the paths ``a`` and ``b`` name one file however they are written (relative,
+    ``..``, a symbolic link, or a hard link to an existing file)."""
+    if os.path.realpath(a) == os.path.realpath(b):
+        return True
+    return os.path.exists(a) and os.path.exists(b) and os.path.samefile(a, b)
+
+
 def _mode_for(path: str) -> int:
     """The permissions a new file gets (0666 less the umask, like ``open``), or those of
     the file it replaces."""

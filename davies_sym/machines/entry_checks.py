@@ -14,7 +14,7 @@ import sympy
 
 from davies_sym.algebra.screws import UNIT
 from davies_sym.machines.joints import JOINT_KINDS
-from davies_sym.machines.model import Cycle, Expected, Task
+from davies_sym.machines.model import MAX_STEPS, TIME, Cycle, Expected, Task
 
 Said = list[tuple[str, str]]
 
@@ -25,10 +25,6 @@ CYCLE_KEYS = ("variable", "from", "to", "steady")
 EXPECTED_KEYS = ("quantity", "value", "tolerance", "source", "values", "input", "task")
 #: What a machine's published check may state.
 QUANTITIES = ("cycle_efficiency", "task_efficiency", "efficiency")
-#: The most time samples a task may take (the numeric route solves every one).
-MAX_STEPS = 100_000
-#: The task's time variable in its path and loads.
-TIME_NAME = "t"
 
 
 def unknown_keys(spec: Mapping[str, Any], known: Iterable[str], entry: str) -> Said:
@@ -91,7 +87,7 @@ def task_problems(
                 )
             )
     names = {s.name for s in position}
-    known = {TIME_NAME, *(s.name for s in values)}
+    known = {TIME.name, *(s.name for s in values)}
     for symbol, expr in task.path.items():
         if symbol.name not in names:
             out.append(

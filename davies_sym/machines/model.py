@@ -8,6 +8,11 @@ import sympy
 
 from davies_sym.machines.vectors import Vector
 
+#: The time of a task, the variable of its path and loads.
+TIME = sympy.Symbol("t", real=True)
+#: The most time samples a task may take (the numeric route solves every one).
+MAX_STEPS = 100_000
+
 
 @dataclass(frozen=True)
 class Friction:

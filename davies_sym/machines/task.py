@@ -19,12 +19,8 @@ import sympy
 
 from davies_sym.errors import NotCoveredError, Problem, TopologyError
 from davies_sym.machines import passages
-from davies_sym.machines.model import Machine, Task
+from davies_sym.machines.model import MAX_STEPS, TIME, Machine, Task
 from davies_sym.machines.numeric import NumericMachine, PositionSolution, solve_position
-
-TIME = sympy.Symbol("t", real=True)
-#: Most time steps a task may ask for.
-MAX_STEPS = 100_000
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ actions, as in Laus eqs. (16) and (23).
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from functools import cached_property
+from functools import cached_property, partial
 
 import sympy
 
@@ -22,7 +22,7 @@ from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.analysis_display import analysis_latex
-from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, ViscousLaw, coulomb_mode
+from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, coulomb_mode
 from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
@@ -292,10 +292,9 @@ class Analysis:
         T = -D sign(t) for a constant drag."""
         values = []
         for law in self.network.laws:  # in the order of the source rows of D_A
-            if isinstance(law, ViscousLaw):
-                values.append(law.source_term(self.motion_magnitudes[law.motion].to_expr(), 1))
-            elif law.source:
-                values.append(law.source_term(sympy.Integer(0), self._direction(law)))
+            if law.source:
+                speed = self.motion_magnitudes[law.motion].to_expr
+                values.append(law.source_term(speed, partial(self._direction, law)))
         return sympy.Matrix(values)
 
     def _direction(self, law: FrictionLaw) -> int:

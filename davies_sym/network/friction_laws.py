@@ -10,6 +10,7 @@ augmented action matrix D_A (eqs. (21)-(22), (40)) or its source term (eqs. (50)
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
 from typing import ClassVar
@@ -48,9 +49,10 @@ class FrictionLaw:
         sign(U) sign(t) (unused by the other laws)."""
         return {self.variable: sympy.Integer(1)}
 
-    def source_term(self, speed: sympy.Expr, direction: int) -> sympy.Expr:
-        """The right-hand side of a source row (``nu``, eq. (53)) at relative ``speed``
-        turning in ``direction``; 0 for a law that is no source."""
+    def source_term(self, speed: Callable[[], sympy.Expr], direction: Callable[[], int]) -> sympy.Expr:
+        """The right-hand side of a source row (``nu``, eq. (53)): each law asks for what it
+        needs, the relative ``speed`` or the ``direction`` it turns in (deciding one may
+        fail: a drag whose sense the geometry leaves open); 0 for a law that is no source."""
         return sympy.Integer(0)
 
 
@@ -85,9 +87,9 @@ class ViscousLaw(FrictionLaw):
     role: ClassVar[str] = "viscous"
     source: ClassVar[bool] = True
 
-    def source_term(self, speed: sympy.Expr, direction: int) -> sympy.Expr:
+    def source_term(self, speed: Callable[[], sympy.Expr], direction: Callable[[], int]) -> sympy.Expr:
         """``T = -b t`` (eqs. (50)-(51))."""
-        return -self.coefficient * speed
+        return -self.coefficient * speed()
 
 
 @dataclass(frozen=True)
@@ -97,9 +99,9 @@ class DragLaw(FrictionLaw):
     role: ClassVar[str] = "drag"
     source: ClassVar[bool] = True
 
-    def source_term(self, speed: sympy.Expr, direction: int) -> sympy.Expr:
+    def source_term(self, speed: Callable[[], sympy.Expr], direction: Callable[[], int]) -> sympy.Expr:
         """``T = -D sign(t)``: a constant torque against the motion."""
-        return -self.coefficient * direction
+        return -self.coefficient * direction()
 
 
 #: Roles of the action variables a lossless network leaves out.

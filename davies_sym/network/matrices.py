@@ -181,17 +181,12 @@ class Network:
                 actions.append(ActionVariable(f"{base}_{c.name}", c.name, wrench, "port"))
             constraints = self._constraint_actions(c, red, base)
             # The load-dependent law (Coulomb, else linear), then the sources (Laus Table 2).
-            loaded: tuple[type[FrictionLaw], sympy.Expr] | None = (
-                (CoulombLaw, c.friction.coulomb)
-                if c.friction.coulomb is not None
-                else (LinearLaw, c.friction.linear)
-                if c.friction.linear is not None
-                else None
-            )
+            loaded = c.friction.loaded
             transmitted = self._transmitted(c, constraints) if loaded is not None else None
             if loaded is not None:
                 name = f"{base}star_{c.name}" if has_port else f"{base}_{c.name}"
-                law = loaded[0](c.name, name, loaded[1], cm[0].name, transmitted)
+                kind: type[FrictionLaw] = CoulombLaw if loaded[0] == CoulombLaw.name else LinearLaw
+                law: FrictionLaw = kind(c.name, name, loaded[1], cm[0].name, transmitted)
                 actions.append(ActionVariable(name, c.name, wrench, law.role))
                 laws.append(law)
             if c.friction.viscous is not None:

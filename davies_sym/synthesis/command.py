@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
+from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 
@@ -119,13 +120,6 @@ def _weights(pairs: Sequence[str]) -> dict[str, float]:
     return out
 
 
-def _same_file(a: str, b: str) -> bool:
-    try:
-        return os.path.samefile(a, b)
-    except OSError:
-        return os.path.abspath(a) == os.path.abspath(b)
-
-
 def _check_outputs(args: argparse.Namespace) -> None:
     problems = []
     if args.top < 1:
@@ -135,9 +129,9 @@ def _check_outputs(args: argparse.Namespace) -> None:
     for option, path in (("-o", args.out), ("--write-best", args.write_best)):
         if path is not None and not path.strip():
             problems.append(Problem(option, "the file name is empty; give a file name"))
-        elif path and _same_file(path, args.train):
+        elif path and same_file(path, args.train):
             problems.append(Problem(option, f"{path} is the train file itself: name another file"))
-    if args.out and args.write_best and _same_file(args.out, args.write_best):
+    if args.out and args.write_best and same_file(args.out, args.write_best):
         problems.append(Problem("--write-best", "-o and --write-best name the same file"))
     if problems:
         raise InputError(problems)
@@ -146,7 +140,6 @@ def _check_outputs(args: argparse.Namespace) -> None:
 def run(argv: Sequence[str]) -> int:
     """The ``derive search`` command; returns the exit status (0, or 2 for bad input)."""
     args = parser().parse_args(argv)
-    from davies_sym.emit.atomic import write_atomic
     from davies_sym.emit.plots import figure_bytes, figure_format
     from davies_sym.synthesis.best_design import best_design_text
     from davies_sym.synthesis.formulas import DERIVED

@@ -42,6 +42,16 @@ class Friction:
     def lossless(self) -> bool:
         return self.coulomb is None and self.linear is None and self.viscous is None and self.drag is None
 
+    @property
+    def loaded(self) -> tuple[str, sympy.Expr] | None:
+        """The load-dependent law, ``("coulomb", coefficient)`` or else ``("linear", ...)``,
+        the one a transmitted action loads (Laus Table 2); None when there is neither."""
+        if self.coulomb is not None:
+            return "coulomb", self.coulomb
+        if self.linear is not None:
+            return "linear", self.linear
+        return None
+
 
 def read_friction(
     value: Any, path: str, reader: EntryReader, default: Friction, name: str = "", bearing: bool = False

@@ -15,7 +15,7 @@ import pytest
 from hostile.helpers import (
     CATALOG,
     DATA,
-    assert_at,
+    assert_edit_refused,
     assert_refused,
     line_of,
     problem_lines,
@@ -38,11 +38,8 @@ SR20_DATA = CATALOG / "data" / "sr20_table1.csv"
 def test_a_radius_named_like_the_sign_of_a_friction_force_is_refused_at_its_line(tmp_path):
     """sigma_C is the sign of mesh C's Coulomb force (Laus eq. (37)); a radius of that name
     failed deep in the algebra ('two sets of assumptions') without a line."""
-    text = replaced(PAIR, "  1: {link: 1, radius: r1}", "  1: {link: 1, radius: sigma_C}")
-    path = write(tmp_path, text)
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, "sigma_C"), "gears.1.radius")
-    assert "sign of a friction force of coupling C" in result.stderr, result.describe()
+    old, new = "  1: {link: 1, radius: r1}", "  1: {link: 1, radius: sigma_C}"
+    assert_edit_refused(tmp_path, PAIR, old, new, "sigma_C", "gears.1.radius", "sign of a friction force of coupling C")
 
 
 def test_a_mesh_friction_coefficient_given_a_value_is_refused_by_every_entry_point(tmp_path):
@@ -71,19 +68,13 @@ def test_a_check_that_leaves_a_parameter_out_is_said_at_its_line(tmp_path):
 
 
 def test_a_check_whose_input_is_a_mesh_is_refused_at_its_line(tmp_path):
-    text = replaced(PAIR, "    value: 0.98\n", "    value: 0.98\n    input: C\n")
-    path = write(tmp_path, text)
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, "input: C"), "expected[0].input")
-    assert "is a gear mesh" in result.stderr, result.describe()
+    old, new = "    value: 0.98\n", "    value: 0.98\n    input: C\n"
+    assert_edit_refused(tmp_path, PAIR, old, new, "input: C", "expected[0].input", "is a gear mesh")
 
 
 def test_a_calibration_start_above_one_for_an_efficiency_is_refused_at_its_line(tmp_path):
-    text = replaced(SR20, "start: {eta_M: 0.95", "start: {eta_M: 1.95")
-    path = write(tmp_path, text)
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, "start:"), "calibrate.start.eta_M")
-    assert "eta_M is an efficiency" in result.stderr, result.describe()
+    old, new = "start: {eta_M: 0.95", "start: {eta_M: 1.95"
+    assert_edit_refused(tmp_path, SR20, old, new, "start:", "calibrate.start.eta_M", "eta_M is an efficiency")
 
 
 # --- command-line values ------------------------------------------------------------------------------------------
@@ -310,11 +301,7 @@ def test_a_second_sweep_of_file_mistakes_is_refused_at_the_entry_written(tmp_pat
     """`r2#big` read as r2 (Python's parser dropped a comment) and a negative symbolic lead
     angle were accepted; a lone link, a second bearing and an
     internal worm were refused at the wrong entry."""
-    text = replaced(source, old, new)
-    path = write(tmp_path, text)
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, at), entry)
-    assert words in result.stderr, result.describe()
+    assert_edit_refused(tmp_path, source, old, new, at, entry, words)
 
 
 def test_a_bearing_coefficient_beyond_a_double_still_gives_a_module(tmp_path):
@@ -455,11 +442,7 @@ TUPLIN = (CATALOG / "tuplin.yaml").read_text(encoding="utf-8")
 def test_a_train_file_value_out_of_its_role_is_refused_at_its_entry(tmp_path, source, old, new, at, entry, words):
     """Accepted before: a published efficiency of 1.5 or -0.2, a symbol listed twice or a
     mesh efficiency among the independent sizes, a calibration start of 1e400."""
-    text = replaced(source, old, new)
-    path = write(tmp_path, text)
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, at), entry)
-    assert words in result.stderr, result.describe()
+    assert_edit_refused(tmp_path, source, old, new, at, entry, words)
 
 
 def test_a_state_that_cannot_derive_names_itself(tmp_path):

@@ -7,7 +7,7 @@ machine-file cases)."""
 from __future__ import annotations
 
 import pytest
-from hostile.helpers import CATALOG, assert_at, line_of, replaced, run_main, write
+from hostile.helpers import CATALOG, assert_at, assert_edit_refused, line_of, replaced, run_main, write
 
 FOUR_BAR = (CATALOG / "four_bar.yaml").read_text(encoding="utf-8")
 SLIDER = (CATALOG / "slider_crank.yaml").read_text(encoding="utf-8")
@@ -101,11 +101,7 @@ UPU = (CATALOG / "three_upu.yaml").read_text(encoding="utf-8")
     ],
 )
 def test_a_machine_mistake_is_refused_at_its_entry(tmp_path, source, old, new, at, entry, words):
-    text = replaced(source, old, new)
-    path = write(tmp_path, text, "machine.yaml")
-    result = run_main([path, "--quiet"])
-    assert_at(result, path, line_of(text, at), entry)
-    assert words in result.stderr, result.describe()
+    assert_edit_refused(tmp_path, source, old, new, at, entry, words, "machine.yaml")
 
 
 def test_a_normal_along_the_axis_is_refused_at_its_entry(tmp_path):

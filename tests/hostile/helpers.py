@@ -205,6 +205,19 @@ def assert_at(result: Result, path: Path, line: int, entry: str) -> None:
     assert re.search(re.escape(f"{path}:{line}: {entry}:"), result.stderr), result.describe()
 
 
+def assert_edit_refused(
+    folder: Path, source: str, old: str, new: str, at: str, entry: str, words: str, name: str = "train.yaml"
+) -> Result:
+    """``source`` with ``old`` replaced by ``new``, written as ``folder/name``, refused by
+    ``derive`` with one line at the line holding ``at``, naming ``entry`` and saying ``words``."""
+    text = replaced(source, old, new)
+    path = write(folder, text, name)
+    result = run_main([path, "--quiet"])
+    assert_at(result, path, line_of(text, at), entry)
+    assert words in result.stderr, result.describe()
+    return result
+
+
 def assert_not_executed(*markers: Path, result: Result | None = None) -> None:
     for marker in markers:
         assert not marker.exists(), f"PAYLOAD EXECUTED: {marker} was created" + (

@@ -13,7 +13,6 @@ from types import MappingProxyType
 from typing import Any
 
 import networkx as nx
-import sympy
 
 from davies_sym.errors import TopologyError, shortened
 from davies_sym.topology.calibration_entry import read_calibrate
@@ -23,10 +22,10 @@ from davies_sym.topology.couplings import Coupling, coupling_fields
 from davies_sym.topology.documents import document_from_bytes, read_document
 from davies_sym.topology.entries import EntryReader, describe
 from davies_sym.topology.gear_entries import read_gears
+from davies_sym.topology.geometry_entries import read_independent, read_placement
 from davies_sym.topology.helices import check_helices
 from davies_sym.topology.model import Gear, Link, Ports, State, Train
 from davies_sym.topology.schema import FORMAT_VERSION, LINK, PORT_KEYS, PORTS, STATE, TOP_LEVEL
-from davies_sym.topology.symbols import exact_number
 from davies_sym.topology.yaml_source import SourceDocument, parse_yaml
 
 
@@ -83,8 +82,8 @@ def build_train(document: SourceDocument) -> Train:
     for i, check in enumerate(expected):
         if check.state is not None and check.state not in {st.name for st in states}:
             reader.problem(f"expected[{i}].state", f"unknown state {shortened(check.state)}")
-    placement = _read_placement(data["placement"], reader) if "placement" in data else None
-    independent = _read_independent(data["independent"], reader) if "independent" in data else None
+    placement = read_placement(data["placement"], reader) if "placement" in data else None
+    independent = read_independent(data["independent"], reader) if "independent" in data else None
     calibrate = read_calibrate(data["calibrate"], reader) if "calibrate" in data else None
     for key in ("name", "source", "notes"):
         if key in data and not isinstance(data[key], str):
@@ -112,61 +111,6 @@ def build_train(document: SourceDocument) -> Train:
         independent=independent,
         written=MappingProxyType(dict(reader.written)),
     )
-
-
-def _read_placement(value: Any, reader: EntryReader) -> tuple[sympy.Expr, sympy.Expr] | None:
-    """``[x, y]`` (exact) or an angle in degrees whose sine and cosine are square roots."""
-    if isinstance(value, list) and len(value) == 2:
-        parts = [reader.quantity(v, f"placement[{i}]", "position", roots=True) for i, v in enumerate(value)]
-        if any(p is None for p in parts):
-            return None
-        if all(p == 0 for p in parts):
-            reader.problem("placement", "the direction must not be zero")
-            return None
-        return (parts[0], parts[1])
-    angle = exact_number(value)
-    if angle is None:
-        reader.problem("placement", f"expected [x, y] or an angle in degrees, got {describe(value)}")
-        return None
-    radians = angle * sympy.pi / 180
-    cos, sin = sympy.cos(radians), sympy.sin(radians)
-    if any(p.has(sympy.cos, sympy.sin) for p in (cos, sin)):
-        reader.problem(
-            "placement",
-            f"the sine and cosine of {angle} degrees are not square roots; give the direction as [x, y] instead",
-        )
-        return None
-    return (cos, sin)
-
-
-def _read_independent(value: Any, reader: EntryReader) -> tuple[str, ...] | None:
-    """``independent: [r1, r2, r3]``: symbols of the file that stay free."""
-    # One symbol written without brackets is the list of it; a problem with it is at the key.
-    bare = not isinstance(value, list)
-    value = reader.items(value, "independent", "a list of symbols")
-    if value is None:
-        return None
-    if not value:
-        reader.problem("independent", "expected a list of symbols, got an empty list")
-        return None
-    names: list[str] = []
-    for i, item in enumerate(value):
-        entry = "independent" if bare else f"independent[{i}]"
-        if not isinstance(item, str) or item not in reader.symbols:
-            known = ", ".join(sorted(reader.symbols)[:20])
-            reader.problem(entry, f"{describe(item)} is not a symbol of the train (symbols: {known})")
-        elif item in names:
-            reader.problem(entry, f"{item!r} is written twice: write each symbol once")
-        elif reader.roles.get(item) not in GEOMETRY_ROLES:
-            # The geometric constraints tie sizes; a loss coefficient or an angle stays free anyway.
-            reader.problem(entry, f"{item!r} is no size of the geometry: list radii, tooth numbers or positions")
-        else:
-            names.append(item)
-    return tuple(names)
-
-
-#: The roles of the symbols the geometric constraints tie (``independent:`` chooses among them).
-GEOMETRY_ROLES = frozenset({"length", "teeth", "position"})
 
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:

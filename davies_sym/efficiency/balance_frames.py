@@ -112,7 +112,7 @@ class PlanarFrames(Frames):
         if lossy or others:
             raise DerivationError(
                 f"virtual-power balance: couplings {lossy + others} are outside its scope "
-                "(lossy sliders, explicit screws)"
+                "(it covers gear pairs, bearings and lossless sliders)"
             )
         self.extra_unknowns = len(self.sliders)
         self.gear_axis = {g.name: pt(layout.gear_centres[g.name]) for g in train.gears}

@@ -21,7 +21,7 @@ from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.errors import InputError, Problem, shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.checks import friction_coefficient_symbols, mesh_efficiency_symbols, role_problem
-from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.coupling_kinds import toothed_meshes
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
@@ -118,7 +118,7 @@ def solved_coefficients(train: Train) -> dict[sympy.Symbol, str]:
     """The meshes' friction coefficients, each with why it takes no value: the formulas are
     in the ordinary efficiency, from which the coefficient is solved (Laus eqs. (32), (34))."""
     out = {}
-    for c in gear_meshes(train.couplings):
+    for c in toothed_meshes(train.couplings):
         law = c.friction.loaded[1] if c.friction.loaded is not None else None
         if isinstance(law, sympy.Symbol):
             names = ", ".join(dict.fromkeys(str(e) for e in c.efficiencies or ()))

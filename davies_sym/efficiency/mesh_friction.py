@@ -16,10 +16,10 @@ import sympy
 
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.network.friction_laws import FrictionLaw
-from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.coupling_kinds import toothed_meshes
 from davies_sym.topology.couplings import Coupling
-from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
+from davies_sym.topology.toothed_mesh import ToothedMesh
 
 
 def is_mesh_law(law: FrictionLaw, meshes: Collection[str]) -> bool:
@@ -37,12 +37,12 @@ def only_mesh_laws(laws: Collection[FrictionLaw], meshes: Collection[str]) -> bo
 def check_mesh_friction(train: Train) -> None:
     """Raise `TopologyError` (every problem, located) unless each mesh of ``train``
     has a load-dependent friction law with a symbol of its own."""
-    problems = [p for c in gear_meshes(train.couplings) for p in _problems(train, c)]
+    problems = [p for c in toothed_meshes(train.couplings) for p in _problems(train, c)]
     if problems:
         raise TopologyError(problems, train.path)
 
 
-def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
+def _problems(train: Train, mesh: ToothedMesh) -> list[Problem]:
     entry = f"couplings.{mesh.name}.friction"
     if mesh.friction.loaded is None:
         return [
@@ -73,7 +73,7 @@ def _problems(train: Train, mesh: GearMesh) -> list[Problem]:
     return []
 
 
-def _other_quantities(train: Train, mesh: GearMesh) -> Iterator[sympy.Expr]:
+def _other_quantities(train: Train, mesh: ToothedMesh) -> Iterator[sympy.Expr]:
     """Every quantity of ``train`` but the load-dependent friction coefficient of ``mesh``."""
     for g in train.gears:
         yield g.radius

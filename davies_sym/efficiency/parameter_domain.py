@@ -23,7 +23,7 @@ from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.geometry.layout import Layout, joint_substitution
 from davies_sym.topology.angles import AngleFunctions
-from davies_sym.topology.coupling_kinds import bearings, gear_meshes
+from davies_sym.topology.coupling_kinds import bearings, toothed_meshes
 from davies_sym.topology.model import Train
 
 Point = dict[sympy.Symbol, sympy.Rational]
@@ -89,7 +89,7 @@ def geometry_symbols(train: Train) -> set[sympy.Symbol]:
 def efficiency_symbols(train: Train) -> list[sympy.Symbol]:
     """The ordinary-efficiency symbols of the meshes, in coupling order."""
     out: list[sympy.Symbol] = []
-    for c in gear_meshes(train.couplings):
+    for c in toothed_meshes(train.couplings):
         if c.efficiencies is not None:
             for e in c.efficiencies:
                 for s in sorted_symbols(e.free_symbols):

@@ -17,7 +17,7 @@ from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
 from davies_sym.network.friction_laws import FrictionLaw
-from davies_sym.topology.coupling_kinds import as_skew_mesh, gear_meshes
+from davies_sym.topology.coupling_kinds import as_skew_mesh, toothed_meshes
 from davies_sym.topology.model import Train
 
 
@@ -51,17 +51,17 @@ def _gear_meanings(train: Train) -> dict[sympy.Symbol, str]:
 
 def _efficiency_meanings(train: Train) -> dict[sympy.Symbol, str]:
     out: dict[sympy.Symbol, str] = {}
-    for mesh in gear_meshes(train.couplings):
-        if mesh.efficiencies is None or mesh.gears is None:
+    for mesh in toothed_meshes(train.couplings):
+        if mesh.efficiencies is None:
             continue
-        first, second = mesh.gears
+        first, second = mesh.sides
         both = mesh.efficiencies[0] == mesh.efficiencies[1]
         for k, eta in enumerate(mesh.efficiencies):
             driver, driven = (first, second) if k == 0 else (second, first)
             text = (
-                f"ordinary efficiency of mesh {mesh.name} (gears {first}, {second}), either gear driving"
+                f"ordinary efficiency of mesh {mesh.name} ({mesh.pair_words}), either {mesh.member_noun} driving"
                 if both
-                else f"ordinary efficiency of mesh {mesh.name}, gear {driver} driving gear {driven}"
+                else f"ordinary efficiency of mesh {mesh.name}, {driver} driving {driven}"
             )
             for s in sorted_symbols(eta.free_symbols):
                 out.setdefault(s, text)
@@ -76,7 +76,8 @@ def _law_meanings(train: Train, laws: Sequence[FrictionLaw]) -> dict[sympy.Symbo
             if as_skew_mesh(coupling) is not None:  # mu of a sliding contact: a plain number
                 out.setdefault(s, (f"sliding friction coefficient of mesh {law.coupling}", "1"))
                 continue
-            out.setdefault(s, (f"{law.name} friction coefficient of {coupling.noun} {law.coupling}", law.unit))
+            unit = coupling.load_dependent_unit if law.load_dependent else law.unit
+            out.setdefault(s, (f"{law.name} friction coefficient of {coupling.noun} {law.coupling}", unit))
     return out
 
 

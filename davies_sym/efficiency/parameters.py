@@ -19,7 +19,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.variants import VariantSet
-from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.coupling_kinds import toothed_meshes
 from davies_sym.topology.model import Train
 
 
@@ -86,7 +86,7 @@ def file_parameters(train: Train) -> tuple[str, ...]:
     formulas are written in the efficiencies).  The formula modules of all states of
     one file accept all of them, so design code calls every state alike."""
     replaced: set[sympy.Basic] = set()
-    for c in gear_meshes(train.couplings):
+    for c in toothed_meshes(train.couplings):
         if c.efficiencies and c.friction.coulomb is not None:
             replaced |= c.friction.coulomb.free_symbols
     return tuple(sorted(name for name, s in train.symbols.items() if s not in replaced))

@@ -20,7 +20,7 @@ from davies_sym.efficiency.virtual_power import MeshPowerFlow
 from davies_sym.errors import DerivationError
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.friction_laws import CoulombLaw, FrictionLaw, ViscousLaw
-from davies_sym.topology.coupling_kinds import as_gear_mesh
+from davies_sym.topology.coupling_kinds import as_toothed_mesh
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,7 +80,7 @@ def region_forms(
 
     for law in net.laws:
         if is_mesh_law(law, flows):
-            mesh = as_gear_mesh(train.coupling(law.coupling))
+            mesh = as_toothed_mesh(train.coupling(law.coupling))
             assert mesh is not None and mesh.efficiencies is not None
             eta = mesh.efficiencies[0] if first[law.coupling] else mesh.efficiencies[1]
             zeta = flows[law.coupling].friction_for(eta, first[law.coupling])

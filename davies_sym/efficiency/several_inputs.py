@@ -37,7 +37,7 @@ from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, DragLaw
-from davies_sym.topology.coupling_kinds import as_gear_mesh
+from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
 
 __all__ = ["LOAD_TORQUE", "Region", "SeveralInputs", "SpeedCondition", "derive_several_inputs", "speed_symbol"]
@@ -149,7 +149,7 @@ def derive_several_inputs(
     load_action = net.port_action(ports.output).name
     flows: dict[str, MeshPowerFlow] = {}
     for law in net.laws:
-        mesh = as_gear_mesh(train.coupling(law.coupling))
+        mesh = as_toothed_mesh(train.coupling(law.coupling))
         if mesh is not None and law.load_dependent:
             flows[mesh.name] = flow = mesh_power_flow(analysis, mesh)
             # Lossless tooth force per unit load torque times its power on the first gear's side

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import sympy
 
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
-from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.coupling_kinds import toothed_meshes
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis
@@ -87,7 +87,7 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
     turning conditions (named c1, c2, ... in mesh order)."""
     roles: list[MeshRole] = []
     conditions: list[TurningCondition] = []
-    for c in gear_meshes(analysis.train.couplings):
+    for c in toothed_meshes(analysis.train.couplings):
         if c.efficiencies is None:
             continue
         if c.friction.coulomb is None and c.friction.linear is None:

@@ -21,11 +21,10 @@ from typing import TYPE_CHECKING
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
-from davies_sym.algebra.screws import rotation_twist
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
 from davies_sym.errors import DerivationError, TopologyError
-from davies_sym.topology.coupling_kinds import as_gear_mesh
-from davies_sym.topology.gear_mesh import GearMesh
+from davies_sym.topology.coupling_kinds import as_toothed_mesh
+from davies_sym.topology.toothed_mesh import ToothedMesh
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis
@@ -37,9 +36,13 @@ class MeshPowerFlow:
 
     coupling: str
     carrier: str
-    #: Links (p, q) and gears of the edge p -> q.
+    #: Links (p, q) and members (gears, or a gear and a rack) of the edge p -> q.
     links: tuple[str, str]
     gears: tuple[str, str]
+    #: The members as the reports name them (``gear 1``, ``rack R``), and both in one
+    #: phrase (``gears 1, 3``).
+    sides: tuple[str, str]
+    pair_words: str
     #: Lossless virtual power through the mesh divided by the input power; positive when
     #: the first gear drives (the flow follows the edge).
     flow_ratio: RationalFunction
@@ -81,23 +84,26 @@ def _parallel(a: Twist, b: list[RationalFunction]) -> bool:
     return all((a[i] * b[j] - a[j] * b[i]).is_zero() for i in range(n) for j in range(i + 1, n))
 
 
-def _gear_axis(analysis: Analysis, gear: str) -> list[RationalFunction]:
-    """Unit twist about a gear's axis, reduced to the network's screw system."""
+def _member_twists(analysis: Analysis, mesh: ToothedMesh) -> list[list[RationalFunction]]:
+    """The unit twists of the mesh's members in a carrier (a gear about its axis, a rack
+    along its line), reduced to the network's screw system."""
     layout, system = analysis.network.layout, analysis.network.system
-    twist = rotation_twist(layout.gear_axes.get(gear, layout.axis), layout.gear_centres[gear])
-    return [analysis.ring.rational(v) for v in system.reduce_twist(twist)]
+    gears = {g.name: g for g in analysis.train.gears}
+    return [
+        [analysis.ring.rational(v) for v in system.reduce_twist(twist)] for twist in mesh.member_twists(layout, gears)
+    ]
 
 
 def _relative(analysis: Analysis, start: str, end: str) -> Twist:
     return motion_along_path(analysis, walk_path(analysis, start, end))
 
 
-def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, Twist]]:
-    """The link holding both gear axes of ``mesh`` (the first in link order that sees the
-    gears turn, or any when the set is locked) and the motions of the mesh's two links
-    seen from it."""
+def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twist, Twist]]:
+    """The link holding both members of ``mesh`` (the first in link order that sees them
+    move, or any when the set is locked) and the motions of the mesh's two links seen
+    from it."""
     p, q = mesh.links
-    axes = [_gear_axis(analysis, g) for g in mesh.gears]
+    axes = _member_twists(analysis, mesh)
     locked = None
     for c in analysis.train.link_names:
         if c in (p, q):
@@ -126,13 +132,13 @@ def find_carrier(analysis: Analysis, mesh: GearMesh) -> tuple[str, tuple[Twist, 
 
 def named_mesh_power_flow(analysis: Analysis, name: str) -> MeshPowerFlow:
     """`mesh_power_flow` of the mesh called ``name`` in the analysis's train."""
-    mesh = as_gear_mesh(analysis.train.coupling(name))
+    mesh = as_toothed_mesh(analysis.train.coupling(name))
     if mesh is None:
         raise DerivationError(f"coupling {name} is not a gear mesh: it has no ordinary efficiency")
     return mesh_power_flow(analysis, mesh)
 
 
-def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
+def mesh_power_flow(analysis: Analysis, mesh: ToothedMesh) -> MeshPowerFlow:
     """Carrier, lossless virtual power and the per-side powers of ``mesh``."""
     net = analysis.network
     laws = [law for law in net.laws if law.coupling == mesh.name and law.load_dependent]
@@ -167,7 +173,9 @@ def mesh_power_flow(analysis: Analysis, mesh: GearMesh) -> MeshPowerFlow:
         mesh.name,
         carrier,
         mesh.links,
-        mesh.gears,
+        mesh.members,
+        mesh.sides,
+        mesh.pair_words,
         flow_ratio,
         (transmitted[0], transmitted[1]),
         (friction[0], friction[1]),

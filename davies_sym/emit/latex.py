@@ -250,8 +250,7 @@ def _section(variants: VariantSet) -> list[str]:
         )
     if fixed:
         text = "; ".join(
-            f"{escape(r.coupling)}: gear {escape(r.flow.gears[0 if r.fixed and r.fixed > 0 else 1])} drives"
-            for r in fixed
+            f"{escape(r.coupling)}: {escape(r.flow.sides[0 if r.fixed and r.fixed > 0 else 1])} drives" for r in fixed
         )
         out.append(rf"\par\noindent Meshes whose direction the geometry fixes (declared input): {text}.")
     out += variants_table(variants)

@@ -23,11 +23,12 @@ FRICTION_CONVENTION = (
 
 def _friction(coupling: Any) -> dict[str, str]:
     f = coupling.friction
-    return {
+    laws = {
         law: sympy.sstr(getattr(f, law))
         for law in ("coulomb", "linear", "viscous", "drag")
         if getattr(f, law) is not None
     }
+    return laws | ({"pressed_by": f.pressed_by} if f.pressed_by is not None else {})
 
 
 def _forms(analysis: Analysis) -> tuple[sympy.Expr, sympy.Expr]:

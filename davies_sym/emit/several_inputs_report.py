@@ -14,6 +14,7 @@ import sympy
 from davies_sym.efficiency.power_flow_regions import OperatingPoint
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs, speed_symbol
 from davies_sym.emit.force_conditions import force_conditions, force_text
+from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.symbol_display import latex as display_latex
 
 
@@ -33,19 +34,22 @@ def region_force_text(region: Region) -> list[str]:
     return force_text(region_forces(region))
 
 
-def drivers(si: SeveralInputs, region: Region) -> list[tuple[str, str, str]]:
-    """(mesh, driving gear, driven gear) of every mesh in the region."""
+def drivers(si: SeveralInputs, region: Region, words: bool = False) -> list[tuple[str, str, str]]:
+    """(mesh, driving member, driven member) of every mesh in the region: their names, or
+    with ``words`` as the reports name them (``gear 1``)."""
     out = []
-    for mesh, first in region.first_drives.items():
-        gears = si.train.coupling(mesh).gears or ("", "")
-        driver, driven = gears if first else gears[::-1]
-        out.append((mesh, driver, driven))
+    for name, first in region.first_drives.items():
+        mesh = as_toothed_mesh(si.train.coupling(name))
+        assert mesh is not None  # the regions decide the meshes with ordinary efficiencies
+        members = mesh.sides if words else mesh.members
+        driver, driven = members if first else members[::-1]
+        out.append((name, driver, driven))
     return out
 
 
 def mesh_text(si: SeveralInputs, region: Region) -> list[str]:
     """Which gear drives in each mesh, e.g. ``M1: gear 1 drives gear 2``."""
-    return [f"{mesh}: gear {driver} drives gear {driven}" for mesh, driver, driven in drivers(si, region)]
+    return [f"{mesh}: {driver} drives {driven}" for mesh, driver, driven in drivers(si, region, words=True)]
 
 
 def several_inputs_document(si: SeveralInputs) -> dict[str, Any]:

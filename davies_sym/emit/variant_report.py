@@ -32,16 +32,13 @@ def mesh_text(variants: VariantSet, variant: Variant | ExcludedVariant) -> list[
     for role in variants.roles:
         if role.idle:
             out.append(
-                f"{role.coupling}: carries no power (gears {role.flow.gears[0]}, {role.flow.gears[1]}; "
-                f"its set is locked or unloaded), no loss"
+                f"{role.coupling}: carries no power ({role.flow.pair_words}; its set is locked or unloaded), no loss"
             )
             continue
         first = variant.first_drives[role.coupling]
-        driver, driven = role.flow.gears if first else role.flow.gears[::-1]
+        driver, driven = role.flow.sides if first else role.flow.sides[::-1]
         eta = role.efficiencies[0 if first else 1]
-        out.append(
-            f"{role.coupling}: gear {driver} drives gear {driven} ({sympy.sstr(eta)}), carrier {role.flow.carrier}"
-        )
+        out.append(f"{role.coupling}: {driver} drives {driven} ({sympy.sstr(eta)}), carrier {role.flow.carrier}")
     return out
 
 

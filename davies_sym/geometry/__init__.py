@@ -23,8 +23,9 @@ from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
 from davies_sym.geometry.skew import skew_layout, skew_meshes
-from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.coupling_kinds import gear_meshes, toothed_meshes
 from davies_sym.topology.model import Train
+from davies_sym.topology.toothed_mesh import LocationError
 
 __all__ = ["GeometricConstraint", "Layout", "train_layout"]
 
@@ -45,7 +46,7 @@ def _derived_layout(train: Train) -> Layout:
     if train.whole is not None:
         layout = _restricted(train_layout(train.whole), train)
     else:
-        layout = _helical(_layout(train), train)
+        layout = _following(_helical(_layout(train), train), train)
         # A radius solved from a constraint is a length: its expression is positive.
         facts = tuple(r.expression for r in train.dependent or ())
         layout = replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
@@ -60,6 +61,26 @@ def _layout(train: Train) -> Layout:
     if train.placement is not None:
         return plane_layout(train, train.placement)
     return planar_line_layout(train)
+
+
+def _following(layout: Layout, train: Train) -> Layout:
+    """``layout`` with the meshes that follow the gears they mesh put where their kinds
+    say (a rack beside its pinion): the layouts place the gears, these kinds place
+    themselves from them."""
+    gears = {g.name: g for g in train.gears}
+    points, tangents, normals = dict(layout.coupling_points), dict(layout.mesh_tangents), dict(layout.mesh_normals)
+    problems = []
+    for mesh in toothed_meshes(train.couplings):
+        try:
+            where = mesh.locate(layout, gears)
+        except LocationError as e:
+            problems.append(train.problem(f"couplings.{mesh.name}.{e.key}", e.message))
+            continue
+        if where is not None:
+            points[mesh.name], tangents[mesh.name], normals[mesh.name] = where.point, where.tangent, where.normal
+    if problems:
+        raise GeometryError(problems, train.path)
+    return replace(layout, coupling_points=points, mesh_tangents=tangents, mesh_normals=normals)
 
 
 def _helical(layout: Layout, train: Train) -> Layout:

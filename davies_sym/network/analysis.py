@@ -27,7 +27,7 @@ from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
-from davies_sym.topology.coupling_kinds import as_gear_mesh
+from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import make_symbol
 
@@ -249,7 +249,7 @@ class Analysis:
             if self.coulomb_signs is CoulombSigns.SYMBOLIC:
                 out[law.coupling] = symbol
                 continue
-            mesh = as_gear_mesh(self.train.coupling(law.coupling)) is not None
+            mesh = as_toothed_mesh(self.train.coupling(law.coupling)) is not None
             if self.coulomb_signs is CoulombSigns.MESH_LINEAR and mesh:
                 out[law.coupling] = sympy.Integer(-1)  # T + (-1) zeta U = 0, i.e. T = zeta U
                 continue

@@ -22,6 +22,7 @@ from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
 from davies_sym.network.coupling_screws import coupling_screws, written_square_root
 from davies_sym.network.friction_laws import LOSS_ROLES, CoulombLaw, DragLaw, FrictionLaw, LinearLaw, ViscousLaw
+from davies_sym.network.pressed_guides import pressed_laws
 from davies_sym.network.screw_system import (
     CouplingScrewError,
     ReducedCoupling,
@@ -161,7 +162,7 @@ class Network:
             motions += cm
             needs_axis = c.name in ports or not c.friction.lossless
             # A mesh (a coupling of two gears) has several freedoms; its friction opposes the first.
-            if needs_axis and (len(cm) > 1 and c.gears is None):
+            if needs_axis and (len(cm) > 1 and not c.meshing):
                 raise DerivationError(
                     f"coupling {c.name}: ports and friction need a coupling with one "
                     f"freedom, it has {len(cm)} in this screw system"
@@ -201,7 +202,7 @@ class Network:
                 actions.append(ActionVariable(name, c.name, wrench, law.role))
                 laws.append(law)
             actions += constraints
-        return tuple(motions), tuple(actions), tuple(laws)
+        return tuple(motions), tuple(actions), pressed_laws(self.train, laws)
 
     def _constraint_actions(self, c: Coupling, red: ReducedCoupling, taken: str = "") -> list[ActionVariable]:
         """The constraint actions of ``c``, named apart from each other and from ``taken``
@@ -215,8 +216,10 @@ class Network:
 
     def _transmitted(self, c: Coupling, constraints: list[ActionVariable]) -> str:
         # A mesh loads its friction with the tooth force, its first constraint action.
-        if c.gears is not None:
+        if c.meshing:
             return constraints[0].name
+        if c.friction.pressed_by is not None:
+            return ""  # the mesh's tooth force, set by `pressed_laws` once every action is named
         what = "reaction force"
         bearing = as_bearing(c)
         if bearing is not None:

@@ -58,7 +58,7 @@ def _read_check(item: Any, path: str, reader: EntryReader, couplings: Mapping[st
     port = texts["input"]
     if port is not None and port not in couplings:
         reader.unknown(f"{path}.input", "coupling", port)
-    elif port is not None and couplings[port].gears is not None:
+    elif port is not None and couplings[port].meshing:
         reader.problem(
             f"{path}.input", f"coupling {port!r} is a gear mesh; the input of a check is a port (a shaft's coupling)"
         )

@@ -17,6 +17,7 @@ from davies_sym.topology.prismatic import Prismatic
 from davies_sym.topology.revolute import Revolute
 from davies_sym.topology.screw_coupling import ScrewCoupling
 from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
+from davies_sym.topology.toothed_mesh import ToothedMesh
 
 KINDS: Mapping[str, type[Coupling]] = {
     k.kind: k for k in (Revolute, GearMesh, WormMesh, CrossedHelicalMesh, Prismatic, ScrewCoupling)
@@ -31,6 +32,17 @@ def gear_meshes(couplings: Iterable[Coupling]) -> list[GearMesh]:
 def as_gear_mesh(coupling: Coupling) -> GearMesh | None:
     """``coupling`` if it is a mesh of gears on parallel or intersecting axes, else None."""
     return coupling if isinstance(coupling, GearMesh) else None
+
+
+def toothed_meshes(couplings: Iterable[Coupling]) -> list[ToothedMesh]:
+    """The meshes whose losses are ordinary efficiencies (gear pairs, a rack and its
+    pinion), in order: what the efficiency stage's power flow reads."""
+    return [c for c in couplings if isinstance(c, ToothedMesh)]
+
+
+def as_toothed_mesh(coupling: Coupling) -> ToothedMesh | None:
+    """``coupling`` if its losses are an ordinary efficiency, else None."""
+    return coupling if isinstance(coupling, ToothedMesh) else None
 
 
 def skew_meshes(couplings: Iterable[Coupling]) -> list[SkewMesh]:

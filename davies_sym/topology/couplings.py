@@ -78,6 +78,12 @@ class Coupling:
     noun: ClassVar[str] = "coupling"
     #: Whether the reports give its point of the layout (a bearing's, a mesh's pitch point).
     located: ClassVar[bool] = False
+    #: Teeth in contact: several freedoms, its friction opposing the first and loaded by
+    #: the tooth force; no port sits on it.
+    meshing: ClassVar[bool] = False
+    #: The unit of its Coulomb or linear coefficient: a length where the friction is a
+    #: torque loaded by a force (a bearing, a mesh), 1 where it is a force (a slider).
+    load_dependent_unit: ClassVar[str] = "length"
 
     def report_fields(self) -> dict[str, Any]:
         """What the JSON report says of it besides its name, type, links and laws."""

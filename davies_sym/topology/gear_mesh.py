@@ -11,6 +11,7 @@ import sympy
 
 from davies_sym.algebra.screws import (
     NamedScrew,
+    Screw,
     cross,
     force_magnitude_name,
     force_wrench,
@@ -23,19 +24,19 @@ from davies_sym.algebra.screws import (
 from davies_sym.errors import DerivationError, shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.angles import AngleFunctions
-from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.kind_screws import CouplingScrews, Placement, point_constraints
 from davies_sym.topology.loss_entries import Friction, read_friction, tooth_contact
 from davies_sym.topology.mesh_entries import annulus_larger, read_efficiencies, read_gear_pair, read_helix
 from davies_sym.topology.schema import Field
+from davies_sym.topology.toothed_mesh import ToothedMesh, gear_twist, rolling_screws
 
 if TYPE_CHECKING:
     from davies_sym.topology.entries import EntryReader
 
 
 @dataclass(frozen=True)
-class GearMesh(Coupling):
+class GearMesh(ToothedMesh):
     """A gear mesh between two gears on different links, external or internal.
 
     The relative motion is a rotation about the pitch line (Laus Table 3, coupling C);
@@ -53,18 +54,12 @@ class GearMesh(Coupling):
 
     mesh_gears: tuple[str, str] = ("", "")
     internal: bool = False
-    #: Ordinary efficiencies: (first gear drives, second gear drives), Laus eqs. (32), (34).
-    efficiencies: tuple[sympy.Expr, sympy.Expr] | None = None
-    #: The efficiencies as functions of the tooth geometry (Laus App. A), when given so.
-    efficiency_definitions: tuple[Definition, ...] = ()
     #: cos and sin of the helix angle at the pitch radius (helical gears), else None.
     helix: AngleFunctions | None = None
     #: +1: the first gear is right-handed, -1: left-handed.
     hand: int = 1
 
     kind: ClassVar[str] = "mesh"
-    noun: ClassVar[str] = "mesh"
-    located: ClassVar[bool] = True
     DOC: ClassVar[str] = (
         "Gear mesh between two gears. The edge goes from the link of the first gear "
         "to the link of the second. External or internal is derived from the gears "
@@ -105,42 +100,27 @@ class GearMesh(Coupling):
         return self.mesh_gears
 
     @property
+    def members(self) -> tuple[str, str]:
+        return self.mesh_gears
+
+    def member_twists(self, place: Placement, gears: Mapping[str, Gear]) -> tuple[Screw, Screw]:
+        """Each gear turning about its own axis (Laus section 3.1, Definition 4)."""
+        return gear_twist(place, self.mesh_gears[0]), gear_twist(place, self.mesh_gears[1])
+
+    @property
     def angles(self) -> tuple[AngleFunctions, ...]:
         return () if self.helix is None else (self.helix,)
-
-    @property
-    def definitions(self) -> tuple[Definition, ...]:
-        angles = tuple(d for a in self.angles for d in a.definitions)
-        return self.friction.definitions + self.efficiency_definitions + angles
-
-    @property
-    def written_quantities(self) -> tuple[sympy.Expr, ...]:
-        return () if self.efficiencies is None else tuple(self.efficiencies)
 
     def report_fields(self) -> dict[str, Any]:
         return {"gears": list(self.gears), "mesh": "internal" if self.internal else "external"}
 
     def screws(self, place: Placement) -> CouplingScrews:
-        """A mesh: rotation about the pitch line, tooth force along the common tangent
-        first; the separating motion along the centre line is a secondary freedom (kept
-        in planar systems of order 3).  Where the gears carry thrust or the layout is
-        spatial the teeth touch at the pitch point only: the translation along the axis
-        and the tilts about the tangent and the centre line are freedoms too, so the
-        bearings alone hold the gears out of their plane.  Helical teeth
+        """A mesh: the teeth roll on the pitch line (`rolling_screws`); helical teeth
         (`_helical_screws`) slide along the tooth line instead of the axis."""
-        point, axis = place.coupling_points[self.name], place.coupling_axes.get(self.name, place.axis)
-        tangent, normal = place.mesh_tangents[self.name], place.mesh_normals[self.name]
-        motion = NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point))
         if self.helix is not None:
-            return self._helical_screws(place, motion)
-        separating = [NamedScrew(translation_magnitude_name(normal), translation_twist(normal))]
-        if place.spatial or place.thrust:
-            separating += [
-                NamedScrew(translation_magnitude_name(axis), translation_twist(axis)),
-                NamedScrew(rotation_magnitude_name(tangent), rotation_twist(tangent, point)),
-                NamedScrew(rotation_magnitude_name(normal), rotation_twist(normal, point)),
-            ]
-        return CouplingScrews((motion,), tuple(separating), point_constraints(point, (tangent,)))
+            point, axis = place.coupling_points[self.name], place.coupling_axes.get(self.name, place.axis)
+            return self._helical_screws(place, NamedScrew(rotation_magnitude_name(axis), rotation_twist(axis, point)))
+        return rolling_screws(self.name, place)
 
     def _helical_screws(self, place: Placement, motion: NamedScrew) -> CouplingScrews:
         """A helical mesh on parallel axes, pressure angle zero as for spur gears.
@@ -226,5 +206,13 @@ class GearMesh(Coupling):
             efficiencies = read_efficiencies(value, f"{path}.efficiency", reader)
         helix, hand = read_helix(entry, path, reader, name)
         return cls(
-            name, (g1.link, g2.link), friction, (g1.name, g2.name), internal, efficiencies, definitions, helix, hand
+            name,
+            (g1.link, g2.link),
+            friction,
+            efficiencies=efficiencies,
+            efficiency_definitions=definitions,
+            mesh_gears=(g1.name, g2.name),
+            internal=internal,
+            helix=helix,
+            hand=hand,
         )

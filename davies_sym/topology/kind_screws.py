@@ -49,6 +49,9 @@ class Placement(Protocol):
     def coupling_axes(self) -> Mapping[str, Vector]: ...
 
     @property
+    def gear_axes(self) -> Mapping[str, Vector]: ...
+
+    @property
     def spatial(self) -> bool: ...
 
     @property

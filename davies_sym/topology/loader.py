@@ -223,7 +223,7 @@ def _port(value: Any, path: str, reader: EntryReader, couplings: Mapping[str, Co
     if name not in couplings:
         reader.unknown(path, "coupling", name, f"port on a missing coupling {shortened(name)}")
         return None
-    if couplings[name].gears is not None:
+    if couplings[name].meshing:
         reader.problem(
             path, f"coupling {name!r} is a gear mesh; a port sits on a revolute or prismatic coupling (a shaft)"
         )

@@ -37,6 +37,8 @@ class Friction:
     #: The reaction of a bearing that loads its Coulomb law: ``radial`` (a journal) or
     #: ``axial`` (a thrust face).
     load: str = "radial"
+    #: The mesh whose separating tooth force loads a guide's Coulomb law, if any.
+    pressed_by: str | None = None
 
     @property
     def lossless(self) -> bool:
@@ -54,11 +56,18 @@ class Friction:
 
 
 def read_friction(
-    value: Any, path: str, reader: EntryReader, default: Friction, name: str = "", bearing: bool = False
+    value: Any,
+    path: str,
+    reader: EntryReader,
+    default: Friction,
+    name: str = "",
+    bearing: bool = False,
+    guide: bool = False,
 ) -> Friction:
     """Read a ``friction`` entry of coupling ``name``: ``none``, or a mapping of laws to
     coefficients (on a ``bearing``, a revolute, the ``bearing`` key gives the Coulomb law of a
-    journal, Laus App. D, and ``thrust`` that of a thrust face)."""
+    journal, Laus App. D, and ``thrust`` that of a thrust face; on a ``guide``, a prismatic
+    pair, ``pressed_by`` names the mesh whose separating force loads its Coulomb law)."""
     if value is None:
         return default
     if isinstance(value, str) and value.strip().lower() == "none":
@@ -68,8 +77,9 @@ def read_friction(
         return default
     reader.check_keys(entry, path, FRICTION)
     laws: dict[str, sympy.Expr | None] = {}
+    pressed_by = _read_pressed_by(entry, path, reader, guide)
     for f in FRICTION:
-        if f.key in entry and f.key not in _BEARING_LAWS:
+        if f.key in entry and f.key not in (*_BEARING_LAWS, "pressed_by"):
             role = "viscous" if f.key == "viscous" else "friction"
             laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
     definitions: tuple[Definition, ...] = ()
@@ -93,7 +103,20 @@ def read_friction(
             laws["coulomb"], definitions = law.symbol, (law,)
     if "coulomb" in laws and "linear" in laws:
         reader.problem(path, "choose one load-dependent law: `coulomb` or `linear`, not both")
-    return Friction(**laws, definitions=definitions, load="axial" if "thrust" in given else "radial")
+    if pressed_by is not None and "coulomb" not in laws:
+        reader.problem(f"{path}.pressed_by", "the separating force loads a Coulomb law: give `coulomb` too")
+    load = "axial" if "thrust" in given else "radial"
+    return Friction(**laws, definitions=definitions, load=load, pressed_by=pressed_by)
+
+
+def _read_pressed_by(entry: Mapping[str, Any], path: str, reader: EntryReader, guide: bool) -> str | None:
+    """The mesh named by a guide's ``pressed_by`` (checked to be such a mesh by the network)."""
+    if "pressed_by" not in entry:
+        return None
+    if not guide:
+        reader.problem(f"{path}.pressed_by", "`pressed_by` loads a guide: write it on a prismatic coupling")
+        return None
+    return reader.name(entry["pressed_by"], f"{path}.pressed_by")
 
 
 #: The friction keys that give a bearing's Coulomb law through its own model.

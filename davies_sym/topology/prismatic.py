@@ -26,6 +26,7 @@ class Prismatic(Coupling):
     direction: Vector = (sympy.Integer(1), sympy.Integer(0), sympy.Integer(0))
 
     kind: ClassVar[str] = "prismatic"
+    load_dependent_unit: ClassVar[str] = "1"
     DOC: ClassVar[str] = "Prismatic pair between two links: one translation."
     FIELDS: ClassVar[tuple[Field, ...]] = (
         Field("links", "[link, link]", True, "The two links."),
@@ -38,7 +39,7 @@ class Prismatic(Coupling):
     ) -> Prismatic | None:
         links = read_links(entry, path, reader)
         direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, guide=True)
         if links is None or direction is None:
             return None
         return cls(name, links, friction, direction)

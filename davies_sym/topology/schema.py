@@ -218,6 +218,15 @@ FRICTION = (
         "bearing's axial reaction, the thrust of helical gears. One load-dependent law per bearing: "
         "not with `bearing`.",
     ),
+    Field(
+        "pressed_by",
+        "mesh",
+        False,
+        "On a prismatic guide: the mesh whose tooth force presses the guide (a rack's mesh with a "
+        "`pressure_angle`). Its separating component, tan(pressure angle) times the tangential tooth "
+        "force U, loads the guide's `coulomb` law: F = -mu tan(alpha) |U| sign(v), mu the guide's "
+        "friction coefficient.",
+    ),
 )
 
 THRUST = (

@@ -70,6 +70,7 @@ class SkewMesh(Coupling):
     DOC: ClassVar[str] = ""
 
     noun: ClassVar[str] = "mesh"
+    meshing: ClassVar[bool] = True
 
     @property
     def gears(self) -> tuple[str, str]:

@@ -162,9 +162,7 @@ EXPECTED = (
 )
 
 COUPLING_COMMON = (
-    Field(
-        "type", "string", True, "Coupling kind: `revolute`, `mesh`, `worm`, `crossed_helical`, `prismatic` or `screws`."
-    ),
+    Field("type", "string", True, "Coupling kind: the `type:` of one of the kinds below."),
     Field("friction", "mapping or `none`", False, "Friction laws and coefficients; see *Friction*."),
 )
 

@@ -134,6 +134,7 @@ TURNING_CONDITIONS = {
     "humpage": 1,
     "litvin_face_drive": 1,
     "planetary_simple": 0,
+    "rack_pinion": 0,
     "ravigneaux[first]": 0,
     "ravigneaux[second]": 1,
     "ravigneaux[third]": 0,

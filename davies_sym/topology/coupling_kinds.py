@@ -14,13 +14,14 @@ from collections.abc import Iterable, Mapping
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.prismatic import Prismatic
+from davies_sym.topology.rack_mesh import RackMesh
 from davies_sym.topology.revolute import Revolute
 from davies_sym.topology.screw_coupling import ScrewCoupling
 from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
 from davies_sym.topology.toothed_mesh import ToothedMesh
 
 KINDS: Mapping[str, type[Coupling]] = {
-    k.kind: k for k in (Revolute, GearMesh, WormMesh, CrossedHelicalMesh, Prismatic, ScrewCoupling)
+    k.kind: k for k in (Revolute, GearMesh, WormMesh, CrossedHelicalMesh, Prismatic, ScrewCoupling, RackMesh)
 }
 
 

@@ -206,3 +206,12 @@ def check_emit(args: argparse.Namespace, source: str | None) -> None:
                 [Problem("--emit", f"writes code in place of the document: not with {option} (run derive twice)")],
                 source,
             )
+
+
+def document_asked(args: argparse.Namespace, evaluating: bool) -> bool:
+    """Whether the derivation's document is an output of this call: written with ``-o``,
+    asked for as ``--latex`` (or ``--json`` without ``--eval``), or the call's only output.
+    A module written with ``--python`` or an evaluation alone leaves stdout to the value."""
+    if args.out or args.latex or (args.json and not evaluating):
+        return True
+    return not (evaluating or args.python)

@@ -14,6 +14,7 @@ import sympy
 from davies_sym.cli.arguments import (
     check_emit,
     check_sweep_ranges,
+    document_asked,
     eval_port,
     figure_suffix,
     held_values,
@@ -246,8 +247,8 @@ def one_input_outputs(
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
-    # The document only where it is written: an evaluation alone prints its value.
-    if args.out or evaluation is None or args.latex:
+    # The document only where it is asked for: a module or an evaluation alone is written quietly.
+    if document_asked(args, evaluation is not None):
         if args.latex:
             text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
         else:

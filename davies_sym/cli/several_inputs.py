@@ -8,7 +8,14 @@ import argparse
 import json
 from collections.abc import Callable
 
-from davies_sym.cli.arguments import check_emit, check_sweep_ranges, figure_suffix, held_values, plot_sweeps
+from davies_sym.cli.arguments import (
+    check_emit,
+    check_sweep_ranges,
+    document_asked,
+    figure_suffix,
+    held_values,
+    plot_sweeps,
+)
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.emit.languages import emit_code
@@ -114,10 +121,8 @@ def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) 
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, several_inputs_module(si)))
-    if args.out:
+    if document_asked(args, answer is not None):
         outputs.append((args.out, text))
-    elif answer is None or args.latex:
-        outputs.append((None, text))
     if answer is not None:
         outputs.append(
             (

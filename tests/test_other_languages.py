@@ -901,3 +901,29 @@ def test_bash_completion_is_valid_and_knows_the_options(tmp_path: Path) -> None:
 def test_zsh_and_tcsh_completion(shell: str) -> None:
     status, script, _ = _run("--completion", shell)
     assert status == 0 and "--emit" in script and "tuplin" in script and "yaml" in script
+
+
+def test_completion_knows_the_other_commands(tmp_path: Path) -> None:
+    """`derive calibrate` and `derive search` complete as subcommands, with their own options
+    and their topology file as a `.yaml` file."""
+    status, script, _ = _run("--completion", "bash")
+    assert status == 0
+    path = tmp_path / "derive.bash"
+    path.write_text(script)
+
+    def complete(*words: str) -> list[str]:
+        line = " ".join(["derive", *words])
+        program = (
+            f"source {path}; COMP_WORDS=(derive {' '.join(words)}); COMP_CWORD={len(words)}; "
+            f"COMP_LINE='{line}'; COMP_POINT={len(line)}; _shtab_derive; printf '%s\\n' \"${{COMPREPLY[@]}}\""
+        )
+        result = subprocess.run(["bash", "-c", program], capture_output=True, text=True, check=False, cwd=tmp_path)
+        return result.stdout.split()
+
+    assert {"calibrate", "search"} <= set(complete("ca")) | set(complete("se")) | set(complete(""))
+    assert "--fit" in complete("calibrate", "--f")
+    assert "--target" in complete("search", "--ta")
+    (tmp_path / "rig.yaml").write_text("")
+    assert "rig.yaml" in complete("calibrate", "")
+    status, zsh, _ = _run("--completion", "zsh")
+    assert status == 0 and "calibrate" in zsh and "--target" in zsh

@@ -234,7 +234,11 @@ def _main(argv: Sequence[str] | None) -> int:
 
     if args.completion:
         try:
-            sys.stdout.write(completion_script(parser(), args.completion))
+            from davies_sym.calibration.command import parser as calibration_parser
+            from davies_sym.synthesis.command import parser as search_parser
+
+            commands = {"calibrate": calibration_parser(), "search": search_parser()}
+            sys.stdout.write(completion_script(parser(), args.completion, commands))
         except DaviesError as exc:
             print(f"derive: --completion: {exc}", file=sys.stderr)
             return 2

@@ -1,11 +1,13 @@
 """``derive --completion bash|zsh|tcsh``: a shell completion script made from the
-argument parser by ``shtab``, so it always knows the options ``derive`` has.  Topology
-files complete to ``.yaml`` files (and folders), ``--catalog`` to the catalog's train
-names, ``-o`` and ``--python`` to any file."""
+argument parsers by ``shtab``, so it always knows the options ``derive`` and its other
+commands (``derive calibrate``, ``derive search``) have.  Topology files complete to
+``.yaml`` files (and folders), ``--catalog`` to the catalog's train names, ``-o``,
+``--python`` and data files to any file."""
 
 from __future__ import annotations
 
 import argparse
+from collections.abc import Mapping
 
 from davies_sym.errors import MissingDependencyError
 from davies_sym.topology.catalog_files import catalog_names
@@ -24,13 +26,17 @@ def catalog_completion() -> dict[str, str]:
     return {"bash": "_shtab_derive_catalog_names", "zsh": f"({names})", "tcsh": f"({names})"}
 
 
-def _preamble(shell: str) -> str:
-    """The bash functions the completions name (the other shells need none)."""
+def _preamble(shell: str, commands: list[str]) -> str:
+    """The bash functions the completions name (the other shells need none), and the
+    other commands offered as the first word beside the topology files (bash completes a
+    command word wherever it stands, but offers only the files in the first place)."""
     if shell != "bash":
         return ""
     names = " ".join(catalog_names())
     return "\n".join(
         [
+            f"_shtab_derive_pos_0_choices=({' '.join(commands)})",
+            "",
             "# $1=COMP_WORDS[1]",
             "_shtab_derive_yaml_files() {",
             "  compgen -d -- $1  # into folders",
@@ -46,10 +52,31 @@ def _preamble(shell: str) -> str:
     )
 
 
-def completion_script(parser: argparse.ArgumentParser, shell: str) -> str:
-    """The completion script of ``parser`` for ``shell`` (one of `SHELLS`)."""
+def completion_parser(
+    main: argparse.ArgumentParser, commands: Mapping[str, argparse.ArgumentParser]
+) -> argparse.ArgumentParser:
+    """``main`` with the other commands as subcommands, for the completion only (``derive``
+    dispatches them before parsing): each keeps its own options, a line of help, and its
+    topology file completing to ``.yaml`` files."""
+    full = argparse.ArgumentParser(prog=main.prog, parents=[main], add_help=False, description=main.description)
+    sub = full.add_subparsers(dest="command", title="other commands")
+    for name, command in commands.items():
+        one = sub.add_parser(name, parents=[command], add_help=False, help=(command.description or "").split(". ")[0])
+        for action in one._actions:
+            if action.dest == "train":
+                action.complete = YAML_FILES  # type: ignore[attr-defined]
+            elif action.metavar and str(action.metavar).endswith((".csv", ".png", ".py")):
+                action.complete = ANY_FILE  # type: ignore[attr-defined]
+    return full
+
+
+def completion_script(
+    main: argparse.ArgumentParser, shell: str, commands: Mapping[str, argparse.ArgumentParser] | None = None
+) -> str:
+    """The completion script of ``main`` (and its other ``commands``) for ``shell`` (one of `SHELLS`)."""
     try:
         import shtab
     except ImportError as exc:  # pragma: no cover - shtab is a dependency
         raise MissingDependencyError("--completion needs shtab (pip install 'shtab>=1.6')") from exc
-    return str(shtab.complete(parser, shell=shell, preamble=_preamble(shell)))
+    full = completion_parser(main, commands) if commands else main
+    return str(shtab.complete(full, shell=shell, preamble=_preamble(shell, list(commands or ()))))

@@ -1,8 +1,9 @@
 """The README and the documentation cannot go stale: every ``$ derive ...`` command shown
 in a console block of README.md and docs/*.md runs and prints exactly what the block
-shows (a line ``...`` standing for lines the page leaves out), the README's Python session runs as a doctest, and its API example runs.  The
-commands run in an empty folder holding only the README's ``planetary.yaml`` and the
-catalog, as a newcomer's would."""
+shows (a line ``...`` standing for lines the page leaves out), the README's Python
+session runs as a doctest, and its API example runs.  The commands run in an empty
+folder holding only the README's ``planetary.yaml`` and the catalog, as a newcomer's
+would."""
 
 from __future__ import annotations
 

@@ -17,10 +17,202 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from typing import Any, Final, TypedDict
+from typing import Any, Final, TypedDict, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+_Functions = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
+
+
+def _foreign(value: object) -> bool:
+    """Whether ``value`` is an array of a library other than NumPy."""
+    if value is None or isinstance(value, (np.ndarray, np.generic, int, float, list, tuple)):
+        return False
+    return hasattr(value, "__array_namespace__") or hasattr(value, "__dlpack__")
+
+
+def _namespace(*values: object) -> Any:
+    """``numpy``, or the array API namespace of the arrays of another library among
+    ``values`` (through ``array-api-compat`` where it is installed)."""
+    foreign = [v for v in values if _foreign(v)]
+    if not foreign:
+        return np
+    try:
+        compat = __import__("array_api_compat")
+    except ImportError:
+        compat = None
+    if compat is not None:
+        return compat.array_namespace(*foreign)
+    spaces = []
+    for v in foreign:
+        if not hasattr(v, "__array_namespace__"):
+            kind = f"{type(v).__module__}.{type(v).__name__}"
+            raise TypeError(f"{kind} arrays need array-api-compat: pip install array-api-compat")
+        spaces.append(v.__array_namespace__())
+    if any(s is not spaces[0] for s in spaces):
+        raise TypeError("the arguments are arrays of different libraries: give arrays of one")
+    return spaces[0]
+
+
+def _array(value: ArrayLike, xp: Any = np) -> NDArray[np.float64]:
+    """``value`` as a float array of ``xp`` (numpy: float64; another library: its own
+    floating type, a number as a 0-d array of its default one).  The annotation is
+    numpy's: the formulas are the same on any library's arrays."""
+    if xp is np:
+        return np.asarray(value, dtype=np.float64)
+    array: NDArray[np.float64] = xp.asarray(float(value) if isinstance(value, (int, float, np.generic)) else value)
+    if xp.isdtype(array.dtype, "real floating"):
+        return array
+    info = getattr(xp, "__array_namespace_info__", None)
+    real = info().default_dtypes()["real floating"] if info is not None else xp.float64
+    converted: NDArray[np.float64] = xp.astype(array, real)
+    return converted
+
+
+def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
+    """A comparison's result as a boolean array of ``xp``."""
+    result: NDArray[np.bool_] = xp.asarray(value)
+    return result
+
+
+def _count(mask: Any, xp: Any = np) -> int:
+    """How many elements of a boolean array are true."""
+    return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
+
+
+def _on_device(values: dict[str, Any], xp: Any) -> tuple[dict[str, Any], Any, Any]:
+    """``values`` as arrays of ``xp`` on the device of the first array among them, and
+    that device and floating dtype (numbers join them as 0-d arrays)."""
+    arrays = [v for v in values.values() if not isinstance(v, float)]
+    device = arrays[0].device if arrays else None
+    dtype = xp.result_type(*(a.dtype for a in arrays)) if arrays else xp.float64
+    out = {n: v if not isinstance(v, float) else xp.asarray(v, dtype=dtype, device=device) for n, v in values.items()}
+    return out, device, dtype
+
+
+def _full(xp: Any, shape: tuple[int, ...], value: float, dtype: Any, device: Any) -> Any:
+    return xp.full(shape, value, dtype=dtype, device=device)
+
+
+def _shape_of(xp: Any, values: dict[str, Any]) -> tuple[int, ...]:
+    arrays = list(values.values())
+    return tuple(xp.broadcast_arrays(*arrays)[0].shape) if arrays else ()
+
+
+def _call(entry: tuple[Callable[..., Any], tuple[str, ...]], values: dict[str, Any]) -> Any:
+    function, names = entry
+    return function(**{n: values[n] for n in names})
+
+
+def _region_any(xp: Any, conditions: _Functions, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
+    """Bit k set where turning condition k is negative."""
+    code = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    for bit, entry in enumerate(conditions.values()):
+        code = code + xp.astype(_call(entry, values) < 0, xp.int64) * (2**bit)
+    return code
+
+
+def _device(values: dict[str, Any]) -> Any:
+    return next(iter(values.values())).device if values else None
+
+
+def _agree_any(xp: Any, forces: _Functions, name: str, values: dict[str, Any]) -> Any:
+    """Where each loaded force of variant ``name`` has the sign it needs (True without any)."""
+    if name not in forces:
+        return True
+    found = _call(forces[name], values)
+    agree: Any = True
+    for force in found if isinstance(found, tuple) else (found,):
+        agree = agree & (xp.asarray(force) >= 0)
+    return agree
+
+
+def _numbers_any(
+    xp: Any,
+    mine: Any,
+    conditions: _Functions,
+    forces: _Functions,
+    values: dict[str, Any],
+    shape: tuple[int, ...],
+) -> tuple[Any, Any]:
+    """The number of the variant (of ``mine``, those of the input port) that holds at each
+    point, 0 where none does, as the NumPy path chooses it; and the region codes."""
+    code = _region_any(xp, conditions, values, shape)
+    numbers = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    agree = {v["name"]: _agree_any(xp, forces, v["name"], values) for v in mine}
+    for v in mine:
+        numbers = xp.where((code == v["region"]) & (numbers == 0) & agree[v["name"]], v["number"], numbers)
+    for v in mine:
+        if v["name"] in forces:
+            numbers = xp.where((numbers == 0) & agree[v["name"]], v["number"], numbers)
+    return numbers, code
+
+
+def _own_any(xp: Any, mine: Any, numbers: Any, code: Any) -> Any:
+    """``numbers`` with each 0 replaced by the variant of the point's lossless region."""
+    own = numbers
+    for v in reversed(mine):
+        own = xp.where((numbers == 0) & (code == v["region"]), v["number"], own)
+    return own
+
+
+def _select_any(
+    xp: Any,
+    variants: Any,
+    numbers: Any,
+    table: _Functions,
+    width: int,
+    values: dict[str, Any],
+    dtype: Any,
+) -> list[Any]:
+    """The function of the variant that holds (``numbers``) at each point, ``width``
+    results, NaN where none holds."""
+    device = _device(values)
+    result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
+    for v in variants:
+        here = numbers == v["number"]
+        if not bool(xp.any(here)):
+            continue
+        parts = _call(table[v["name"]], values)
+        for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
+            result[k] = xp.where(here, xp.asarray(part, dtype=dtype, device=device), result[k])
+    return result
+
+
+def _admissible_any(
+    xp: Any,
+    parameters: Any,
+    relations: _Functions,
+    excluded: tuple[int, ...],
+    code: Any,
+    values: dict[str, Any],
+) -> Any:
+    """Where every parameter is in its range, every relation holds and the region is not
+    one of ``excluded``."""
+    ok = xp.ones(tuple(code.shape), dtype=xp.bool, device=_device(values))
+    for p in parameters:
+        if p["name"] in values:
+            v = values[p["name"]]
+            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+    for entry in relations.values():
+        if all(n in values for n in entry[1]):
+            ok = ok & xp.asarray(_call(entry, values))
+    for region in excluded:
+        ok = ok & (code != region)
+    return ok
+
+
+def _first_disagreement(xp: Any, given: Any, implied: Any) -> tuple[float, float] | None:
+    """The first (given, implied) pair that differ by more than 1e-9 relative (as
+    numpy.isclose with atol 0), or None."""
+    given, implied = xp.broadcast_arrays(given, implied)
+    wrong = xp.reshape(~(xp.abs(given - implied) <= 1e-9 * xp.abs(implied)), (-1,))
+    if not _count(wrong, xp):
+        return None
+    k = int(xp.argmax(xp.astype(wrong, xp.int8)))
+    return float(xp.reshape(given, (-1,))[k]), float(xp.reshape(implied, (-1,))[k])
+
 
 _BLOCK = 65536
 
@@ -37,10 +229,12 @@ def _blockwise(
     if size <= _BLOCK:
         return compute(values)
     flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
-    blocks = [
-        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
-        for start in range(0, size, _BLOCK)
-    ]
+    blocks = []
+    for start in range(0, size, _BLOCK):
+        results = compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        # A result that depends on none of the arrays (a constant speed ratio) is 0-d: one per point.
+        length = min(_BLOCK, size - start)
+        blocks.append(tuple(r if r.ndim else np.broadcast_to(r, (length,)) for r in results))
     return tuple(
         np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
     )
@@ -167,55 +361,52 @@ VARIANTS: Final[tuple[Variant, ...]] = (
 
 def A_to_B(*, mu: ArrayLike) -> Array:
     """Variant (1): input A, output B.  C: gear 1 drives gear 2 (eta_C_1_2), carrier 0."""
-    mu = _array(mu)
-    _t0 = 29 / 360 * np.pi
-    _t1 = 3 * np.sin(_t0)
-    _t2 = 3 * np.cos(_t0) / mu
-    _t3 = -_t1 - _t2
-    _t4 = -_t1 + _t2
-    _t5 = -2750000000 / 3912865503 * _t3 * np.log(1 - 1768805739 / 2000000000 / _t3) - 3 / 8
-    return _array(2750000000 / 3912865503 * _t4 * np.log(1 + 536014941 / 500000000 / _t4) + _t5)
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 2.9044429211343235 / mu
+    _t1 = -_t0 - 0.7511400121633243
+    _t2 = _t0 - 0.7511400121633243
+    _t3 = -2750000000 / 3912865503 * _t1 * xp.log(1 - 1768805739 / 2000000000 / _t1) - 3 / 8
+    return _array(2750000000 / 3912865503 * _t2 * xp.log(1 + 536014941 / 500000000 / _t2) + _t3, xp)
 
 
 def _losses_A_to_B(*, mu: ArrayLike) -> Array:
     """Losses over the input power in variant (1)."""
-    mu = _array(mu)
-    _t0 = 29 / 360 * np.pi
-    _t1 = 3 * np.sin(_t0)
-    _t2 = 3 * np.cos(_t0) / mu
-    _t3 = -_t1 - _t2
-    _t4 = -_t1 + _t2
-    _t5 = -2750000000 / 3912865503 * _t4 * np.log(1 + 536014941 / 500000000 / _t4) + 11 / 8
-    return _array(2750000000 / 3912865503 * _t3 * np.log(1 - 1768805739 / 2000000000 / _t3) + _t5)
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 2.9044429211343235 / mu
+    _t1 = -_t0 - 0.7511400121633243
+    _t2 = _t0 - 0.7511400121633243
+    _t3 = -2750000000 / 3912865503 * _t2 * xp.log(1 + 536014941 / 500000000 / _t2) + 11 / 8
+    return _array(2750000000 / 3912865503 * _t1 * xp.log(1 - 1768805739 / 2000000000 / _t1) + _t3, xp)
 
 
 def B_to_A(*, mu: ArrayLike) -> Array:
     """Variant (2): input B, output A.  C: gear 2 drives gear 1 (eta_C_2_1), carrier 0."""
-    mu = _array(mu)
-    _t0 = 29 / 360 * np.pi
-    _t1 = 8 * np.sin(_t0)
-    _t2 = 8 * np.cos(_t0) / mu
-    _t3 = -_t1 - _t2
-    _t4 = -_t1 + _t2
-    _t5 = -22000000000 / 11738596509 * _t3 * np.log(1 - 536014941 / 500000000 / _t3) - 8 / 3
-    return _array(22000000000 / 11738596509 * _t4 * np.log(1 + 1768805739 / 2000000000 / _t4) + _t5)
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 7.745181123024862 / mu
+    _t1 = -_t0 - 2.003040032435531
+    _t2 = _t0 - 2.003040032435531
+    _t3 = -22000000000 / 11738596509 * _t1 * xp.log(1 - 536014941 / 500000000 / _t1) - 8 / 3
+    return _array(22000000000 / 11738596509 * _t2 * xp.log(1 + 1768805739 / 2000000000 / _t2) + _t3, xp)
 
 
 def _losses_B_to_A(*, mu: ArrayLike) -> Array:
     """Losses over the input power in variant (2)."""
-    mu = _array(mu)
-    _t0 = 29 / 360 * np.pi
-    _t1 = 8 * np.sin(_t0)
-    _t2 = 8 * np.cos(_t0) / mu
-    _t3 = -_t1 - _t2
-    _t4 = -_t1 + _t2
-    _t5 = -22000000000 / 11738596509 * _t4 * np.log(1 + 1768805739 / 2000000000 / _t4) + 11 / 3
-    return _array(22000000000 / 11738596509 * _t3 * np.log(1 - 536014941 / 500000000 / _t3) + _t5)
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 7.745181123024862 / mu
+    _t1 = -_t0 - 2.003040032435531
+    _t2 = _t0 - 2.003040032435531
+    _t3 = -22000000000 / 11738596509 * _t2 * xp.log(1 + 1768805739 / 2000000000 / _t2) + 11 / 3
+    return _array(22000000000 / 11738596509 * _t1 * xp.log(1 - 536014941 / 500000000 / _t1) + _t3, xp)
 
 
 def _ratio_formula() -> Array:
     """Speed ratio with A as input."""
-    return _array(-8 / 3)
+    xp = _namespace()
+    return _array(-8 / 3, xp)
 
 
 _CONDITIONS: Final[_Table] = {}
@@ -225,10 +416,6 @@ _EFFICIENCY: Final[_Table] = {'A_to_B': (A_to_B, ('mu',)), 'B_to_A': (B_to_A, ('
 _LOSSES: Final[_Table] = {'A_to_B': (_losses_A_to_B, ('mu',)), 'B_to_A': (_losses_B_to_A, ('mu',))}
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ())}
 _FORCES: Final[_Table] = {}
-
-
-def _array(value: ArrayLike) -> Array:
-    return np.asarray(value, dtype=np.float64)
 
 
 def _check_input(input: str) -> None:
@@ -335,12 +522,21 @@ def _select(
     return result
 
 
-def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array], xp: Any = np) -> None:
     """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
     for name, value in given.items():
         if value is None:
             continue
         function, names = _DEPENDENT[name]
+        if xp is not np:  # compared where the arrays are, the first disagreement brought back
+            on, _, _ = _on_device({"given": _array(value, xp), **values}, xp)
+            wrong = _first_disagreement(xp, on["given"], function(**{n: on[n] for n in names}))
+            if wrong is not None:
+                raise DesignError(
+                    f"{name} = {wrong[0]} breaks the relation {DEPENDENT[name]}, which gives {wrong[1]}; "
+                    f"the difference is {wrong[0] - wrong[1]}"
+                )
+            continue
         implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
         bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
         if bad.any():
@@ -353,9 +549,9 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
-def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+def _given(optional: dict[str, ArrayLike | None], xp: Any = np) -> dict[str, Array]:
     """The optional parameters given (not None), as arrays."""
-    return {name: _array(value) for name, value in optional.items() if value is not None}
+    return {name: _array(value, xp) for name, value in optional.items() if value is not None}
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -382,10 +578,10 @@ def _check_errors(errors: str) -> None:
         raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
 
 
-def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) -> None:
+def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int, xp: Any = np) -> None:
     """A DesignWarning (or a DesignError) saying why, where some point is ``bad``;
     ``stacklevel`` points the warning at the caller of the entry point."""
-    if not bad.any():
+    if not _count(bad, xp):
         return
     if errors == "raise":
         raise DesignError(message)
@@ -393,25 +589,38 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
         warnings.warn(message, DesignWarning, stacklevel=stacklevel + 1)
 
 
-def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
+def _nan_where(
+    bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int, xp: Any = np
+) -> Array:
     """``result`` with NaN where ``bad``, after `_refuse`."""
-    _refuse(bad, message, errors, stacklevel + 1)
+    _refuse(bad, message, errors, stacklevel + 1, xp)
+    if xp is not np:
+        return cast(Array, xp.where(bad, xp.asarray(float("nan"), dtype=result.dtype, device=result.device), result))
     return np.where(bad, np.nan, result) if bad.any() else result
 
 
-def _still(values: dict[str, Array]) -> NDArray[np.bool_]:
+def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
     """Where a port does not turn (speed ratio 0 or infinite), as far as the given values
     tell (all False when the ratio's parameters are not among them)."""
     function, names = _RATIO[PORTS[0]]
     if not all(n in values for n in names):
+        if xp is not np:
+            device = next(iter(values.values())).device
+            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=device))
         return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
     with np.errstate(all="ignore"):
-        ratio = _array(function(**{n: values[n] for n in names}))
-    return np.asarray(~np.isfinite(ratio) | (ratio == 0))
+        ratio = xp.asarray(function(**{n: values[n] for n in names}))
+    return cast(NDArray[np.bool_], xp.asarray(~xp.isfinite(ratio) | (ratio == 0)))
 
 
 def _screened(
-    result: Array, numbers: NDArray[np.int64], outside: NDArray[np.bool_], still: NDArray[np.bool_], errors: str
+    result: Array,
+    numbers: NDArray[np.int64],
+    outside: NDArray[np.bool_],
+    still: NDArray[np.bool_],
+    errors: str,
+    xp: Any = np,
+    depth: int = 4,
 ) -> Array:
     """NaN (with a warning, or an error) where the design is not admissible (``outside``),
     a port does not turn (``still``), no variant holds (``numbers`` 0: the losses reverse
@@ -425,17 +634,34 @@ def _screened(
         uncovered = (numbers == 0) & ~(result <= 0) & ~outside & ~still
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered & ~still
     message = (
-        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(still))} where a port does not turn (speed ratio 0 "
-        f"or infinite), {int(np.count_nonzero(uncovered))} where no variant's power flow agrees with its "
-        f"own forces (the losses reverse forces as no variant covers) and {int(np.count_nonzero(locked))} "
+        f"{_count(outside, xp)} design point(s) outside the admissible parameters "
+        f"(PARAMETERS, RELATIONS), {_count(still, xp)} where a port does not turn (speed ratio 0 "
+        f"or infinite), {_count(uncovered, xp)} where no variant's power flow agrees with its "
+        f"own forces (the losses reverse forces as no variant covers) and {_count(locked, xp)} "
         "where the train self-locks (efficiency outside (0, 1]): NaN there"
     )
-    return _nan_where(outside | still | uncovered | locked, result, message, errors, stacklevel=4)
+    return _nan_where(outside | still | uncovered | locked, result, message, errors, depth, xp)
 
 
-def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
+def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any, Any]:
+    """With arrays of another library than numpy: the variant numbers, the region's own
+    ones where none holds, the values on one device, their dtype, and where the design is
+    outside the admissible parameters or a port does not turn."""
+    _check_input(input)
+    values, _, dtype = _on_device(values, xp)
+    mine = [v for v in VARIANTS if v["input"] == input]
+    numbers, code = _numbers_any(xp, mine, _CONDITIONS, _FORCES, values, _shape_of(xp, values))
+    outside = ~_admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
+    return numbers, _own_any(xp, mine, numbers, code), values, dtype, outside, _still(values, xp)
+
+
+def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            selected = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
+        return _screened(selected, numbers, outside, still, errors, xp, depth=4)
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
@@ -447,8 +673,16 @@ def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     return _screened(selected[0], numbers, outside, still, errors)
 
 
-def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
+def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
+            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+        nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
+        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
@@ -462,36 +696,47 @@ def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Arra
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
-def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
+def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """Input speed over output speed with ``input`` as the input port; NaN (with a
     warning, or an error) where the design is not admissible."""
     _check_input(input)
     _check_errors(errors)
     function, names = _RATIO[PORTS[0]]
     with np.errstate(all="ignore"):
-        ratio = _array(function(**{n: values[n] for n in names}))
-        ratio = ratio if input == PORTS[0] else _array(1 / ratio)
-    outside = ~_admissible(values) | ~np.isfinite(ratio)
+        if xp is not np:
+            values, _, dtype = _on_device(values, xp)
+            code = _region_any(xp, _CONDITIONS, values, _shape_of(xp, values))
+            admissible = _admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
+        else:
+            admissible, dtype = _admissible(values), np.float64
+        ratio = xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype)
+        ratio = ratio if input == PORTS[0] else xp.asarray(1 / ratio)
+    outside = ~admissible | ~xp.isfinite(ratio)
     message = (
-        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        f"{_count(outside, xp)} design point(s) outside the admissible parameters "
         "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"
     )
-    return _nan_where(outside, ratio, message, errors, stacklevel=3)
+    return _nan_where(outside, ratio, message, errors, 3, xp)
 
 
-def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.int64]:
+def _variant(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]:
     """What ``variant`` returns: the variant numbers, 0 where none holds or the design is
     not admissible (with a warning, or an error)."""
     _check_errors(errors)
-    numbers = _variant_numbers(input, values)
-    bad = (numbers == 0) | ~_admissible(values)
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, _, _, _, outside, _ = _chosen_any(input, values, xp)
+    else:
+        numbers, outside = _variant_numbers(input, values), ~_admissible(values)
+    bad = (numbers == 0) | outside
     _refuse(
         bad,
-        f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+        f"{_count(bad, xp)} design point(s) outside the admissible parameters or in no variant",
         errors,
-        stacklevel=3,
+        3,
+        xp,
     )
-    return np.where(bad, 0, numbers)
+    return cast(NDArray[np.int64], xp.where(bad, 0, numbers))
 
 
 def efficiency(
@@ -505,8 +750,9 @@ def efficiency(
     """Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen element by element; NaN
     where the design is not admissible or self-locks (errors: 'warn', 'raise', 'ignore').
     """
-    values: dict[str, Array] = {'mu': _array(mu)}
-    return _efficiency(input, errors, values)
+    xp = _namespace(mu, eta_C_1_2, eta_C_2_1)
+    values: dict[str, Array] = {'mu': _array(mu, xp)}
+    return _efficiency(input, errors, values, xp)
 
 
 def losses(
@@ -520,8 +766,9 @@ def losses(
     """Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), the variant chosen
     element by element; NaN where efficiency is.
     """
-    values: dict[str, Array] = {'mu': _array(mu)}
-    return _losses(input, errors, values)
+    xp = _namespace(mu, eta_C_1_2, eta_C_2_1)
+    values: dict[str, Array] = {'mu': _array(mu, xp)}
+    return _losses(input, errors, values, xp)
 
 
 def variant(
@@ -535,8 +782,9 @@ def variant(
     """Number of the variant that holds with `input` as the input port (VARIANTS), element by element: its turning
     conditions hold and its loaded forces have their signs; 0 where none does or the design is not admissible.
     """
-    values: dict[str, Array] = {'mu': _array(mu)}
-    return _variant(input, errors, values)
+    xp = _namespace(mu, eta_C_1_2, eta_C_2_1)
+    values: dict[str, Array] = {'mu': _array(mu, xp)}
+    return _variant(input, errors, values, xp)
 
 
 def speed_ratio(
@@ -550,6 +798,7 @@ def speed_ratio(
     """Input speed over output speed with `input` as the input port (-8/3 with A as input); NaN where the design is
     not admissible.
     """
+    xp = _namespace(eta_C_1_2, eta_C_2_1, mu)
     values: dict[str, Array] = {}
-    values.update(_given({'mu': mu}))
-    return _speed_ratio(input, errors, values)
+    values.update(_given({'mu': mu}, xp))
+    return _speed_ratio(input, errors, values, xp)

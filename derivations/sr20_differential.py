@@ -18,6 +18,198 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+_Functions = dict[str, tuple[Callable[..., Any], tuple[str, ...]]]
+
+
+def _foreign(value: object) -> bool:
+    """Whether ``value`` is an array of a library other than NumPy."""
+    if value is None or isinstance(value, (np.ndarray, np.generic, int, float, list, tuple)):
+        return False
+    return hasattr(value, "__array_namespace__") or hasattr(value, "__dlpack__")
+
+
+def _namespace(*values: object) -> Any:
+    """``numpy``, or the array API namespace of the arrays of another library among
+    ``values`` (through ``array-api-compat`` where it is installed)."""
+    foreign = [v for v in values if _foreign(v)]
+    if not foreign:
+        return np
+    try:
+        compat = __import__("array_api_compat")
+    except ImportError:
+        compat = None
+    if compat is not None:
+        return compat.array_namespace(*foreign)
+    spaces = []
+    for v in foreign:
+        if not hasattr(v, "__array_namespace__"):
+            kind = f"{type(v).__module__}.{type(v).__name__}"
+            raise TypeError(f"{kind} arrays need array-api-compat: pip install array-api-compat")
+        spaces.append(v.__array_namespace__())
+    if any(s is not spaces[0] for s in spaces):
+        raise TypeError("the arguments are arrays of different libraries: give arrays of one")
+    return spaces[0]
+
+
+def _array(value: ArrayLike, xp: Any = np) -> NDArray[np.float64]:
+    """``value`` as a float array of ``xp`` (numpy: float64; another library: its own
+    floating type, a number as a 0-d array of its default one).  The annotation is
+    numpy's: the formulas are the same on any library's arrays."""
+    if xp is np:
+        return np.asarray(value, dtype=np.float64)
+    array: NDArray[np.float64] = xp.asarray(float(value) if isinstance(value, (int, float, np.generic)) else value)
+    if xp.isdtype(array.dtype, "real floating"):
+        return array
+    info = getattr(xp, "__array_namespace_info__", None)
+    real = info().default_dtypes()["real floating"] if info is not None else xp.float64
+    converted: NDArray[np.float64] = xp.astype(array, real)
+    return converted
+
+
+def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
+    """A comparison's result as a boolean array of ``xp``."""
+    result: NDArray[np.bool_] = xp.asarray(value)
+    return result
+
+
+def _count(mask: Any, xp: Any = np) -> int:
+    """How many elements of a boolean array are true."""
+    return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
+
+
+def _on_device(values: dict[str, Any], xp: Any) -> tuple[dict[str, Any], Any, Any]:
+    """``values`` as arrays of ``xp`` on the device of the first array among them, and
+    that device and floating dtype (numbers join them as 0-d arrays)."""
+    arrays = [v for v in values.values() if not isinstance(v, float)]
+    device = arrays[0].device if arrays else None
+    dtype = xp.result_type(*(a.dtype for a in arrays)) if arrays else xp.float64
+    out = {n: v if not isinstance(v, float) else xp.asarray(v, dtype=dtype, device=device) for n, v in values.items()}
+    return out, device, dtype
+
+
+def _full(xp: Any, shape: tuple[int, ...], value: float, dtype: Any, device: Any) -> Any:
+    return xp.full(shape, value, dtype=dtype, device=device)
+
+
+def _shape_of(xp: Any, values: dict[str, Any]) -> tuple[int, ...]:
+    arrays = list(values.values())
+    return tuple(xp.broadcast_arrays(*arrays)[0].shape) if arrays else ()
+
+
+def _call(entry: tuple[Callable[..., Any], tuple[str, ...]], values: dict[str, Any]) -> Any:
+    function, names = entry
+    return function(**{n: values[n] for n in names})
+
+
+def _region_any(xp: Any, conditions: _Functions, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
+    """Bit k set where turning condition k is negative."""
+    code = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    for bit, entry in enumerate(conditions.values()):
+        code = code + xp.astype(_call(entry, values) < 0, xp.int64) * (2**bit)
+    return code
+
+
+def _device(values: dict[str, Any]) -> Any:
+    return next(iter(values.values())).device if values else None
+
+
+def _agree_any(xp: Any, forces: _Functions, name: str, values: dict[str, Any]) -> Any:
+    """Where each loaded force of variant ``name`` has the sign it needs (True without any)."""
+    if name not in forces:
+        return True
+    found = _call(forces[name], values)
+    agree: Any = True
+    for force in found if isinstance(found, tuple) else (found,):
+        agree = agree & (xp.asarray(force) >= 0)
+    return agree
+
+
+def _numbers_any(
+    xp: Any,
+    mine: Any,
+    conditions: _Functions,
+    forces: _Functions,
+    values: dict[str, Any],
+    shape: tuple[int, ...],
+) -> tuple[Any, Any]:
+    """The number of the variant (of ``mine``, those of the input port) that holds at each
+    point, 0 where none does, as the NumPy path chooses it; and the region codes."""
+    code = _region_any(xp, conditions, values, shape)
+    numbers = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    agree = {v["name"]: _agree_any(xp, forces, v["name"], values) for v in mine}
+    for v in mine:
+        numbers = xp.where((code == v["region"]) & (numbers == 0) & agree[v["name"]], v["number"], numbers)
+    for v in mine:
+        if v["name"] in forces:
+            numbers = xp.where((numbers == 0) & agree[v["name"]], v["number"], numbers)
+    return numbers, code
+
+
+def _own_any(xp: Any, mine: Any, numbers: Any, code: Any) -> Any:
+    """``numbers`` with each 0 replaced by the variant of the point's lossless region."""
+    own = numbers
+    for v in reversed(mine):
+        own = xp.where((numbers == 0) & (code == v["region"]), v["number"], own)
+    return own
+
+
+def _select_any(
+    xp: Any,
+    variants: Any,
+    numbers: Any,
+    table: _Functions,
+    width: int,
+    values: dict[str, Any],
+    dtype: Any,
+) -> list[Any]:
+    """The function of the variant that holds (``numbers``) at each point, ``width``
+    results, NaN where none holds."""
+    device = _device(values)
+    result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
+    for v in variants:
+        here = numbers == v["number"]
+        if not bool(xp.any(here)):
+            continue
+        parts = _call(table[v["name"]], values)
+        for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
+            result[k] = xp.where(here, xp.asarray(part, dtype=dtype, device=device), result[k])
+    return result
+
+
+def _admissible_any(
+    xp: Any,
+    parameters: Any,
+    relations: _Functions,
+    excluded: tuple[int, ...],
+    code: Any,
+    values: dict[str, Any],
+) -> Any:
+    """Where every parameter is in its range, every relation holds and the region is not
+    one of ``excluded``."""
+    ok = xp.ones(tuple(code.shape), dtype=xp.bool, device=_device(values))
+    for p in parameters:
+        if p["name"] in values:
+            v = values[p["name"]]
+            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+    for entry in relations.values():
+        if all(n in values for n in entry[1]):
+            ok = ok & xp.asarray(_call(entry, values))
+    for region in excluded:
+        ok = ok & (code != region)
+    return ok
+
+
+def _first_disagreement(xp: Any, given: Any, implied: Any) -> tuple[float, float] | None:
+    """The first (given, implied) pair that differ by more than 1e-9 relative (as
+    numpy.isclose with atol 0), or None."""
+    given, implied = xp.broadcast_arrays(given, implied)
+    wrong = xp.reshape(~(xp.abs(given - implied) <= 1e-9 * xp.abs(implied)), (-1,))
+    if not _count(wrong, xp):
+        return None
+    k = int(xp.argmax(xp.astype(wrong, xp.int8)))
+    return float(xp.reshape(given, (-1,))[k]), float(xp.reshape(implied, (-1,))[k])
+
+
 _BLOCK = 65536
 
 
@@ -33,10 +225,12 @@ def _blockwise(
     if size <= _BLOCK:
         return compute(values)
     flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
-    blocks = [
-        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
-        for start in range(0, size, _BLOCK)
-    ]
+    blocks = []
+    for start in range(0, size, _BLOCK):
+        results = compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        # A result that depends on none of the arrays (a constant speed ratio) is 0-d: one per point.
+        length = min(_BLOCK, size - start)
+        blocks.append(tuple(r if r.ndim else np.broadcast_to(r, (length,)) for r in results))
     return tuple(
         np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
     )
@@ -432,90 +626,100 @@ REGIONS: Final[tuple[Region, ...]] = (
 
 def condition_s1(*, omega_A: ArrayLike) -> Array:
     """Speed condition s1: omega_A (port A turns forwards)."""
-    omega_A = _array(omega_A)
-    return _array(omega_A)
+    xp = _namespace(omega_A)
+    omega_A = _array(omega_A, xp)
+    return _array(omega_A, xp)
 
 
 def condition_s2(*, omega_K: ArrayLike) -> Array:
     """Speed condition s2: omega_K (port K turns forwards)."""
-    omega_K = _array(omega_K)
-    return _array(omega_K)
+    xp = _namespace(omega_K)
+    omega_K = _array(omega_K, xp)
+    return _array(omega_K, xp)
 
 
 def condition_s3(*, omega_A: ArrayLike, omega_K: ArrayLike) -> Array:
     """Speed condition s3: omega_A + omega_K (port O turns forwards)."""
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    return _array(omega_A + omega_K)
+    xp = _namespace(omega_A, omega_K)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    return _array(omega_A + omega_K, xp)
 
 
 def condition_s4(*, omega_A: ArrayLike, omega_K: ArrayLike) -> Array:
     """Speed condition s4: omega_A - omega_K (coupling P turns forwards; mesh M1: which gear drives; mesh M2: which
     gear drives).
     """
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    return _array(omega_A - omega_K)
+    xp = _namespace(omega_A, omega_K)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    return _array(omega_A - omega_K, xp)
 
 
 def _speed_A(*, omega_A: ArrayLike) -> Array:
     """Speed of port A."""
-    omega_A = _array(omega_A)
-    return _array(omega_A)
+    xp = _namespace(omega_A)
+    omega_A = _array(omega_A, xp)
+    return _array(omega_A, xp)
 
 
 def _speed_K(*, omega_K: ArrayLike) -> Array:
     """Speed of port K."""
-    omega_K = _array(omega_K)
-    return _array(omega_K)
+    xp = _namespace(omega_K)
+    omega_K = _array(omega_K, xp)
+    return _array(omega_K, xp)
 
 
 def _speed_O(*, omega_A: ArrayLike, omega_K: ArrayLike) -> Array:
     """Speed of port O."""
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    return _array(1 / 2 * omega_A + 1 / 2 * omega_K)
+    xp = _namespace(omega_A, omega_K)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    return _array(1 / 2 * omega_A + 1 / 2 * omega_K, xp)
 
 
 def region_1(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: ArrayLike, tau_out: ArrayLike) -> Array:
     """Efficiency in region (1), where omega_A > 0 and omega_K > 0 and omega_A + omega_K > 0 and omega_A - omega_K >
     0: power in at A, K, out at O; M1: gear 1 drives gear 2; M2: gear 3 drives gear 4.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = eta_M ** 2
     _t1 = 4 * tau_out
     _t2 = 9 * D_P * eta_M
     _t3 = _t1 * omega_A - _t1 * omega_K + _t2 * omega_A - _t2 * omega_K
     _t4 = _t0 * _t1 * (omega_A + omega_K) / (8 * _t0 * omega_K * tau_out + _t3)
-    return _array(_t4)
+    return _array(_t4, xp)
 
 
 def _torques_1(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (1)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P * eta_M + 4 * tau_out
     _t1 = eta_M ** 2
     _t2 = 1 / 8 / _t1
-    return (_array(_t0 * _t2), _array(_t2 * (-_t0 + 8 * _t1 * tau_out)), _array(-tau_out))
+    return (_array(_t0 * _t2, xp), _array(_t2 * (-_t0 + 8 * _t1 * tau_out), xp), _array(-tau_out, xp))
 
 
 def _forces_1(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (1) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * eta_M
     return (
-        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2),
-        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M),
+        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2, xp),
+        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M, xp),
     )
 
 
@@ -523,28 +727,30 @@ def region_2(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (2), where omega_A > 0 and omega_K > 0 and omega_A + omega_K > 0 and omega_A - omega_K <
     0: power in at A, K, out at O; M1: gear 2 drives gear 1; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = omega_K * tau_out
     _t1 = 9 * D_P * eta_M
     _t2 = 4 * eta_M ** 2
     _t3 = 4 * tau_out
     _t4 = _t3 / (-_t0 * _t2 + 8 * _t0 - _t1 * omega_A + _t1 * omega_K + _t2 * omega_A * tau_out)
-    return _array(_t4 * (omega_A + omega_K))
+    return _array(_t4 * (omega_A + omega_K), xp)
 
 
 def _torques_2(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (2)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out)),
-        _array(9 / 8 * D_P * eta_M - 1 / 2 * eta_M ** 2 * tau_out + tau_out),
-        _array(-tau_out),
+        _array(1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out), xp),
+        _array(9 / 8 * D_P * eta_M - 1 / 2 * eta_M ** 2 * tau_out + tau_out, xp),
+        _array(-tau_out, xp),
     )
 
 
@@ -552,12 +758,13 @@ def _forces_2(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[
     """Tooth forces and loaded reactions of M1, M2 in region (2) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8)),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8), xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -565,37 +772,44 @@ def region_3(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (3), where omega_A > 0 and omega_K > 0 and omega_A + omega_K > 0 and omega_A - omega_K <
     0: power in at A, K, out at O; M1: gear 1 drives gear 2; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = _t1 / (-_t0 * omega_A + _t0 * omega_K + _t1 * omega_A + _t1 * omega_K)
-    return _array(_t2 * (omega_A + omega_K))
+    return _array(_t2 * (omega_A + omega_K), xp)
 
 
 def _torques_3(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (3)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 1 / 8 / eta_M
-    return (_array(_t1 * (-_t0 + 4 * eta_M * tau_out)), _array(_t1 * (_t0 + 4 * eta_M * tau_out)), _array(-tau_out))
+    return (
+        _array(_t1 * (-_t0 + 4 * eta_M * tau_out), xp),
+        _array(_t1 * (_t0 + 4 * eta_M * tau_out), xp),
+        _array(-tau_out, xp),
+    )
 
 
 def _forces_3(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (3) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M, xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -603,41 +817,44 @@ def region_4(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (4), where omega_A > 0 and omega_K < 0 and omega_A + omega_K > 0 and omega_A - omega_K >
     0: power in at A, out at K, O; M1: gear 1 drives gear 2; M2: gear 3 drives gear 4.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = eta_M ** 2
     _t1 = 4 * tau_out
     _t2 = 9 * D_P * eta_M
     _t3 = _t1 * omega_A - _t1 * omega_K + _t2 * omega_A - _t2 * omega_K
     _t4 = _t0 * _t1 * (omega_A + omega_K) / (8 * _t0 * omega_K * tau_out + _t3)
-    return _array(_t4)
+    return _array(_t4, xp)
 
 
 def _torques_4(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (4)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P * eta_M + 4 * tau_out
     _t1 = eta_M ** 2
     _t2 = 1 / 8 / _t1
-    return (_array(_t0 * _t2), _array(_t2 * (-_t0 + 8 * _t1 * tau_out)), _array(-tau_out))
+    return (_array(_t0 * _t2, xp), _array(_t2 * (-_t0 + 8 * _t1 * tau_out), xp), _array(-tau_out, xp))
 
 
 def _forces_4(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (4) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * eta_M
     return (
-        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2),
-        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M),
+        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2, xp),
+        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M, xp),
     )
 
 
@@ -645,28 +862,30 @@ def region_5(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (5), where omega_A > 0 and omega_K < 0 and omega_A + omega_K < 0 and omega_A - omega_K >
     0: power in at K, out at A, O; M1: gear 2 drives gear 1; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = omega_K * tau_out
     _t1 = 9 * D_P * eta_M
     _t2 = 4 * eta_M ** 2
     _t3 = 4 * tau_out
     _t4 = _t3 / (-_t0 * _t2 + 8 * _t0 - _t1 * omega_A + _t1 * omega_K + _t2 * omega_A * tau_out)
-    return _array(_t4 * (omega_A + omega_K))
+    return _array(_t4 * (omega_A + omega_K), xp)
 
 
 def _torques_5(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (5)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out)),
-        _array(-9 / 8 * D_P * eta_M + 1 / 2 * eta_M ** 2 * tau_out - tau_out),
-        _array(tau_out),
+        _array(-1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out), xp),
+        _array(-9 / 8 * D_P * eta_M + 1 / 2 * eta_M ** 2 * tau_out - tau_out, xp),
+        _array(tau_out, xp),
     )
 
 
@@ -674,12 +893,13 @@ def _forces_5(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[
     """Tooth forces and loaded reactions of M1, M2 in region (5) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8)),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8), xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -687,38 +907,41 @@ def region_6(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (6), where omega_A > 0 and omega_K < 0 and omega_A + omega_K < 0 and omega_A - omega_K >
     0: power in at K, out at A, O; M1: gear 1 drives gear 2; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = _t1 / (-_t0 * omega_A + _t0 * omega_K + _t1 * omega_A + _t1 * omega_K)
-    return _array(_t2 * (omega_A + omega_K))
+    return _array(_t2 * (omega_A + omega_K), xp)
 
 
 def _torques_6(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (6)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = 1 / 8 / eta_M
-    return (_array(_t2 * (_t0 - _t1)), _array(_t2 * (-_t0 - _t1)), _array(tau_out))
+    return (_array(_t2 * (_t0 - _t1), xp), _array(_t2 * (-_t0 - _t1), xp), _array(tau_out, xp))
 
 
 def _forces_6(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (6) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M, xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -726,28 +949,30 @@ def region_7(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (7), where omega_A < 0 and omega_K > 0 and omega_A + omega_K > 0 and omega_A - omega_K <
     0: power in at K, out at A, O; M1: gear 2 drives gear 1; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = omega_K * tau_out
     _t1 = 9 * D_P * eta_M
     _t2 = 4 * eta_M ** 2
     _t3 = 4 * tau_out
     _t4 = _t3 / (-_t0 * _t2 + 8 * _t0 - _t1 * omega_A + _t1 * omega_K + _t2 * omega_A * tau_out)
-    return _array(_t4 * (omega_A + omega_K))
+    return _array(_t4 * (omega_A + omega_K), xp)
 
 
 def _torques_7(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (7)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out)),
-        _array(9 / 8 * D_P * eta_M - 1 / 2 * eta_M ** 2 * tau_out + tau_out),
-        _array(-tau_out),
+        _array(1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out), xp),
+        _array(9 / 8 * D_P * eta_M - 1 / 2 * eta_M ** 2 * tau_out + tau_out, xp),
+        _array(-tau_out, xp),
     )
 
 
@@ -755,12 +980,13 @@ def _forces_7(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[
     """Tooth forces and loaded reactions of M1, M2 in region (7) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8)),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8), xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -768,37 +994,44 @@ def region_8(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (8), where omega_A < 0 and omega_K > 0 and omega_A + omega_K > 0 and omega_A - omega_K <
     0: power in at K, out at A, O; M1: gear 1 drives gear 2; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = _t1 / (-_t0 * omega_A + _t0 * omega_K + _t1 * omega_A + _t1 * omega_K)
-    return _array(_t2 * (omega_A + omega_K))
+    return _array(_t2 * (omega_A + omega_K), xp)
 
 
 def _torques_8(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (8)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 1 / 8 / eta_M
-    return (_array(_t1 * (-_t0 + 4 * eta_M * tau_out)), _array(_t1 * (_t0 + 4 * eta_M * tau_out)), _array(-tau_out))
+    return (
+        _array(_t1 * (-_t0 + 4 * eta_M * tau_out), xp),
+        _array(_t1 * (_t0 + 4 * eta_M * tau_out), xp),
+        _array(-tau_out, xp),
+    )
 
 
 def _forces_8(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (8) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M, xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -806,41 +1039,44 @@ def region_9(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: A
     """Efficiency in region (9), where omega_A < 0 and omega_K > 0 and omega_A + omega_K < 0 and omega_A - omega_K <
     0: power in at A, out at K, O; M1: gear 1 drives gear 2; M2: gear 3 drives gear 4.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = eta_M ** 2
     _t1 = 4 * tau_out
     _t2 = 9 * D_P * eta_M
     _t3 = _t1 * omega_A - _t1 * omega_K + _t2 * omega_A - _t2 * omega_K
     _t4 = _t0 * _t1 * (omega_A + omega_K) / (8 * _t0 * omega_K * tau_out + _t3)
-    return _array(_t4)
+    return _array(_t4, xp)
 
 
 def _torques_9(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (9)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P * eta_M + 4 * tau_out
     _t1 = eta_M ** 2
     _t2 = 1 / 8 / _t1
-    return (_array(-_t0 * _t2), _array(_t2 * (_t0 - 8 * _t1 * tau_out)), _array(tau_out))
+    return (_array(-_t0 * _t2, xp), _array(_t2 * (_t0 - 8 * _t1 * tau_out), xp), _array(tau_out, xp))
 
 
 def _forces_9(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (9) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * eta_M
     return (
-        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2),
-        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M),
+        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2, xp),
+        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M, xp),
     )
 
 
@@ -848,28 +1084,30 @@ def region_10(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: 
     """Efficiency in region (10), where omega_A < 0 and omega_K < 0 and omega_A + omega_K < 0 and omega_A - omega_K >
     0: power in at A, K, out at O; M1: gear 2 drives gear 1; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = omega_K * tau_out
     _t1 = 9 * D_P * eta_M
     _t2 = 4 * eta_M ** 2
     _t3 = 4 * tau_out
     _t4 = _t3 / (-_t0 * _t2 + 8 * _t0 - _t1 * omega_A + _t1 * omega_K + _t2 * omega_A * tau_out)
-    return _array(_t4 * (omega_A + omega_K))
+    return _array(_t4 * (omega_A + omega_K), xp)
 
 
 def _torques_10(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (10)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out)),
-        _array(-9 / 8 * D_P * eta_M + 1 / 2 * eta_M ** 2 * tau_out - tau_out),
-        _array(tau_out),
+        _array(-1 / 8 * eta_M * (-9 * D_P + 4 * eta_M * tau_out), xp),
+        _array(-9 / 8 * D_P * eta_M + 1 / 2 * eta_M ** 2 * tau_out - tau_out, xp),
+        _array(tau_out, xp),
     )
 
 
@@ -877,12 +1115,13 @@ def _forces_10(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple
     """Tooth forces and loaded reactions of M1, M2 in region (10) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8)),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (9 * eta_M + 8), xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -890,38 +1129,41 @@ def region_11(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: 
     """Efficiency in region (11), where omega_A < 0 and omega_K < 0 and omega_A + omega_K < 0 and omega_A - omega_K >
     0: power in at A, K, out at O; M1: gear 1 drives gear 2; M2: gear 4 drives gear 3.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = _t1 / (-_t0 * omega_A + _t0 * omega_K + _t1 * omega_A + _t1 * omega_K)
-    return _array(_t2 * (omega_A + omega_K))
+    return _array(_t2 * (omega_A + omega_K), xp)
 
 
 def _torques_11(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (11)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P
     _t1 = 4 * eta_M * tau_out
     _t2 = 1 / 8 / eta_M
-    return (_array(_t2 * (_t0 - _t1)), _array(_t2 * (-_t0 - _t1)), _array(tau_out))
+    return (_array(_t2 * (_t0 - _t1), xp), _array(_t2 * (-_t0 - _t1), xp), _array(tau_out, xp))
 
 
 def _forces_11(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (11) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     return (
-        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M),
-        _array(1 / 19890 * tau_out * (4 * eta_M + 9)),
+        _array(-1 / 159120 * (-9 * D_P + 4 * eta_M * tau_out) * (8 * eta_M + 9) / eta_M, xp),
+        _array(1 / 19890 * tau_out * (4 * eta_M + 9), xp),
     )
 
 
@@ -929,41 +1171,44 @@ def region_12(*, D_P: ArrayLike, eta_M: ArrayLike, omega_A: ArrayLike, omega_K: 
     """Efficiency in region (12), where omega_A < 0 and omega_K < 0 and omega_A + omega_K < 0 and omega_A - omega_K <
     0: power in at A, K, out at O; M1: gear 1 drives gear 2; M2: gear 3 drives gear 4.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    omega_A = _array(omega_A)
-    omega_K = _array(omega_K)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    omega_A = _array(omega_A, xp)
+    omega_K = _array(omega_K, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = eta_M ** 2
     _t1 = 4 * tau_out
     _t2 = 9 * D_P * eta_M
     _t3 = _t1 * omega_A - _t1 * omega_K + _t2 * omega_A - _t2 * omega_K
     _t4 = _t0 * _t1 * (omega_A + omega_K) / (8 * _t0 * omega_K * tau_out + _t3)
-    return _array(_t4)
+    return _array(_t4, xp)
 
 
 def _torques_12(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Torque at A, K, O in region (12)."""
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * D_P * eta_M + 4 * tau_out
     _t1 = eta_M ** 2
     _t2 = 1 / 8 / _t1
-    return (_array(-_t0 * _t2), _array(_t2 * (_t0 - 8 * _t1 * tau_out)), _array(tau_out))
+    return (_array(-_t0 * _t2, xp), _array(_t2 * (_t0 - 8 * _t1 * tau_out), xp), _array(tau_out, xp))
 
 
 def _forces_12(*, D_P: ArrayLike, eta_M: ArrayLike, tau_out: ArrayLike) -> tuple[Array, ...]:
     """Tooth forces and loaded reactions of M1, M2 in region (12) times the sign it assumes: the region holds where
     all are positive.
     """
-    D_P = _array(D_P)
-    eta_M = _array(eta_M)
-    tau_out = _array(tau_out)
+    xp = _namespace(D_P, eta_M, tau_out)
+    D_P = _array(D_P, xp)
+    eta_M = _array(eta_M, xp)
+    tau_out = _array(tau_out, xp)
     _t0 = 9 * eta_M
     return (
-        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2),
-        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M),
+        _array(1 / 159120 * (8 * eta_M + 9) * (D_P * _t0 + 4 * tau_out) / eta_M ** 2, xp),
+        _array(1 / 19890 * tau_out * (_t0 + 4) / eta_M, xp),
     )
 
 
@@ -1022,8 +1267,20 @@ _FORCES: Final[_Table] = {
 }
 
 
-def _array(value: ArrayLike) -> Array:
+def _numpy(value: ArrayLike) -> Array:
     return np.asarray(value, dtype=np.float64)
+
+
+def _arrays(given: dict[str, ArrayLike]) -> dict[str, Array]:
+    """The arguments as float64 NumPy arrays.  The power-flow regions of a train driven at
+    several ports are chosen on NumPy arrays; arrays of another library are refused with
+    what to do (each region's own function takes them)."""
+    if _namespace(*given.values()) is not np:
+        raise TypeError(
+            "efficiency, torques and speeds of a train driven at several ports take NumPy arrays: convert the "
+            "arguments (numpy.asarray, or the library's own transfer), or call a region's function on them"
+        )
+    return {name: _array(value) for name, value in given.items()}
 
 
 def _check_errors(errors: str) -> None:
@@ -1158,7 +1415,7 @@ def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) 
 
 def _efficiency(errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    return _array(_screened(values, _EFFICIENCY, 1, errors)[0])
+    return _numpy(_screened(values, _EFFICIENCY, 1, errors)[0])
 
 
 def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
@@ -1173,7 +1430,7 @@ def _speeds(values: dict[str, Array]) -> dict[str, Array]:
     out = {}
     with np.errstate(all="ignore"):
         for port, (function, names) in _SPEEDS.items():
-            out[port] = np.broadcast_to(_array(function(**{n: values[n] for n in names})), shape)
+            out[port] = np.broadcast_to(_numpy(function(**{n: values[n] for n in names})), shape)
     return out
 
 
@@ -1189,13 +1446,9 @@ def efficiency(
     """Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of the input shafts' powers,
     the region chosen element by element; NaN where the formulas do not hold (errors: 'warn', 'raise', 'ignore').
     """
-    values: dict[str, Array] = {
-        'D_P': _array(D_P),
-        'eta_M': _array(eta_M),
-        'omega_A': _array(omega_A),
-        'omega_K': _array(omega_K),
-        'tau_out': _array(tau_out),
-    }
+    values: dict[str, Array] = _arrays(
+        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
+    )
     return _efficiency(errors, values)
 
 
@@ -1211,19 +1464,15 @@ def torques(
     """The torque the outside applies at each port (by name), the region chosen element by element; NaN where
     efficiency is.
     """
-    values: dict[str, Array] = {
-        'D_P': _array(D_P),
-        'eta_M': _array(eta_M),
-        'omega_A': _array(omega_A),
-        'omega_K': _array(omega_K),
-        'tau_out': _array(tau_out),
-    }
+    values: dict[str, Array] = _arrays(
+        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
+    )
     return _torques(errors, values)
 
 
 def speeds(*, omega_A: ArrayLike, omega_K: ArrayLike) -> dict[str, Array]:
     """The speed of every port (by name) in the input speeds."""
-    values: dict[str, Array] = {'omega_A': _array(omega_A), 'omega_K': _array(omega_K)}
+    values: dict[str, Array] = _arrays({'omega_A': omega_A, 'omega_K': omega_K})
     return _speeds(values)
 
 
@@ -1238,11 +1487,7 @@ def region(
     """The number of the power-flow region (REGIONS) that holds at each point; 0 where none does (on a speed-
     condition line, or no region's loaded forces agree), -1 where several do.
     """
-    values: dict[str, Array] = {
-        'D_P': _array(D_P),
-        'eta_M': _array(eta_M),
-        'omega_A': _array(omega_A),
-        'omega_K': _array(omega_K),
-        'tau_out': _array(tau_out),
-    }
+    values: dict[str, Array] = _arrays(
+        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
+    )
     return _region_numbers(values)

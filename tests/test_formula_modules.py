@@ -371,3 +371,17 @@ def test_a_large_array_is_evaluated_in_blocks_with_the_same_values(name):
         assert bad > 0 and len(caught) == 2
         counts = [int(w) for w in str(caught[0].message).replace(",", " ").split() if w.isdigit()]
         assert sum(counts) == bad
+
+
+def test_a_large_array_of_a_train_with_a_constant_speed_ratio():
+    """Buckingham's pair has numeric radii: its speed ratio and ranges depend on none of
+    the arrays, so those results of a block are single values; an array larger than a
+    block is evaluated as the same points one by one (Laus eqs. (36)-(37): the pair's
+    efficiency is its mesh's, a function of the flank friction coefficient mu alone)."""
+    module = module_of("buckingham_pair")
+    mu = np.linspace(0.01, 0.1, module._BLOCK + 11)
+    whole = module.efficiency(mu=mu)
+    assert whole.shape == mu.shape
+    picked = [0, 1, module._BLOCK - 1, module._BLOCK, len(mu) - 1]
+    assert np.array_equal(whole[picked], [float(module.efficiency(mu=mu[k])) for k in picked])
+    assert module.losses(mu=mu)["C"].shape == mu.shape

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from hostile.helpers import CATALOG, run_main
 
-from davies_sym.emit import formula_runtime, several_inputs_runtime, shared_runtime
+from davies_sym.emit import array_api_runtime, formula_runtime, several_inputs_runtime, shared_runtime
 from davies_sym.emit.formula_code import module_level_names
 from davies_sym.emit.python_module import _ENTRY_NAMES as ONE_INPUT_ENTRY_NAMES
 from davies_sym.emit.several_inputs_module import _ENTRY_NAMES as SEVERAL_INPUTS_ENTRY_NAMES
@@ -26,7 +26,7 @@ PAIR = (CATALOG / "simple_pair.yaml").read_text(encoding="utf-8")
 
 def test_the_loader_reserves_every_public_name_a_generated_module_binds():
     bound: set[str] = set(ONE_INPUT_ENTRY_NAMES | SEVERAL_INPUTS_ENTRY_NAMES)
-    for runtime in (formula_runtime, several_inputs_runtime, shared_runtime):
+    for runtime in (formula_runtime, several_inputs_runtime, shared_runtime, array_api_runtime):
         bound |= module_level_names(ast.parse(inspect.getsource(runtime)))
     public = {n for n in bound if not n.startswith("_") and n != "davies_sym"}
     assert public <= RESERVED_NAMES, sorted(public - RESERVED_NAMES)

@@ -27,12 +27,31 @@ _TEMPORARY = "_t"
 _BUDGET = WIDTH - 30
 
 
+#: numpy's names of functions the array API standard names otherwise.
+_ARRAY_API_NAMES = {
+    "arccos": "acos",
+    "arcsin": "asin",
+    "arctan": "atan",
+    "arctan2": "atan2",
+    "arccosh": "acosh",
+    "arcsinh": "asinh",
+    "arctanh": "atanh",
+    "absolute": "abs",
+    "power": "pow",
+}
+
+
 class _Printer(NumPyPrinter):  # type: ignore[misc]  # sympy has no type information
-    """numpy code with the module written ``np`` (the generated module imports it so)."""
+    """Array API code: sympy's numpy printer with each function taken from ``xp``, the
+    namespace of the arguments (numpy, or the library of the arrays given), under the
+    standard's name."""
 
     def _module_format(self, fqn: str, register: bool = True) -> str:
         name = str(super()._module_format(fqn, register))
-        return "np." + name[len("numpy.") :] if name.startswith("numpy.") else name
+        if not name.startswith("numpy."):
+            return name
+        function = name[len("numpy.") :]
+        return "xp." + _ARRAY_API_NAMES.get(function, function)
 
 
 def _code(expr: sympy.Basic) -> str:
@@ -198,6 +217,16 @@ def _temporary(
     return symbol
 
 
+def _constants_folded(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with every function of numbers alone (``sin(pi/9)``, ``sqrt(2)``) as its
+    double: the array API functions take arrays, not the numbers such a call would pass."""
+
+    def constant_call(e: sympy.Basic) -> bool:
+        return bool(e.is_number and not e.is_Rational and (e.is_Function or (e.is_Pow and not e.exp.is_Integer)))
+
+    return expr.replace(constant_call, lambda e: sympy.Float(e.evalf(30), 17))
+
+
 def formula_function(
     name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array", relation: bool = False
 ) -> tuple[ast.FunctionDef, tuple[str, ...]]:
@@ -205,9 +234,12 @@ def formula_function(
     tuple; ``relation``: whether the expression is positive), common subexpressions and
     long parts computed once, each on its own line; also its argument names."""
     args = tuple(sorted({str(s) for e in exprs for s in e.free_symbols}))
+    xp = name_node("xp")
     body: list[ast.stmt] = [docstring(doc, "    ")]
-    body += [ast.Assign([ast.Name(a, ast.Store())], call("_array", name_node(a))) for a in args]
+    body.append(ast.Assign([ast.Name("xp", ast.Store())], call("_namespace", *(name_node(a) for a in args))))
+    body += [ast.Assign([ast.Name(a, ast.Store())], call("_array", name_node(a), xp)) for a in args]
     fresh = sympy.numbered_symbols(_TEMPORARY)
+    exprs = [_constants_folded(e) for e in exprs]
     replacements, reduced = sympy.cse(list(exprs), symbols=fresh, order="canonical")
     steps: list[tuple[sympy.Symbol, sympy.Expr]] = []
     for symbol, value in replacements:
@@ -216,15 +248,11 @@ def formula_function(
     body += [ast.Assign([ast.Name(str(s), ast.Store())], parsed(v)) for s, v in steps]
     returned: ast.expr
     if relation:
-        returned = ast.Call(
-            ast.Attribute(name_node("np"), "asarray", ast.Load()),
-            [ast.Compare(parsed(results[0]), [ast.Gt()], [ast.Constant(0)])],
-            [],
-        )
+        returned = call("_truth", ast.Compare(parsed(results[0]), [ast.Gt()], [ast.Constant(0)]), xp)
     elif len(results) == 1:
-        returned = call("_array", parsed(results[0]))
+        returned = call("_array", parsed(results[0]), xp)
     else:
-        returned = ast.Tuple([call("_array", parsed(r)) for r in results], ast.Load())
+        returned = ast.Tuple([call("_array", parsed(r), xp) for r in results], ast.Load())
     body.append(ast.Return(returned))
     params = [ast.arg(a, name_node("ArrayLike")) for a in args]
     return keyword_function(name, params, [None] * len(args), body, ast.parse(returns, mode="eval").body), args

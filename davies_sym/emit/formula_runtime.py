@@ -1,4 +1,5 @@
-"""The hand-written part of every generated formula module (numpy only).
+"""The hand-written part of every generated formula module (it needs numpy alone; the
+arrays of another array API library take the path of `davies_sym.emit.array_api_runtime`).
 
 `davies_sym.emit.python_module` copies this file's imports, types and functions
 into each module it writes, and puts the train's own tables and formulas where the
@@ -11,11 +12,23 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from typing import Any, Final, TypedDict
+from typing import Any, Final, TypedDict, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from davies_sym.emit.array_api_runtime import (
+    _admissible_any,
+    _array,
+    _count,
+    _first_disagreement,
+    _numbers_any,
+    _on_device,
+    _own_any,
+    _region_any,
+    _select_any,
+    _shape_of,
+)
 from davies_sym.emit.shared_runtime import _at, _blockwise
 
 Array = NDArray[np.float64]
@@ -79,10 +92,6 @@ _EFFICIENCY: Final[_Table] = {}
 _LOSSES: Final[_Table] = {}
 _RATIO: Final[_Table] = {}
 _FORCES: Final[_Table] = {}
-
-
-def _array(value: ArrayLike) -> Array:
-    return np.asarray(value, dtype=np.float64)
 
 
 def _check_input(input: str) -> None:
@@ -189,12 +198,21 @@ def _select(
     return result
 
 
-def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) -> None:
+def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array], xp: Any = np) -> None:
     """Refuse a dependent parameter (DEPENDENT) whose value breaks its relation."""
     for name, value in given.items():
         if value is None:
             continue
         function, names = _DEPENDENT[name]
+        if xp is not np:  # compared where the arrays are, the first disagreement brought back
+            on, _, _ = _on_device({"given": _array(value, xp), **values}, xp)
+            wrong = _first_disagreement(xp, on["given"], function(**{n: on[n] for n in names}))
+            if wrong is not None:
+                raise DesignError(
+                    f"{name} = {wrong[0]} breaks the relation {DEPENDENT[name]}, which gives {wrong[1]}; "
+                    f"the difference is {wrong[0] - wrong[1]}"
+                )
+            continue
         implied = np.broadcast_to(function(**{n: values[n] for n in names}), np.shape(value))
         bad = ~np.isclose(_array(value), implied, rtol=1e-9, atol=0.0)
         if bad.any():
@@ -207,9 +225,9 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array]) ->
             )
 
 
-def _given(optional: dict[str, ArrayLike | None]) -> dict[str, Array]:
+def _given(optional: dict[str, ArrayLike | None], xp: Any = np) -> dict[str, Array]:
     """The optional parameters given (not None), as arrays."""
-    return {name: _array(value) for name, value in optional.items() if value is not None}
+    return {name: _array(value, xp) for name, value in optional.items() if value is not None}
 
 
 def _admissible(values: dict[str, Array]) -> NDArray[np.bool_]:
@@ -236,10 +254,10 @@ def _check_errors(errors: str) -> None:
         raise ValueError(f"errors must be 'warn', 'raise' or 'ignore', got {errors!r}")
 
 
-def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) -> None:
+def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int, xp: Any = np) -> None:
     """A DesignWarning (or a DesignError) saying why, where some point is ``bad``;
     ``stacklevel`` points the warning at the caller of the entry point."""
-    if not bad.any():
+    if not _count(bad, xp):
         return
     if errors == "raise":
         raise DesignError(message)
@@ -247,25 +265,38 @@ def _refuse(bad: NDArray[np.bool_], message: str, errors: str, stacklevel: int) 
         warnings.warn(message, DesignWarning, stacklevel=stacklevel + 1)
 
 
-def _nan_where(bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int) -> Array:
+def _nan_where(
+    bad: NDArray[np.bool_], result: Array, message: str, errors: str, stacklevel: int, xp: Any = np
+) -> Array:
     """``result`` with NaN where ``bad``, after `_refuse`."""
-    _refuse(bad, message, errors, stacklevel + 1)
+    _refuse(bad, message, errors, stacklevel + 1, xp)
+    if xp is not np:
+        return cast(Array, xp.where(bad, xp.asarray(float("nan"), dtype=result.dtype, device=result.device), result))
     return np.where(bad, np.nan, result) if bad.any() else result
 
 
-def _still(values: dict[str, Array]) -> NDArray[np.bool_]:
+def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
     """Where a port does not turn (speed ratio 0 or infinite), as far as the given values
     tell (all False when the ratio's parameters are not among them)."""
     function, names = _RATIO[PORTS[0]]
     if not all(n in values for n in names):
+        if xp is not np:
+            device = next(iter(values.values())).device
+            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=device))
         return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
     with np.errstate(all="ignore"):
-        ratio = _array(function(**{n: values[n] for n in names}))
-    return np.asarray(~np.isfinite(ratio) | (ratio == 0))
+        ratio = xp.asarray(function(**{n: values[n] for n in names}))
+    return cast(NDArray[np.bool_], xp.asarray(~xp.isfinite(ratio) | (ratio == 0)))
 
 
 def _screened(
-    result: Array, numbers: NDArray[np.int64], outside: NDArray[np.bool_], still: NDArray[np.bool_], errors: str
+    result: Array,
+    numbers: NDArray[np.int64],
+    outside: NDArray[np.bool_],
+    still: NDArray[np.bool_],
+    errors: str,
+    xp: Any = np,
+    depth: int = 4,
 ) -> Array:
     """NaN (with a warning, or an error) where the design is not admissible (``outside``),
     a port does not turn (``still``), no variant holds (``numbers`` 0: the losses reverse
@@ -279,17 +310,34 @@ def _screened(
         uncovered = (numbers == 0) & ~(result <= 0) & ~outside & ~still
         locked = ~((result > 0) & (result <= 1 + 1e-12)) & ~outside & ~uncovered & ~still
     message = (
-        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
-        f"(PARAMETERS, RELATIONS), {int(np.count_nonzero(still))} where a port does not turn (speed ratio 0 "
-        f"or infinite), {int(np.count_nonzero(uncovered))} where no variant's power flow agrees with its "
-        f"own forces (the losses reverse forces as no variant covers) and {int(np.count_nonzero(locked))} "
+        f"{_count(outside, xp)} design point(s) outside the admissible parameters "
+        f"(PARAMETERS, RELATIONS), {_count(still, xp)} where a port does not turn (speed ratio 0 "
+        f"or infinite), {_count(uncovered, xp)} where no variant's power flow agrees with its "
+        f"own forces (the losses reverse forces as no variant covers) and {_count(locked, xp)} "
         "where the train self-locks (efficiency outside (0, 1]): NaN there"
     )
-    return _nan_where(outside | still | uncovered | locked, result, message, errors, stacklevel=4)
+    return _nan_where(outside | still | uncovered | locked, result, message, errors, depth, xp)
 
 
-def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
+def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any, Any]:
+    """With arrays of another library than numpy: the variant numbers, the region's own
+    ones where none holds, the values on one device, their dtype, and where the design is
+    outside the admissible parameters or a port does not turn."""
+    _check_input(input)
+    values, _, dtype = _on_device(values, xp)
+    mine = [v for v in VARIANTS if v["input"] == input]
+    numbers, code = _numbers_any(xp, mine, _CONDITIONS, _FORCES, values, _shape_of(xp, values))
+    outside = ~_admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
+    return numbers, _own_any(xp, mine, numbers, code), values, dtype, outside, _still(values, xp)
+
+
+def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            selected = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
+        return _screened(selected, numbers, outside, still, errors, xp, depth=4)
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
@@ -301,8 +349,16 @@ def _efficiency(input: str, errors: str, values: dict[str, Array]) -> Array:
     return _screened(selected[0], numbers, outside, still, errors)
 
 
-def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Array]:
+def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
+            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+        nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
+        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
@@ -316,33 +372,44 @@ def _losses(input: str, errors: str, values: dict[str, Array]) -> dict[str, Arra
     return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
 
 
-def _speed_ratio(input: str, errors: str, values: dict[str, Array]) -> Array:
+def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """Input speed over output speed with ``input`` as the input port; NaN (with a
     warning, or an error) where the design is not admissible."""
     _check_input(input)
     _check_errors(errors)
     function, names = _RATIO[PORTS[0]]
     with np.errstate(all="ignore"):
-        ratio = _array(function(**{n: values[n] for n in names}))
-        ratio = ratio if input == PORTS[0] else _array(1 / ratio)
-    outside = ~_admissible(values) | ~np.isfinite(ratio)
+        if xp is not np:
+            values, _, dtype = _on_device(values, xp)
+            code = _region_any(xp, _CONDITIONS, values, _shape_of(xp, values))
+            admissible = _admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
+        else:
+            admissible, dtype = _admissible(values), np.float64
+        ratio = xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype)
+        ratio = ratio if input == PORTS[0] else xp.asarray(1 / ratio)
+    outside = ~admissible | ~xp.isfinite(ratio)
     message = (
-        f"{int(np.count_nonzero(outside))} design point(s) outside the admissible parameters "
+        f"{_count(outside, xp)} design point(s) outside the admissible parameters "
         "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"
     )
-    return _nan_where(outside, ratio, message, errors, stacklevel=3)
+    return _nan_where(outside, ratio, message, errors, 3, xp)
 
 
-def _variant(input: str, errors: str, values: dict[str, Array]) -> NDArray[np.int64]:
+def _variant(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]:
     """What ``variant`` returns: the variant numbers, 0 where none holds or the design is
     not admissible (with a warning, or an error)."""
     _check_errors(errors)
-    numbers = _variant_numbers(input, values)
-    bad = (numbers == 0) | ~_admissible(values)
+    if xp is not np:
+        with np.errstate(all="ignore"):
+            numbers, _, _, _, outside, _ = _chosen_any(input, values, xp)
+    else:
+        numbers, outside = _variant_numbers(input, values), ~_admissible(values)
+    bad = (numbers == 0) | outside
     _refuse(
         bad,
-        f"{int(np.count_nonzero(bad))} design point(s) outside the admissible parameters or in no variant",
+        f"{_count(bad, xp)} design point(s) outside the admissible parameters or in no variant",
         errors,
-        stacklevel=3,
+        3,
+        xp,
     )
-    return np.where(bad, 0, numbers)
+    return cast(NDArray[np.int64], xp.where(bad, 0, numbers))

@@ -1,6 +1,7 @@
 """Generated Python module of a train's efficiency (``derive FILE --python OUT``).
 
-The module depends on numpy only and is meant for design code (sweeps, optimisers):
+The module depends on numpy alone and is meant for design code (sweeps, optimisers); its
+functions take the arrays of any array API library (CuPy, JAX, ...) too:
 
 - ``efficiency(input=..., errors=..., **params)`` on scalars or arrays (broadcast
   together) picks the variant element by element from the turning conditions, and gives
@@ -58,7 +59,7 @@ from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own arguments: a train's names may not take them.
-_ENTRY_NAMES = frozenset({"input", "errors", "values", "efficiency", "losses", "speed_ratio", "variant"})
+_ENTRY_NAMES = frozenset({"input", "errors", "values", "xp", "efficiency", "losses", "speed_ratio", "variant"})
 
 
 def _runtime() -> formula_code.Runtime:
@@ -94,21 +95,25 @@ def _entry_point(
     maybe = ast.BinOp(name_node("ArrayLike"), ast.BitOr(), ast.Constant(None))
     params += [ast.arg(a, maybe) for a in optional]
     defaults += [ast.Constant(None) for _ in optional]
-    values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a)) for a in required])
+    # The library of the arrays given (numpy unless another's arrays are among them).
+    xp = name_node("xp")
+    namespace = call("_namespace", *(name_node(a) for a in [*required, *optional]))
+    values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a), xp) for a in required])
     body: list[ast.stmt] = [
         docstring(doc, "    "),
+        ast.Assign([ast.Name("xp", ast.Store())], namespace),
         ast.AnnAssign(
             ast.Name("values", ast.Store()), ast.parse("dict[str, Array]", mode="eval").body, values, simple=1
         ),
     ]
     if checked:
         given = ast.Dict([ast.Constant(a) for a in checked], [name_node(a) for a in checked])
-        body.append(ast.Expr(call("_consistent", given, name_node("values"))))
+        body.append(ast.Expr(call("_consistent", given, name_node("values"), xp)))
     if ranged:
         # Given optional parameters join the values, so that the admissibility check sees them.
         given = ast.Dict([ast.Constant(a) for a in ranged], [name_node(a) for a in ranged])
         update = ast.Attribute(name_node("values"), "update", ast.Load())
-        body.append(ast.Expr(ast.Call(update, [call("_given", given)], [])))
+        body.append(ast.Expr(ast.Call(update, [call("_given", given, xp)], [])))
     body.append(ast.Return(returned))
     return keyword_function(name, params, defaults, body, ast.parse(returns, mode="eval").body)
 
@@ -309,7 +314,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         ranged = [a for a in optional if a in symbols or a in ratio_args]
         return _entry_point(name, doc, required, optional, checked, returns, returned, train.ports.input, ranged)
 
-    arrays = (name_node("input"), name_node("errors"), name_node("values"))
+    arrays = (name_node("input"), name_node("errors"), name_node("values"), name_node("xp"))
     entries = [
         entry(
             "efficiency",

@@ -62,7 +62,7 @@ def _entry(
     defaults: list[ast.expr | None] = [ast.Constant("warn")] if errors else []
     params += [ast.arg(a, name_node("ArrayLike")) for a in required]
     defaults += [None] * len(required)
-    values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a)) for a in required])
+    values = call("_arrays", ast.Dict([ast.Constant(a) for a in required], [name_node(a) for a in required]))
     body: list[ast.stmt] = [
         docstring(doc, "    "),
         ast.AnnAssign(

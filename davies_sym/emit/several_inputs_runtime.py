@@ -23,6 +23,7 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from davies_sym.emit.array_api_runtime import _array, _namespace
 from davies_sym.emit.shared_runtime import _at, _blockwise
 
 Array = NDArray[np.float64]
@@ -80,8 +81,20 @@ _TORQUES: Final[_Table] = {}
 _FORCES: Final[_Table] = {}
 
 
-def _array(value: ArrayLike) -> Array:
+def _numpy(value: ArrayLike) -> Array:
     return np.asarray(value, dtype=np.float64)
+
+
+def _arrays(given: dict[str, ArrayLike]) -> dict[str, Array]:
+    """The arguments as float64 NumPy arrays.  The power-flow regions of a train driven at
+    several ports are chosen on NumPy arrays; arrays of another library are refused with
+    what to do (each region's own function takes them)."""
+    if _namespace(*given.values()) is not np:
+        raise TypeError(
+            "efficiency, torques and speeds of a train driven at several ports take NumPy arrays: convert the "
+            "arguments (numpy.asarray, or the library's own transfer), or call a region's function on them"
+        )
+    return {name: _array(value) for name, value in given.items()}
 
 
 def _check_errors(errors: str) -> None:
@@ -216,7 +229,7 @@ def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) 
 
 def _efficiency(errors: str, values: dict[str, Array]) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
-    return _array(_screened(values, _EFFICIENCY, 1, errors)[0])
+    return _numpy(_screened(values, _EFFICIENCY, 1, errors)[0])
 
 
 def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
@@ -231,5 +244,5 @@ def _speeds(values: dict[str, Array]) -> dict[str, Array]:
     out = {}
     with np.errstate(all="ignore"):
         for port, (function, names) in _SPEEDS.items():
-            out[port] = np.broadcast_to(_array(function(**{n: values[n] for n in names})), shape)
+            out[port] = np.broadcast_to(_numpy(function(**{n: values[n] for n in names})), shape)
     return out

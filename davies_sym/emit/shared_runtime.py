@@ -32,10 +32,12 @@ def _blockwise(
     if size <= _BLOCK:
         return compute(values)
     flat = {n: v if v.ndim == 0 else np.broadcast_to(v, shape).reshape(-1) for n, v in values.items()}
-    blocks = [
-        compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
-        for start in range(0, size, _BLOCK)
-    ]
+    blocks = []
+    for start in range(0, size, _BLOCK):
+        results = compute({n: v if v.ndim == 0 else v[start : start + _BLOCK] for n, v in flat.items()})
+        # A result that depends on none of the arrays (a constant speed ratio) is 0-d: one per point.
+        length = min(_BLOCK, size - start)
+        blocks.append(tuple(r if r.ndim else np.broadcast_to(r, (length,)) for r in results))
     return tuple(
         np.concatenate(pieces, axis=-1).reshape(*pieces[0].shape[:-1], *shape) for pieces in zip(*blocks, strict=True)
     )

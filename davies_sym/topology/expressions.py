@@ -56,11 +56,11 @@ NON_FINITE_NAMES = frozenset({"oo", "zoo", "nan", "inf"})
 #: a symbol of one of these names would shadow or be shadowed by the module's own.
 FORMULA_MODULE_NAMES = frozenset(
     {
-        *("Any", "Array", "ArrayLike", "Callable", "Final", "NDArray", "TypedDict", "annotations"),
+        *("Any", "Array", "ArrayLike", "Callable", "Final", "NDArray", "TypedDict", "annotations", "cast"),
         *("CONDITIONS", "DEPENDENT", "EXCLUDED", "IGNORED", "INPUTS", "LOSSY", "OUTPUT", "PARAMETERS"),
         *("PORTS", "REGIONS", "RELATIONS", "SPEEDS", "VARIANTS"),
         *("DesignError", "DesignWarning", "Parameter", "Region", "Variant"),
-        *("efficiency", "losses", "region", "speed_ratio", "speeds", "torques", "values", "variant"),
+        *("efficiency", "losses", "region", "speed_ratio", "speeds", "torques", "values", "variant", "xp"),
     }
 )
 #: The operating point of the formulas: input torque and speed, and the load of a train

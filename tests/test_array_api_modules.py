@@ -1,0 +1,169 @@
+"""The formula modules on arrays of other libraries (the array API standard): every
+one-input catalog module gives on array-api-strict and on JAX arrays what it gives on
+NumPy arrays (the NumPy path is checked against the exact variants elsewhere), NaN at the
+same points and the same warning, an array of the same library back; the namespace of
+the arguments is found with and without array-api-compat."""
+
+from __future__ import annotations
+
+import glob
+import importlib.util
+import os
+import random
+import sys
+import warnings
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+import pytest
+
+from conftest import ROOT
+
+strict = pytest.importorskip("array_api_strict")
+
+DERIVATIONS = os.path.join(ROOT, "derivations")
+
+
+def _module(path: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(f"arrays_{os.path.basename(path)[:-3]}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+#: The modules of trains driven at one port (a train driven at several has `torques`).
+ONE_INPUT = sorted(
+    p for p in glob.glob(os.path.join(DERIVATIONS, "*.py")) if "def torques(" not in Path(p).read_text(encoding="utf-8")
+)
+
+
+def _points(module: ModuleType, count: int, seed: int) -> dict[str, np.ndarray]:
+    """Designs drawn around the admissible ranges: mostly inside (efficiencies from 0.5,
+    so some self-lock), some outside, so every NaN reason occurs."""
+    rng = random.Random(seed)
+    out = {}
+    for p in module.PARAMETERS:
+        low, high = p["low"], min(p["high"], p["low"] + 100.0)
+        if p["name"].startswith("eta"):
+            low = 0.5
+        values = [rng.uniform(low, high) if rng.random() > 0.1 else rng.uniform(-high, 2 * high) for _ in range(count)]
+        out[p["name"]] = np.array(values)
+    return out
+
+
+def _back(array: Any) -> np.ndarray:
+    return np.asarray(np.from_dlpack(array)) if not isinstance(array, np.ndarray) else array
+
+
+def _calls(module: ModuleType, kwargs: dict[str, Any], port: str) -> tuple[dict[str, Any], list[str]]:
+    """Every entry point at ``kwargs`` with ``port`` as input, and the warnings said."""
+    ratio_names = {n for n in kwargs if n in module.speed_ratio.__kwdefaults__ or n in _required(module.speed_ratio)}
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        out = {
+            "efficiency": module.efficiency(input=port, **kwargs),
+            "variant": module.variant(input=port, **kwargs),
+            "speed_ratio": module.speed_ratio(input=port, **{n: kwargs[n] for n in ratio_names}),
+            **{f"loss {k}": v for k, v in module.losses(input=port, **kwargs).items()},
+        }
+    return out, [str(w.message) for w in said]
+
+
+def _required(function: Any) -> set[str]:
+    code = function.__code__
+    return set(code.co_varnames[: code.co_kwonlyargcount]) - set(function.__kwdefaults__ or {})
+
+
+def _same(numpy_results: dict[str, Any], other: dict[str, Any], library: str) -> None:
+    for name, want in numpy_results.items():
+        got = _back(other[name])
+        assert type(other[name]).__module__.startswith(library), (name, type(other[name]))
+        want = np.broadcast_to(want, got.shape)
+        assert np.array_equal(np.isnan(got), np.isnan(want)) if got.dtype.kind == "f" else True, name
+        assert np.allclose(got, want, rtol=1e-12, atol=1e-15, equal_nan=True), name
+
+
+@pytest.mark.parametrize("path", ONE_INPUT, ids=[os.path.basename(p)[:-3] for p in ONE_INPUT])
+def test_module_on_array_api_strict_arrays_is_the_numpy_module(path: str) -> None:
+    module = _module(path)
+    points = _points(module, 400, seed=len(path))
+    if not points:
+        pytest.skip("no parameters: a constant efficiency, no arrays to give")
+    for port in module.PORTS:
+        want, said = _calls(module, points, port)
+        got, said_too = _calls(module, {n: strict.asarray(v) for n, v in points.items()}, port)
+        _same(want, got, "array_api_strict")
+        assert said_too == said
+        assert any("NaN there" in w for w in said) or not any(np.isnan(want["efficiency"]))
+
+
+def test_numbers_beside_arrays_and_a_variant_function(tmp_path: Any) -> None:
+    """A number stays a number beside the arrays; a variant's own function takes arrays
+    too and gives one of their library."""
+    module = _module(os.path.join(DERIVATIONS, "tuplin.py"))
+    r1 = strict.asarray([30.0, 40.0, 90.0])
+    with pytest.warns(module.DesignWarning, match="1 design point"):  # r1 = 90: r4 = r1 - r3 + r2 is no radius
+        got = module.efficiency(r1=r1, r2=60, r3=15, eta_C=0.99, eta_D=0.99)
+    want = module.efficiency(r1=np.array([30.0, 40.0, 90.0]), r2=60, r3=15, eta_C=0.99, eta_D=0.99, errors="ignore")
+    assert np.allclose(_back(got), want, rtol=1e-12, equal_nan=True)
+    first = module.VARIANTS[0]["name"]
+    part = getattr(module, first)(r1=r1, r2=60.0, r3=15.0, eta_C=0.99, eta_D=0.99)
+    assert type(part).__module__.startswith("array_api_strict")
+
+
+def test_a_dependent_parameter_is_checked_on_any_arrays() -> None:
+    """Tuplin's r4 is dependent (r4 = r1 - r3 + r2): a wrong value is refused as with NumPy."""
+    module = _module(os.path.join(DERIVATIONS, "tuplin.py"))
+    if "r4" not in module.DEPENDENT:
+        pytest.skip("no dependent parameter")
+    with pytest.raises(module.DesignError, match="breaks the relation"):
+        module.efficiency(r1=strict.asarray([40.0]), r2=60, r3=15, r4=strict.asarray([36.0]), eta_C=0.9, eta_D=0.9)
+
+
+def test_namespace_without_array_api_compat(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Arrays that name their namespace need nothing more; the fallback says what to
+    install for arrays that do not."""
+    module = _module(os.path.join(DERIVATIONS, "simple_pair.py"))
+    monkeypatch.setitem(sys.modules, "array_api_compat", None)  # its import now fails
+    assert module._namespace(strict.asarray([1.0]), 2.0) is strict
+
+    class Tensor:  # an array that speaks DLPack but names no namespace (as a PyTorch tensor)
+        def __dlpack__(self) -> None: ...
+
+    with pytest.raises(TypeError, match="pip install array-api-compat"):
+        module._namespace(Tensor())
+    assert module._namespace(np.ones(2), 3, [1.0]) is np
+
+
+def test_module_on_jax_arrays() -> None:
+    jax = pytest.importorskip("jax")
+    jax.config.update("jax_enable_x64", True)
+    try:
+        import jax.numpy as jnp
+
+        module = _module(os.path.join(DERIVATIONS, "wolfrom.py"))
+        points = _points(module, 200, seed=3)
+        for port in module.PORTS:
+            want, said = _calls(module, points, port)
+            got, said_too = _calls(module, {n: jnp.asarray(v) for n, v in points.items()}, port)
+            _same(want, got, "jax")
+            assert said_too == said
+    finally:
+        jax.config.update("jax_enable_x64", False)
+
+
+def test_a_train_driven_at_several_ports_says_to_give_numpy_arrays() -> None:
+    """The SR20 module's region choice runs on NumPy: other arrays are refused with what to
+    do, and a region's own function takes them."""
+    module = _module(os.path.join(DERIVATIONS, "sr20_differential.py"))
+    speeds = strict.asarray([309.0, 200.0])
+    with pytest.raises(TypeError, match="take NumPy arrays"):
+        module.efficiency(omega_A=speeds, omega_K=51.0, tau_out=5.08, eta_M=0.957, D_P=0.639)
+    region = next(name for name in dir(module) if name.startswith("region_") and callable(getattr(module, name)))
+    function = getattr(module, region)
+    names = _required(function)
+    values = {"omega_A": speeds, "omega_K": 51.0, "tau_out": 5.08, "eta_M": 0.957, "D_P": 0.639}
+    assert type(function(**{n: values[n] for n in names})).__module__.startswith("array_api_strict")

@@ -169,7 +169,7 @@ def _select_any(
     result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
     for v in variants:
         here = numbers == v["number"]
-        if not bool(xp.any(here)):
+        if v["name"] not in table or not bool(xp.any(here)):
             continue
         parts = _call(table[v["name"]], values)
         for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):

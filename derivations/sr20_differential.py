@@ -168,7 +168,7 @@ def _select_any(
     result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
     for v in variants:
         here = numbers == v["number"]
-        if not bool(xp.any(here)):
+        if v["name"] not in table or not bool(xp.any(here)):
             continue
         parts = _call(table[v["name"]], values)
         for k, part in enumerate(parts if isinstance(parts, tuple) else (parts,)):
@@ -1271,16 +1271,45 @@ def _numpy(value: ArrayLike) -> Array:
     return np.asarray(value, dtype=np.float64)
 
 
-def _arrays(given: dict[str, ArrayLike]) -> dict[str, Array]:
-    """The arguments as float64 NumPy arrays.  The power-flow regions of a train driven at
-    several ports are chosen on NumPy arrays; arrays of another library are refused with
-    what to do (each region's own function takes them)."""
-    if _namespace(*given.values()) is not np:
-        raise TypeError(
-            "efficiency, torques and speeds of a train driven at several ports take NumPy arrays: convert the "
-            "arguments (numpy.asarray, or the library's own transfer), or call a region's function on them"
-        )
-    return {name: _array(value) for name, value in given.items()}
+def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
+    """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
+    shape = _shape_of(xp, values)
+    device = next(iter(values.values())).device
+    code = xp.zeros(shape, dtype=xp.int64, device=device)
+    boundary = xp.zeros(shape, dtype=xp.bool, device=device)
+    for bit, (function, names) in enumerate(_CONDITIONS.values()):
+        level = function(**{n: values[n] for n in names})
+        code = code + xp.astype(level < 0, xp.int64) * (2**bit)
+        boundary = boundary | ~(level != 0)
+    numbers = xp.zeros(shape, dtype=xp.int64, device=device)
+    count = xp.zeros(shape, dtype=xp.int64, device=device)
+    for region in REGIONS:
+        mask = (code == region["code"]) & ~boundary & _agree_any(xp, _FORCES, region["name"], values)
+        numbers = xp.where(mask, region["number"], numbers)
+        count = count + xp.astype(mask, xp.int64)
+    return xp.where(count > 1, -1, numbers), boundary
+
+
+def _screened_any(values: dict[str, Any], table: _Table, width: int, errors: str, xp: Any) -> list[Any]:
+    """`_screened` on the arrays of another library than numpy (a list of its arrays)."""
+    _check_errors(errors)
+    values, _, dtype = _on_device(values, xp)
+    with np.errstate(all="ignore"):
+        numbers, boundary = _choice_any(values, xp)
+        result = _select_any(xp, REGIONS, numbers, table, width, values, dtype)
+        eta = result[0] if table is _EFFICIENCY else _select_any(xp, REGIONS, numbers, _EFFICIENCY, 1, values, dtype)[0]
+        outside = xp.zeros(tuple(numbers.shape), dtype=xp.bool, device=numbers.device)
+        for p in PARAMETERS:
+            v = values[p["name"]]
+            outside = outside | ~(((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"]))
+        bad, why = _not_covered(numbers, boundary, eta, outside, xp)
+    if _count(bad, xp):
+        if errors == "raise":
+            raise DesignError(why)
+        if errors == "warn":
+            warnings.warn(why, DesignWarning, stacklevel=4)
+    nan = xp.asarray(float("nan"), dtype=dtype, device=numbers.device)
+    return [xp.where(bad, nan, r) for r in result]
 
 
 def _check_errors(errors: str) -> None:
@@ -1306,10 +1335,13 @@ def _codes(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.bool
     return code, boundary
 
 
-def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
+def _region_numbers(values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]:
     """The number of the region that holds at each point: its speed conditions hold and
     every loaded force has the sign it assumes; 0 where none holds (on a condition line,
     or the losses reverse forces as no region covers), -1 where several do."""
+    if xp is not np:
+        numbers: NDArray[np.int64] = _choice_any(_on_device(values, xp)[0], xp)[0]
+        return numbers
     return _choice(values)[0]
 
 
@@ -1374,7 +1406,7 @@ def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
 
 
 def _not_covered(
-    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, outside: NDArray[np.bool_]
+    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, outside: NDArray[np.bool_], xp: Any = np
 ) -> tuple[NDArray[np.bool_], str]:
     """Where the formulas do not hold, and why (counts of each reason), given the regions
     chosen, the condition lines, the efficiency and the points outside the ranges."""
@@ -1383,10 +1415,10 @@ def _not_covered(
     with np.errstate(invalid="ignore"):
         locked = ~((eta > 0) & (eta <= 1 + 1e-12)) & (numbers > 0) & ~outside
     why = (
-        f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
-        f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
+        f"{_count(outside, xp)} point(s) outside the parameters' ranges (PARAMETERS), "
+        f"{_count(on_line, xp)} on a speed-condition line, {_count(nowhere, xp)} where "
         "no region's loaded forces agree with their assumed signs (losses reversing forces as no region "
-        f"covers) and {int(np.count_nonzero(locked))} with an efficiency outside (0, 1]: NaN there"
+        f"covers) and {_count(locked, xp)} with an efficiency outside (0, 1]: NaN there"
     )
     return outside | on_line | nowhere | locked, why
 
@@ -1413,19 +1445,33 @@ def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) 
     return np.where(bad, np.nan, result)
 
 
-def _efficiency(errors: str, values: dict[str, Array]) -> Array:
+def _efficiency(errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
+    if xp is not np:
+        efficiency: Array = _screened_any(values, _EFFICIENCY, 1, errors, xp)[0]
+        return efficiency
     return _numpy(_screened(values, _EFFICIENCY, 1, errors)[0])
 
 
-def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
+def _torques(errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``torques`` returns: the torque the outside applies at each port."""
-    parts = _screened(values, _TORQUES, len(PORTS), errors)
+    parts = (
+        _screened_any(values, _TORQUES, len(PORTS), errors, xp)
+        if xp is not np
+        else _screened(values, _TORQUES, len(PORTS), errors)
+    )
     return {port: part for port, part in zip(PORTS, parts, strict=True)}
 
 
-def _speeds(values: dict[str, Array]) -> dict[str, Array]:
+def _speeds(values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``speeds`` returns: the speed of every port."""
+    if xp is not np:
+        values, _, dtype = _on_device(values, xp)
+        shape = _shape_of(xp, values)
+        return {
+            port: xp.broadcast_to(xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype), shape)
+            for port, (function, names) in _SPEEDS.items()
+        }
     shape = _shape(values)
     out = {}
     with np.errstate(all="ignore"):
@@ -1446,10 +1492,15 @@ def efficiency(
     """Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of the input shafts' powers,
     the region chosen element by element; NaN where the formulas do not hold (errors: 'warn', 'raise', 'ignore').
     """
-    values: dict[str, Array] = _arrays(
-        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
-    )
-    return _efficiency(errors, values)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    values: dict[str, Array] = {
+        'D_P': _array(D_P, xp),
+        'eta_M': _array(eta_M, xp),
+        'omega_A': _array(omega_A, xp),
+        'omega_K': _array(omega_K, xp),
+        'tau_out': _array(tau_out, xp),
+    }
+    return _efficiency(errors, values, xp)
 
 
 def torques(
@@ -1464,16 +1515,22 @@ def torques(
     """The torque the outside applies at each port (by name), the region chosen element by element; NaN where
     efficiency is.
     """
-    values: dict[str, Array] = _arrays(
-        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
-    )
-    return _torques(errors, values)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    values: dict[str, Array] = {
+        'D_P': _array(D_P, xp),
+        'eta_M': _array(eta_M, xp),
+        'omega_A': _array(omega_A, xp),
+        'omega_K': _array(omega_K, xp),
+        'tau_out': _array(tau_out, xp),
+    }
+    return _torques(errors, values, xp)
 
 
 def speeds(*, omega_A: ArrayLike, omega_K: ArrayLike) -> dict[str, Array]:
     """The speed of every port (by name) in the input speeds."""
-    values: dict[str, Array] = _arrays({'omega_A': omega_A, 'omega_K': omega_K})
-    return _speeds(values)
+    xp = _namespace(omega_A, omega_K)
+    values: dict[str, Array] = {'omega_A': _array(omega_A, xp), 'omega_K': _array(omega_K, xp)}
+    return _speeds(values, xp)
 
 
 def region(
@@ -1487,7 +1544,12 @@ def region(
     """The number of the power-flow region (REGIONS) that holds at each point; 0 where none does (on a speed-
     condition line, or no region's loaded forces agree), -1 where several do.
     """
-    values: dict[str, Array] = _arrays(
-        {'D_P': D_P, 'eta_M': eta_M, 'omega_A': omega_A, 'omega_K': omega_K, 'tau_out': tau_out},
-    )
-    return _region_numbers(values)
+    xp = _namespace(D_P, eta_M, omega_A, omega_K, tau_out)
+    values: dict[str, Array] = {
+        'D_P': _array(D_P, xp),
+        'eta_M': _array(eta_M, xp),
+        'omega_A': _array(omega_A, xp),
+        'omega_K': _array(omega_K, xp),
+        'tau_out': _array(tau_out, xp),
+    }
+    return _region_numbers(values, xp)

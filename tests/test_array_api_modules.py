@@ -155,15 +155,33 @@ def test_module_on_jax_arrays() -> None:
         jax.config.update("jax_enable_x64", False)
 
 
-def test_a_train_driven_at_several_ports_says_to_give_numpy_arrays() -> None:
-    """The SR20 module's region choice runs on NumPy: other arrays are refused with what to
-    do, and a region's own function takes them."""
+def test_a_train_driven_at_several_ports_on_array_api_strict_arrays() -> None:
+    """The SR20 differential's module (two input shafts, Mantriota and Pennestri): its
+    efficiency, port torques, speeds and region numbers on array-api-strict arrays are
+    those on NumPy arrays, NaN and warning included."""
     module = _module(os.path.join(DERIVATIONS, "sr20_differential.py"))
-    speeds = strict.asarray([309.0, 200.0])
-    with pytest.raises(TypeError, match="take NumPy arrays"):
-        module.efficiency(omega_A=speeds, omega_K=51.0, tau_out=5.08, eta_M=0.957, D_P=0.639)
-    region = next(name for name in dir(module) if name.startswith("region_") and callable(getattr(module, name)))
-    function = getattr(module, region)
-    names = _required(function)
-    values = {"omega_A": speeds, "omega_K": 51.0, "tau_out": 5.08, "eta_M": 0.957, "D_P": 0.639}
-    assert type(function(**{n: values[n] for n in names})).__module__.startswith("array_api_strict")
+    rng = np.random.default_rng(7)
+    points = {
+        "omega_A": rng.uniform(-100, 100, 600),
+        "omega_K": rng.uniform(-100, 100, 600),
+        "tau_out": rng.uniform(-10, 100, 600),
+        "eta_M": rng.uniform(0.5, 1.0, 600),
+        "D_P": rng.uniform(0.0, 3.0, 600),
+    }
+    speeds = {n: points[n] for n in ("omega_A", "omega_K")}
+
+    def every(given: dict[str, Any]) -> tuple[dict[str, Any], list[str]]:
+        with warnings.catch_warnings(record=True) as said:
+            warnings.simplefilter("always")
+            out = {
+                "efficiency": module.efficiency(**given),
+                "region": module.region(**given),
+                **{f"torque {k}": v for k, v in module.torques(**given).items()},
+                **{f"speed {k}": v for k, v in module.speeds(**{n: given[n] for n in speeds}).items()},
+            }
+        return out, [str(w.message) for w in said]
+
+    want, said = every(points)
+    got, said_too = every({n: strict.asarray(v) for n, v in points.items()})
+    _same(want, got, "array_api_strict")
+    assert said_too == said and said

@@ -51,7 +51,7 @@ from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own names and arguments: a train's names may not take them.
-_ENTRY_NAMES = frozenset({"errors", "values", "efficiency", "torques", "speeds", "region"})
+_ENTRY_NAMES = frozenset({"errors", "values", "xp", "efficiency", "torques", "speeds", "region"})
 
 
 def _entry(
@@ -62,9 +62,12 @@ def _entry(
     defaults: list[ast.expr | None] = [ast.Constant("warn")] if errors else []
     params += [ast.arg(a, name_node("ArrayLike")) for a in required]
     defaults += [None] * len(required)
-    values = call("_arrays", ast.Dict([ast.Constant(a) for a in required], [name_node(a) for a in required]))
+    # The library of the arrays given (numpy unless another's arrays are among them).
+    xp = name_node("xp")
+    values = ast.Dict([ast.Constant(a) for a in required], [call("_array", name_node(a), xp) for a in required])
     body: list[ast.stmt] = [
         docstring(doc, "    "),
+        ast.Assign([ast.Name("xp", ast.Store())], call("_namespace", *(name_node(a) for a in required))),
         ast.AnnAssign(
             ast.Name("values", ast.Store()), ast.parse("dict[str, Array]", mode="eval").body, values, simple=1
         ),
@@ -201,7 +204,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
             for r in si.regions
         ),
     }
-    values = (name_node("errors"), name_node("values"))
+    values = (name_node("errors"), name_node("values"), name_node("xp"))
     entries = [
         _entry(
             "efficiency",
@@ -225,7 +228,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
             "The speed of every port (by name) in the input speeds.",
             sorted(speed_args, key=required.index),
             "dict[str, Array]",
-            call("_speeds", name_node("values")),
+            call("_speeds", name_node("values"), name_node("xp")),
             errors=False,
         ),
         _entry(
@@ -234,7 +237,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
             "(on a speed-condition line, or no region's loaded forces agree), -1 where several do.",
             required,
             "NDArray[np.int64]",
-            call("_region_numbers", name_node("values")),
+            call("_region_numbers", name_node("values"), name_node("xp")),
             errors=False,
         ),
     ]

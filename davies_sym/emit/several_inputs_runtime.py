@@ -23,7 +23,7 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from davies_sym.emit.array_api_runtime import _array, _namespace
+from davies_sym.emit.array_api_runtime import _agree_any, _count, _on_device, _select_any, _shape_of
 from davies_sym.emit.shared_runtime import _at, _blockwise
 
 Array = NDArray[np.float64]
@@ -85,16 +85,45 @@ def _numpy(value: ArrayLike) -> Array:
     return np.asarray(value, dtype=np.float64)
 
 
-def _arrays(given: dict[str, ArrayLike]) -> dict[str, Array]:
-    """The arguments as float64 NumPy arrays.  The power-flow regions of a train driven at
-    several ports are chosen on NumPy arrays; arrays of another library are refused with
-    what to do (each region's own function takes them)."""
-    if _namespace(*given.values()) is not np:
-        raise TypeError(
-            "efficiency, torques and speeds of a train driven at several ports take NumPy arrays: convert the "
-            "arguments (numpy.asarray, or the library's own transfer), or call a region's function on them"
-        )
-    return {name: _array(value) for name, value in given.items()}
+def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
+    """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
+    shape = _shape_of(xp, values)
+    device = next(iter(values.values())).device
+    code = xp.zeros(shape, dtype=xp.int64, device=device)
+    boundary = xp.zeros(shape, dtype=xp.bool, device=device)
+    for bit, (function, names) in enumerate(_CONDITIONS.values()):
+        level = function(**{n: values[n] for n in names})
+        code = code + xp.astype(level < 0, xp.int64) * (2**bit)
+        boundary = boundary | ~(level != 0)
+    numbers = xp.zeros(shape, dtype=xp.int64, device=device)
+    count = xp.zeros(shape, dtype=xp.int64, device=device)
+    for region in REGIONS:
+        mask = (code == region["code"]) & ~boundary & _agree_any(xp, _FORCES, region["name"], values)
+        numbers = xp.where(mask, region["number"], numbers)
+        count = count + xp.astype(mask, xp.int64)
+    return xp.where(count > 1, -1, numbers), boundary
+
+
+def _screened_any(values: dict[str, Any], table: _Table, width: int, errors: str, xp: Any) -> list[Any]:
+    """`_screened` on the arrays of another library than numpy (a list of its arrays)."""
+    _check_errors(errors)
+    values, _, dtype = _on_device(values, xp)
+    with np.errstate(all="ignore"):
+        numbers, boundary = _choice_any(values, xp)
+        result = _select_any(xp, REGIONS, numbers, table, width, values, dtype)
+        eta = result[0] if table is _EFFICIENCY else _select_any(xp, REGIONS, numbers, _EFFICIENCY, 1, values, dtype)[0]
+        outside = xp.zeros(tuple(numbers.shape), dtype=xp.bool, device=numbers.device)
+        for p in PARAMETERS:
+            v = values[p["name"]]
+            outside = outside | ~(((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"]))
+        bad, why = _not_covered(numbers, boundary, eta, outside, xp)
+    if _count(bad, xp):
+        if errors == "raise":
+            raise DesignError(why)
+        if errors == "warn":
+            warnings.warn(why, DesignWarning, stacklevel=4)
+    nan = xp.asarray(float("nan"), dtype=dtype, device=numbers.device)
+    return [xp.where(bad, nan, r) for r in result]
 
 
 def _check_errors(errors: str) -> None:
@@ -120,10 +149,13 @@ def _codes(values: dict[str, Array]) -> tuple[NDArray[np.int64], NDArray[np.bool
     return code, boundary
 
 
-def _region_numbers(values: dict[str, Array]) -> NDArray[np.int64]:
+def _region_numbers(values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]:
     """The number of the region that holds at each point: its speed conditions hold and
     every loaded force has the sign it assumes; 0 where none holds (on a condition line,
     or the losses reverse forces as no region covers), -1 where several do."""
+    if xp is not np:
+        numbers: NDArray[np.int64] = _choice_any(_on_device(values, xp)[0], xp)[0]
+        return numbers
     return _choice(values)[0]
 
 
@@ -188,7 +220,7 @@ def _outside_ranges(values: dict[str, Array]) -> NDArray[np.bool_]:
 
 
 def _not_covered(
-    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, outside: NDArray[np.bool_]
+    numbers: NDArray[np.int64], boundary: NDArray[np.bool_], eta: Array, outside: NDArray[np.bool_], xp: Any = np
 ) -> tuple[NDArray[np.bool_], str]:
     """Where the formulas do not hold, and why (counts of each reason), given the regions
     chosen, the condition lines, the efficiency and the points outside the ranges."""
@@ -197,10 +229,10 @@ def _not_covered(
     with np.errstate(invalid="ignore"):
         locked = ~((eta > 0) & (eta <= 1 + 1e-12)) & (numbers > 0) & ~outside
     why = (
-        f"{int(np.count_nonzero(outside))} point(s) outside the parameters' ranges (PARAMETERS), "
-        f"{int(np.count_nonzero(on_line))} on a speed-condition line, {int(np.count_nonzero(nowhere))} where "
+        f"{_count(outside, xp)} point(s) outside the parameters' ranges (PARAMETERS), "
+        f"{_count(on_line, xp)} on a speed-condition line, {_count(nowhere, xp)} where "
         "no region's loaded forces agree with their assumed signs (losses reversing forces as no region "
-        f"covers) and {int(np.count_nonzero(locked))} with an efficiency outside (0, 1]: NaN there"
+        f"covers) and {_count(locked, xp)} with an efficiency outside (0, 1]: NaN there"
     )
     return outside | on_line | nowhere | locked, why
 
@@ -227,19 +259,33 @@ def _screened(values: dict[str, Array], table: _Table, width: int, errors: str) 
     return np.where(bad, np.nan, result)
 
 
-def _efficiency(errors: str, values: dict[str, Array]) -> Array:
+def _efficiency(errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
+    if xp is not np:
+        efficiency: Array = _screened_any(values, _EFFICIENCY, 1, errors, xp)[0]
+        return efficiency
     return _numpy(_screened(values, _EFFICIENCY, 1, errors)[0])
 
 
-def _torques(errors: str, values: dict[str, Array]) -> dict[str, Array]:
+def _torques(errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``torques`` returns: the torque the outside applies at each port."""
-    parts = _screened(values, _TORQUES, len(PORTS), errors)
+    parts = (
+        _screened_any(values, _TORQUES, len(PORTS), errors, xp)
+        if xp is not np
+        else _screened(values, _TORQUES, len(PORTS), errors)
+    )
     return {port: part for port, part in zip(PORTS, parts, strict=True)}
 
 
-def _speeds(values: dict[str, Array]) -> dict[str, Array]:
+def _speeds(values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``speeds`` returns: the speed of every port."""
+    if xp is not np:
+        values, _, dtype = _on_device(values, xp)
+        shape = _shape_of(xp, values)
+        return {
+            port: xp.broadcast_to(xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype), shape)
+            for port, (function, names) in _SPEEDS.items()
+        }
     shape = _shape(values)
     out = {}
     with np.errstate(all="ignore"):

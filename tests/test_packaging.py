@@ -82,6 +82,17 @@ def test_installed_wheel_runs_a_catalog_train_from_any_folder(wheel: Path, tmp_p
     )
     assert result.returncode == 0, result.stderr
     assert abs(float(result.stdout.splitlines()[-1]) - 0.9936745104) < 5e-11
+    # The calibration of docs/calibration.md, its data from the wheel too (Mantriota and
+    # Pennestri 2003: fitted on Table I, Tables II-V predicted to 0.0102 on average).
+    fitted = subprocess.run(
+        [sys.executable, "-m", "davies_sym.cli", "calibrate", "--catalog", "sr20_differential", "--quiet"],
+        env=env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+    )
+    assert fitted.returncode == 0, fitted.stderr
+    assert fitted.stdout.splitlines()[-1] == "mean absolute error against the measured eta: 0.0102"
 
 
 def test_version_and_catalog_listing() -> None:

@@ -29,6 +29,7 @@ from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.emit.plots import figure_format
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
+from davies_sym.topology.catalog_files import catalog_file
 from davies_sym.topology.expressions import assignments
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
@@ -43,8 +44,13 @@ def parser() -> argparse.ArgumentParser:
         description="Fit loss parameters of a train to "
         "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).",
     )
-    p.add_argument("train", metavar="TRAIN.yaml")
-    p.add_argument("data", metavar="DATA.csv")
+    p.add_argument("train", metavar="TRAIN.yaml", nargs="?", help="the train (or --catalog NAME)")
+    p.add_argument("data", metavar="DATA.csv", nargs="?", help="the measurements (default: the file's calibrate: data)")
+    p.add_argument(
+        "--catalog",
+        metavar="NAME",
+        help="a catalog train in place of TRAIN.yaml, with its own data (derive calibrate --catalog sr20_differential)",
+    )
     p.add_argument("--fit", nargs="+", metavar="NAME", help="parameters to fit (default: the file's calibrate: fit)")
     p.add_argument(
         "--predict",
@@ -69,7 +75,7 @@ def _refused_options(args: argparse.Namespace) -> str | None:
         if figure_format(args.out) is None:
             return f"-o: {args.out}: name the figure's file .png, .svg or .pdf (the suffix says the format)"
         for given in (args.train, args.data, *(args.predict or ())):
-            if os.path.exists(given) and same_file(args.out, given):
+            if given and os.path.exists(given) and same_file(args.out, given):
                 return f"-o: refusing to overwrite the input file {given}"
     fitted = set(args.fit or ())
     held = [pair.partition("=")[0].strip() for pair in args.at]
@@ -134,16 +140,65 @@ def calibrate(
     )
 
 
+def _train_file(args: argparse.Namespace) -> str:
+    """TRAIN.yaml, or the catalog's file of ``--catalog NAME`` (one of the two)."""
+    if args.catalog is not None and args.train is not None:
+        if args.data is None:  # `--catalog NAME DATA.csv`: the one positional is the data
+            args.train, args.data = None, args.train
+        else:
+            raise InputError(
+                [Problem("--catalog", "give the train as TRAIN.yaml or as --catalog NAME, not both")],
+                "derive calibrate",
+            )
+    if args.catalog is not None:
+        return catalog_file(args.catalog)
+    if args.train is None:
+        raise InputError(
+            [Problem("TRAIN.yaml", "give the train's file (or --catalog NAME) and its DATA.csv")], "derive calibrate"
+        )
+    return str(args.train)
+
+
+def _data_files(args: argparse.Namespace, train: Train) -> tuple[str, list[str]]:
+    """DATA.csv and the --predict files: as given, else those the train file names
+    (``calibrate: {data: ..., predict: [...]}``, relative to the file) when DATA.csv is
+    not given."""
+    if args.data is not None:
+        return str(args.data), list(args.predict or ())
+    defaults = train.calibrate
+    if defaults is None or defaults.data is None:
+        raise InputError(
+            [Problem("DATA.csv", "give the measurements' file (the train file names no calibrate: data)")],
+            train.path,
+        )
+    folder = os.path.dirname(train.path or "")
+    located = [defaults.data, *defaults.predict]
+    for name, entry in located:
+        if not os.path.isfile(os.path.join(folder, name)):
+            raise InputError([train.problem(entry, f"no file {name!r} beside the train file")], train.path)
+    files = [os.path.join(folder, name) for name, _ in located]
+    return files[0], list(args.predict) if args.predict is not None else files[1:]
+
+
 def run(argv: Sequence[str]) -> int:
     """The ``derive calibrate`` command; returns the exit status (0, or 2 for bad input)."""
     args = parser().parse_args(argv)
+    try:
+        train_file = _train_file(args)
+    except InputError as exc:
+        print(exc.report(), file=sys.stderr)
+        return 2
     refusal = _refused_options(args)
     if refusal is not None:
-        print(f"input error: {args.train}: {refusal}", file=sys.stderr)
+        print(f"input error: {train_file}: {refusal}", file=sys.stderr)
         return 2
     suffix = (figure_format(args.out) if args.out else None) or ".png"
     try:
-        train = load(args.train)
+        train = load(train_file)
+        args.data, args.predict = _data_files(args, train)
+        refusal = _refused_options(args)  # the file's own data files too
+        if refusal is not None:
+            raise InputError([Problem(refusal.partition(":")[0], refusal.partition(": ")[2])], train_file)
         fixed = _fixed(train, args.at)  # checked before the derivation
         derived = derived_model(train)
         columns = columns_of(derived)
@@ -157,9 +212,8 @@ def run(argv: Sequence[str]) -> int:
         print(f"derive calibrate: {exc}", file=sys.stderr)
         return 2
     except DaviesError as exc:
-        print(
-            exc.report() if isinstance(exc, InputError) else f"derive calibrate: {args.train}: {exc}", file=sys.stderr
-        )
+        why = exc.report() if isinstance(exc, InputError) else f"derive calibrate: {train_file}: {exc}"
+        print(why, file=sys.stderr)
         return 2
     document = {"status": "ok", "train": train.path, "data": data.path, **result.as_dict()}
     lines = [fit_text(result)]

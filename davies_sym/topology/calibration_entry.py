@@ -23,6 +23,10 @@ class CalibrationDefaults:
 
     fit: tuple[str, ...]
     start: Mapping[str, float] = field(default_factory=lambda: MappingProxyType({}))
+    #: The measurements fitted to and those predicted, as the file writes them (relative
+    #: to the file), each with its entry.
+    data: tuple[str, str] | None = None
+    predict: tuple[tuple[str, str], ...] = ()
 
 
 def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | None:
@@ -55,4 +59,20 @@ def read_calibrate(value: Any, reader: EntryReader) -> CalibrationDefaults | Non
             reader.problem(f"calibrate.start.{name}", f"{name} is an efficiency: start it in (0, 1], got {describe(v)}")
         else:
             values[str(name)] = float(number)
-    return CalibrationDefaults(tuple(names), MappingProxyType(values))
+    data = _file(entry["data"], "calibrate.data", reader) if "data" in entry else None
+    listed = reader.items(entry.get("predict", []), "calibrate.predict", "a list of files") or []
+    predict = [_file(v, f"calibrate.predict[{i}]", reader) for i, v in enumerate(listed)]
+    return CalibrationDefaults(
+        tuple(names),
+        MappingProxyType(values),
+        data,
+        tuple(p for p in predict if p is not None),
+    )
+
+
+def _file(value: Any, path: str, reader: EntryReader) -> tuple[str, str] | None:
+    """A file name of the entry at ``path``, with that entry."""
+    if not isinstance(value, str) or not value.strip():
+        reader.problem(path, f"expected a file name (relative to this file), got {describe(value)}")
+        return None
+    return value, path

@@ -284,4 +284,18 @@ CALIBRATE = (
         "Start values of the fit (symbol -> positive number); default: 0.95 for "
         "an efficiency, 0.1 for other coefficients.",
     ),
+    Field(
+        "data",
+        "file",
+        False,
+        "The measurements (CSV) the parameters are fitted to, relative to this file: `derive calibrate "
+        "TRAIN.yaml` (or `--catalog NAME`) then needs no DATA.csv.",
+    ),
+    Field(
+        "predict",
+        "list of files",
+        False,
+        "Other measurements (CSV, relative to this file) the fitted model predicts when the command line "
+        "gives neither DATA.csv nor --predict.",
+    ),
 )

@@ -922,6 +922,7 @@ def test_completion_knows_the_other_commands(tmp_path: Path) -> None:
 
     assert {"calibrate", "search"} <= set(complete("ca")) | set(complete("se")) | set(complete(""))
     assert "--fit" in complete("calibrate", "--f")
+    assert complete("calibrate", "--catalog", "sr2") == ["sr20_differential"]
     assert "--target" in complete("search", "--ta")
     (tmp_path / "rig.yaml").write_text("")
     assert "rig.yaml" in complete("calibrate", "")

@@ -65,6 +65,8 @@ def completion_parser(
         for action in one._actions:
             if action.dest == "train":
                 action.complete = YAML_FILES  # type: ignore[attr-defined]
+            elif action.dest == "catalog":
+                action.complete = catalog_completion()  # type: ignore[attr-defined]
             elif action.metavar and str(action.metavar).endswith((".csv", ".png", ".py")):
                 action.complete = ANY_FILE  # type: ignore[attr-defined]
     return full

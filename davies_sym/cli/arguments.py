@@ -6,13 +6,14 @@ from __future__ import annotations
 
 import argparse
 from collections.abc import Collection, Iterable, Mapping, Sequence
+from dataclasses import replace
 
 import sympy
 
 from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.emit.plots import Sweep, figure_format
-from davies_sym.errors import InputError, Problem, shortened
+from davies_sym.errors import InputError, MissingValuesError, Problem, shortened
 from davies_sym.topology.model import Train
 from davies_sym.topology.symbols import exact_number
 
@@ -215,3 +216,37 @@ def document_asked(args: argparse.Namespace, evaluating: bool) -> bool:
     if args.out or args.latex or (args.json and not evaluating):
         return True
     return not (evaluating or args.python)
+
+
+#: The word of ``--eval`` that takes the file's published design (its first check).
+PUBLISHED = "published"
+
+
+def published_start(train: Train, pairs: Sequence[str], state: str | None) -> tuple[list[str], dict[str, str]]:
+    """``--eval``'s NAME=VALUE pairs, and the published design they override where the word
+    ``published`` is among them (the values of the first check, ``expected:``, of ``state``)."""
+    if PUBLISHED not in pairs:
+        return list(pairs), {}
+    design = train.published_design(state)
+    if not design:
+        where = f" for state {state}" if state else ""
+        raise InputError(
+            [
+                Problem(
+                    "--eval",
+                    f"`published` takes the values of the file's first check (expected:), but it has none{where}",
+                )
+            ],
+            train.path,
+        )
+    return [p for p in pairs if p != PUBLISHED], dict(design)
+
+
+def published_hint(
+    error: MissingValuesError, train: Train, state: str | None, pairs: Sequence[str]
+) -> MissingValuesError:
+    """``error`` saying how to evaluate the published design where the file holds one."""
+    if PUBLISHED in pairs or not train.published_design(state):
+        return error
+    hint = "; the file holds a published design: --eval published takes its values (NAME=VALUE after it changes one)"
+    return MissingValuesError([replace(p, message=p.message + hint) for p in error.problems], error.source)

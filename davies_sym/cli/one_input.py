@@ -20,6 +20,8 @@ from davies_sym.cli.arguments import (
     held_values,
     not_a_port,
     plot_sweeps,
+    published_hint,
+    published_start,
     values,
 )
 from davies_sym.cli.messages import message
@@ -34,7 +36,7 @@ from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import summary_document, text_summary, train_document
 from davies_sym.emit.variant_report import variants_document, variants_text
-from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.errors import DaviesError, InputError, MissingValuesError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
@@ -239,11 +241,17 @@ def one_input_outputs(
     # Everything is computed (and every value checked) before anything is written.
     chosen = sets[0][1].train  # the state's train: its own ports and symbols
     operating = operating_symbols(sets[0][1])
-    evaluation = (
-        evaluate(sets[0][1], values(chosen, args.eval, "--eval", operating), eval_port(chosen, args))
-        if args.eval is not None
-        else None
-    )
+    evaluation = None
+    if args.eval is not None:
+        pairs, published = published_start(train, args.eval, args.state)
+        # A published value for a name the state's formulas do not take is no value to refuse.
+        published = {k: v for k, v in published.items() if k in chosen.symbols}
+        try:
+            evaluation = evaluate(
+                sets[0][1], values(chosen, pairs, "--eval", operating, published), eval_port(chosen, args)
+            )
+        except MissingValuesError as exc:
+            raise published_hint(exc, train, args.state, args.eval) from None
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))

@@ -98,8 +98,9 @@ def parser() -> argparse.ArgumentParser:
         nargs="*",
         metavar="NAME=VALUE",
         help="print the variant, the speed ratio and, as the last line, the efficiency at these values "
-        "(exact where possible; no values when every quantity of the train is a number); with --json "
-        "one JSON object",
+        "(exact where possible; no values when every quantity of the train is a number); 'published' "
+        "takes the values of the file's first check (expected:), NAME=VALUE after it changes one; "
+        "with --json one JSON object",
     )
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")

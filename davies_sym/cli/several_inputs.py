@@ -15,6 +15,8 @@ from davies_sym.cli.arguments import (
     figure_suffix,
     held_values,
     plot_sweeps,
+    published_hint,
+    published_start,
 )
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
@@ -28,7 +30,7 @@ from davies_sym.emit.several_inputs_plots import (
     several_region_figure,
 )
 from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
-from davies_sym.errors import InputError, Problem
+from davies_sym.errors import InputError, MissingValuesError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.expressions import assignments
 from davies_sym.topology.model import Train
@@ -117,7 +119,13 @@ def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) 
     else:
         document = several_inputs_document(si)
         text = json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n"
-    answer = evaluate_several(si, assignments(args.eval, "--eval", train.path)) if args.eval is not None else None
+    answer = None
+    if args.eval is not None:
+        pairs, published = published_start(train, args.eval, None)
+        try:
+            answer = evaluate_several(si, {**published, **assignments(pairs, "--eval", train.path)})
+        except MissingValuesError as exc:
+            raise published_hint(exc, train, None, args.eval) from None
     outputs: list[tuple[str | None, str | bytes]] = []
     if args.python:
         outputs.append((args.python, several_inputs_module(si)))

@@ -10,6 +10,7 @@ r1 r4 - r2 r3 (r1 < r2 on the constraint r1 - r3 = r2 - r4).
 
 from __future__ import annotations
 
+import html
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -18,6 +19,7 @@ import sympy
 
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.topology.coupling_kinds import toothed_meshes
+from davies_sym.topology.symbol_display import latex
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis
@@ -31,6 +33,17 @@ class TurningCondition:
     name: str
     expression: sympy.Expr
     simplified: sympy.Expr
+
+    def _repr_latex_(self) -> str:
+        """``$$c_{1} = r_{2} - r_{1}$$``: its name and the expression whose sign it is."""
+        return rf"$${latex(sympy.Symbol(self.name))} = {latex(self.simplified)}$$"
+
+    def _repr_html_(self) -> str:
+        expression = html.escape(latex(self.simplified))
+        return (
+            f"<p>turning condition <b>{html.escape(self.name)}</b>: the sign of \\({expression}\\) "
+            "decides which gear drives</p>"
+        )
 
 
 @dataclass(frozen=True, eq=False)

@@ -4,6 +4,7 @@ loaded forces the losses reverse."""
 
 from __future__ import annotations
 
+import html
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -73,6 +74,12 @@ class Variant:
         """The equation for a notebook, conditions by name (the variant set shows their
         expressions)."""
         return self.equation_latex()
+
+    def _repr_html_(self) -> str:
+        where = html.escape(r",\ ".join(self.where_latex()) or r"\text{always}")
+        ports = f"{html.escape(self.input)} &rarr; {html.escape(self.output)}"
+        formula = html.escape(latex(self.efficiency))
+        return f"<p>variant ({self.number}), {ports}, where \\({where}\\): \\(\\eta = {formula}\\)</p>"
 
     @property
     def name(self) -> str:

@@ -21,7 +21,7 @@ from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
-from davies_sym.network.analysis_display import analysis_latex
+from davies_sym.network.analysis_display import analysis_html, analysis_latex
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, coulomb_mode
 from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
@@ -408,10 +408,17 @@ class Analysis:
         return self.efficiency_rf.to_expr()
 
     def _repr_latex_(self) -> str:
+        return analysis_latex(*self._display())
+
+    def _repr_html_(self) -> str:
+        return analysis_html(*self._display())
+
+    def _display(self) -> tuple[int, tuple[str, str], sympy.Expr | None, sympy.Expr | None]:
         one = self.degrees_of_freedom == 1
-        return analysis_latex(
+        ports = (self.train.ports.input, self.train.ports.output)
+        return (
             self.degrees_of_freedom,
-            (self.train.ports.input, self.train.ports.output),
+            ports,
             self.speed_ratio().to_expr() if one else None,
             self.efficiency if one else None,
         )

@@ -16,7 +16,8 @@ from davies_sym.losses.definitions import Definition
 from davies_sym.topology.calibration_entry import CalibrationDefaults
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear import Gear as Gear  # named here as part of the model
-from davies_sym.topology.train_display import train_html
+from davies_sym.topology.symbol_display import latex
+from davies_sym.topology.train_display import train_html, train_latex
 
 
 @dataclass(frozen=True)
@@ -151,6 +152,10 @@ class Train:
             [(k.name, k.description) for k in self.links],
             [(c.name, type(c).__name__, " \u2014 ".join(c.links)) for c in self.couplings],
         )
+
+    def _repr_latex_(self) -> str:
+        gears = [(g.name, latex(g.radius), g.link) for g in self.gears]
+        return train_latex(self.name, (", ".join(self.ports.inputs), self.ports.output), gears)
 
     def problem(self, entry: str, message: str) -> Problem:
         """A `Problem` at ``entry`` (where the file writes it, see ``renamed``) with the

@@ -11,6 +11,7 @@ symbol looks the same everywhere.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import Any
 
 import sympy
 from sympy.printing.mathml import MathMLPresentationPrinter
@@ -93,11 +94,33 @@ def latex(expr: sympy.Basic, **settings: object) -> str:
     return str(sympy.latex(expr, symbol_names=symbol_names(expr.free_symbols), **settings))
 
 
+class _MathML(MathMLPresentationPrinter):  # type: ignore[misc]  # sympy has no type information
+    """sympy's presentation MathML with every power of a subscripted symbol as one
+    ``msubsup`` (r with 1 below and 2 above), not a superscript on the subscript."""
+
+    def doprint(self, expr: sympy.Basic) -> str:
+        node = self._print(expr)
+        _join_scripts(node)
+        return str(node.toxml().encode("ascii", "xmlcharrefreplace").decode())
+
+
+def _join_scripts(node: Any) -> None:
+    """Each ``<msup><msub>b s</msub> e</msup>`` under ``node`` as ``<msubsup>b s e</msubsup>``."""
+    for child in list(node.childNodes):
+        _join_scripts(child)
+    if node.nodeName == "msup" and node.firstChild is not None and node.firstChild.nodeName == "msub":
+        subscripted = node.firstChild
+        node.tagName = node.nodeName = "msubsup"
+        for part in list(subscripted.childNodes):
+            node.insertBefore(part, subscripted)
+        node.removeChild(subscripted)
+
+
 def mathml_body(expr: sympy.Basic) -> str:
     """Presentation MathML of the expression (the content of a ``<math>`` element,
     rendered natively by browsers), symbols under their display names."""
     renamed = expr.xreplace({s: _mathml_symbol(s) for s in expr.free_symbols if isinstance(s, sympy.Symbol)})
-    body = str(MathMLPresentationPrinter({"mul_symbol": None}).doprint(renamed))
+    body = str(_MathML({"mul_symbol": None}).doprint(renamed))
     # The printer writes the relations' operators unescaped, which is not XML, and the
     # hyphen where typesetting has the minus sign.
     return (

@@ -1,5 +1,5 @@
-"""How a train shows itself in a notebook (``Train._repr_html_``): its name and source,
-ports, links and couplings, as the topology file declares them."""
+"""How a train shows itself in a notebook (``Train._repr_html_``, ``_repr_latex_``): its
+name and source, ports, links, gears and couplings, as the topology file declares them."""
 
 from __future__ import annotations
 
@@ -27,3 +27,15 @@ def train_html(
         _table(("coupling", "kind", "between"), couplings),
     ]
     return "".join(parts)
+
+
+def train_latex(name: str, ports: tuple[str, str], gears: Sequence[tuple[str, str, str]]) -> str:
+    """The name, the ports and each gear (name, its radius as LaTeX, its link) as one
+    LaTeX array."""
+
+    def text(value: str) -> str:
+        return r"\text{" + value.replace("\\", "").replace("{", "").replace("}", "").replace("_", r"\_") + "}"
+
+    rows = [rf"{text(name)} & {text(ports[0])} \to {text(ports[1])}"]
+    rows += [rf"{text('gear ' + g)} & {radius} \quad {text('on link ' + link)}" for g, radius, link in gears]
+    return r"$$\begin{array}{ll}" + r" \\ ".join(rows) + r"\end{array}$$"

@@ -4,7 +4,7 @@ renders with the formula it should show.
 :func:`math_elements` finds the ``<math>`` elements of an HTML page (Python's own HTML
 parser: entities such as ``&InvisibleTimes;`` are decoded); :func:`read_mathml` reads one
 element's presentation part: ``mrow`` sequences of operands and ``mo`` operators (``+``,
-``-``, the minus sign, invisible times, parentheses, ``=``), ``mfrac``, ``msup``,
+``-``, the minus sign, invisible times, parentheses, ``=``), ``mfrac``, ``msup``, ``msubsup``,
 ``msqrt``, ``mn``, and symbols as ``mi`` or ``msub`` of a letter and its subscript.  A
 symbol is found by a rule of this file: the letter (a Greek letter by its name) followed
 by the subscript, with or without an underscore (``r`` with ``p1`` is ``rp1``, ``eta``
@@ -137,6 +137,11 @@ class _Reader:
         if node.tag == "msup":
             base, exp = kids
             return self.node(base) ** self.node(exp)
+        if node.tag == "msubsup":  # a power of a subscripted symbol
+            base, sub, exp = kids
+            if base.tag != "mi":
+                raise MathMLError(f"subscript on {base.tag}")
+            return self.symbol(text_of(base), text_of(sub)) ** self.node(exp)
         if node.tag == "msqrt":
             return sympy.sqrt(self.inner(kids))
         raise MathMLError(f"unexpected element <{node.tag}>")

@@ -61,3 +61,18 @@ def test_unknown_attribute_is_an_attribute_error() -> None:
 
     with pytest.raises(AttributeError, match="no attribute 'derivee'"):
         _ = davies_sym.derivee  # type: ignore[attr-defined]
+
+
+def test_help_lists_every_other_command_and_each_answers_its_own_help() -> None:
+    """`derive --help` names calibrate and search with a line each; `derive NAME --help`
+    answers for each, exit 0."""
+    from hostile.helpers import run_main
+
+    from davies_sym.cli.parser import COMMANDS
+
+    shown = run_main(["--help"])
+    assert shown.returncode == 0
+    for name, line in COMMANDS:
+        assert f"derive {name}" in shown.stdout and line in shown.stdout
+        own = run_main([name, "--help"])
+        assert own.returncode == 0 and f"usage: derive {name}" in own.stdout

@@ -29,15 +29,27 @@ def _jobs(text: str) -> int:
     return int(text)
 
 
+#: The other commands of ``derive`` with a line each, as its help lists them.
+COMMANDS = (
+    ("calibrate", "fit loss parameters to test-rig data (TRAIN.yaml DATA.csv, or --catalog NAME)"),
+    ("search", "tooth numbers for target speed ratios, ranked by exact efficiency"),
+)
+
+
 def parser() -> argparse.ArgumentParser:
     """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
     p = argparse.ArgumentParser(
         prog="derive",
-        description="Derive the efficiency of a gear train (or machine) described in a YAML "
-        "topology file, by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",
-        epilog="other commands: 'derive calibrate TRAIN.yaml DATA.csv' fits loss parameters to test-rig data; "
-        "'derive search TRAIN.yaml --target RATIO --teeth NAME=LO:HI ...' finds the tooth numbers for target "
-        "speed ratios, ranked by efficiency (each has its own --help)",
+        description="Derive the efficiency of a gear train (or machine) described in a YAML topology file,\n"
+        "by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",
+        epilog="\n".join(
+            [
+                "other commands (each has its own --help):",
+                *(f"  derive {name:<10} {line}" for name, line in COMMANDS),
+            ]
+        ),
+        # The epilog's lines stay as written (one command a line).
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     # ``.complete``: what shtab offers for the argument in a completion script (--completion).
     files = p.add_argument(

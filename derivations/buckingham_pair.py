@@ -307,6 +307,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C',)
+SENSITIVE: Final[tuple[str, ...]] = ('mu',)
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'mu',
@@ -370,6 +371,21 @@ def A_to_B(*, mu: ArrayLike) -> Array:
     return _array(2750000000 / 3912865503 * _t2 * xp.log(1 + 536014941 / 500000000 / _t2) + _t3, xp)
 
 
+def _gradient_A_to_B(*, mu: ArrayLike) -> Array:
+    """Partial derivatives of variant (1)'s efficiency in mu."""
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 2.9044429211343235 / mu
+    _t1 = (-_t0 - 0.7511400121633243) ** (-1.0)
+    _t2 = 1 - 1768805739 / 2000000000 * _t1
+    _t3 = mu ** (-2.0)
+    _t4 = 2.041270784031697 * _t3
+    _t5 = (_t0 - 0.7511400121633243) ** (-1.0)
+    _t6 = 536014941 / 500000000 * _t5 + 1
+    _t7 = 2.1883032777355473 * _t3 * _t5 / _t6 - _t4 * xp.log(_t2) - _t4 * xp.log(_t6)
+    return _array(-1.8053057388241474 * _t1 * _t3 / _t2 + _t7, xp)
+
+
 def _losses_A_to_B(*, mu: ArrayLike) -> Array:
     """Losses over the input power in variant (1)."""
     xp = _namespace(mu)
@@ -390,6 +406,21 @@ def B_to_A(*, mu: ArrayLike) -> Array:
     _t2 = _t0 - 2.003040032435531
     _t3 = -22000000000 / 11738596509 * _t1 * xp.log(1 - 536014941 / 500000000 / _t1) - 8 / 3
     return _array(22000000000 / 11738596509 * _t2 * xp.log(1 + 1768805739 / 2000000000 / _t2) + _t3, xp)
+
+
+def _gradient_B_to_A(*, mu: ArrayLike) -> Array:
+    """Partial derivatives of variant (2)'s efficiency in mu."""
+    xp = _namespace(mu)
+    mu = _array(mu, xp)
+    _t0 = 7.745181123024862 / mu
+    _t1 = (-_t0 - 2.003040032435531) ** (-1.0)
+    _t2 = 1 - 536014941 / 500000000 * _t1
+    _t3 = mu ** (-2.0)
+    _t4 = 14.515703353114287 * _t3
+    _t5 = (_t0 - 2.003040032435531) ** (-1.0)
+    _t6 = 1768805739 / 2000000000 * _t5 + 1
+    _t7 = 12.837729698305049 * _t3 * _t5 / _t6 - _t4 * xp.log(_t2) - _t4 * xp.log(_t6)
+    return _array(-15.561267752786113 * _t1 * _t3 / _t2 + _t7, xp)
 
 
 def _losses_B_to_A(*, mu: ArrayLike) -> Array:
@@ -414,6 +445,7 @@ _RELATIONS: Final[_Table] = {}
 _DEPENDENT: Final[_Table] = {}
 _EFFICIENCY: Final[_Table] = {'A_to_B': (A_to_B, ('mu',)), 'B_to_A': (B_to_A, ('mu',))}
 _LOSSES: Final[_Table] = {'A_to_B': (_losses_A_to_B, ('mu',)), 'B_to_A': (_losses_B_to_A, ('mu',))}
+_GRADIENT: Final[_Table] = {'A_to_B': (_gradient_A_to_B, ('mu',)), 'B_to_A': (_gradient_B_to_A, ('mu',))}
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ())}
 _FORCES: Final[_Table] = {}
 
@@ -675,25 +707,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -769,6 +814,23 @@ def losses(
     xp = _namespace(mu, eta_C_1_2, eta_C_2_1)
     values: dict[str, Array] = {'mu': _array(mu, xp)}
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    mu: ArrayLike,
+    eta_C_1_2: ArrayLike | None = None,
+    eta_C_2_1: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(mu, eta_C_1_2, eta_C_2_1)
+    values: dict[str, Array] = {'mu': _array(mu, xp)}
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

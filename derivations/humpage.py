@@ -304,6 +304,19 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C', 'D', 'E')
+SENSITIVE: Final[tuple[str, ...]] = (
+    'eta_12',
+    'eta_21',
+    'eta_25',
+    'eta_34',
+    'eta_43',
+    'eta_52',
+    'r1',
+    'r2',
+    'r3',
+    'r4',
+    'r5',
+)
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_12',
@@ -557,6 +570,65 @@ def A_to_B_c1_pos(
     return _array(_t2 * (eta_12 * r5 + eta_52 * r1), xp)
 
 
+def _gradient_A_to_B_c1_pos(
+    *,
+    eta_12: ArrayLike,
+    eta_34: ArrayLike,
+    eta_52: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_12, eta_21, eta_25, eta_34, eta_43, eta_52, r1, r2, r3,
+    r4, r5.
+    """
+    xp = _namespace(eta_12, eta_34, eta_52, r1, r2, r3, r4, r5)
+    eta_12 = _array(eta_12, xp)
+    eta_34 = _array(eta_34, xp)
+    eta_52 = _array(eta_52, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    r4 = _array(r4, xp)
+    r5 = _array(r5, xp)
+    _t0 = r1 + r5
+    _t1 = _t0 ** (-1.0)
+    _t2 = -r3 * r5
+    _t3 = r2 * r4
+    _t4 = eta_34 * eta_52
+    _t5 = _t3 * _t4
+    _t6 = _t2 + _t5
+    _t7 = _t6 ** (-1.0)
+    _t8 = _t2 + _t3
+    _t9 = _t1 * _t7 * _t8
+    _t10 = _t9 * eta_34
+    _t11 = eta_12 * r5 + eta_52 * r1
+    _t12 = _t11 * _t8
+    _t13 = _t12 / _t6 ** 2
+    _t14 = _t1 * _t13
+    _t15 = eta_34 ** 2
+    _t16 = _t14 * _t15
+    _t17 = _t7 * eta_34
+    _t18 = -_t12 * _t17 / _t0 ** 2
+    _t19 = _t1 * _t11 * _t17
+    _t20 = _t14 * eta_34
+    return (
+        _array(_t10 * r5, xp),
+        _array(0, xp),
+        _array(0, xp),
+        _array(_t1 * _t11 * _t7 * _t8 - _t14 * _t5, xp),
+        _array(0, xp),
+        _array(_t1 * _t7 * _t8 * eta_34 * r1 - _t16 * _t3, xp),
+        _array(_t18 + _t4 * _t9, xp),
+        _array(_t1 * _t11 * _t7 * eta_34 * r4 - _t1 * _t13 * _t15 * eta_52 * r4, xp),
+        _array(-_t19 * r5 + _t20 * r5, xp),
+        _array(_t1 * _t11 * _t7 * eta_34 * r2 - _t16 * eta_52 * r2, xp),
+        _array(_t10 * eta_12 + _t18 - _t19 * r3 + _t20 * r3, xp),
+    )
+
+
 def _losses_A_to_B_c1_pos(
     *,
     eta_12: ArrayLike,
@@ -639,6 +711,62 @@ def A_to_B_c1_neg(
     return _array(-(_t0 - _t1) * (eta_12 * eta_25 * r5 + r1) / ((-_t0 + _t1 * eta_25 * eta_43) * (r1 + r5)), xp)
 
 
+def _gradient_A_to_B_c1_neg(
+    *,
+    eta_12: ArrayLike,
+    eta_25: ArrayLike,
+    eta_43: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_12, eta_21, eta_25, eta_34, eta_43, eta_52, r1, r2, r3,
+    r4, r5.
+    """
+    xp = _namespace(eta_12, eta_25, eta_43, r1, r2, r3, r4, r5)
+    eta_12 = _array(eta_12, xp)
+    eta_25 = _array(eta_25, xp)
+    eta_43 = _array(eta_43, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    r4 = _array(r4, xp)
+    r5 = _array(r5, xp)
+    _t0 = eta_25 * r5
+    _t1 = r1 + r5
+    _t2 = _t1 ** (-1.0)
+    _t3 = r2 * r4
+    _t4 = r3 * r5
+    _t5 = -_t3 + _t4 * eta_25 * eta_43
+    _t6 = _t5 ** (-1.0)
+    _t7 = _t3 - _t4
+    _t8 = _t6 * _t7
+    _t9 = _t2 * _t8
+    _t10 = _t9 * eta_12
+    _t11 = _t0 * eta_12 + r1
+    _t12 = _t5 ** (-2.0)
+    _t13 = _t11 * _t2
+    _t14 = _t12 * _t13 * _t7
+    _t15 = _t14 * eta_25
+    _t16 = _t1 ** (-2.0)
+    _t17 = _t13 * _t6
+    return (
+        _array(-_t0 * _t9, xp),
+        _array(0, xp),
+        _array(-_t10 * r5 + _t11 * _t12 * _t2 * _t7 * eta_43 * r3 * r5, xp),
+        _array(0, xp),
+        _array(_t15 * _t4, xp),
+        _array(0, xp),
+        _array(_t11 * _t16 * _t6 * _t7 - _t9, xp),
+        _array(-_t14 * r4 - _t17 * r4, xp),
+        _array(_t0 * _t14 * eta_43 + _t17 * r5, xp),
+        _array(-_t14 * r2 - _t17 * r2, xp),
+        _array(-_t10 * eta_25 + _t11 * _t16 * _t8 + _t15 * eta_43 * r3 + _t17 * r3, xp),
+    )
+
+
 def _losses_A_to_B_c1_neg(
     *,
     eta_12: ArrayLike,
@@ -719,6 +847,64 @@ def B_to_A_c1_pos(
     _t0 = eta_25 * r5
     _t1 = r2 * r4
     return _array(-eta_21 * (r1 + r5) * (_t0 * eta_43 * r3 - _t1) / ((_t0 + eta_21 * r1) * (_t1 - r3 * r5)), xp)
+
+
+def _gradient_B_to_A_c1_pos(
+    *,
+    eta_21: ArrayLike,
+    eta_25: ArrayLike,
+    eta_43: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (3)'s efficiency in eta_12, eta_21, eta_25, eta_34, eta_43, eta_52, r1, r2, r3,
+    r4, r5.
+    """
+    xp = _namespace(eta_21, eta_25, eta_43, r1, r2, r3, r4, r5)
+    eta_21 = _array(eta_21, xp)
+    eta_25 = _array(eta_25, xp)
+    eta_43 = _array(eta_43, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    r4 = _array(r4, xp)
+    r5 = _array(r5, xp)
+    _t0 = r1 + r5
+    _t1 = eta_21 * r1
+    _t2 = eta_25 * r5
+    _t3 = _t1 + _t2
+    _t4 = _t3 ** (-1.0)
+    _t5 = r2 * r4
+    _t6 = r3 * r5
+    _t7 = _t5 - _t6
+    _t8 = _t7 ** (-1.0)
+    _t9 = _t2 * r3
+    _t10 = -_t5 + _t9 * eta_43
+    _t11 = _t10 * _t4 * _t8
+    _t12 = _t3 ** (-2.0)
+    _t13 = _t0 * _t8
+    _t14 = _t10 * _t12 * _t13
+    _t15 = _t4 * eta_21
+    _t16 = _t13 * _t15
+    _t17 = _t16 * eta_43
+    _t18 = _t11 * eta_21
+    _t19 = _t0 * _t10 * _t15 / _t7 ** 2
+    return (
+        _array(0, xp),
+        _array(-_t0 * _t11 + _t1 * _t14, xp),
+        _array(_t0 * _t10 * _t12 * _t8 * eta_21 * r5 - _t17 * _t6, xp),
+        _array(0, xp),
+        _array(-_t16 * _t9, xp),
+        _array(0, xp),
+        _array(_t14 * eta_21 ** 2 - _t18, xp),
+        _array(_t16 * r4 + _t19 * r4, xp),
+        _array(-_t17 * _t2 - _t19 * r5, xp),
+        _array(_t16 * r2 + _t19 * r2, xp),
+        _array(_t0 * _t10 * _t12 * _t8 * eta_21 * eta_25 - _t17 * eta_25 * r3 - _t18 - _t19 * r3, xp),
+    )
 
 
 def _losses_B_to_A_c1_pos(
@@ -810,6 +996,67 @@ def B_to_A_c1_neg(
     return _array(_t2 * _t3, xp)
 
 
+def _gradient_B_to_A_c1_neg(
+    *,
+    eta_21: ArrayLike,
+    eta_34: ArrayLike,
+    eta_52: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (4)'s efficiency in eta_12, eta_21, eta_25, eta_34, eta_43, eta_52, r1, r2, r3,
+    r4, r5.
+    """
+    xp = _namespace(eta_21, eta_34, eta_52, r1, r2, r3, r4, r5)
+    eta_21 = _array(eta_21, xp)
+    eta_34 = _array(eta_34, xp)
+    eta_52 = _array(eta_52, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    r4 = _array(r4, xp)
+    r5 = _array(r5, xp)
+    _t0 = eta_34 ** (-1.0)
+    _t1 = r1 + r5
+    _t2 = eta_21 * eta_52
+    _t3 = _t2 * r1
+    _t4 = _t3 + r5
+    _t5 = _t4 ** (-1.0)
+    _t6 = r2 * r4
+    _t7 = -r3 * r5
+    _t8 = _t6 + _t7
+    _t9 = _t8 ** (-1.0)
+    _t10 = _t6 * eta_34 * eta_52 + _t7
+    _t11 = _t0 * _t10
+    _t12 = _t11 * _t9
+    _t13 = _t1 / _t4 ** 2
+    _t14 = _t12 * _t13
+    _t15 = _t1 * _t5 * _t9
+    _t16 = _t15 * _t2
+    _t17 = _t15 * eta_21
+    _t18 = _t14 * eta_21 ** 2
+    _t19 = -_t0 * _t10 * _t5 * _t9 * eta_21
+    _t20 = _t8 ** (-2.0)
+    _t21 = _t1 * _t11 * _t20 * _t5 * eta_21
+    _t22 = _t0 * _t17
+    return (
+        _array(0, xp),
+        _array(_t0 * _t1 * _t10 * _t5 * _t9 - _t14 * _t3, xp),
+        _array(0, xp),
+        _array(_t0 * _t16 * _t6 - _t10 * _t17 / eta_34 ** 2, xp),
+        _array(0, xp),
+        _array(_t1 * _t5 * _t9 * eta_21 * r2 * r4 - _t18 * r1, xp),
+        _array(-_t18 * eta_52 - _t19, xp),
+        _array(_t16 * r4 - _t21 * r4, xp),
+        _array(_t0 * _t1 * _t10 * _t20 * _t5 * eta_21 * r5 - _t22 * r5, xp),
+        _array(_t16 * r2 - _t21 * r2, xp),
+        _array(_t0 * _t1 * _t10 * _t20 * _t5 * eta_21 * r3 - _t12 * _t13 * eta_21 - _t19 - _t22 * r3, xp),
+    )
+
+
 def _losses_B_to_A_c1_neg(
     *,
     eta_21: ArrayLike,
@@ -894,6 +1141,12 @@ _LOSSES: Final[_Table] = {
     'A_to_B_c1_neg': (_losses_A_to_B_c1_neg, ('eta_12', 'eta_25', 'eta_43', 'r1', 'r2', 'r3', 'r4', 'r5')),
     'B_to_A_c1_pos': (_losses_B_to_A_c1_pos, ('eta_21', 'eta_25', 'eta_43', 'r1', 'r2', 'r3', 'r4', 'r5')),
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_21', 'eta_34', 'eta_52', 'r1', 'r2', 'r3', 'r4', 'r5')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B_c1_pos': (_gradient_A_to_B_c1_pos, ('eta_12', 'eta_34', 'eta_52', 'r1', 'r2', 'r3', 'r4', 'r5')),
+    'A_to_B_c1_neg': (_gradient_A_to_B_c1_neg, ('eta_12', 'eta_25', 'eta_43', 'r1', 'r2', 'r3', 'r4', 'r5')),
+    'B_to_A_c1_pos': (_gradient_B_to_A_c1_pos, ('eta_21', 'eta_25', 'eta_43', 'r1', 'r2', 'r3', 'r4', 'r5')),
+    'B_to_A_c1_neg': (_gradient_B_to_A_c1_neg, ('eta_21', 'eta_34', 'eta_52', 'r1', 'r2', 'r3', 'r4', 'r5')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r1', 'r2', 'r3', 'r4', 'r5'))}
 _FORCES: Final[_Table] = {
@@ -1161,25 +1414,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -1295,6 +1561,43 @@ def losses(
         'r5': _array(r5, xp),
     }
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_12: ArrayLike,
+    eta_21: ArrayLike,
+    eta_25: ArrayLike,
+    eta_34: ArrayLike,
+    eta_43: ArrayLike,
+    eta_52: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike,
+    r5: ArrayLike,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_12, eta_21, eta_25, eta_34, eta_43, eta_52, r1, r2, r3, r4, r5)
+    values: dict[str, Array] = {
+        'eta_12': _array(eta_12, xp),
+        'eta_21': _array(eta_21, xp),
+        'eta_25': _array(eta_25, xp),
+        'eta_34': _array(eta_34, xp),
+        'eta_43': _array(eta_43, xp),
+        'eta_52': _array(eta_52, xp),
+        'r1': _array(r1, xp),
+        'r2': _array(r2, xp),
+        'r3': _array(r3, xp),
+        'r4': _array(r4, xp),
+        'r5': _array(r5, xp),
+    }
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

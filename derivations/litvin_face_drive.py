@@ -304,6 +304,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('G1', 'G2')
+SENSITIVE: Final[tuple[str, ...]] = ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'N1',
@@ -468,6 +469,39 @@ def A_to_B_c1_pos(
     return _array((N2 * N4 - _t0) / (N2 * N4 * eta_1 * eta_2 - _t0), xp)
 
 
+def _gradient_A_to_B_c1_pos(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in N1, N2, N3, N4, eta_1, eta_2."""
+    xp = _namespace(N1, N2, N3, N4, eta_1, eta_2)
+    N1 = _array(N1, xp)
+    N2 = _array(N2, xp)
+    N3 = _array(N3, xp)
+    N4 = _array(N4, xp)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    _t0 = N1 * N3
+    _t1 = N2 * N4 * eta_1 * eta_2 - _t0
+    _t2 = _t1 ** (-1.0)
+    _t3 = (N2 * N4 - _t0) / _t1 ** 2
+    _t4 = _t3 * eta_1 * eta_2
+    _t5 = N2 * N4 * _t3
+    return (
+        _array(-N3 * _t2 + N3 * _t3, xp),
+        _array(N4 * _t2 - N4 * _t4, xp),
+        _array(-N1 * _t2 + N1 * _t3, xp),
+        _array(N2 * _t2 - N2 * _t4, xp),
+        _array(-_t5 * eta_2, xp),
+        _array(-_t5 * eta_1, xp),
+    )
+
+
 def _losses_A_to_B_c1_pos(
     *,
     N1: ArrayLike,
@@ -534,6 +568,45 @@ def A_to_B_c1_neg(
     _t1 = N1 * N3
     _t2 = eta_1 * eta_2
     return _array(_t2 * (_t0 + _t1) / (_t0 + _t1 * _t2), xp)
+
+
+def _gradient_A_to_B_c1_neg(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in N1, N2, N3, N4, eta_1, eta_2."""
+    xp = _namespace(N1, N2, N3, N4, eta_1, eta_2)
+    N1 = _array(N1, xp)
+    N2 = _array(N2, xp)
+    N3 = _array(N3, xp)
+    N4 = _array(N4, xp)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    _t0 = -N2 * N4
+    _t1 = N1 * N3
+    _t2 = eta_1 * eta_2
+    _t3 = _t0 + _t1 * _t2
+    _t4 = _t3 ** (-1.0)
+    _t5 = eta_1 ** 2
+    _t6 = _t0 + _t1
+    _t7 = _t6 / _t3 ** 2
+    _t8 = _t7 * eta_2 ** 2
+    _t9 = _t5 * _t8
+    _t10 = _t2 * _t4
+    _t11 = _t2 * _t7
+    return (
+        _array(N3 * _t4 * eta_1 * eta_2 - N3 * _t9, xp),
+        _array(-N4 * _t10 + N4 * _t11, xp),
+        _array(N1 * _t4 * eta_1 * eta_2 - N1 * _t9, xp),
+        _array(-N2 * _t10 + N2 * _t11, xp),
+        _array(-_t1 * _t8 * eta_1 + _t4 * _t6 * eta_2, xp),
+        _array(-_t1 * _t5 * _t7 * eta_2 + _t4 * _t6 * eta_1, xp),
+    )
 
 
 def _losses_A_to_B_c1_neg(
@@ -603,6 +676,45 @@ def B_to_A_c1_pos(
     return _array((_t0 * eta_1 * eta_2 + _t1) / (eta_1 * eta_2 * (_t0 + _t1)), xp)
 
 
+def _gradient_B_to_A_c1_pos(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (3)'s efficiency in N1, N2, N3, N4, eta_1, eta_2."""
+    xp = _namespace(N1, N2, N3, N4, eta_1, eta_2)
+    N1 = _array(N1, xp)
+    N2 = _array(N2, xp)
+    N3 = _array(N3, xp)
+    N4 = _array(N4, xp)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    _t0 = N1 * N3
+    _t1 = -N2 * N4
+    _t2 = _t0 + _t1
+    _t3 = _t2 ** (-1.0)
+    _t4 = eta_1 ** (-1.0)
+    _t5 = eta_2 ** (-1.0)
+    _t6 = _t0 * eta_1 * eta_2 + _t1
+    _t7 = _t2 ** (-2.0)
+    _t8 = _t4 * _t5 * _t6 * _t7
+    _t9 = _t3 * _t4
+    _t10 = _t5 * _t9
+    _t11 = _t3 * _t5
+    return (
+        _array(N3 * _t3 - N3 * _t8, xp),
+        _array(-N4 * _t10 + N4 * _t4 * _t5 * _t6 * _t7, xp),
+        _array(N1 * _t3 - N1 * _t8, xp),
+        _array(-N2 * _t10 + N2 * _t4 * _t5 * _t6 * _t7, xp),
+        _array(_t0 * _t9 - _t11 * _t6 / eta_1 ** 2, xp),
+        _array(_t0 * _t11 - _t6 * _t9 / eta_2 ** 2, xp),
+    )
+
+
 def _losses_B_to_A_c1_pos(
     *,
     N1: ArrayLike,
@@ -658,6 +770,43 @@ def B_to_A_c1_neg(
     _t0 = N1 * N3
     _t1 = N2 * N4
     return _array((_t0 - _t1 * eta_1 * eta_2) / (_t0 - _t1), xp)
+
+
+def _gradient_B_to_A_c1_neg(
+    *,
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (4)'s efficiency in N1, N2, N3, N4, eta_1, eta_2."""
+    xp = _namespace(N1, N2, N3, N4, eta_1, eta_2)
+    N1 = _array(N1, xp)
+    N2 = _array(N2, xp)
+    N3 = _array(N3, xp)
+    N4 = _array(N4, xp)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    _t0 = N1 * N3
+    _t1 = N2 * N4
+    _t2 = _t0 - _t1
+    _t3 = _t2 ** (-1.0)
+    _t4 = _t2 ** (-2.0)
+    _t5 = eta_1 * eta_2
+    _t6 = _t0 - _t1 * _t5
+    _t7 = _t4 * _t6
+    _t8 = _t3 * _t5
+    _t9 = _t1 * _t3
+    return (
+        _array(N3 * _t3 - N3 * _t7, xp),
+        _array(N4 * _t4 * _t6 - N4 * _t8, xp),
+        _array(N1 * _t3 - N1 * _t7, xp),
+        _array(N2 * _t4 * _t6 - N2 * _t8, xp),
+        _array(-_t9 * eta_2, xp),
+        _array(-_t9 * eta_1, xp),
+    )
 
 
 def _losses_B_to_A_c1_neg(
@@ -718,6 +867,12 @@ _LOSSES: Final[_Table] = {
     'A_to_B_c1_neg': (_losses_A_to_B_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
     'B_to_A_c1_pos': (_losses_B_to_A_c1_pos, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B_c1_pos': (_gradient_A_to_B_c1_pos, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+    'A_to_B_c1_neg': (_gradient_A_to_B_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+    'B_to_A_c1_pos': (_gradient_B_to_A_c1_pos, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
+    'B_to_A_c1_neg': (_gradient_B_to_A_c1_neg, ('N1', 'N2', 'N3', 'N4', 'eta_1', 'eta_2')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('N1', 'N2', 'N3', 'N4'))}
 _FORCES: Final[_Table] = {
@@ -985,25 +1140,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -1099,6 +1267,33 @@ def losses(
         'eta_2': _array(eta_2, xp),
     }
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    N1: ArrayLike,
+    N2: ArrayLike,
+    N3: ArrayLike,
+    N4: ArrayLike,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(N1, N2, N3, N4, eta_1, eta_2)
+    values: dict[str, Array] = {
+        'N1': _array(N1, xp),
+        'N2': _array(N2, xp),
+        'N3': _array(N3, xp),
+        'N4': _array(N4, xp),
+        'eta_1': _array(eta_1, xp),
+        'eta_2': _array(eta_2, xp),
+    }
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

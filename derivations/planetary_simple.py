@@ -304,6 +304,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('I', 'O')
 LOSSY: Final[tuple[str, ...]] = ('G',)
+SENSITIVE: Final[tuple[str, ...]] = ('eta_G', 'rA', 'rB')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_G',
@@ -378,6 +379,21 @@ def I_to_O(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> Array:
     return _array(eta_G * (rA + rB) / (eta_G * rB + rA), xp)
 
 
+def _gradient_I_to_O(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_G, rA, rB."""
+    xp = _namespace(eta_G, rA, rB)
+    eta_G = _array(eta_G, xp)
+    rA = _array(rA, xp)
+    rB = _array(rB, xp)
+    _t0 = rA + rB
+    _t1 = eta_G * rB
+    _t2 = _t1 + rA
+    _t3 = _t2 ** (-1.0)
+    _t4 = _t0 / _t2 ** 2
+    _t5 = -_t3 * eta_G
+    return (_array(_t0 * _t3 - _t1 * _t4, xp), _array(-_t4 * eta_G - _t5, xp), _array(-_t4 * eta_G ** 2 - _t5, xp))
+
+
 def _losses_I_to_O(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> Array:
     """Losses over the input power in variant (1)."""
     xp = _namespace(eta_G, rA, rB)
@@ -394,6 +410,18 @@ def O_to_I(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> Array:
     rA = _array(rA, xp)
     rB = _array(rB, xp)
     return _array((eta_G * rA + rB) / (rA + rB), xp)
+
+
+def _gradient_O_to_I(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_G, rA, rB."""
+    xp = _namespace(eta_G, rA, rB)
+    eta_G = _array(eta_G, xp)
+    rA = _array(rA, xp)
+    rB = _array(rB, xp)
+    _t0 = rA + rB
+    _t1 = _t0 ** (-1.0)
+    _t2 = -(eta_G * rA + rB) / _t0 ** 2
+    return (_array(_t1 * rA, xp), _array(_t1 * eta_G + _t2, xp), _array(_t1 + _t2, xp))
 
 
 def _losses_O_to_I(*, eta_G: ArrayLike, rA: ArrayLike, rB: ArrayLike) -> Array:
@@ -420,6 +448,10 @@ _EFFICIENCY: Final[_Table] = {'I_to_O': (I_to_O, ('eta_G', 'rA', 'rB')), 'O_to_I
 _LOSSES: Final[_Table] = {
     'I_to_O': (_losses_I_to_O, ('eta_G', 'rA', 'rB')),
     'O_to_I': (_losses_O_to_I, ('eta_G', 'rA', 'rB')),
+}
+_GRADIENT: Final[_Table] = {
+    'I_to_O': (_gradient_I_to_O, ('eta_G', 'rA', 'rB')),
+    'O_to_I': (_gradient_O_to_I, ('eta_G', 'rA', 'rB')),
 }
 _RATIO: Final[_Table] = {'I': (_ratio_formula, ('rA', 'rB'))}
 _FORCES: Final[_Table] = {}
@@ -682,25 +714,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -769,6 +814,23 @@ def losses(
     xp = _namespace(eta_G, rA, rB)
     values: dict[str, Array] = {'eta_G': _array(eta_G, xp), 'rA': _array(rA, xp), 'rB': _array(rB, xp)}
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'I',
+    errors: str = 'warn',
+    eta_G: ArrayLike,
+    rA: ArrayLike,
+    rB: ArrayLike,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_G, rA, rB)
+    values: dict[str, Array] = {'eta_G': _array(eta_G, xp), 'rA': _array(rA, xp), 'rB': _array(rB, xp)}
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -308,6 +308,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'G')
 LOSSY: Final[tuple[str, ...]] = ('G', 'C')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_P', 'eta_R', 'mu')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_P',
@@ -389,6 +390,14 @@ def A_to_G(*, eta_P: ArrayLike, mu: ArrayLike) -> Array:
     return _array(-1.064177772475912 * eta_P * (0.3420201433256687 * mu - 0.9396926207859084), xp)
 
 
+def _gradient_A_to_G(*, eta_P: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_P, eta_R, mu."""
+    xp = _namespace(eta_P, mu)
+    eta_P = _array(eta_P, xp)
+    mu = _array(mu, xp)
+    return (_array(1.0 - 0.36397023426620234 * mu, xp), _array(0, xp), _array(-0.36397023426620234 * eta_P, xp))
+
+
 def _losses_A_to_G(*, eta_P: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
     """Losses over the input power in variant (1)."""
     xp = _namespace(eta_P, mu)
@@ -403,6 +412,15 @@ def G_to_A(*, eta_R: ArrayLike, mu: ArrayLike) -> Array:
     eta_R = _array(eta_R, xp)
     mu = _array(mu, xp)
     return _array(0.9396926207859084 * eta_R / (0.3420201433256687 * mu + 0.9396926207859084), xp)
+
+
+def _gradient_G_to_A(*, eta_R: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_P, eta_R, mu."""
+    xp = _namespace(eta_R, mu)
+    eta_R = _array(eta_R, xp)
+    mu = _array(mu, xp)
+    _t0 = 0.3420201433256687 * mu + 0.9396926207859084
+    return (_array(0, xp), _array(0.9396926207859084 / _t0, xp), _array(-0.3213938048432697 * eta_R / _t0 ** 2, xp))
 
 
 def _losses_G_to_A(*, eta_R: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
@@ -427,6 +445,10 @@ _RELATIONS: Final[_Table] = {}
 _DEPENDENT: Final[_Table] = {}
 _EFFICIENCY: Final[_Table] = {'A_to_G': (A_to_G, ('eta_P', 'mu')), 'G_to_A': (G_to_A, ('eta_R', 'mu'))}
 _LOSSES: Final[_Table] = {'A_to_G': (_losses_A_to_G, ('eta_P', 'mu')), 'G_to_A': (_losses_G_to_A, ('eta_R', 'mu'))}
+_GRADIENT: Final[_Table] = {
+    'A_to_G': (_gradient_A_to_G, ('eta_P', 'mu')),
+    'G_to_A': (_gradient_G_to_A, ('eta_R', 'mu')),
+}
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r',))}
 _FORCES: Final[_Table] = {}
 
@@ -688,25 +710,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -790,6 +825,27 @@ def losses(
     values: dict[str, Array] = {'eta_P': _array(eta_P, xp), 'eta_R': _array(eta_R, xp), 'mu': _array(mu, xp)}
     values.update(_given({'r': r}, xp))
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_P: ArrayLike,
+    eta_R: ArrayLike,
+    mu: ArrayLike,
+    c_alpha_C: ArrayLike | None = None,
+    r: ArrayLike | None = None,
+    s_alpha_C: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_P, eta_R, mu, c_alpha_C, r, s_alpha_C)
+    values: dict[str, Array] = {'eta_P': _array(eta_P, xp), 'eta_R': _array(eta_R, xp), 'mu': _array(mu, xp)}
+    values.update(_given({'r': r}, xp))
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -310,6 +310,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'D')
 LOSSY: Final[tuple[str, ...]] = ('G1', 'G2', 'G3', 'G4')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_1',
@@ -497,6 +498,53 @@ def A_to_D_c1_neg(
     return _array(eta_4 * (rr + rs2) * (_t0 * eta_1 * eta_2 + rs1) / ((_t0 + eta_4 * rr) * (rs1 + rs2)), xp)
 
 
+def _gradient_A_to_D_c1_neg(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2."""
+    xp = _namespace(eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    eta_3 = _array(eta_3, xp)
+    eta_4 = _array(eta_4, xp)
+    rr = _array(rr, xp)
+    rs1 = _array(rs1, xp)
+    rs2 = _array(rs2, xp)
+    _t0 = eta_3 * rs2
+    _t1 = _t0 * eta_2
+    _t2 = rs1 + rs2
+    _t3 = _t2 ** (-1.0)
+    _t4 = rr + rs2
+    _t5 = _t3 * _t4
+    _t6 = eta_4 * rr
+    _t7 = _t0 + _t6
+    _t8 = _t7 ** (-1.0)
+    _t9 = _t8 * eta_4
+    _t10 = _t5 * _t9
+    _t11 = _t10 * eta_1
+    _t12 = _t11 * eta_2
+    _t13 = _t1 * eta_1 + rs1
+    _t14 = _t13 * _t5 / _t7 ** 2
+    _t15 = _t14 * eta_4
+    _t16 = -_t13 * _t4 * _t9 / _t2 ** 2
+    return (
+        _array(_t1 * _t10, xp),
+        _array(_t0 * _t11, xp),
+        _array(_t12 * rs2 - _t15 * rs2, xp),
+        _array(_t13 * _t3 * _t4 * _t8 - _t14 * _t6, xp),
+        _array(_t13 * _t3 * _t8 * eta_4 - _t14 * eta_4 ** 2, xp),
+        _array(_t10 + _t16, xp),
+        _array(_t12 * eta_3 + _t13 * _t3 * _t8 * eta_4 - _t15 * eta_3 + _t16, xp),
+    )
+
+
 def _losses_A_to_D_c1_neg(
     *,
     eta_1: ArrayLike,
@@ -573,6 +621,54 @@ def D_to_A_c1_neg(
     return _array(_t0 * (rs1 + rs2) * (eta_3 * rr + eta_4 * rs2) / ((rr + rs2) * (_t0 * eta_3 * rs1 + rs2)), xp)
 
 
+def _gradient_D_to_A_c1_neg(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (4)'s efficiency in eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2."""
+    xp = _namespace(eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    eta_3 = _array(eta_3, xp)
+    eta_4 = _array(eta_4, xp)
+    rr = _array(rr, xp)
+    rs1 = _array(rs1, xp)
+    rs2 = _array(rs2, xp)
+    _t0 = rs1 + rs2
+    _t1 = rr + rs2
+    _t2 = _t1 ** (-1.0)
+    _t3 = eta_3 * rr + eta_4 * rs2
+    _t4 = eta_1 * eta_2
+    _t5 = _t4 * eta_3
+    _t6 = _t5 * rs1 + rs2
+    _t7 = _t6 ** (-1.0)
+    _t8 = eta_2 ** 2
+    _t9 = _t0 * _t2
+    _t10 = _t9 / _t6 ** 2
+    _t11 = _t10 * _t3 * eta_3 * rs1
+    _t12 = eta_1 ** 2
+    _t13 = _t10 * _t12 * _t3 * _t8
+    _t14 = _t7 * _t9
+    _t15 = _t14 * _t4
+    _t16 = _t3 * _t4
+    _t17 = -_t0 * _t16 * _t7 / _t1 ** 2
+    return (
+        _array(_t0 * _t2 * _t3 * _t7 * eta_2 - _t11 * _t8 * eta_1, xp),
+        _array(_t0 * _t2 * _t3 * _t7 * eta_1 - _t11 * _t12 * eta_2, xp),
+        _array(_t0 * _t2 * _t7 * eta_1 * eta_2 * rr - _t13 * rs1, xp),
+        _array(_t15 * rs2, xp),
+        _array(_t14 * _t5 + _t17, xp),
+        _array(-_t13 * eta_3 + _t2 * _t3 * _t7 * eta_1 * eta_2, xp),
+        _array(-_t10 * _t16 + _t15 * eta_4 + _t17 + _t2 * _t3 * _t4 * _t7, xp),
+    )
+
+
 def _losses_D_to_A_c1_neg(
     *,
     eta_1: ArrayLike,
@@ -646,6 +742,54 @@ def A_to_D_c1_neg_reversed_G3(
     rs2 = _array(rs2, xp)
     _t0 = eta_4 * (rr + rs2) / ((rs1 + rs2) * (eta_3 * eta_4 * rr + rs2))
     return _array(_t0 * (eta_1 * eta_2 * rs2 + eta_3 * rs1), xp)
+
+
+def _gradient_A_to_D_c1_neg_reversed_G3(
+    *,
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (5)'s efficiency in eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2."""
+    xp = _namespace(eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2)
+    eta_1 = _array(eta_1, xp)
+    eta_2 = _array(eta_2, xp)
+    eta_3 = _array(eta_3, xp)
+    eta_4 = _array(eta_4, xp)
+    rr = _array(rr, xp)
+    rs1 = _array(rs1, xp)
+    rs2 = _array(rs2, xp)
+    _t0 = eta_2 * rs2
+    _t1 = eta_3 * eta_4
+    _t2 = _t1 * rr
+    _t3 = _t2 + rs2
+    _t4 = _t3 ** (-1.0)
+    _t5 = rs1 + rs2
+    _t6 = _t5 ** (-1.0)
+    _t7 = rr + rs2
+    _t8 = _t6 * _t7
+    _t9 = _t4 * _t8
+    _t10 = _t9 * eta_4
+    _t11 = _t10 * eta_1
+    _t12 = _t0 * eta_1 + eta_3 * rs1
+    _t13 = _t8 / _t3 ** 2
+    _t14 = _t12 * _t13
+    _t15 = _t14 * eta_4 ** 2
+    _t16 = _t12 * eta_4
+    _t17 = -_t16 * _t4 * _t7 / _t5 ** 2
+    return (
+        _array(_t0 * _t10, xp),
+        _array(_t11 * rs2, xp),
+        _array(-_t15 * rr + _t4 * _t6 * _t7 * eta_4 * rs1, xp),
+        _array(_t12 * _t4 * _t6 * _t7 - _t14 * _t2, xp),
+        _array(_t12 * _t4 * _t6 * eta_4 - _t15 * eta_3, xp),
+        _array(_t1 * _t9 + _t17, xp),
+        _array(_t11 * eta_2 + _t12 * _t4 * _t6 * eta_4 - _t13 * _t16 + _t17, xp),
+    )
 
 
 def _losses_A_to_D_c1_neg_reversed_G3(
@@ -730,6 +874,14 @@ _LOSSES: Final[_Table] = {
     'D_to_A_c1_neg': (_losses_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
     'A_to_D_c1_neg_reversed_G3': (
         _losses_A_to_D_c1_neg_reversed_G3,
+        ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2'),
+    ),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_D_c1_neg': (_gradient_A_to_D_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
+    'D_to_A_c1_neg': (_gradient_D_to_A_c1_neg, ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2')),
+    'A_to_D_c1_neg_reversed_G3': (
+        _gradient_A_to_D_c1_neg_reversed_G3,
         ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rr', 'rs1', 'rs2'),
     ),
 }
@@ -998,25 +1150,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -1122,6 +1287,38 @@ def losses(
     }
     _consistent({'rpl': rpl}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_1: ArrayLike,
+    eta_2: ArrayLike,
+    eta_3: ArrayLike,
+    eta_4: ArrayLike,
+    rr: ArrayLike,
+    rs1: ArrayLike,
+    rs2: ArrayLike,
+    rpl: ArrayLike | None = None,
+    rps: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_1, eta_2, eta_3, eta_4, rr, rs1, rs2, rpl, rps)
+    values: dict[str, Array] = {
+        'eta_1': _array(eta_1, xp),
+        'eta_2': _array(eta_2, xp),
+        'eta_3': _array(eta_3, xp),
+        'eta_4': _array(eta_4, xp),
+        'rr': _array(rr, xp),
+        'rs1': _array(rs1, xp),
+        'rs2': _array(rs2, xp),
+    }
+    _consistent({'rpl': rpl}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

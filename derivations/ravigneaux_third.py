@@ -310,6 +310,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'D')
 LOSSY: Final[tuple[str, ...]] = ('G1', 'G2', 'G3', 'G4')
+SENSITIVE: Final[tuple[str, ...]] = ()
 PARAMETERS: Final[tuple[Parameter, ...]] = ()
 IGNORED: Final[tuple[str, ...]] = ('eta_1', 'eta_2', 'eta_3', 'eta_4', 'rps', 'rr', 'rs1', 'rs2')
 RELATIONS: Final[tuple[str, ...]] = ()
@@ -411,6 +412,7 @@ _RELATIONS: Final[_Table] = {}
 _DEPENDENT: Final[_Table] = {'rpl': (_dependent_rpl, ('rr', 'rs2'))}
 _EFFICIENCY: Final[_Table] = {'A_to_D': (A_to_D, ()), 'D_to_A': (D_to_A, ())}
 _LOSSES: Final[_Table] = {'A_to_D': (_losses_A_to_D, ()), 'D_to_A': (_losses_D_to_A, ())}
+_GRADIENT: Final[_Table] = {}
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ())}
 _FORCES: Final[_Table] = {}
 
@@ -672,25 +674,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -778,6 +793,29 @@ def losses(
     xp = _namespace(eta_1, eta_2, eta_3, eta_4, rpl, rps, rr, rs1, rs2)
     values: dict[str, Array] = {}
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_1: ArrayLike | None = None,
+    eta_2: ArrayLike | None = None,
+    eta_3: ArrayLike | None = None,
+    eta_4: ArrayLike | None = None,
+    rpl: ArrayLike | None = None,
+    rps: ArrayLike | None = None,
+    rr: ArrayLike | None = None,
+    rs1: ArrayLike | None = None,
+    rs2: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_1, eta_2, eta_3, eta_4, rpl, rps, rr, rs1, rs2)
+    values: dict[str, Array] = {}
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -306,6 +306,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C', 'D', 'E', 'F')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'eta_E', 'eta_F', 'rr1', 'rr2', 'rs')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_C',
@@ -460,6 +461,45 @@ def A_to_B(
     return _array((_t0 * eta_E * eta_F * rr2 + _t0 * rs + rr1) / (rr1 + rr2 + rs), xp)
 
 
+def _gradient_A_to_B(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    eta_F: ArrayLike,
+    rr1: ArrayLike,
+    rr2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_C, eta_D, eta_E, eta_F, rr1, rr2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, eta_F, rr1, rr2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    eta_F = _array(eta_F, xp)
+    rr1 = _array(rr1, xp)
+    rr2 = _array(rr2, xp)
+    rs = _array(rs, xp)
+    _t0 = rr1 + rr2 + rs
+    _t1 = _t0 ** (-1.0)
+    _t2 = eta_D * rs
+    _t3 = eta_F * rr2
+    _t4 = _t3 * eta_E
+    _t5 = eta_C * eta_D
+    _t6 = _t1 * _t5
+    _t7 = _t6 * eta_E
+    _t8 = -(_t2 * eta_C + _t4 * _t5 + rr1) / _t0 ** 2
+    return (
+        _array(_t1 * (_t2 + _t4 * eta_D), xp),
+        _array(_t1 * (_t4 * eta_C + eta_C * rs), xp),
+        _array(_t3 * _t6, xp),
+        _array(_t7 * rr2, xp),
+        _array(_t1 + _t8, xp),
+        _array(_t7 * eta_F + _t8, xp),
+        _array(_t6 + _t8, xp),
+    )
+
+
 def _losses_A_to_B(
     *,
     eta_C: ArrayLike,
@@ -515,6 +555,52 @@ def B_to_A(
     _t0 = eta_E * eta_F
     _t1 = _t0 * eta_C * eta_D
     return _array(_t1 * (rr1 + rr2 + rs) / (_t0 * rs + _t1 * rr1 + rr2), xp)
+
+
+def _gradient_B_to_A(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    eta_F: ArrayLike,
+    rr1: ArrayLike,
+    rr2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_C, eta_D, eta_E, eta_F, rr1, rr2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, eta_F, rr1, rr2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    eta_F = _array(eta_F, xp)
+    rr1 = _array(rr1, xp)
+    rr2 = _array(rr2, xp)
+    rs = _array(rs, xp)
+    _t0 = rr1 + rr2 + rs
+    _t1 = eta_F * rs
+    _t2 = eta_D * eta_F
+    _t3 = eta_C * rr1
+    _t4 = _t2 * _t3
+    _t5 = _t1 * eta_E + _t4 * eta_E + rr2
+    _t6 = _t5 ** (-1.0)
+    _t7 = _t0 / _t5 ** 2
+    _t8 = _t7 * eta_E ** 2 * eta_F ** 2
+    _t9 = _t8 * eta_D ** 2
+    _t10 = eta_C ** 2
+    _t11 = _t8 * eta_D
+    _t12 = _t0 * _t6 * eta_C
+    _t13 = _t2 * _t7 * eta_C * eta_E
+    _t14 = eta_D * eta_E
+    _t15 = -_t6 * eta_C * eta_D * eta_E * eta_F
+    return (
+        _array(_t0 * _t6 * eta_D * eta_E * eta_F - _t3 * _t9, xp),
+        _array(_t0 * _t6 * eta_C * eta_E * eta_F - _t10 * _t11 * rr1, xp),
+        _array(_t12 * _t2 + _t13 * (-_t1 - _t4), xp),
+        _array(_t12 * _t14 + _t13 * (-_t14 * _t3 - eta_E * rs), xp),
+        _array(-_t10 * _t9 - _t15, xp),
+        _array(-_t13 - _t15, xp),
+        _array(-_t11 * eta_C - _t15, xp),
+    )
 
 
 def _losses_B_to_A(
@@ -587,6 +673,10 @@ _EFFICIENCY: Final[_Table] = {
 _LOSSES: Final[_Table] = {
     'A_to_B': (_losses_A_to_B, ('eta_C', 'eta_D', 'eta_E', 'eta_F', 'rr1', 'rr2', 'rs')),
     'B_to_A': (_losses_B_to_A, ('eta_C', 'eta_D', 'eta_E', 'eta_F', 'rr1', 'rr2', 'rs')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B': (_gradient_A_to_B, ('eta_C', 'eta_D', 'eta_E', 'eta_F', 'rr1', 'rr2', 'rs')),
+    'B_to_A': (_gradient_B_to_A, ('eta_C', 'eta_D', 'eta_E', 'eta_F', 'rr1', 'rr2', 'rs')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rr1', 'rr2', 'rs'))}
 _FORCES: Final[_Table] = {}
@@ -849,25 +939,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -973,6 +1076,38 @@ def losses(
     }
     _consistent({'rp1': rp1, 'rp2': rp2}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    eta_F: ArrayLike,
+    rr1: ArrayLike,
+    rr2: ArrayLike,
+    rs: ArrayLike,
+    rp1: ArrayLike | None = None,
+    rp2: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_C, eta_D, eta_E, eta_F, rr1, rr2, rs, rp1, rp2)
+    values: dict[str, Array] = {
+        'eta_C': _array(eta_C, xp),
+        'eta_D': _array(eta_D, xp),
+        'eta_E': _array(eta_E, xp),
+        'eta_F': _array(eta_F, xp),
+        'rr1': _array(rr1, xp),
+        'rr2': _array(rr2, xp),
+        'rs': _array(rs, xp),
+    }
+    _consistent({'rp1': rp1, 'rp2': rp2}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -309,6 +309,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('G', 'B')
 LOSSY: Final[tuple[str, ...]] = ('E', 'F')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_E', 'eta_F')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_E',
@@ -392,6 +393,14 @@ def G_to_B(*, eta_E: ArrayLike, eta_F: ArrayLike) -> Array:
     return _array(eta_E * eta_F, xp)
 
 
+def _gradient_G_to_B(*, eta_E: ArrayLike, eta_F: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_E, eta_F."""
+    xp = _namespace(eta_E, eta_F)
+    eta_E = _array(eta_E, xp)
+    eta_F = _array(eta_F, xp)
+    return (_array(eta_F, xp), _array(eta_E, xp))
+
+
 def _losses_G_to_B(*, eta_E: ArrayLike, eta_F: ArrayLike) -> tuple[Array, ...]:
     """Losses over the input power in variant (1)."""
     xp = _namespace(eta_E, eta_F)
@@ -408,6 +417,14 @@ def B_to_G(*, eta_E: ArrayLike, eta_F: ArrayLike) -> Array:
     eta_E = _array(eta_E, xp)
     eta_F = _array(eta_F, xp)
     return _array(eta_E * eta_F, xp)
+
+
+def _gradient_B_to_G(*, eta_E: ArrayLike, eta_F: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_E, eta_F."""
+    xp = _namespace(eta_E, eta_F)
+    eta_E = _array(eta_E, xp)
+    eta_F = _array(eta_F, xp)
+    return (_array(eta_F, xp), _array(eta_E, xp))
 
 
 def _losses_B_to_G(*, eta_E: ArrayLike, eta_F: ArrayLike) -> tuple[Array, ...]:
@@ -441,6 +458,10 @@ _EFFICIENCY: Final[_Table] = {'G_to_B': (G_to_B, ('eta_E', 'eta_F')), 'B_to_G': 
 _LOSSES: Final[_Table] = {
     'G_to_B': (_losses_G_to_B, ('eta_E', 'eta_F')),
     'B_to_G': (_losses_B_to_G, ('eta_E', 'eta_F')),
+}
+_GRADIENT: Final[_Table] = {
+    'G_to_B': (_gradient_G_to_B, ('eta_E', 'eta_F')),
+    'B_to_G': (_gradient_B_to_G, ('eta_E', 'eta_F')),
 }
 _RATIO: Final[_Table] = {'G': (_ratio_formula, ('rr2', 'rs'))}
 _FORCES: Final[_Table] = {}
@@ -703,25 +724,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -811,6 +845,30 @@ def losses(
     values: dict[str, Array] = {'eta_E': _array(eta_E, xp), 'eta_F': _array(eta_F, xp)}
     values.update(_given({'rr2': rr2, 'rs': rs}, xp))
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'G',
+    errors: str = 'warn',
+    eta_E: ArrayLike,
+    eta_F: ArrayLike,
+    eta_C: ArrayLike | None = None,
+    eta_D: ArrayLike | None = None,
+    rp1: ArrayLike | None = None,
+    rp2: ArrayLike | None = None,
+    rr1: ArrayLike | None = None,
+    rr2: ArrayLike | None = None,
+    rs: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_E, eta_F, eta_C, eta_D, rp1, rp2, rr1, rr2, rs)
+    values: dict[str, Array] = {'eta_E': _array(eta_E, xp), 'eta_F': _array(eta_F, xp)}
+    values.update(_given({'rr2': rr2, 'rs': rs}, xp))
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -309,6 +309,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C', 'D', 'E', 'F')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'rr1', 'rs')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_C',
@@ -413,6 +414,21 @@ def A_to_B(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike)
     return _array((eta_C * eta_D * rs + rr1) / (rr1 + rs), xp)
 
 
+def _gradient_A_to_B(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_C, eta_D, rr1, rs."""
+    xp = _namespace(eta_C, eta_D, rr1, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    rr1 = _array(rr1, xp)
+    rs = _array(rs, xp)
+    _t0 = rr1 + rs
+    _t1 = _t0 ** (-1.0)
+    _t2 = _t1 * rs
+    _t3 = eta_C * eta_D
+    _t4 = -(_t3 * rs + rr1) / _t0 ** 2
+    return (_array(_t2 * eta_D, xp), _array(_t2 * eta_C, xp), _array(_t1 + _t4, xp), _array(_t1 * _t3 + _t4, xp))
+
+
 def _losses_A_to_B(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike) -> tuple[Array, ...]:
     """Losses over the input power in variant (1)."""
     xp = _namespace(eta_C, eta_D, rr1, rs)
@@ -436,6 +452,29 @@ def B_to_A(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike)
     rs = _array(rs, xp)
     _t0 = eta_C * eta_D
     return _array(_t0 * (rr1 + rs) / (_t0 * rr1 + rs), xp)
+
+
+def _gradient_B_to_A(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_C, eta_D, rr1, rs."""
+    xp = _namespace(eta_C, eta_D, rr1, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    rr1 = _array(rr1, xp)
+    rs = _array(rs, xp)
+    _t0 = rr1 + rs
+    _t1 = eta_C * eta_D
+    _t2 = _t1 * rr1 + rs
+    _t3 = _t2 ** (-1.0)
+    _t4 = _t0 / _t2 ** 2
+    _t5 = _t4 * eta_D ** 2
+    _t6 = eta_C ** 2
+    _t7 = -_t3 * eta_C * eta_D
+    return (
+        _array(_t0 * _t3 * eta_D - _t5 * eta_C * rr1, xp),
+        _array(_t0 * _t3 * eta_C - _t4 * _t6 * eta_D * rr1, xp),
+        _array(-_t5 * _t6 - _t7, xp),
+        _array(-_t1 * _t4 - _t7, xp),
+    )
 
 
 def _losses_B_to_A(*, eta_C: ArrayLike, eta_D: ArrayLike, rr1: ArrayLike, rs: ArrayLike) -> tuple[Array, ...]:
@@ -483,6 +522,10 @@ _EFFICIENCY: Final[_Table] = {
 _LOSSES: Final[_Table] = {
     'A_to_B': (_losses_A_to_B, ('eta_C', 'eta_D', 'rr1', 'rs')),
     'B_to_A': (_losses_B_to_A, ('eta_C', 'eta_D', 'rr1', 'rs')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B': (_gradient_A_to_B, ('eta_C', 'eta_D', 'rr1', 'rs')),
+    'B_to_A': (_gradient_B_to_A, ('eta_C', 'eta_D', 'rr1', 'rs')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rr1', 'rs'))}
 _FORCES: Final[_Table] = {}
@@ -745,25 +788,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -863,6 +919,35 @@ def losses(
     }
     _consistent({'rp1': rp1}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    rr1: ArrayLike,
+    rs: ArrayLike,
+    eta_E: ArrayLike | None = None,
+    eta_F: ArrayLike | None = None,
+    rp1: ArrayLike | None = None,
+    rp2: ArrayLike | None = None,
+    rr2: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_C, eta_D, rr1, rs, eta_E, eta_F, rp1, rp2, rr2)
+    values: dict[str, Array] = {
+        'eta_C': _array(eta_C, xp),
+        'eta_D': _array(eta_D, xp),
+        'rr1': _array(rr1, xp),
+        'rs': _array(rs, xp),
+    }
+    _consistent({'rp1': rp1}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

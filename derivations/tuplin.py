@@ -306,6 +306,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C', 'D')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'r1', 'r2', 'r3')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_C',
@@ -474,6 +475,43 @@ def A_to_B_c1_pos(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: Arra
     return _array(_t0 * (r1 - r2) * (r1 - r3) / (_t0 * r2 * r3 + r1 ** 2 - r1 * r2 - r1 * r3), xp)
 
 
+def _gradient_A_to_B_c1_pos(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_C, eta_D, r1, r2, r3."""
+    xp = _namespace(eta_C, eta_D, r1, r2, r3)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    _t0 = r1 - r2
+    _t1 = r1 - r3
+    _t2 = eta_C * eta_D
+    _t3 = _t2 * r3
+    _t4 = _t3 * r2 + r1 ** 2 - r1 * r2 - r1 * r3
+    _t5 = _t4 ** (-1.0)
+    _t6 = _t0 / _t4 ** 2
+    _t7 = _t1 * _t6 * r2 * r3
+    _t8 = _t0 * _t2 * _t5
+    _t9 = _t1 * _t2
+    _t10 = _t5 * _t9
+    _t11 = _t6 * _t9
+    _t12 = -r1
+    return (
+        _array(_t0 * _t1 * _t5 * eta_D - _t7 * eta_C * eta_D ** 2, xp),
+        _array(_t0 * _t1 * _t5 * eta_C - _t7 * eta_C ** 2 * eta_D, xp),
+        _array(_t10 + _t11 * (-2 * r1 + r2 + r3) + _t8, xp),
+        _array(-_t10 + _t11 * (-_t12 - _t3), xp),
+        _array(_t11 * (-_t12 - _t2 * r2) - _t8, xp),
+    )
+
+
 def _losses_A_to_B_c1_pos(
     *,
     eta_C: ArrayLike,
@@ -525,6 +563,47 @@ def A_to_B_c1_neg(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: Arra
     _t0 = eta_C * eta_D
     _t1 = _t0 * r1
     return _array((r1 - r2) * (r1 - r3) / (_t0 * r1 ** 2 - _t1 * r2 - _t1 * r3 + r2 * r3), xp)
+
+
+def _gradient_A_to_B_c1_neg(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_C, eta_D, r1, r2, r3."""
+    xp = _namespace(eta_C, eta_D, r1, r2, r3)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    _t0 = eta_D * r1
+    _t1 = _t0 * r2
+    _t2 = _t0 * r3
+    _t3 = r1 ** 2
+    _t4 = _t3 * eta_D
+    _t5 = -r2
+    _t6 = _t5 + r1
+    _t7 = -r3
+    _t8 = _t7 + r1
+    _t9 = -_t1 * eta_C - _t2 * eta_C + _t4 * eta_C + r2 * r3
+    _t10 = _t6 * _t8 / _t9 ** 2
+    _t11 = eta_C * r1
+    _t12 = _t9 ** (-1.0)
+    _t13 = _t12 * _t6
+    _t14 = _t12 * _t8
+    _t15 = eta_C * eta_D
+    _t16 = _t0 * eta_C
+    return (
+        _array(_t10 * (_t1 + _t2 - _t4), xp),
+        _array(_t10 * (_t11 * r2 + _t11 * r3 - _t3 * eta_C), xp),
+        _array(_t10 * (_t15 * r2 + _t15 * r3 - 2 * _t16) + _t13 + _t14, xp),
+        _array(_t10 * (_t16 + _t7) - _t14, xp),
+        _array(_t10 * (_t16 + _t5) - _t13, xp),
+    )
 
 
 def _losses_A_to_B_c1_neg(
@@ -584,6 +663,47 @@ def B_to_A_c1_pos(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: Arra
     return _array((_t0 * r1 ** 2 - _t1 * r2 - _t1 * r3 + r2 * r3) / ((r1 - r2) * (r1 - r3)), xp)
 
 
+def _gradient_B_to_A_c1_pos(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (3)'s efficiency in eta_C, eta_D, r1, r2, r3."""
+    xp = _namespace(eta_C, eta_D, r1, r2, r3)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    _t0 = eta_D * r1
+    _t1 = _t0 * r2
+    _t2 = _t0 * r3
+    _t3 = r1 ** 2
+    _t4 = -r2
+    _t5 = _t4 + r1
+    _t6 = _t5 ** (-1.0)
+    _t7 = -r3
+    _t8 = _t7 + r1
+    _t9 = _t8 ** (-1.0)
+    _t10 = _t6 * _t9
+    _t11 = eta_C * r1
+    _t12 = eta_C * eta_D
+    _t13 = -_t1 * eta_C - _t2 * eta_C + _t3 * eta_C * eta_D + r2 * r3
+    _t14 = _t13 * _t9 / _t5 ** 2
+    _t15 = _t13 * _t6 / _t8 ** 2
+    _t16 = _t0 * eta_C
+    return (
+        _array(_t10 * (-_t1 - _t2 + _t3 * eta_D), xp),
+        _array(_t10 * (-_t11 * r2 - _t11 * r3 + _t3 * eta_C), xp),
+        _array(-_t14 - _t15 + _t6 * _t9 * (-_t12 * r2 - _t12 * r3 + 2 * eta_C * eta_D * r1), xp),
+        _array(_t10 * (-_t16 - _t7) + _t14, xp),
+        _array(_t10 * (-_t16 - _t4) + _t15, xp),
+    )
+
+
 def _losses_B_to_A_c1_pos(
     *,
     eta_C: ArrayLike,
@@ -624,6 +744,48 @@ def B_to_A_c1_neg(*, eta_C: ArrayLike, eta_D: ArrayLike, r1: ArrayLike, r2: Arra
     r3 = _array(r3, xp)
     _t0 = 1 / (eta_C * eta_D * (r1 - r2) * (r1 - r3))
     return _array(_t0 * (eta_C * eta_D * r2 * r3 + r1 ** 2 - r1 * r2 - r1 * r3), xp)
+
+
+def _gradient_B_to_A_c1_neg(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (4)'s efficiency in eta_C, eta_D, r1, r2, r3."""
+    xp = _namespace(eta_C, eta_D, r1, r2, r3)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    r1 = _array(r1, xp)
+    r2 = _array(r2, xp)
+    r3 = _array(r3, xp)
+    _t0 = eta_C ** (-1.0)
+    _t1 = r1 - r2
+    _t2 = _t1 ** (-1.0)
+    _t3 = r1 - r3
+    _t4 = _t3 ** (-1.0)
+    _t5 = _t2 * _t4
+    _t6 = _t0 * _t5
+    _t7 = r2 * r3
+    _t8 = eta_C * eta_D
+    _t9 = _t8 * r3
+    _t10 = _t9 * r2 + r1 ** 2 - r1 * r2 - r1 * r3
+    _t11 = eta_D ** (-1.0)
+    _t12 = _t11 * _t5
+    _t13 = _t0 * _t10 * _t11
+    _t14 = _t13 * _t4 / _t1 ** 2
+    _t15 = _t13 * _t2 / _t3 ** 2
+    _t16 = -r1
+    _t17 = _t11 * _t6
+    return (
+        _array(-_t10 * _t12 / eta_C ** 2 + _t6 * _t7, xp),
+        _array(-_t10 * _t6 / eta_D ** 2 + _t12 * _t7, xp),
+        _array(_t0 * _t11 * _t2 * _t4 * (2 * r1 - r2 - r3) - _t14 - _t15, xp),
+        _array(_t14 + _t17 * (_t16 + _t9), xp),
+        _array(_t15 + _t17 * (_t16 + _t8 * r2), xp),
+    )
 
 
 def _losses_B_to_A_c1_neg(
@@ -689,6 +851,12 @@ _LOSSES: Final[_Table] = {
     'A_to_B_c1_neg': (_losses_A_to_B_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
     'B_to_A_c1_pos': (_losses_B_to_A_c1_pos, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B_c1_pos': (_gradient_A_to_B_c1_pos, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+    'A_to_B_c1_neg': (_gradient_A_to_B_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+    'B_to_A_c1_pos': (_gradient_B_to_A_c1_pos, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
+    'B_to_A_c1_neg': (_gradient_B_to_A_c1_neg, ('eta_C', 'eta_D', 'r1', 'r2', 'r3')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r1', 'r2', 'r3'))}
 _FORCES: Final[_Table] = {
@@ -956,25 +1124,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -1070,6 +1251,33 @@ def losses(
     }
     _consistent({'r4': r4}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    r1: ArrayLike,
+    r2: ArrayLike,
+    r3: ArrayLike,
+    r4: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_C, eta_D, r1, r2, r3, r4)
+    values: dict[str, Array] = {
+        'eta_C': _array(eta_C, xp),
+        'eta_D': _array(eta_D, xp),
+        'r1': _array(r1, xp),
+        'r2': _array(r2, xp),
+        'r3': _array(r3, xp),
+    }
+    _consistent({'r4': r4}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -307,6 +307,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('C', 'D', 'E')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_C',
@@ -523,6 +524,53 @@ def A_to_B_c1_pos(
     return _array(_t4 * _t5, xp)
 
 
+def _gradient_A_to_B_c1_pos(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_C, eta_D, eta_E, rp1, rp2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, rp1, rp2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    rp1 = _array(rp1, xp)
+    rp2 = _array(rp2, xp)
+    rs = _array(rs, xp)
+    _t0 = 2 * rp1
+    _t1 = 2 * rs
+    _t2 = _t0 * eta_E
+    _t3 = _t2 * rp2
+    _t4 = eta_D * rs
+    _t5 = 2 * rp1 ** 2
+    _t6 = _t5 * eta_E
+    _t7 = -_t1 * rp2 + _t2 * _t4 + _t3 * eta_D + _t6 * eta_D - 4 * rp1 * rp2
+    _t8 = _t7 ** (-1.0)
+    _t9 = rp1 - rp2
+    _t10 = _t9 * eta_E
+    _t11 = _t10 * _t8
+    _t12 = _t0 * eta_C + _t4 + eta_C * rs
+    _t13 = _t10 * _t12 / _t7 ** 2
+    _t14 = _t12 * _t8
+    _t15 = _t14 * eta_E
+    _t16 = 4 * rp1
+    _t17 = eta_D * eta_E
+    _t18 = _t2 * eta_D
+    _t19 = _t13 * (-_t16 * _t17 - 2 * _t17 * rp2 - 2 * _t4 * eta_E + 4 * rp2) + _t15
+    return (
+        _array(_t11 * (_t0 + rs), xp),
+        _array(_t11 * rs + _t13 * (-_t2 * rs - _t3 - _t6), xp),
+        _array(_t13 * (-_t0 * _t4 - _t0 * eta_D * rp2 - _t5 * eta_D) + _t14 * _t9, xp),
+        _array(2 * _t11 * eta_C + _t19, xp),
+        _array(_t13 * (_t1 + _t16 - _t18) - _t15, xp),
+        _array(_t11 * (eta_C + eta_D) + _t13 * (-_t18 + 2 * rp2), xp),
+    )
+
+
 def _losses_A_to_B_c1_pos(
     *,
     eta_C: ArrayLike,
@@ -602,6 +650,51 @@ def A_to_B_c1_neg(
     return _array(_t3, xp)
 
 
+def _gradient_A_to_B_c1_neg(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_C, eta_D, eta_E, rp1, rp2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, rp1, rp2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    rp1 = _array(rp1, xp)
+    rp2 = _array(rp2, xp)
+    rs = _array(rs, xp)
+    _t0 = eta_D * rs
+    _t1 = 2 * rp1
+    _t2 = 2 * rp2
+    _t3 = 2 * rs
+    _t17 = -_t2 * rp1 - _t3 * rp1 + 2 * eta_D * eta_E * rp2 * rs - 2 * rp1 ** 2
+    _t4 = _t17 + 4 * eta_D * eta_E * rp1 * rp2
+    _t5 = _t4 ** (-1.0)
+    _t6 = rp1 - rp2
+    _t7 = _t5 * _t6
+    _t8 = 4 * rp1
+    _t9 = _t8 * rp2
+    _t10 = _t2 * eta_E
+    _t11 = eta_C * eta_D
+    _t12 = _t0 * eta_C + _t1 * _t11 + rs
+    _t13 = _t12 * _t6 / _t4 ** 2
+    _t14 = _t12 * _t5
+    _t15 = eta_D * eta_E
+    _t16 = -2 * rp1
+    return (
+        _array(-_t7 * (_t0 + _t1 * eta_D), xp),
+        _array(-_t13 * (-_t10 * rs - _t9 * eta_E) - _t7 * (_t1 * eta_C + eta_C * rs), xp),
+        _array(-_t13 * (-_t0 * _t2 - _t9 * eta_D), xp),
+        _array(-2 * _t11 * _t7 - _t13 * (-4 * _t15 * rp2 + _t2 + _t3 + _t8) - _t14, xp),
+        _array(-_t13 * (-2 * _t0 * eta_E - _t15 * _t8 - _t16) + _t14, xp),
+        _array(-_t13 * (-_t10 * eta_D - _t16) - _t7 * (_t11 + 1), xp),
+    )
+
+
 def _losses_A_to_B_c1_neg(
     *,
     eta_C: ArrayLike,
@@ -679,6 +772,54 @@ def B_to_A_c1_pos(
     return _array(_t0 * _t1, xp)
 
 
+def _gradient_B_to_A_c1_pos(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (3)'s efficiency in eta_C, eta_D, eta_E, rp1, rp2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, rp1, rp2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    rp1 = _array(rp1, xp)
+    rp2 = _array(rp2, xp)
+    rs = _array(rs, xp)
+    _t0 = rp1 - rp2
+    _t1 = _t0 ** (-1.0)
+    _t2 = rp1 * rp2
+    _t3 = -_t2 + 2 * eta_D * eta_E * rp1 * rp2 + eta_D * eta_E * rp2 * rs - rp1 ** 2 - rp1 * rs
+    _t4 = _t1 * _t3
+    _t5 = eta_C * rs
+    _t6 = eta_D * rs
+    _t7 = 2 * rp1
+    _t8 = _t7 * eta_D
+    _t9 = _t5 + _t6 + _t8
+    _t10 = 2 / _t9
+    _t11 = _t4 / _t9 ** 2
+    _t12 = 2 * _t11
+    _t13 = eta_E * rp2
+    _t14 = 2 * _t2
+    _t15 = _t10 * eta_C
+    _t16 = _t1 * _t15
+    _t17 = _t7 + rs
+    _t18 = _t12 * eta_C
+    _t19 = _t15 * _t3 / _t0 ** 2
+    _t20 = -rp1
+    return (
+        _array(-_t10 * _t4 + _t12 * _t5, xp),
+        _array(-_t16 * (_t13 * rs + _t14 * eta_E) + _t17 * _t18, xp),
+        _array(-_t16 * (_t14 * eta_D + _t6 * rp2), xp),
+        _array(4 * _t11 * eta_C * eta_D - _t16 * (-_t17 + 2 * eta_D * eta_E * rp2 - rp2) + _t19, xp),
+        _array(-_t16 * (_t20 + _t6 * eta_E + _t8 * eta_E) - _t19, xp),
+        _array(-_t16 * (_t13 * eta_D + _t20) - _t18 * (-eta_C - eta_D), xp),
+    )
+
+
 def _losses_B_to_A_c1_pos(
     *,
     eta_C: ArrayLike,
@@ -754,6 +895,59 @@ def B_to_A_c1_neg(
     _t2 = eta_D * eta_E
     _t3 = 2 * eta_C / (eta_E * (rp1 - rp2) * (_t0 + _t1 * eta_C + rs))
     return _array(_t3 * (-_t0 * rp2 + _t1 * eta_E * rp1 + _t2 * rp1 ** 2 + _t2 * rp1 * rp2 - rp2 * rs), xp)
+
+
+def _gradient_B_to_A_c1_neg(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (4)'s efficiency in eta_C, eta_D, eta_E, rp1, rp2, rs."""
+    xp = _namespace(eta_C, eta_D, eta_E, rp1, rp2, rs)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    eta_E = _array(eta_E, xp)
+    rp1 = _array(rp1, xp)
+    rp2 = _array(rp2, xp)
+    rs = _array(rs, xp)
+    _t0 = eta_E ** (-1.0)
+    _t1 = -rp2
+    _t2 = _t1 + rp1
+    _t3 = _t2 ** (-1.0)
+    _t4 = eta_C * eta_D
+    _t5 = _t4 * rs
+    _t6 = 2 * rp1
+    _t7 = _t6 + rs
+    _t8 = _t5 + _t7
+    _t9 = _t8 ** (-1.0)
+    _t10 = eta_E * rp1
+    _t11 = _t10 * rp2
+    _t12 = _t10 * rs
+    _t13 = rp1 ** 2
+    _t14 = _t13 * eta_E
+    _t15 = _t11 * eta_D + _t12 * eta_D + _t14 * eta_D - _t6 * rp2 - rp2 * rs
+    _t16 = _t0 * _t15 * _t3 / _t8 ** 2
+    _t17 = 2 * _t16
+    _t18 = eta_D * rp1
+    _t19 = 2 * _t9
+    _t20 = _t19 * _t3 * eta_C
+    _t21 = _t0 * _t20
+    _t22 = eta_D * eta_E
+    _t23 = _t0 * _t15 * _t19 * eta_C / _t2 ** 2
+    _t24 = _t16 * eta_C
+    _t25 = -_t23 - 4 * _t24
+    return (
+        _array(2 * _t0 * _t15 * _t3 * _t9 - _t17 * _t5, xp),
+        _array(2 * _t0 * _t3 * _t9 * eta_C * (_t11 + _t12 + _t14) - _t17 * eta_C ** 2 * rs, xp),
+        _array(-_t15 * _t20 / eta_E ** 2 + _t21 * (_t13 * eta_D + _t18 * rp2 + _t18 * rs), xp),
+        _array(2 * _t0 * _t3 * _t9 * eta_C * (_t22 * _t6 + _t22 * rp2 + _t22 * rs - 2 * rp2) + _t25, xp),
+        _array(_t21 * (-_t7 + eta_D * eta_E * rp1) + _t23, xp),
+        _array(_t21 * (_t1 + _t10 * eta_D) + 2 * _t24 * (-_t4 - 1), xp),
+    )
 
 
 def _losses_B_to_A_c1_neg(
@@ -854,6 +1048,12 @@ _LOSSES: Final[_Table] = {
     'A_to_B_c1_neg': (_losses_A_to_B_c1_neg, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
     'B_to_A_c1_pos': (_losses_B_to_A_c1_pos, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
     'B_to_A_c1_neg': (_losses_B_to_A_c1_neg, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B_c1_pos': (_gradient_A_to_B_c1_pos, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'A_to_B_c1_neg': (_gradient_A_to_B_c1_neg, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'B_to_A_c1_pos': (_gradient_B_to_A_c1_pos, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
+    'B_to_A_c1_neg': (_gradient_B_to_A_c1_neg, ('eta_C', 'eta_D', 'eta_E', 'rp1', 'rp2', 'rs')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('rp1', 'rp2', 'rs'))}
 _FORCES: Final[_Table] = {
@@ -1121,25 +1321,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -1241,6 +1454,36 @@ def losses(
     }
     _consistent({'rr1': rr1, 'rr2': rr2}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    eta_E: ArrayLike,
+    rp1: ArrayLike,
+    rp2: ArrayLike,
+    rs: ArrayLike,
+    rr1: ArrayLike | None = None,
+    rr2: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_C, eta_D, eta_E, rp1, rp2, rs, rr1, rr2)
+    values: dict[str, Array] = {
+        'eta_C': _array(eta_C, xp),
+        'eta_D': _array(eta_D, xp),
+        'eta_E': _array(eta_E, xp),
+        'rp1': _array(rp1, xp),
+        'rp2': _array(rp2, xp),
+        'rs': _array(rs, xp),
+    }
+    _consistent({'rr1': rr1, 'rr2': rr2}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -308,6 +308,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'B')
 LOSSY: Final[tuple[str, ...]] = ('W',)
+SENSITIVE: Final[tuple[str, ...]] = ('alpha_n', 'gamma', 'mu')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'alpha_n',
@@ -396,6 +397,34 @@ def A_to_B(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> Array:
     return _array(_t0 * (-_t0 * mu + _t1 * _t2) / (_t1 * (_t0 * _t2 + _t1 * mu)), xp)
 
 
+def _gradient_A_to_B(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in alpha_n, gamma, mu."""
+    xp = _namespace(alpha_n, gamma, mu)
+    alpha_n = _array(alpha_n, xp)
+    gamma = _array(gamma, xp)
+    mu = _array(mu, xp)
+    _t0 = xp.sin(alpha_n)
+    _t1 = xp.sin(gamma)
+    _t2 = xp.cos(gamma)
+    _t3 = xp.cos(alpha_n)
+    _t4 = _t1 * _t3 + _t2 * mu
+    _t5 = _t4 ** (-1.0)
+    _t6 = _t1 * _t5
+    _t7 = _t2 ** (-1.0)
+    _t8 = _t1 ** 2
+    _t9 = _t7 * _t8
+    _t10 = _t1 * mu - _t2 * _t3
+    _t11 = -_t10
+    _t12 = _t11 / _t4 ** 2
+    _t13 = _t11 * _t5
+    _t14 = _t1 * _t12
+    return (
+        _array(_t0 * _t12 * _t9 - _t0 * _t6, xp),
+        _array(_t10 * _t14 * _t7 + _t13 + _t13 * _t8 / _t2 ** 2 - _t4 * _t6 * _t7, xp),
+        _array(-_t14 - _t5 * _t9, xp),
+    )
+
+
 def _losses_A_to_B(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> Array:
     """Losses over the input power in variant (1)."""
     xp = _namespace(alpha_n, gamma, mu)
@@ -417,6 +446,32 @@ def B_to_A(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> Array:
     _t1 = xp.sin(gamma)
     _t2 = xp.cos(alpha_n)
     return _array(-_t0 * (_t0 * mu - _t1 * _t2) / (_t1 * (_t0 * _t2 + _t1 * mu)), xp)
+
+
+def _gradient_B_to_A(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in alpha_n, gamma, mu."""
+    xp = _namespace(alpha_n, gamma, mu)
+    alpha_n = _array(alpha_n, xp)
+    gamma = _array(gamma, xp)
+    mu = _array(mu, xp)
+    _t0 = xp.sin(alpha_n)
+    _t1 = xp.cos(gamma)
+    _t2 = xp.sin(gamma)
+    _t3 = xp.cos(alpha_n)
+    _t4 = _t1 * _t3 + _t2 * mu
+    _t5 = _t4 ** (-1.0)
+    _t6 = _t1 * _t5
+    _t7 = _t1 * mu - _t2 * _t3
+    _t8 = _t4 ** (-2.0)
+    _t9 = _t7 * _t8
+    _t10 = _t1 ** 2
+    _t11 = _t2 ** (-1.0)
+    _t12 = _t10 * _t11
+    return (
+        _array(-_t0 * _t12 * _t9 - _t0 * _t6, xp),
+        _array(_t1 * _t11 * _t7 * _t9 + _t10 * _t5 * _t7 / _t2 ** 2 + _t11 * _t4 * _t6 + _t5 * _t7, xp),
+        _array(_t1 * _t7 * _t8 - _t12 * _t5, xp),
+    )
 
 
 def _losses_B_to_A(*, alpha_n: ArrayLike, gamma: ArrayLike, mu: ArrayLike) -> Array:
@@ -447,6 +502,10 @@ _EFFICIENCY: Final[_Table] = {
 _LOSSES: Final[_Table] = {
     'A_to_B': (_losses_A_to_B, ('alpha_n', 'gamma', 'mu')),
     'B_to_A': (_losses_B_to_A, ('alpha_n', 'gamma', 'mu')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_B': (_gradient_A_to_B, ('alpha_n', 'gamma', 'mu')),
+    'B_to_A': (_gradient_B_to_A, ('alpha_n', 'gamma', 'mu')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('gamma',))}
 _FORCES: Final[_Table] = {}
@@ -709,25 +768,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -811,6 +883,27 @@ def losses(
     xp = _namespace(alpha_n, gamma, mu, cos_alpha_n, cos_gamma, sin_alpha_n, sin_gamma)
     values: dict[str, Array] = {'alpha_n': _array(alpha_n, xp), 'gamma': _array(gamma, xp), 'mu': _array(mu, xp)}
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    alpha_n: ArrayLike,
+    gamma: ArrayLike,
+    mu: ArrayLike,
+    cos_alpha_n: ArrayLike | None = None,
+    cos_gamma: ArrayLike | None = None,
+    sin_alpha_n: ArrayLike | None = None,
+    sin_gamma: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(alpha_n, gamma, mu, cos_alpha_n, cos_gamma, sin_alpha_n, sin_gamma)
+    values: dict[str, Array] = {'alpha_n': _array(alpha_n, xp), 'gamma': _array(gamma, xp), 'mu': _array(mu, xp)}
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

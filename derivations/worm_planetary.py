@@ -310,6 +310,7 @@ class DesignError(ValueError):
 
 PORTS: Final[tuple[str, str]] = ('A', 'F')
 LOSSY: Final[tuple[str, ...]] = ('W', 'C', 'D')
+SENSITIVE: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'mu', 'r_p', 'r_s')
 PARAMETERS: Final[tuple[Parameter, ...]] = (
     {
         'name': 'eta_C',
@@ -424,6 +425,43 @@ def A_to_F(*, eta_C: ArrayLike, eta_D: ArrayLike, mu: ArrayLike, r_p: ArrayLike,
     return _array(_t1 * _t2, xp)
 
 
+def _gradient_A_to_F(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    mu: ArrayLike,
+    r_p: ArrayLike,
+    r_s: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (1)'s efficiency in eta_C, eta_D, mu, r_p, r_s."""
+    xp = _namespace(eta_C, eta_D, mu, r_p, r_s)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    mu = _array(mu, xp)
+    r_p = _array(r_p, xp)
+    r_s = _array(r_s, xp)
+    _t0 = eta_D * r_s
+    _t1 = 2 * r_p
+    _t2 = 0.9961946980917455 * mu + 0.08189960831908934
+    _t3 = _t2 ** (-1.0)
+    _t4 = r_p + r_s
+    _t5 = _t4 ** (-1.0)
+    _t6 = _t3 * _t5
+    _t7 = 0.9361168066628591 - 0.08715574274765818 * mu
+    _t8 = 0.043744331762962003 * _t7
+    _t9 = _t6 * _t8
+    _t10 = eta_C * eta_D
+    _t11 = _t0 * eta_C + _t1 * _t10 + r_s
+    _t12 = -_t11 * _t3 * _t8 / _t4 ** 2
+    return (
+        _array(_t9 * (_t0 + _t1 * eta_D), xp),
+        _array(_t9 * (_t1 * eta_C + eta_C * r_s), xp),
+        _array(-0.0038125697258009285 * _t11 * _t6 - 0.04357787137382909 * _t11 * _t5 * _t7 / _t2 ** 2, xp),
+        _array(0.08748866352592401 * _t10 * _t6 * _t7 + _t12, xp),
+        _array(_t12 + _t9 * (_t10 + 1), xp),
+    )
+
+
 def _losses_A_to_F(
     *,
     eta_C: ArrayLike,
@@ -471,6 +509,48 @@ def F_to_A(*, eta_C: ArrayLike, eta_D: ArrayLike, mu: ArrayLike, r_p: ArrayLike,
     _t1 = -22.860104605522686 * _t0 / (0.08715574274765818 * mu + 0.9361168066628591)
     _t2 = (0.9961946980917455 * mu - 0.08189960831908934) / (_t0 * r_s + 2 * r_p + r_s)
     return _array(_t1 * _t2 * (r_p + r_s), xp)
+
+
+def _gradient_F_to_A(
+    *,
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    mu: ArrayLike,
+    r_p: ArrayLike,
+    r_s: ArrayLike,
+) -> tuple[Array, ...]:
+    """Partial derivatives of variant (2)'s efficiency in eta_C, eta_D, mu, r_p, r_s."""
+    xp = _namespace(eta_C, eta_D, mu, r_p, r_s)
+    eta_C = _array(eta_C, xp)
+    eta_D = _array(eta_D, xp)
+    mu = _array(mu, xp)
+    r_p = _array(r_p, xp)
+    r_s = _array(r_s, xp)
+    _t0 = 0.08715574274765818 * mu + 0.9361168066628591
+    _t1 = _t0 ** (-1.0)
+    _t2 = eta_C * eta_D
+    _t3 = _t2 * r_s + 2 * r_p + r_s
+    _t4 = _t3 ** (-1.0)
+    _t5 = r_p + r_s
+    _t6 = _t1 * _t4 * _t5
+    _t7 = 0.9961946980917455 * mu - 0.08189960831908934
+    _t8 = 22.860104605522686 * _t7
+    _t9 = _t6 * _t8
+    _t10 = _t3 ** (-2.0)
+    _t11 = _t1 * _t8
+    _t12 = _t11 * _t5
+    _t13 = _t10 * _t12 * r_s
+    _t14 = _t11 * _t2 * _t4
+    _t15 = _t10 * _t2
+    _t16 = -22.773115005844392 * _t2 * _t6
+    _t17 = 1.992389396183491 * _t4 * _t5 * _t7 * eta_C * eta_D / _t0 ** 2
+    return (
+        _array(_t13 * eta_C * eta_D ** 2 - _t9 * eta_D, xp),
+        _array(_t13 * eta_C ** 2 * eta_D - _t9 * eta_C, xp),
+        _array(_t16 + _t17, xp),
+        _array(45.72020921104537 * _t1 * _t15 * _t5 * _t7 - _t14, xp),
+        _array(-_t12 * _t15 * (-_t2 - 1) - _t14, xp),
+    )
 
 
 def _losses_F_to_A(
@@ -522,6 +602,10 @@ _EFFICIENCY: Final[_Table] = {
 _LOSSES: Final[_Table] = {
     'A_to_F': (_losses_A_to_F, ('eta_C', 'eta_D', 'mu', 'r_p', 'r_s')),
     'F_to_A': (_losses_F_to_A, ('eta_C', 'eta_D', 'mu', 'r_p', 'r_s')),
+}
+_GRADIENT: Final[_Table] = {
+    'A_to_F': (_gradient_A_to_F, ('eta_C', 'eta_D', 'mu', 'r_p', 'r_s')),
+    'F_to_A': (_gradient_F_to_A, ('eta_C', 'eta_D', 'mu', 'r_p', 'r_s')),
 }
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ('r_p', 'r_s'))}
 _FORCES: Final[_Table] = {'A_to_F': (_forces_A_to_F, ('mu',))}
@@ -784,25 +868,38 @@ def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np)
 
 def _losses(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``losses`` returns: NaN wherever ``efficiency`` is."""
+    return dict(zip(LOSSY, _per_variant(input, errors, values, xp, _LOSSES, len(LOSSY)), strict=True))
+
+
+def _sensitivity(wrt: str, input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
+    """What ``sensitivity`` returns: the partial derivative in ``wrt`` of the variant that
+    holds (`_GRADIENT`), NaN wherever ``efficiency`` is."""
+    if wrt not in SENSITIVE:
+        raise ValueError(f"wrt must be one of {SENSITIVE}, got {wrt!r}")
+    return _per_variant(input, errors, values, xp, _GRADIENT, len(SENSITIVE))[SENSITIVE.index(wrt)]
+
+
+def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, table: _Table, width: int) -> list[Array]:
+    """The ``width`` results of ``table`` in the variant that holds, NaN wherever
+    ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
             numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
-            lost = _select_any(xp, VARIANTS, numbers, _LOSSES, len(LOSSY), values, dtype)
-        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=4))
+            found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
+        bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
         nan = xp.asarray(float("nan"), dtype=dtype, device=bad.device)
-        return {name: xp.where(bad, nan, part) for name, part in zip(LOSSY, lost, strict=True)}
+        return [xp.where(bad, nan, part) for part in found]
 
     def compute(part: dict[str, Array]) -> tuple[NDArray[Any], ...]:
         gathered: _Gathered = {}
         numbers = _variant_numbers(input, part, gathered)
         efficiency = _select(_own_where_none(input, part, numbers), part, _EFFICIENCY, 1, gathered)
-        losses = _select(numbers, part, _LOSSES, len(LOSSY), gathered)
-        return numbers, efficiency, losses, ~_admissible(part), _still(part)
+        return numbers, efficiency, _select(numbers, part, table, width, gathered), ~_admissible(part), _still(part)
 
     numbers, efficiency, parts, outside, still = _blockwise(values, compute)
-    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors))
-    return {name: np.where(bad, np.nan, part) for name, part in zip(LOSSY, parts, strict=True)}
+    bad = np.isnan(_screened(efficiency[0], numbers, outside, still, errors, depth=5))
+    return [np.where(bad, np.nan, part) for part in parts]
 
 
 def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
@@ -906,6 +1003,37 @@ def losses(
     }
     _consistent({'r_R': r_R}, values, xp)
     return _losses(input, errors, values, xp)
+
+
+def sensitivity(
+    *,
+    wrt: str,
+    input: str = 'A',
+    errors: str = 'warn',
+    eta_C: ArrayLike,
+    eta_D: ArrayLike,
+    mu: ArrayLike,
+    r_p: ArrayLike,
+    r_s: ArrayLike,
+    c_alpha_n_W: ArrayLike | None = None,
+    c_gamma_W: ArrayLike | None = None,
+    r_R: ArrayLike | None = None,
+    s_alpha_n_W: ArrayLike | None = None,
+    s_gamma_W: ArrayLike | None = None,
+) -> Array:
+    """Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact derivative of
+    the variant that holds, element by element; NaN where efficiency is.
+    """
+    xp = _namespace(eta_C, eta_D, mu, r_p, r_s, c_alpha_n_W, c_gamma_W, r_R, s_alpha_n_W, s_gamma_W)
+    values: dict[str, Array] = {
+        'eta_C': _array(eta_C, xp),
+        'eta_D': _array(eta_D, xp),
+        'mu': _array(mu, xp),
+        'r_p': _array(r_p, xp),
+        'r_s': _array(r_s, xp),
+    }
+    _consistent({'r_R': r_R}, values, xp)
+    return _sensitivity(wrt, input, errors, values, xp)
 
 
 def variant(

@@ -35,6 +35,7 @@ from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.report import summary_document, text_summary, train_document
+from davies_sym.emit.sensitivity import sensitivity_latex, sensitivity_text
 from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.errors import DaviesError, InputError, MissingValuesError, Problem
 from davies_sym.network.analysis import Analysis
@@ -234,6 +235,11 @@ def one_input_outputs(
         )
     if args.plot:
         return [(args.out, _plot(sets[0][1], args))]
+    if args.sensitivity is not None:
+        if args.eval is not None or args.python or args.emit or args.json:
+            raise InputError([Problem("--sensitivity", "alone, or with --latex and -o FILE")], train.path)
+        writer = sensitivity_latex if args.latex else sensitivity_text
+        return [(args.out, "".join(writer(vs, args.sensitivity) for _, vs in sets))]
     if args.emit:
         code = emit_code(sets[0][1], args.emit, args.state)
         module = [(args.python, python_module(sets[0][1], file_parameters(train)))] if args.python else []

@@ -114,6 +114,12 @@ def parser() -> argparse.ArgumentParser:
         "takes the values of the file's first check (expected:), NAME=VALUE after it changes one; "
         "with --json one JSON object",
     )
+    p.add_argument(
+        "--sensitivity",
+        metavar="NAME",
+        help="print (with --latex: a LaTeX document of) the partial derivative of every variant's efficiency "
+        "in the parameter NAME, from the exact closed form",
+    )
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
     p.add_argument(

@@ -59,7 +59,9 @@ from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own arguments: a train's names may not take them.
-_ENTRY_NAMES = frozenset({"input", "errors", "values", "xp", "efficiency", "losses", "speed_ratio", "variant"})
+_ENTRY_NAMES = frozenset(
+    {"input", "errors", "values", "xp", "wrt", "efficiency", "losses", "sensitivity", "speed_ratio", "variant"}
+)
 
 
 def _runtime() -> formula_code.Runtime:
@@ -90,6 +92,9 @@ def _entry_point(
     relations, the others accepted and ignored; returns ``returned``."""
     params = [ast.arg("input", name_node("str")), ast.arg("errors", name_node("str"))]
     defaults: list[ast.expr | None] = [ast.Constant(default_input), ast.Constant("warn")]
+    if any(isinstance(n, ast.Name) and n.id == "wrt" for n in ast.walk(returned)):
+        params.insert(0, ast.arg("wrt", name_node("str")))  # what the derivative is taken in
+        defaults.insert(0, None)
     params += [ast.arg(a, name_node("ArrayLike")) for a in required]
     defaults += [None] * len(required)
     maybe = ast.BinOp(name_node("ArrayLike"), ast.BitOr(), ast.Constant(None))
@@ -162,7 +167,11 @@ def _module_doc(variants: VariantSet, ignored: Sequence[str]) -> str:
 
 
 def _tables(
-    variants: VariantSet, lossy: Sequence[str], ignored: Sequence[str], relations: Sequence[sympy.Expr]
+    variants: VariantSet,
+    lossy: Sequence[str],
+    ignored: Sequence[str],
+    relations: Sequence[sympy.Expr],
+    sensitive: Sequence[str],
 ) -> list[ast.stmt]:
     """The public tables: ports, losses, parameters, relations, conditions, variants."""
     train = variants.train
@@ -195,6 +204,7 @@ def _tables(
     data: dict[str, object] = {
         "PORTS": (train.ports.input, train.ports.output),
         "LOSSY": tuple(lossy),
+        "SENSITIVE": tuple(sensitive),
         "PARAMETERS": parameters,
         "IGNORED": tuple(ignored),
         "RELATIONS": tuple(f"{sympy.sstr(r)} > 0" for r in relations),
@@ -217,6 +227,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         return substituted(restore(expr, radicals), train.definitions)
 
     symbols = [str(s) for s in sorted_symbols(parameters_of(variants.symbols, train.definitions))]
+    by_name = {str(s): s for s in parameters_of(variants.symbols, train.definitions)}
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
     for s in sorted({*symbols, *accepted, *dependent_of}):
         if not _usable(s) or s.startswith("_"):
@@ -229,6 +240,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         "_DEPENDENT": [],
         "_EFFICIENCY": [],
         "_LOSSES": [],
+        "_GRADIENT": [],
         "_RATIO": [],
         "_FORCES": [],
     }
@@ -269,7 +281,17 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     fractions_of = all_loss_fractions(variants)
     for v in variants.variants:
         doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
-        add("_EFFICIENCY", v.name, v.name, doc, [public(v.efficiency)])
+        eta = public(v.efficiency)
+        add("_EFFICIENCY", v.name, v.name, doc, [eta])
+        if symbols:  # the exact partial derivatives in SENSITIVE's order, sharing their subexpressions
+            add(
+                "_GRADIENT",
+                v.name,
+                f"_gradient_{v.name}",
+                f"Partial derivatives of variant ({v.number})'s efficiency in {', '.join(symbols)}.",
+                [sympy.diff(eta, by_name[n]) for n in symbols],
+                "tuple[Array, ...]" if len(symbols) > 1 else "Array",
+            )
         fractions = fractions_of[v.name]
         add(
             "_LOSSES",
@@ -334,6 +356,14 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
             call("_losses", *arrays),
         ),
         entry(
+            "sensitivity",
+            "Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact "
+            "derivative of the variant that holds, element by element; NaN where efficiency is.",
+            symbols,
+            "Array",
+            call("_sensitivity", name_node("wrt"), *arrays),
+        ),
+        entry(
             "variant",
             "Number of the variant that holds with `input` as the input port (VARIANTS), element by "
             "element: its turning conditions hold and its loaded forces have their signs; 0 where none does or "
@@ -359,7 +389,9 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     runtime = _runtime()
     items: list[tuple[int, str | ast.stmt]] = [(0, docstring(_module_doc(variants, ignored), "")), (1, runtime.imports)]
     items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
-    items += [(2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored, relations))]
+    items += [
+        (2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored, relations, symbols))
+    ]
     items += [(2, f) for f in functions]
     items += [(2 if k == 0 else 0, _constant(name, table(rows))) for k, (name, rows) in enumerate(tables.items())]
     items += [(2, text) for text in runtime.after]

@@ -57,10 +57,11 @@ NON_FINITE_NAMES = frozenset({"oo", "zoo", "nan", "inf"})
 FORMULA_MODULE_NAMES = frozenset(
     {
         *("Any", "Array", "ArrayLike", "Callable", "Final", "NDArray", "TypedDict", "annotations", "cast"),
-        *("CONDITIONS", "DEPENDENT", "EXCLUDED", "IGNORED", "INPUTS", "LOSSY", "OUTPUT", "PARAMETERS"),
+        *("CONDITIONS", "DEPENDENT", "EXCLUDED", "IGNORED", "INPUTS", "LOSSY", "OUTPUT", "PARAMETERS", "SENSITIVE"),
         *("PORTS", "REGIONS", "RELATIONS", "SPEEDS", "VARIANTS"),
         *("DesignError", "DesignWarning", "Parameter", "Region", "Variant"),
-        *("efficiency", "losses", "region", "speed_ratio", "speeds", "torques", "values", "variant", "xp"),
+        *("efficiency", "losses", "region", "sensitivity", "speed_ratio", "speeds", "torques", "values", "variant"),
+        *("wrt", "xp"),
     }
 )
 #: The operating point of the formulas: input torque and speed, and the load of a train

@@ -1,0 +1,110 @@
+"""Closed-form sensitivities: every catalog module's ``sensitivity(wrt=NAME)`` agrees with
+central finite differences of its own ``efficiency`` wherever the variant does not change
+within the step, for every parameter; ``derive --sensitivity`` prints the derivative of
+each variant, checked on Tuplin's train against the derivative of Laus eq. (76) taken by
+hand."""
+
+from __future__ import annotations
+
+import glob
+import importlib.util
+import os
+import random
+import warnings
+from pathlib import Path
+from types import ModuleType
+
+import numpy as np
+import pytest
+import sympy
+from hostile.helpers import assert_refused, run_main
+
+from conftest import ROOT, catalog_path
+
+DERIVATIONS = os.path.join(ROOT, "derivations")
+#: The modules of trains driven at one port whose efficiency has parameters.
+ONE_INPUT = sorted(
+    p
+    for p in glob.glob(os.path.join(DERIVATIONS, "*.py"))
+    if "def sensitivity(" in (text := Path(p).read_text(encoding="utf-8"))
+    and "SENSITIVE: Final[tuple[str, ...]] = ()" not in text
+)
+
+
+def _module(path: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(f"sens_{os.path.basename(path)[:-3]}", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _inside(module: ModuleType, count: int, seed: int) -> dict[str, np.ndarray]:
+    """Designs drawn inside every parameter's range (efficiencies from 0.8, friction
+    coefficients from 0.01 to 0.1, as in a working drive)."""
+    rng = random.Random(seed)
+    out = {}
+    for p in module.PARAMETERS:
+        low, high = p["low"], min(p["high"], p["low"] + 100.0)
+        if p["name"].startswith("mu"):
+            low, high = 0.01, 0.1
+        low = 0.8 if p["name"].startswith("eta") else low + 0.05 * (high - low)
+        out[p["name"]] = np.array([rng.uniform(low, high * 0.98) for _ in range(count)])
+    return out
+
+
+def test_every_module_with_parameters_has_a_sensitivity() -> None:
+    assert {os.path.basename(p) for p in ONE_INPUT} >= {"tuplin.py", "humpage.py", "worm_drive.py", "rack_pinion.py"}
+
+
+@pytest.mark.parametrize("path", ONE_INPUT, ids=[os.path.basename(p)[:-3] for p in ONE_INPUT])
+def test_sensitivity_is_the_central_difference_of_the_efficiency(path: str) -> None:
+    module = _module(path)
+    points = _inside(module, 60, seed=len(path))
+    checked = 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for port in module.PORTS:
+            eta = module.efficiency(input=port, **points)
+            number = module.variant(input=port, **points)
+            for name in module.SENSITIVE:
+                step = 1e-6 * (1 + np.abs(points[name]))
+                up = {**points, name: points[name] + step}
+                down = {**points, name: points[name] - step}
+                same = (module.variant(input=port, **up) == number) & (module.variant(input=port, **down) == number)
+                difference = (module.efficiency(input=port, **up) - module.efficiency(input=port, **down)) / (2 * step)
+                exact = module.sensitivity(wrt=name, input=port, **points)
+                usable = same & np.isfinite(eta) & np.isfinite(difference)
+                assert np.array_equal(np.isnan(exact), np.isnan(eta)), name
+                assert np.allclose(exact[usable], difference[usable], rtol=1e-5, atol=1e-8), (port, name)
+                checked += int(usable.sum())
+    assert checked > 0
+
+
+def test_sensitivity_refuses_a_name_it_does_not_take() -> None:
+    module = _module(os.path.join(DERIVATIONS, "simple_pair.py"))
+    with pytest.raises(ValueError, match="wrt must be one of"):
+        module.sensitivity(wrt="zeta_C", eta_C=0.98)
+
+
+def test_command_line_derivative_of_tuplin_is_laus_eq_76_by_hand() -> None:
+    """Laus eq. (76): eta = eta_C eta_D (r1 - r2)(r1 - r3) / (eta_C eta_D r2 r3 + r1^2 - r1 r2
+    - r1 r3); with N = eta_D (r1 - r2)(r1 - r3), a = eta_D r2 r3, b = r1^2 - r1 r2 - r1 r3,
+    eta = eta_C N / (eta_C a + b) and d eta / d eta_C = N b / (eta_C a + b)^2."""
+    result = run_main([catalog_path("tuplin"), "--sensitivity", "eta_C", "--quiet"])
+    assert result.returncode == 0, result.describe()
+    line = next(x for x in result.stdout.splitlines() if x.strip().startswith("(1)"))
+    printed = sympy.sympify(line.split(" = ", 1)[1])
+    eta_c, eta_d, r1, r2, r3 = sympy.symbols("eta_C eta_D r1 r2 r3")
+    n, a, b = eta_d * (r1 - r2) * (r1 - r3), eta_d * r2 * r3, r1**2 - r1 * r2 - r1 * r3
+    by_hand = n * b / (eta_c * a + b) ** 2
+    rng = random.Random(2)
+    for _ in range(4):
+        point = {s: sympy.Rational(rng.randint(1, 90), rng.randint(1, 9)) for s in (eta_c, eta_d, r1, r2, r3)}
+        assert printed.subs(point) == by_hand.subs(point)
+
+
+def test_command_line_sensitivity_refusals_and_latex(tmp_path: Path) -> None:
+    assert_refused(run_main([catalog_path("tuplin"), "--sensitivity", "zeta_C", "--quiet"]), None, ("--sensitivity",))
+    latex = run_main([catalog_path("tuplin"), "--sensitivity", "r1", "--latex", "--quiet"])
+    assert latex.returncode == 0 and r"\partial \eta_{(1)}" in latex.stdout and r"\end{document}" in latex.stdout

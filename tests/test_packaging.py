@@ -6,6 +6,7 @@ usual permissions."""
 from __future__ import annotations
 
 import os
+import shlex
 import stat
 import subprocess
 import sys
@@ -14,6 +15,8 @@ from importlib import metadata
 from pathlib import Path
 
 import pytest
+from hand.markdown import blocks as _blocks
+from hand.markdown import commands as _commands
 from hostile.helpers import run_main
 
 from davies_sym.emit.atomic import write_atomic
@@ -93,6 +96,24 @@ def test_installed_wheel_runs_a_catalog_train_from_any_folder(wheel: Path, tmp_p
     )
     assert fitted.returncode == 0, fitted.stderr
     assert fitted.stdout.splitlines()[-1] == "mean absolute error against the measured eta: 0.0102"
+    # Every command of the README's console blocks, in a folder holding only its planetary.yaml.
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    folder = tmp_path / "newcomer"
+    folder.mkdir()
+    (folder / "planetary.yaml").write_text(_blocks(readme, "yaml")[0], encoding="utf-8")
+    for block in _blocks(readme, "console"):
+        for command, shown in _commands(block):
+            words = shlex.split(command)
+            assert words[0] == "derive", command
+            ran = subprocess.run(
+                [sys.executable, "-m", "davies_sym.cli", *words[1:]],
+                env=env,
+                cwd=folder,
+                capture_output=True,
+                text=True,
+            )
+            assert ran.returncode == 0, (command, ran.stderr)
+            assert ran.stdout.strip() == shown, command
 
 
 def test_version_and_catalog_listing() -> None:

@@ -15,38 +15,13 @@ import sys
 from pathlib import Path
 
 import pytest
+from hand.markdown import blocks as _blocks
+from hand.markdown import commands as _commands
 from hostile.helpers import run_main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
-
-
-def _blocks(text: str, language: str) -> list[str]:
-    return re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.S | re.M)
-
-
-def _commands(block: str) -> list[tuple[str, str]]:
-    """(command, the output shown under it) of each ``$`` line of a console block; a line
-    ending in a backslash goes on on the next."""
-    out: list[tuple[str, str]] = []
-    lines = block.splitlines()
-    k = 0
-    while k < len(lines):
-        if not lines[k].startswith("$ "):
-            k += 1
-            continue
-        command = lines[k][2:]
-        while command.endswith("\\"):
-            k += 1
-            command = command[:-1] + " " + lines[k].strip()
-        k += 1
-        shown = []
-        while k < len(lines) and not lines[k].startswith("$ "):
-            shown.append(lines[k])
-            k += 1
-        out.append((command, "\n".join(shown).strip()))
-    return out
 
 
 def _cases():

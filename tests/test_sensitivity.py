@@ -108,3 +108,50 @@ def test_command_line_sensitivity_refusals_and_latex(tmp_path: Path) -> None:
     assert_refused(run_main([catalog_path("tuplin"), "--sensitivity", "zeta_C", "--quiet"]), None, ("--sensitivity",))
     latex = run_main([catalog_path("tuplin"), "--sensitivity", "r1", "--latex", "--quiet"])
     assert latex.returncode == 0 and r"\partial \eta_{(1)}" in latex.stdout and r"\end{document}" in latex.stdout
+
+
+@pytest.mark.parametrize("name", ["tuplin", "worm_drive", "rack_pinion", "wolfrom"])
+def test_c_sensitivity_is_the_python_modules(name: str, tmp_path: Path) -> None:
+    """`derive --emit c` writes sensitivity_<name>(..., input_port) for every parameter: compiled
+    (-Wall -Wextra -Werror), it gives the Python module's sensitivity, NaN where it does."""
+    import ctypes
+    import shutil
+    import subprocess
+
+    from davies_sym.efficiency.variants import derive_variants
+    from davies_sym.emit.languages import emit_code
+    from davies_sym.emit.languages.registry import program_of
+
+    compiler = shutil.which("cc")
+    if compiler is None:
+        pytest.skip("no C compiler")
+    variants = derive_variants(davies_sym_load(name))
+    program = program_of(variants, "c")
+    source = tmp_path / f"{name}.c"
+    source.write_text(emit_code(variants, "c"), encoding="utf-8")
+    library_path = tmp_path / "lib.so"
+    flags = ["-O1", "-std=c99", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC"]
+    subprocess.run([compiler, *flags, str(source), "-o", str(library_path), "-lm"], check=True, capture_output=True)
+    library = ctypes.CDLL(str(library_path))
+    module = _module(os.path.join(DERIVATIONS, f"{name}.py"))
+    points = _inside(module, 40, seed=5)
+    names = program.parameters
+    compared = 0
+    for parameter in module.SENSITIVE:
+        function = getattr(library, f"sensitivity_{parameter}")
+        function.argtypes = [ctypes.c_double] * len(names) + [ctypes.c_int]
+        function.restype = ctypes.c_double
+        for k, port in enumerate(module.PORTS):
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                want = module.sensitivity(wrt=parameter, input=port, **points)
+            got = np.array([function(*(float(points[n][i]) for n in names), k) for i in range(len(want))])
+            assert np.allclose(got, want, rtol=1e-10, atol=1e-13, equal_nan=True), (parameter, port)
+            compared += int(np.isfinite(want).sum())
+    assert compared > 0
+
+
+def davies_sym_load(name: str) -> object:
+    import davies_sym
+
+    return davies_sym.load(catalog_path(name))

@@ -107,6 +107,8 @@ def write_c(program: Program) -> str:
     )
     lines = _comment((*program.header, *notes))
     lines += ["", "#include <math.h>", "#include <stdbool.h>"]
+    # Strict C99 leaves M_PI out of math.h (an angle given in degrees is a multiple of pi).
+    lines += ["", "#ifndef M_PI", "#define M_PI 3.14159265358979323846", "#endif"]
     for routine in program.routines:
         lines += ["", *_routine(routine)]
     return "\n".join(lines) + "\n"

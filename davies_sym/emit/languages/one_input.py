@@ -134,6 +134,7 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
         entry,
         _by_port("reason", "why there is an efficiency or not", reasons, names, port_argument, ports, not_covered),
     ]
+    routines += _sensitivities(variants, names, public, steps, port_argument, ports, not_covered)
     _check_unique(routines, names)
     header = _header(variants, names, table, relations, routines, not_covered, state)
     return Program(module, header, tuple(routines), entry.name, names, ports)
@@ -155,6 +156,8 @@ class _Choice:
     held: tuple[sympy.Basic, ...]
     regions: tuple[tuple[sympy.Expr, sympy.Basic], ...]
     local: Callable[[str], str]
+    #: The variant of each branch of ``held``, in order.
+    order: tuple[str, ...] = ()
 
 
 def _choice_steps(
@@ -206,6 +209,7 @@ def _choice_steps(
     # Where the losses move a turning point past its lossless boundary, the variant of
     # another region whose loaded forces all agree holds.
     branches += [(call(by_name[v.name]), sympy.And(sympy.Symbol(ok), agrees[v.name])) for v in mine if v.name in agrees]
+    order = [v.name for v in mine] + [v.name for v in mine if v.name in agrees]
     chosen = local("chosen")
     steps.append(Step(chosen, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
     return _Choice(
@@ -216,7 +220,69 @@ def _choice_steps(
         tuple(condition for _, condition in branches),
         tuple(regions),
         local,
+        tuple(order),
     )
+
+
+def _sensitivities(
+    variants: VariantSet,
+    names: tuple[str, ...],
+    public: Callable[[sympy.Expr], sympy.Expr],
+    choices: list[_Choice],
+    port_argument: str,
+    ports: tuple[str, str],
+    not_covered: str,
+) -> list[Routine]:
+    """For each parameter: each variant's exact partial derivative of its efficiency, and
+    ``sensitivity_<name>(..., input_port)``, the derivative of the variant the choice takes
+    (where the efficiency is, else ``not_covered``), as the Python module's ``sensitivity``."""
+    symbols = {str(s): s for s in parameters_of(variants.symbols, variants.train.definitions)}
+    out: list[Routine] = []
+    for name in names:
+        part = identifier_part(name)
+        slopes = {
+            v.name: formula_routine(
+                f"{v.name}_d_{part}",
+                f"partial derivative in {name} of the efficiency of variant ({v.number})",
+                sympy.diff(public(v.efficiency), symbols[name]),
+                names,
+            )
+            for v in variants.variants
+        }
+        out += slopes.values()
+        by_port = []
+        for port, choice in zip(ports, choices, strict=True):
+            slope, value = choice.local(f"d_{part}"), choice.local(f"value_d_{part}")
+            branches = [(call(slopes[v]), held) for v, held in zip(choice.order, choice.held, strict=True)]
+            taken = sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)
+            screened = sympy.Piecewise(
+                (sympy.Symbol(slope), sympy.And(choice.ok, choice.turns, working(choice.chosen))),
+                (NOT_COVERED, True),
+                evaluate=False,
+            )
+            by_port.append(
+                Routine(
+                    f"sensitivity_{part}_from_{identifier_part(port)}",
+                    f"partial derivative in {name} of efficiency_from_{identifier_part(port)}",
+                    tuple(Argument(n, Kind.REAL) for n in names),
+                    Kind.REAL,
+                    (*choice.steps, Step(slope, Kind.REAL, taken), Step(value, Kind.REAL, screened)),
+                    sympy.Symbol(value),
+                )
+            )
+        out += by_port
+        out.append(
+            _by_port(
+                f"sensitivity_{part}",
+                f"the partial derivative of the efficiency in {name}",
+                by_port,
+                names,
+                port_argument,
+                ports,
+                not_covered,
+            )
+        )
+    return out
 
 
 def working(value: sympy.Symbol) -> sympy.Basic:

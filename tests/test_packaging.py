@@ -114,6 +114,16 @@ def test_installed_wheel_runs_a_catalog_train_from_any_folder(wheel: Path, tmp_p
             )
             assert ran.returncode == 0, (command, ran.stderr)
             assert ran.stdout.strip() == shown, command
+    # The README's Python session, on the module the commands wrote, as a doctest.
+    (folder / "session.txt").write_text("\n".join(_blocks(readme, "pycon")), encoding="utf-8")
+    session = subprocess.run(
+        [sys.executable, "-m", "doctest", "-o", "NORMALIZE_WHITESPACE", "session.txt"],
+        env=env,
+        cwd=folder,
+        capture_output=True,
+        text=True,
+    )
+    assert session.returncode == 0, session.stdout[-3000:]
 
 
 def test_version_and_catalog_listing() -> None:

@@ -205,3 +205,26 @@ def test_a_train_driven_at_several_ports_on_array_api_strict_arrays() -> None:
     got, said_too = every({n: strict.asarray(v) for n, v in points.items()})
     _same(want, got, "array_api_strict")
     assert said_too == said and said
+
+
+def test_formulas_are_printed_with_the_array_api_names() -> None:
+    """numpy's arccos and arctan2 are acos and atan2 in the standard (and in NumPy 2): the
+    generated formula calls them on xp, the arguments' namespace (abs is Python's, which
+    every array takes)."""
+    import ast
+
+    import sympy
+
+    from davies_sym.emit.formula_code import formula_function
+
+    x, y = sympy.symbols("x y")
+    function, args = formula_function("f", "A test formula.", [sympy.acos(x) + sympy.atan2(y, x) + sympy.Abs(y)])
+    code = ast.unparse(ast.fix_missing_locations(ast.Module([function], type_ignores=[])))
+    assert args == ("x", "y") and "xp.acos(" in code and "xp.atan2(" in code and "abs(y)" in code
+    scope: dict[str, Any] = {}
+    module = _module(os.path.join(DERIVATIONS, "simple_pair.py"))
+    exec(code, {**vars(module), "__name__": "formula"}, scope)
+    for library, to in ((np, np.asarray), (strict, strict.asarray)):
+        got = scope["f"](x=to([0.5]), y=to([-0.25]))
+        want = np.arccos(0.5) + np.arctan2(-0.25, 0.5) + 0.25
+        assert np.allclose(_back(got), want), library

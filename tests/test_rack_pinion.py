@@ -211,3 +211,7 @@ def test_chen_balance_says_the_rack_is_outside_its_scope() -> None:
     values = {"r": 20, "eta_P": 0.98, "eta_R": 0.97}
     with pytest.raises(DerivationError, match=r"couplings \['C'\] are outside its scope"):
         virtual_power_balance(train, values)
+    # The catalog file's pressure angle is no algebraic number: the scope is still the reason given.
+    catalog = davies_sym.load(str(ROOT / "catalog" / "rack_pinion.yaml"))
+    with pytest.raises(DerivationError, match=r"couplings \['G', 'C'\] are outside its scope"):
+        virtual_power_balance(catalog, {**values, "mu": 0.1})

@@ -99,11 +99,12 @@ def balance_at(
         check_facts(geometry_facts(train, layout, ()), given, train.path)
     _check_given(train, given)
     values = completed(given, train.definitions)  # a mesh efficiency from its tooth geometry
-    _check_algebraic(values)
     port_in = input or train.ports.input
     port_out = train.ports.output if port_in == train.ports.input else train.ports.input
     conical = any(g.axis is not None or g.tilted for g in train.gears)
+    # The frames refuse a coupling outside the balance's scope first: that is the reason to give.
     frames: Frames = (ConicalFrames if conical else PlanarFrames)(train, values, layout)
+    _check_algebraic(values)
     meshes, carriers, arms = frames.meshes, frames.carriers, frames.arms
     links = [link for link in train.link_names if link != train.reference]
     col = {link: i for i, link in enumerate(links)}

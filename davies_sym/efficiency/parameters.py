@@ -11,14 +11,16 @@ proved to imply (`davies_sym.efficiency.empty_regions`).
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
+from davies_sym.algebra.radicals import Radical, restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.variants import VariantSet
+from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.coupling_kinds import toothed_meshes
 from davies_sym.topology.model import Train
 
@@ -26,6 +28,18 @@ from davies_sym.topology.model import Train
 def formula_symbols(variants: VariantSet) -> list[sympy.Symbol]:
     """The symbols of the formulas, the conditions and the speed ratio, sorted by name."""
     return variants.parameters
+
+
+def given_parameters(variants: VariantSet) -> dict[str, sympy.Symbol]:
+    """The parameters the user gives, by name in sorted order: the formulas' symbols with
+    every symbol a loss model or an angle defines replaced by its definition's parameters."""
+    return {str(s): s for s in sorted_symbols(parameters_of(variants.symbols, variants.train.definitions))}
+
+
+def given_form(expr: sympy.Expr, train: Train, radicals: Sequence[Radical]) -> sympy.Expr:
+    """``expr`` in the parameters the user gives: the layout's square roots written as
+    roots, every defined symbol replaced by its definition."""
+    return substituted(restore(expr, radicals), train.definitions)
 
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:

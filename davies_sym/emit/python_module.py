@@ -33,9 +33,13 @@ from collections.abc import Sequence
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
-from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
+from davies_sym.efficiency.parameters import (
+    admissible_relations,
+    eliminated_symbols,
+    given_form,
+    given_parameters,
+    parameter_table,
+)
 from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplings
 from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
@@ -55,7 +59,6 @@ from davies_sym.emit.formula_code import (
     usable,
 )
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
-from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own arguments: a train's names may not take them.
@@ -224,10 +227,10 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
 
     def public(expr: sympy.Expr) -> sympy.Expr:
         """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return substituted(restore(expr, radicals), train.definitions)
+        return given_form(expr, train, radicals)
 
-    symbols = [str(s) for s in sorted_symbols(parameters_of(variants.symbols, train.definitions))]
-    by_name = {str(s): s for s in parameters_of(variants.symbols, train.definitions)}
+    by_name = given_parameters(variants)
+    symbols = list(by_name)
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
     for s in sorted({*symbols, *accepted, *dependent_of}):
         if not _usable(s) or s.startswith("_"):

@@ -6,12 +6,11 @@ from __future__ import annotations
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
+from davies_sym.efficiency.parameters import given_form, given_parameters
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.latex import PREAMBLE, escape
 from davies_sym.emit.latex_lines import display
 from davies_sym.errors import InputError, Problem
-from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.symbol_display import latex
 
 
@@ -20,7 +19,7 @@ def sensitivity_forms(variants: VariantSet, name: str) -> list[tuple[int, str, s
     the parameters the user gives (square roots and defined symbols replaced, so a
     derivative in an angle reaches its cosine and sine)."""
     train = variants.train
-    parameters = {str(s): s for s in parameters_of(variants.symbols, train.definitions)}
+    parameters = given_parameters(variants)
     if name not in parameters:
         known = ", ".join(sorted(parameters))
         why = f"{name!r} is not a parameter of the formulas (they take: {known})"
@@ -28,7 +27,7 @@ def sensitivity_forms(variants: VariantSet, name: str) -> list[tuple[int, str, s
     radicals = variants.analysis.network.layout.radicals
     out = []
     for v in variants.variants:
-        eta = substituted(restore(v.efficiency, radicals), train.definitions)
+        eta = given_form(v.efficiency, train, radicals)
         where = ", ".join(f"{c} {'>' if sign > 0 else '<'} 0" for c, sign in v.signs.items())
         ports = f"input {v.input}, output {v.output}" + (f", where {where}" if where else "")
         out.append((v.number, ports, where, sympy.together(sympy.diff(eta, parameters[name]))))

@@ -28,8 +28,8 @@ from types import ModuleType
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameters import given_form
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
@@ -47,7 +47,7 @@ from davies_sym.emit.formula_code import (
     usable,
 )
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
-from davies_sym.losses.definitions import parameters_of, substituted
+from davies_sym.losses.definitions import parameters_of
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own names and arguments: a train's names may not take them.
@@ -90,7 +90,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
 
     def public(expr: sympy.Expr) -> sympy.Expr:
         """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return substituted(restore(expr, radicals), train.definitions)
+        return given_form(expr, train, radicals)
 
     functions: list[ast.FunctionDef] = []
     tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {

@@ -22,10 +22,14 @@ from dataclasses import dataclass, replace
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
-from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_ranges import Parameter
-from davies_sym.efficiency.parameters import admissible_relations, eliminated_symbols, parameter_table
+from davies_sym.efficiency.parameters import (
+    admissible_relations,
+    eliminated_symbols,
+    given_form,
+    given_parameters,
+    parameter_table,
+)
 from davies_sym.efficiency.variant_result import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.languages.names import RefusedName
@@ -40,7 +44,6 @@ from davies_sym.emit.languages.routines import (
 )
 from davies_sym.emit.languages.text import identifier_part, origin_text, parameter_lines
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
-from davies_sym.losses.definitions import parameters_of, substituted
 
 
 def bound(value: float) -> sympy.Expr:
@@ -78,9 +81,9 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
 
     def public(expr: sympy.Expr) -> sympy.Expr:
         """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return substituted(restore(expr, radicals), train.definitions)
+        return given_form(expr, train, radicals)
 
-    names = tuple(str(s) for s in sorted_symbols(parameters_of(variants.symbols, train.definitions)))
+    names = tuple(given_parameters(variants))
     table = parameter_table(variants)
     routines: list[Routine] = []
     for c in variants.conditions:
@@ -236,7 +239,7 @@ def _sensitivities(
     """For each parameter: each variant's exact partial derivative of its efficiency, and
     ``sensitivity_<name>(..., input_port)``, the derivative of the variant the choice takes
     (where the efficiency is, else ``not_covered``), as the Python module's ``sensitivity``."""
-    symbols = {str(s): s for s in parameters_of(variants.symbols, variants.train.definitions)}
+    symbols = given_parameters(variants)
     out: list[Routine] = []
     for name in names:
         part = identifier_part(name)

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import sympy
 
-from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameters import given_form
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.one_input import range_checks, working
@@ -28,7 +28,7 @@ from davies_sym.emit.languages.program import NOT_COVERED, Argument, Kind, Progr
 from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
 from davies_sym.emit.languages.text import origin_text, parameter_lines
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
-from davies_sym.losses.definitions import parameters_of, substituted
+from davies_sym.losses.definitions import parameters_of
 
 
 def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> Program:
@@ -38,7 +38,7 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
 
     def public(expr: sympy.Expr) -> sympy.Expr:
         """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return substituted(restore(expr, radicals), train.definitions)
+        return given_form(expr, train, radicals)
 
     # The parameters the Python module's efficiency takes (and checks the ranges of).
     used: set[sympy.Basic] = set()

@@ -78,18 +78,9 @@ def _count(mask: Any, xp: Any = np) -> int:
     return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
 
 
-def _on_device(values: dict[str, Any], xp: Any) -> tuple[dict[str, Any], Any, Any]:
-    """``values`` as arrays of ``xp`` on the device of the first array among them, and
-    that device and floating dtype (numbers join them as 0-d arrays)."""
-    arrays = [v for v in values.values() if not isinstance(v, float)]
-    device = arrays[0].device if arrays else None
-    dtype = xp.result_type(*(a.dtype for a in arrays)) if arrays else xp.float64
-    out = {n: v if not isinstance(v, float) else xp.asarray(v, dtype=dtype, device=device) for n, v in values.items()}
-    return out, device, dtype
-
-
-def _full(xp: Any, shape: tuple[int, ...], value: float, dtype: Any, device: Any) -> Any:
-    return xp.full(shape, value, dtype=dtype, device=device)
+def _dtype(xp: Any, values: dict[str, Any]) -> Any:
+    """The floating type the arguments (arrays of ``xp``, `_array`'s) have together."""
+    return xp.result_type(*(v.dtype for v in values.values())) if values else xp.float64
 
 
 def _shape_of(xp: Any, values: dict[str, Any]) -> tuple[int, ...]:
@@ -166,7 +157,7 @@ def _select_any(
     """The function of the variant that holds (``numbers``) at each point, ``width``
     results, NaN where none holds."""
     device = _device(values)
-    result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
+    result = [xp.full(tuple(numbers.shape), float("nan"), dtype=dtype, device=device) for _ in range(width)]
     for v in variants:
         here = numbers == v["number"]
         if v["name"] not in table or not bool(xp.any(here)):
@@ -187,16 +178,22 @@ def _admissible_any(
 ) -> Any:
     """Where every parameter is in its range, every relation holds and the region is not
     one of ``excluded``."""
-    ok = xp.ones(tuple(code.shape), dtype=xp.bool, device=_device(values))
-    for p in parameters:
-        if p["name"] in values:
-            v = values[p["name"]]
-            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+    ok = _in_ranges_any(xp, parameters, values, tuple(code.shape))
     for entry in relations.values():
         if all(n in values for n in entry[1]):
             ok = ok & xp.asarray(_call(entry, values))
     for region in excluded:
         ok = ok & (code != region)
+    return ok
+
+
+def _in_ranges_any(xp: Any, parameters: Any, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
+    """Where every parameter given is in its range (low excluded unless closed_low)."""
+    ok = xp.ones(shape, dtype=xp.bool, device=_device(values))
+    for p in parameters:
+        if p["name"] in values:
+            v = values[p["name"]]
+            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
     return ok
 
 
@@ -568,8 +565,7 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array], xp
             continue
         function, names = _DEPENDENT[name]
         if xp is not np:  # compared where the arrays are, the first disagreement brought back
-            on, _, _ = _on_device({"given": _array(value, xp), **values}, xp)
-            wrong = _first_disagreement(xp, on["given"], function(**{n: on[n] for n in names}))
+            wrong = _first_disagreement(xp, _array(value, xp), function(**{n: values[n] for n in names}))
             if wrong is not None:
                 raise DesignError(
                     f"{name} = {wrong[0]} breaks the relation {DEPENDENT[name]}, which gives {wrong[1]}; "
@@ -644,8 +640,7 @@ def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
     function, names = _RATIO[PORTS[0]]
     if not all(n in values for n in names):
         if xp is not np:
-            device = next(iter(values.values())).device
-            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=device))
+            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=_device(values)))
         return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
     with np.errstate(all="ignore"):
         ratio = xp.asarray(function(**{n: values[n] for n in names}))
@@ -682,23 +677,23 @@ def _screened(
     return _nan_where(outside | still | uncovered | locked, result, message, errors, depth, xp)
 
 
-def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any, Any]:
+def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any]:
     """With arrays of another library than numpy: the variant numbers, the region's own
-    ones where none holds, the values on one device, their dtype, and where the design is
-    outside the admissible parameters or a port does not turn."""
+    ones where none holds, the arguments' floating type, and where the design is outside
+    the admissible parameters or a port does not turn."""
     _check_input(input)
-    values, _, dtype = _on_device(values, xp)
+    dtype = _dtype(xp, values)
     mine = [v for v in VARIANTS if v["input"] == input]
     numbers, code = _numbers_any(xp, mine, _CONDITIONS, _FORCES, values, _shape_of(xp, values))
     outside = ~_admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
-    return numbers, _own_any(xp, mine, numbers, code), values, dtype, outside, _still(values, xp)
+    return numbers, _own_any(xp, mine, numbers, code), dtype, outside, _still(values, xp)
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            numbers, own, dtype, outside, still = _chosen_any(input, values, xp)
             selected = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
         return _screened(selected, numbers, outside, still, errors, xp, depth=4)
 
@@ -730,7 +725,7 @@ def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, tab
     ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            numbers, own, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
             found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
         bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
@@ -756,7 +751,7 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np
     function, names = _RATIO[PORTS[0]]
     with np.errstate(all="ignore"):
         if xp is not np:
-            values, _, dtype = _on_device(values, xp)
+            dtype = _dtype(xp, values)
             code = _region_any(xp, _CONDITIONS, values, _shape_of(xp, values))
             admissible = _admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
         else:
@@ -777,7 +772,7 @@ def _variant(input: str, errors: str, values: dict[str, Array], xp: Any = np) ->
     _check_errors(errors)
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, _, _, _, outside, _ = _chosen_any(input, values, xp)
+            numbers, _, _, outside, _ = _chosen_any(input, values, xp)
     else:
         numbers, outside = _variant_numbers(input, values), ~_admissible(values)
     bad = (numbers == 0) | outside

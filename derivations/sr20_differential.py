@@ -77,18 +77,9 @@ def _count(mask: Any, xp: Any = np) -> int:
     return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
 
 
-def _on_device(values: dict[str, Any], xp: Any) -> tuple[dict[str, Any], Any, Any]:
-    """``values`` as arrays of ``xp`` on the device of the first array among them, and
-    that device and floating dtype (numbers join them as 0-d arrays)."""
-    arrays = [v for v in values.values() if not isinstance(v, float)]
-    device = arrays[0].device if arrays else None
-    dtype = xp.result_type(*(a.dtype for a in arrays)) if arrays else xp.float64
-    out = {n: v if not isinstance(v, float) else xp.asarray(v, dtype=dtype, device=device) for n, v in values.items()}
-    return out, device, dtype
-
-
-def _full(xp: Any, shape: tuple[int, ...], value: float, dtype: Any, device: Any) -> Any:
-    return xp.full(shape, value, dtype=dtype, device=device)
+def _dtype(xp: Any, values: dict[str, Any]) -> Any:
+    """The floating type the arguments (arrays of ``xp``, `_array`'s) have together."""
+    return xp.result_type(*(v.dtype for v in values.values())) if values else xp.float64
 
 
 def _shape_of(xp: Any, values: dict[str, Any]) -> tuple[int, ...]:
@@ -165,7 +156,7 @@ def _select_any(
     """The function of the variant that holds (``numbers``) at each point, ``width``
     results, NaN where none holds."""
     device = _device(values)
-    result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
+    result = [xp.full(tuple(numbers.shape), float("nan"), dtype=dtype, device=device) for _ in range(width)]
     for v in variants:
         here = numbers == v["number"]
         if v["name"] not in table or not bool(xp.any(here)):
@@ -186,16 +177,22 @@ def _admissible_any(
 ) -> Any:
     """Where every parameter is in its range, every relation holds and the region is not
     one of ``excluded``."""
-    ok = xp.ones(tuple(code.shape), dtype=xp.bool, device=_device(values))
-    for p in parameters:
-        if p["name"] in values:
-            v = values[p["name"]]
-            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+    ok = _in_ranges_any(xp, parameters, values, tuple(code.shape))
     for entry in relations.values():
         if all(n in values for n in entry[1]):
             ok = ok & xp.asarray(_call(entry, values))
     for region in excluded:
         ok = ok & (code != region)
+    return ok
+
+
+def _in_ranges_any(xp: Any, parameters: Any, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
+    """Where every parameter given is in its range (low excluded unless closed_low)."""
+    ok = xp.ones(shape, dtype=xp.bool, device=_device(values))
+    for p in parameters:
+        if p["name"] in values:
+            v = values[p["name"]]
+            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
     return ok
 
 
@@ -1274,7 +1271,7 @@ def _numpy(value: ArrayLike) -> Array:
 def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
     """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
     shape = _shape_of(xp, values)
-    device = next(iter(values.values())).device
+    device = _device(values)
     code = xp.zeros(shape, dtype=xp.int64, device=device)
     boundary = xp.zeros(shape, dtype=xp.bool, device=device)
     for bit, (function, names) in enumerate(_CONDITIONS.values()):
@@ -1293,15 +1290,12 @@ def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
 def _screened_any(values: dict[str, Any], table: _Table, width: int, errors: str, xp: Any) -> list[Any]:
     """`_screened` on the arrays of another library than numpy (a list of its arrays)."""
     _check_errors(errors)
-    values, _, dtype = _on_device(values, xp)
+    dtype = _dtype(xp, values)
     with np.errstate(all="ignore"):
         numbers, boundary = _choice_any(values, xp)
         result = _select_any(xp, REGIONS, numbers, table, width, values, dtype)
         eta = result[0] if table is _EFFICIENCY else _select_any(xp, REGIONS, numbers, _EFFICIENCY, 1, values, dtype)[0]
-        outside = xp.zeros(tuple(numbers.shape), dtype=xp.bool, device=numbers.device)
-        for p in PARAMETERS:
-            v = values[p["name"]]
-            outside = outside | ~(((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"]))
+        outside = ~_in_ranges_any(xp, PARAMETERS, values, tuple(numbers.shape))
         bad, why = _not_covered(numbers, boundary, eta, outside, xp)
     if _count(bad, xp):
         if errors == "raise":
@@ -1340,7 +1334,7 @@ def _region_numbers(values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]
     every loaded force has the sign it assumes; 0 where none holds (on a condition line,
     or the losses reverse forces as no region covers), -1 where several do."""
     if xp is not np:
-        numbers: NDArray[np.int64] = _choice_any(_on_device(values, xp)[0], xp)[0]
+        numbers: NDArray[np.int64] = _choice_any(values, xp)[0]
         return numbers
     return _choice(values)[0]
 
@@ -1466,7 +1460,7 @@ def _torques(errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, A
 def _speeds(values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``speeds`` returns: the speed of every port."""
     if xp is not np:
-        values, _, dtype = _on_device(values, xp)
+        dtype = _dtype(xp, values)
         shape = _shape_of(xp, values)
         return {
             port: xp.broadcast_to(xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype), shape)

@@ -78,18 +78,9 @@ def _count(mask: Any, xp: Any = np) -> int:
     return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
 
 
-def _on_device(values: dict[str, Any], xp: Any) -> tuple[dict[str, Any], Any, Any]:
-    """``values`` as arrays of ``xp`` on the device of the first array among them, and
-    that device and floating dtype (numbers join them as 0-d arrays)."""
-    arrays = [v for v in values.values() if not isinstance(v, float)]
-    device = arrays[0].device if arrays else None
-    dtype = xp.result_type(*(a.dtype for a in arrays)) if arrays else xp.float64
-    out = {n: v if not isinstance(v, float) else xp.asarray(v, dtype=dtype, device=device) for n, v in values.items()}
-    return out, device, dtype
-
-
-def _full(xp: Any, shape: tuple[int, ...], value: float, dtype: Any, device: Any) -> Any:
-    return xp.full(shape, value, dtype=dtype, device=device)
+def _dtype(xp: Any, values: dict[str, Any]) -> Any:
+    """The floating type the arguments (arrays of ``xp``, `_array`'s) have together."""
+    return xp.result_type(*(v.dtype for v in values.values())) if values else xp.float64
 
 
 def _shape_of(xp: Any, values: dict[str, Any]) -> tuple[int, ...]:
@@ -166,7 +157,7 @@ def _select_any(
     """The function of the variant that holds (``numbers``) at each point, ``width``
     results, NaN where none holds."""
     device = _device(values)
-    result = [_full(xp, tuple(numbers.shape), float("nan"), dtype, device) for _ in range(width)]
+    result = [xp.full(tuple(numbers.shape), float("nan"), dtype=dtype, device=device) for _ in range(width)]
     for v in variants:
         here = numbers == v["number"]
         if v["name"] not in table or not bool(xp.any(here)):
@@ -187,16 +178,22 @@ def _admissible_any(
 ) -> Any:
     """Where every parameter is in its range, every relation holds and the region is not
     one of ``excluded``."""
-    ok = xp.ones(tuple(code.shape), dtype=xp.bool, device=_device(values))
-    for p in parameters:
-        if p["name"] in values:
-            v = values[p["name"]]
-            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
+    ok = _in_ranges_any(xp, parameters, values, tuple(code.shape))
     for entry in relations.values():
         if all(n in values for n in entry[1]):
             ok = ok & xp.asarray(_call(entry, values))
     for region in excluded:
         ok = ok & (code != region)
+    return ok
+
+
+def _in_ranges_any(xp: Any, parameters: Any, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
+    """Where every parameter given is in its range (low excluded unless closed_low)."""
+    ok = xp.ones(shape, dtype=xp.bool, device=_device(values))
+    for p in parameters:
+        if p["name"] in values:
+            v = values[p["name"]]
+            ok = ok & ((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"])
     return ok
 
 

@@ -21,9 +21,10 @@ from davies_sym.emit.array_api_runtime import (
     _admissible_any,
     _array,
     _count,
+    _device,
+    _dtype,
     _first_disagreement,
     _numbers_any,
-    _on_device,
     _own_any,
     _region_any,
     _select_any,
@@ -207,8 +208,7 @@ def _consistent(given: dict[str, ArrayLike | None], values: dict[str, Array], xp
             continue
         function, names = _DEPENDENT[name]
         if xp is not np:  # compared where the arrays are, the first disagreement brought back
-            on, _, _ = _on_device({"given": _array(value, xp), **values}, xp)
-            wrong = _first_disagreement(xp, on["given"], function(**{n: on[n] for n in names}))
+            wrong = _first_disagreement(xp, _array(value, xp), function(**{n: values[n] for n in names}))
             if wrong is not None:
                 raise DesignError(
                     f"{name} = {wrong[0]} breaks the relation {DEPENDENT[name]}, which gives {wrong[1]}; "
@@ -283,8 +283,7 @@ def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
     function, names = _RATIO[PORTS[0]]
     if not all(n in values for n in names):
         if xp is not np:
-            device = next(iter(values.values())).device
-            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=device))
+            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=_device(values)))
         return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
     with np.errstate(all="ignore"):
         ratio = xp.asarray(function(**{n: values[n] for n in names}))
@@ -321,23 +320,23 @@ def _screened(
     return _nan_where(outside | still | uncovered | locked, result, message, errors, depth, xp)
 
 
-def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any, Any]:
+def _chosen_any(input: str, values: dict[str, Array], xp: Any) -> tuple[Any, Any, Any, Any, Any]:
     """With arrays of another library than numpy: the variant numbers, the region's own
-    ones where none holds, the values on one device, their dtype, and where the design is
-    outside the admissible parameters or a port does not turn."""
+    ones where none holds, the arguments' floating type, and where the design is outside
+    the admissible parameters or a port does not turn."""
     _check_input(input)
-    values, _, dtype = _on_device(values, xp)
+    dtype = _dtype(xp, values)
     mine = [v for v in VARIANTS if v["input"] == input]
     numbers, code = _numbers_any(xp, mine, _CONDITIONS, _FORCES, values, _shape_of(xp, values))
     outside = ~_admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
-    return numbers, _own_any(xp, mine, numbers, code), values, dtype, outside, _still(values, xp)
+    return numbers, _own_any(xp, mine, numbers, code), dtype, outside, _still(values, xp)
 
 
 def _efficiency(input: str, errors: str, values: dict[str, Array], xp: Any = np) -> Array:
     """What ``efficiency`` returns, once its arguments are arrays."""
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            numbers, own, dtype, outside, still = _chosen_any(input, values, xp)
             selected = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
         return _screened(selected, numbers, outside, still, errors, xp, depth=4)
 
@@ -369,7 +368,7 @@ def _per_variant(input: str, errors: str, values: dict[str, Array], xp: Any, tab
     ``efficiency`` is (its warning said once)."""
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, own, values, dtype, outside, still = _chosen_any(input, values, xp)
+            numbers, own, dtype, outside, still = _chosen_any(input, values, xp)
             efficiency = _select_any(xp, VARIANTS, own, _EFFICIENCY, 1, values, dtype)[0]
             found = _select_any(xp, VARIANTS, numbers, table, width, values, dtype)
         bad = xp.isnan(_screened(efficiency, numbers, outside, still, errors, xp, depth=5))
@@ -395,7 +394,7 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np
     function, names = _RATIO[PORTS[0]]
     with np.errstate(all="ignore"):
         if xp is not np:
-            values, _, dtype = _on_device(values, xp)
+            dtype = _dtype(xp, values)
             code = _region_any(xp, _CONDITIONS, values, _shape_of(xp, values))
             admissible = _admissible_any(xp, PARAMETERS, _RELATIONS, EXCLUDED, code, values)
         else:
@@ -416,7 +415,7 @@ def _variant(input: str, errors: str, values: dict[str, Array], xp: Any = np) ->
     _check_errors(errors)
     if xp is not np:
         with np.errstate(all="ignore"):
-            numbers, _, _, _, outside, _ = _chosen_any(input, values, xp)
+            numbers, _, _, outside, _ = _chosen_any(input, values, xp)
     else:
         numbers, outside = _variant_numbers(input, values), ~_admissible(values)
     bad = (numbers == 0) | outside

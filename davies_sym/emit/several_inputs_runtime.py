@@ -23,7 +23,15 @@ from typing import Any, Final, TypedDict
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from davies_sym.emit.array_api_runtime import _agree_any, _count, _on_device, _select_any, _shape_of
+from davies_sym.emit.array_api_runtime import (
+    _agree_any,
+    _count,
+    _device,
+    _dtype,
+    _in_ranges_any,
+    _select_any,
+    _shape_of,
+)
 from davies_sym.emit.shared_runtime import _at, _blockwise
 
 Array = NDArray[np.float64]
@@ -88,7 +96,7 @@ def _numpy(value: ArrayLike) -> Array:
 def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
     """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
     shape = _shape_of(xp, values)
-    device = next(iter(values.values())).device
+    device = _device(values)
     code = xp.zeros(shape, dtype=xp.int64, device=device)
     boundary = xp.zeros(shape, dtype=xp.bool, device=device)
     for bit, (function, names) in enumerate(_CONDITIONS.values()):
@@ -107,15 +115,12 @@ def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
 def _screened_any(values: dict[str, Any], table: _Table, width: int, errors: str, xp: Any) -> list[Any]:
     """`_screened` on the arrays of another library than numpy (a list of its arrays)."""
     _check_errors(errors)
-    values, _, dtype = _on_device(values, xp)
+    dtype = _dtype(xp, values)
     with np.errstate(all="ignore"):
         numbers, boundary = _choice_any(values, xp)
         result = _select_any(xp, REGIONS, numbers, table, width, values, dtype)
         eta = result[0] if table is _EFFICIENCY else _select_any(xp, REGIONS, numbers, _EFFICIENCY, 1, values, dtype)[0]
-        outside = xp.zeros(tuple(numbers.shape), dtype=xp.bool, device=numbers.device)
-        for p in PARAMETERS:
-            v = values[p["name"]]
-            outside = outside | ~(((v >= p["low"]) if p["closed_low"] else (v > p["low"])) & (v <= p["high"]))
+        outside = ~_in_ranges_any(xp, PARAMETERS, values, tuple(numbers.shape))
         bad, why = _not_covered(numbers, boundary, eta, outside, xp)
     if _count(bad, xp):
         if errors == "raise":
@@ -154,7 +159,7 @@ def _region_numbers(values: dict[str, Array], xp: Any = np) -> NDArray[np.int64]
     every loaded force has the sign it assumes; 0 where none holds (on a condition line,
     or the losses reverse forces as no region covers), -1 where several do."""
     if xp is not np:
-        numbers: NDArray[np.int64] = _choice_any(_on_device(values, xp)[0], xp)[0]
+        numbers: NDArray[np.int64] = _choice_any(values, xp)[0]
         return numbers
     return _choice(values)[0]
 
@@ -280,7 +285,7 @@ def _torques(errors: str, values: dict[str, Array], xp: Any = np) -> dict[str, A
 def _speeds(values: dict[str, Array], xp: Any = np) -> dict[str, Array]:
     """What ``speeds`` returns: the speed of every port."""
     if xp is not np:
-        values, _, dtype = _on_device(values, xp)
+        dtype = _dtype(xp, values)
         shape = _shape_of(xp, values)
         return {
             port: xp.broadcast_to(xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype), shape)

@@ -70,6 +70,7 @@ def _following(layout: Layout, train: Train) -> Layout:
     gears = {g.name: g for g in train.gears}
     points, tangents, normals = dict(layout.coupling_points), dict(layout.mesh_tangents), dict(layout.mesh_normals)
     problems = []
+    placed = False
     for mesh in toothed_meshes(train.couplings):
         try:
             where = mesh.locate(layout, gears)
@@ -78,9 +79,11 @@ def _following(layout: Layout, train: Train) -> Layout:
             continue
         if where is not None:
             points[mesh.name], tangents[mesh.name], normals[mesh.name] = where.point, where.tangent, where.normal
+            placed = True
     if problems:
         raise GeometryError(problems, train.path)
-    return replace(layout, coupling_points=points, mesh_tangents=tangents, mesh_normals=normals)
+    # A train of gear pairs only keeps the layout its layouts drew.
+    return replace(layout, coupling_points=points, mesh_tangents=tangents, mesh_normals=normals) if placed else layout
 
 
 def _helical(layout: Layout, train: Train) -> Layout:

@@ -17,15 +17,16 @@ from davies_sym.topology.model import Train
 def pressed_laws(train: Train, laws: Sequence[FrictionLaw]) -> tuple[FrictionLaw, ...]:
     """``laws`` with each pressed guide's Coulomb law loaded by its mesh's tooth force."""
     tooth_force = {law.coupling: law for law in laws if law.load_dependent and train.coupling(law.coupling).meshing}
+    names = {c.name for c in train.couplings}
     out = []
     problems = []
     for law in laws:
-        pressing = train.coupling(law.coupling).friction.pressed_by
+        guide = train.coupling(law.coupling)
+        pressing = guide.friction.pressed_by
         if pressing is None or not law.load_dependent:
             out.append(law)
             continue
         entry = f"couplings.{law.coupling}.friction.pressed_by"
-        names = {c.name for c in train.couplings}
         mesh = as_toothed_mesh(train.coupling(pressing)) if pressing in names else None
         if mesh is None or mesh.separating is None or pressing not in tooth_force:
             why = (
@@ -35,7 +36,7 @@ def pressed_laws(train: Train, laws: Sequence[FrictionLaw]) -> tuple[FrictionLaw
             )
             problems.append(train.problem(entry, f"{why}: name the mesh of the rack this guide holds"))
             continue
-        if not set(mesh.links) & set(train.coupling(law.coupling).links):
+        if not set(mesh.links) & set(guide.links):
             problems.append(
                 train.problem(entry, f"mesh {pressing} moves neither link of this guide, so it cannot press it")
             )

@@ -107,12 +107,20 @@ def read_links(entry: Mapping[str, Any], path: str, reader: EntryReader) -> tupl
     return (a, b)
 
 
-def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
-    """A direction: ``x``, ``y``, ``z`` (``-x`` ...), or a list of three quantities."""
+def axis_direction(value: Any) -> Vector | None:
+    """The unit vector of an axis letter, ``x``, ``y``, ``z`` or ``-x`` ...; None for anything else."""
     if isinstance(value, str) and value in UNIT:
         return UNIT[value]
     if isinstance(value, str) and value.startswith("-") and value[1:] in UNIT:
         return vector([-v for v in UNIT[value[1:]]])
+    return None
+
+
+def read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
+    """A direction: ``x``, ``y``, ``z`` (``-x`` ...), or a list of three quantities."""
+    axis = axis_direction(value)
+    if axis is not None:
+        return axis
     if isinstance(value, list) and len(value) == 3:
         parts = [reader.quantity(v, f"{path}[{i}]", "position", roots=True) for i, v in enumerate(value)]
         if any(p is None for p in parts):

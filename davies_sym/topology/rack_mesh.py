@@ -9,8 +9,9 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 import sympy
 
-from davies_sym.algebra.screws import UNIT, Screw, Vector, cross, translation_twist, vector
+from davies_sym.algebra.screws import Screw, Vector, cross, translation_twist, vector
 from davies_sym.topology.angles import AngleFunctions, read_angle
+from davies_sym.topology.couplings import axis_direction
 from davies_sym.topology.entries import describe
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.kind_screws import CouplingScrews, Placement
@@ -160,8 +161,8 @@ class RackMesh(ToothedMesh):
 
 def _read_direction(value: Any, path: str, reader: EntryReader) -> Vector | None:
     """An axis letter, signed or not: the rack's pitch line along a drawing axis."""
-    if isinstance(value, str) and value.lstrip("-") in UNIT and value.count("-") <= 1:
-        unit = UNIT[value.lstrip("-")]
-        return vector([-v for v in unit]) if value.startswith("-") else unit
+    axis = axis_direction(value)
+    if axis is not None:
+        return axis
     reader.problem(path, f"expected an axis, `x`, `y`, `-x` or `-y` (or `z`), got {describe(value)}")
     return None

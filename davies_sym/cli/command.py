@@ -223,6 +223,14 @@ def _main(argv: Sequence[str] | None) -> int:
         from davies_sym.calibration.command import run as calibration_command
 
         return calibration_command(argv[1:])
+    if argv[:1] == ["atlas"]:
+        from davies_sym.atlas.command import run as atlas_command
+
+        return atlas_command(argv[1:])
+    if argv[:1] == ["search"] and any(a == "--atlas" or a.startswith("--atlas=") for a in argv):
+        from davies_sym.atlas.search_command import run as atlas_search_command
+
+        return atlas_search_command(argv[1:])
     if argv[:1] == ["search"]:
         from davies_sym.synthesis.command import run as search_command
 
@@ -234,10 +242,11 @@ def _main(argv: Sequence[str] | None) -> int:
 
     if args.completion:
         try:
+            from davies_sym.atlas.command import parser as atlas_parser
             from davies_sym.calibration.command import parser as calibration_parser
             from davies_sym.synthesis.command import parser as search_parser
 
-            commands = {"calibrate": calibration_parser(), "search": search_parser()}
+            commands = {"atlas": atlas_parser(), "calibrate": calibration_parser(), "search": search_parser()}
             sys.stdout.write(completion_script(parser(), args.completion, commands))
         except DaviesError as exc:
             print(f"derive: --completion: {exc}", file=sys.stderr)

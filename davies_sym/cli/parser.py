@@ -5,9 +5,9 @@ what the options mean is read afterwards by `.arguments`."""
 from __future__ import annotations
 
 import argparse
-import os
 from importlib import metadata
 
+from davies_sym.arguments import jobs
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
 from davies_sym.emit.language_names import LANGUAGES
 
@@ -20,17 +20,9 @@ def _version() -> str:
         return "(not installed)"
 
 
-def _jobs(text: str) -> int:
-    """``--jobs N``: a whole number of processes, at least 1, or ``auto`` (every core)."""
-    if text == "auto":
-        return os.cpu_count() or 1
-    if not text.isdigit() or int(text) < 1:
-        raise argparse.ArgumentTypeError(f"expected a number of processes (1, 2, ...) or auto, got {text!r}")
-    return int(text)
-
-
 #: The other commands of ``derive`` with a line each, as its help lists them.
 COMMANDS = (
+    ("atlas", "every 1-DOF planetary gear train of N links, with a train file for each"),
     ("calibrate", "fit loss parameters to test-rig data (TRAIN.yaml DATA.csv, or --catalog NAME)"),
     ("search", "tooth numbers for target speed ratios, ranked by exact efficiency"),
 )
@@ -158,7 +150,7 @@ def parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--jobs",
-        type=_jobs,
+        type=jobs,
         default=1,
         metavar="N",
         help="with --out DIR: derive the files on N processes at once (auto: one per core); a file that "

@@ -24,6 +24,7 @@ from davies_sym.efficiency.variants import derive_variants
 from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
 from davies_sym.errors import InputError, MissingDependencyError, Problem
+from davies_sym.network.analysis import analyse
 from davies_sym.synthesis.problem import SearchProblem, Target
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
@@ -139,6 +140,16 @@ def state_formulas(
         ratio = sympy.cancel(_symbols_of(problem.train, sympy.sympify(d.ratio)).subs(substitution))
         out.append(StateFormulas(target, d.port, ratio, compiled_module(d.source, problem.train.name)))
     return tuple(out)
+
+
+def state_ratio(problem: SearchProblem, state: str | None) -> sympy.Expr:
+    """The speed ratio of ``state`` in the free tooth numbers, from the motions alone (the
+    null space of M_N): what a search over many trains asks before deriving any efficiency."""
+    train = problem.train
+    chosen = next((s for s in train.states if s.name == state), None)
+    in_state = train_in_state(train, chosen) if chosen is not None else train
+    ratio = analyse(in_state).speed_ratio().to_expr()
+    return sympy.cancel(_symbols_of(train, ratio).subs(dict(problem.dependent)))
 
 
 def _symbols_of(train: Train, expr: sympy.Expr) -> sympy.Expr:

@@ -93,11 +93,11 @@ class SearchResult:
         }
 
 
-def _windows(problem: SearchProblem, formulas: Sequence[StateFormulas]) -> list[Window]:
+def _windows(problem: SearchProblem, ratios: Sequence[sympy.Expr]) -> list[Window]:
     out = []
-    for f in formulas:
-        low, high = problem.window(f.target)
-        out.append(Window(f.ratio, float(low), float(high)))
+    for target, ratio in zip(problem.targets, ratios, strict=True):
+        low, high = problem.window(target)
+        out.append(Window(ratio, float(low), float(high)))
     for _, expression in problem.dependent:
         out.append(Window(expression, problem.min_teeth, math.inf))
     for s in problem.free:
@@ -140,30 +140,26 @@ def _gear_columns(
 
 
 def run_search(
-    problem: SearchProblem, progress: Progress | None = None, jobs: int = 1, scheduler: str | None = None
+    problem: SearchProblem,
+    progress: Progress | None = None,
+    jobs: int = 1,
+    scheduler: str | None = None,
+    best: int | None = None,
+    feasible: tuple[NDArray[np.int64], dict[str, NDArray[np.int64]], int] | None = None,
 ) -> SearchResult:
     """Every feasible design of ``problem``, ranked (see the module's docstring); the states
-    derived on ``jobs`` processes or the Dask cluster at ``scheduler``."""
+    derived on ``jobs`` processes or the Dask cluster at ``scheduler``.  With ``best``,
+    only the designs whose score reaches the ``best``-th highest (ties kept) are ranked,
+    for a search over many trains that keeps a few designs of each; ``feasible``: what
+    `ratio_feasible` gave for these ratios already."""
     start = time.perf_counter()
     formulas = state_formulas(problem, progress, jobs, scheduler)
     whole_train = resolved_train(problem.train)
     sets = planet_sets(whole_train, train_layout(whole_train))
     free = problem.free
-    enumeration = enumerate_designs(free, dict(problem.bounds), _windows(problem, formulas), progress)
     planet_rules = _planet_rules(problem, sets)
-    rows = enumeration.candidates
-    teeth = {str(s): rows[:, k] for k, s in enumerate(free)}
-    columns = list(rows.T)
-    keep = np.ones(len(rows), dtype=bool)
-    for s, expression in problem.dependent:
-        whole, value = rules.dependent_whole(ExactRational.of(expression, free), columns)
-        keep &= whole
-        teeth[str(s)] = value
-    keep &= rules.enough_teeth(teeth, problem.min_teeth)
+    rows, teeth, examined = feasible or ratio_feasible(problem, [f.ratio for f in formulas], progress)
     ratio_parts = [ExactRational.of(f.ratio, free) for f in formulas]
-    for f, exact in zip(formulas, ratio_parts, strict=True):
-        keep &= rules.ratio_within(exact, columns, problem.window(f.target))
-    rows, teeth = rows[keep], {n: t[keep] for n, t in teeth.items()}
     gears = _gear_columns(problem, teeth, len(rows))
     n = problem.planets
     if planet_rules[0].applied and n is not None and len(rows):
@@ -179,13 +175,17 @@ def run_search(
                     if g.link == planet and g.module is not None and g.name in gears:
                         keep &= rules.tips_clear(orbit, (float(g.module) * (gears[g.name] + 2.0)).astype(np.float64), n)
         rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
+    if best is not None and len(rows) > best:
+        keep = _among_the_best(formulas, _in_gear_order(problem, teeth), best)
+        rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
     ratios = []
     for exact in ratio_parts:
         num, den = exact.rows(list(rows.T))
         ratios.append([Fraction(int(a), int(b)) for a, b in zip(num, den, strict=True)])
+    ordered = _in_gear_order(problem, teeth)
     kept = [
         (
-            {name: int(t[k]) for name, t in _in_gear_order(problem, teeth).items()},
+            {name: int(t[k]) for name, t in ordered.items()},
             {f.target.state: ratios[j][k] for j, f in enumerate(formulas)},
         )
         for k in range(len(rows))
@@ -198,9 +198,44 @@ def run_search(
         *planet_rules,
         rules.Rule(rules.RUNS, rules.MEANINGS[rules.RUNS]),
     ]
-    return SearchResult(
-        problem, candidates, problem.size, enumeration.examined, tuple(applied), time.perf_counter() - start, sets
-    )
+    return SearchResult(problem, candidates, problem.size, examined, tuple(applied), time.perf_counter() - start, sets)
+
+
+def ratio_feasible(
+    problem: SearchProblem, ratios: Sequence[sympy.Expr], progress: Progress | None = None
+) -> tuple[NDArray[np.int64], dict[str, NDArray[np.int64]], int]:
+    """The designs whose tooth numbers are whole and large enough and whose speed ratios
+    (one per target, in the free tooth numbers) lie within the tolerance, decided exactly:
+    the rows of free tooth numbers, every tooth number by name, and the designs examined.
+    Needs only the ratios, so a search over many trains derives the efficiency of those
+    that can reach the targets alone."""
+    free = problem.free
+    enumeration = enumerate_designs(free, dict(problem.bounds), _windows(problem, ratios), progress)
+    rows = enumeration.candidates
+    teeth = {str(s): rows[:, k] for k, s in enumerate(free)}
+    columns = list(rows.T)
+    keep = np.ones(len(rows), dtype=bool)
+    for s, expression in problem.dependent:
+        whole, value = rules.dependent_whole(ExactRational.of(expression, free), columns)
+        keep &= whole
+        teeth[str(s)] = value
+    keep &= rules.enough_teeth(teeth, problem.min_teeth)
+    for target, ratio in zip(problem.targets, ratios, strict=True):
+        keep &= rules.ratio_within(ExactRational.of(ratio, free), columns, problem.window(target))
+    return rows[keep], {n: t[keep] for n, t in teeth.items()}, enumeration.examined
+
+
+def _among_the_best(
+    formulas: Sequence[StateFormulas], teeth: Mapping[str, NDArray[np.int64]], best: int
+) -> NDArray[np.bool_]:
+    """The rows whose score (mean efficiency over the states, NaN counted as not running)
+    is at least the ``best``-th highest, evaluated in one vectorised call per state."""
+    weights = np.array([f.target.weight for f in formulas])
+    etas = np.stack([np.asarray(f.efficiency(dict(teeth)), dtype=float) for f in formulas])
+    etas = np.where(np.isfinite(etas), etas, -np.inf)
+    score = weights @ etas / weights.sum()
+    threshold = np.sort(score)[-best]
+    return np.asarray(score >= threshold, dtype=bool)
 
 
 def _in_gear_order(problem: SearchProblem, teeth: Mapping[str, NDArray[np.int64]]) -> dict[str, NDArray[np.int64]]:

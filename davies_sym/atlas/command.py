@@ -1,0 +1,156 @@
+"""``derive atlas --links N [--json] [--out DIR] [--draw] [--jobs N]``: every
+non-isomorphic one-degree-of-freedom planetary gear train of N links, counted against
+the published complete set, with a train file for each that derives as written.
+
+Bad input exits with status 2 and one message naming the option.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any
+
+from davies_sym.arguments import jobs
+from davies_sym.emit.atomic import write_atomic
+
+#: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
+FEWEST_LINKS, MOST_LINKS = 3, 8
+
+
+def _links(text: str) -> int:
+    if not text.isdigit() or not FEWEST_LINKS <= int(text) <= MOST_LINKS:
+        raise argparse.ArgumentTypeError(
+            f"expected a number of links from {FEWEST_LINKS} to {MOST_LINKS} (the frame counted), got {text!r}"
+        )
+    return int(text)
+
+
+def progress(command: str, quiet: bool) -> Callable[[str], None]:
+    """A line on standard error per step, unless ``quiet``."""
+
+    def say(text: str) -> None:
+        if not quiet:
+            print(f"{command}: {text}", file=sys.stderr, flush=True)
+
+    return say
+
+
+def folder_refused(command: str, folder: str | None) -> bool:
+    """Say so when ``--out`` names a file that exists (a folder is wanted)."""
+    if folder and os.path.exists(folder) and not os.path.isdir(folder):
+        print(f"{command}: --out {folder}: a file of that name exists; name a folder", file=sys.stderr)
+        return True
+    return False
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="derive atlas",
+        description="Enumerate the one-degree-of-freedom planetary gear trains of N links (rotation and "
+        "displacement graphs, up to isomorphism) and write a train file for each.",
+    )
+    p.add_argument("--links", type=_links, required=True, metavar="N", help="number of links, the frame counted")
+    p.add_argument("--json", action="store_true", help="the atlas as JSON (counts, codes, levels, coaxial members)")
+    p.add_argument("--out", metavar="DIR", help="write one train file per displacement graph into DIR")
+    p.add_argument("--draw", action="store_true", help="with --out: an SVG of each graph and of its train's layout")
+    p.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes (or auto)")
+    p.add_argument("--quiet", action="store_true", help="no progress on standard error")
+    return p
+
+
+def _entries(links: int, jobs: int, say: Callable[[str], None]) -> Iterator[Any]:
+    """Every entry of the atlas, in the order of the codes (workers read the motions)."""
+    from davies_sym.atlas.entries import entry
+    from davies_sym.atlas.enumeration import atlas
+
+    found = atlas(links)
+    tasks = [
+        (links, r + 1, d + 1, code, group.code, graph)
+        for r, group in enumerate(found.rotation_graphs)
+        for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
+    ]
+    say(f"{len(found.rotation_graphs)} rotation graphs, {len(tasks)} displacement graphs; reading their motions")
+    if jobs == 1 or len(tasks) < 2:
+        yield from (entry(*task) for task in tasks)
+        return
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        yield from pool.map(entry, *zip(*tasks, strict=True), chunksize=4)
+
+
+def run(argv: Sequence[str]) -> int:
+    """The ``derive atlas`` command; returns the exit status (0, or 2 for bad input)."""
+    args = parser().parse_args(argv)
+    if args.draw and not args.out:
+        print("derive atlas: --draw writes the drawings beside the train files: add --out DIR", file=sys.stderr)
+        return 2
+    if folder_refused("derive atlas", args.out):
+        return 2
+
+    say = progress("derive atlas", args.quiet)
+
+    from davies_sym.atlas.entries import PUBLISHED, PUBLISHED_COUNTS
+    from davies_sym.atlas.report import atlas_text
+
+    entries = list(_entries(args.links, args.jobs, say))
+    rotation = len({e.rotation for e in entries})
+    try:
+        if args.out:
+            _write_files(entries, args.out, args.draw, say)
+    except EditedFile as exc:
+        print(
+            f"derive atlas: --out: {exc.args[0]} is there with other contents; it is left as it is: "
+            "move it or name another folder",
+            file=sys.stderr,
+        )
+        return 2
+    except OSError as exc:
+        print(f"derive atlas: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return 2
+    published = PUBLISHED_COUNTS.get(args.links)
+    if args.json:
+        document: dict[str, Any] = {
+            "links": args.links,
+            "rotation_graphs": rotation,
+            "displacement_graphs": len(entries),
+            "published": {"rotation_graphs": published[0], "displacement_graphs": published[1], "source": PUBLISHED}
+            if published
+            else None,
+            "graphs": [e.document() for e in entries],
+        }
+        sys.stdout.write(json.dumps(document, indent=2) + "\n")
+    else:
+        sys.stdout.write(atlas_text(args.links, entries, published))
+    return 0
+
+
+class EditedFile(Exception):
+    """A file the atlas would write is there with other contents (someone edited it)."""
+
+
+def _write_files(entries: Sequence[Any], folder: str, draw: bool, say: Callable[[str], None]) -> None:
+    """One train file per drawable entry (and its drawings), each written atomically; a
+    file of the same name with other contents is never replaced (it may hold edits)."""
+    outputs: list[tuple[str, str]] = []
+    for e in entries:
+        if e.not_drawable:
+            continue
+        outputs.append((os.path.join(folder, f"{e.name}.yaml"), e.train_text()))
+        if draw:
+            from davies_sym.atlas.drawing import graph_svg, layout_svg
+
+            outputs.append((os.path.join(folder, f"{e.name}.graph.svg"), graph_svg(e)))
+            outputs.append((os.path.join(folder, f"{e.name}.layout.svg"), layout_svg(e)))
+    for path, text in outputs:
+        if os.path.exists(path):
+            with open(path, encoding="utf-8") as handle:
+                if handle.read() != text:
+                    raise EditedFile(path)
+    os.makedirs(folder, exist_ok=True)
+    for path, text in outputs:
+        write_atomic(path, text)
+    say(f"{sum(p.endswith('.yaml') for p, _ in outputs)} train files in {folder}")

@@ -1,0 +1,131 @@
+"""One atlas entry per displacement graph: the graph drawn as a train, its admissible
+choices, and its train file; written by worker processes and read back as plain data."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from davies_sym.atlas.choices import admissible_choices
+from davies_sym.atlas.graphs import TrainGraph
+from davies_sym.atlas.realisation import Realisation, main_axis, realisations
+from davies_sym.atlas.train_file import Choice, link_name, train_document, train_text
+
+#: Where the counts are published (the docs compare them with the atlas's).
+PUBLISHED = "Yang & Ding, J. Mech. Des. 141(4) 043301 (2019)"
+PUBLISHED_COUNTS = {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837)}
+
+
+@dataclass(frozen=True)
+class Entry:
+    """A displacement graph of the atlas: its place (rotation graph ``rotation``, 1-based,
+    and its number ``index`` among that graph's displacement graphs), codes, the train
+    drawn from it and the admissible choices (None: the language cannot draw it)."""
+
+    links: int
+    rotation: int
+    index: int
+    code: str
+    rotation_code: str
+    graph: TrainGraph
+    choices: tuple[Choice, ...]
+    #: Why the topology language cannot write the train, or None.
+    not_drawable: str | None
+    #: Drawn in 2-D (`placement:`): meshes between planets close loops a line cannot.
+    planar: bool = False
+    #: How the train is drawn (None: it is not).
+    drawing: Realisation | None = None
+    #: The choices in which every mesh carries a tooth force (no gear idle).
+    loaded: tuple[Choice, ...] = ()
+
+    @property
+    def name(self) -> str:
+        """The train's name in files: atlas6_r03_d2."""
+        return f"atlas{self.links}_r{self.rotation:02d}_d{self.index}"
+
+    @property
+    def drawn(self) -> Realisation:
+        """How the train is drawn; the housing about the main axis when it is not."""
+        return self.drawing or Realisation(self.graph, main_axis(self.graph))
+
+    def document(self) -> dict[str, Any]:
+        """The entry in ``derive atlas --json``."""
+        drawn = self.drawn
+        levels = {drawn.axis_name(k): list(axis) for k, axis in enumerate(self.graph.axes)}
+        gears = [
+            {
+                "links": [p.first, p.second],
+                "carrier": p.carrier,
+                "axes": [drawn.axis_name(p.first_axis), drawn.axis_name(p.second_axis)],
+            }
+            for p in self.graph.gear_pairs
+        ]
+        return {
+            "name": self.name,
+            "code": self.code,
+            "rotation_graph": self.rotation,
+            "rotation_code": self.rotation_code,
+            "levels": dict(sorted(levels.items())),
+            "gears": gears,
+            "coaxial": list(self.graph.axes[drawn.main_axis]),
+            # None: a housing holds one coaxial member per state; else the link that is the frame.
+            "frame": drawn.frame if self.drawing is not None else None,
+            "held": sorted({c.held for c in self.choices}),
+            # A state's variants run both ways: a member that can be driven can be taken off.
+            "driven_or_taken_off": sorted({x for c in self.choices for x in (c.input, c.output)}),
+            "choices": [
+                {"held": c.held, "between": [c.input, c.output], "every_mesh_loaded": c in self.loaded}
+                for c in self.choices
+            ],
+            "train_file": None if self.not_drawable else f"{self.name}.yaml",
+            "not_drawable": self.not_drawable,
+        }
+
+    def train_text(self) -> str:
+        """The train file (the entry must be drawable and have a choice)."""
+        drawn = self.drawn
+        title = (
+            f"Atlas of {self.links}-link planetary trains: "
+            f"rotation graph {self.rotation}, displacement graph {self.index}"
+        )
+        comment = (
+            f"{title}.\n"
+            f"Canonical code {self.code}.\n"
+            + (
+                "Written by derive atlas: symbolic radii; the housing holds one coaxial member in each state;\n"
+                if drawn.frame is None
+                else f"Written by derive atlas: symbolic radii; link l{drawn.frame} is the frame;\n"
+            )
+            + "the ports are those of the first state. Suns, rings and planet gears as in docs/atlas.md."
+        )
+        coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
+        source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
+        return train_text(train_document(drawn, title, self.choices, source, planar=self.planar), comment)
+
+
+def entry(links: int, rotation: int, index: int, code: str, rotation_code: str, graph: TrainGraph) -> Entry:
+    """The entry of one displacement graph: drawn the first way of `realisations` the
+    topology language can write and that leaves a choice (its choices read from the
+    train's motions); the reason of the first way tried when none does."""
+    reason = None
+    for drawn in realisations(graph):
+        why = drawn.drawable()
+        if why is None:
+            found = admissible_choices(drawn)
+            if found.choices:
+                return Entry(
+                    links,
+                    rotation,
+                    index,
+                    code,
+                    rotation_code,
+                    graph,
+                    found.choices,
+                    None,
+                    found.planar,
+                    drawn,
+                    found.loaded,
+                )
+            why = "no held member leaves two others turning at a ratio set by the gears"
+        reason = reason or why
+    return Entry(links, rotation, index, code, rotation_code, graph, (), reason or "no link turns in two bearings")

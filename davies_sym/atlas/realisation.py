@@ -1,0 +1,200 @@
+"""From a graph to a drawable train: the main axis, which link holds each axis, and the
+gears of every gear pair (suns, rings, planet gears) with their symbolic radii.
+
+A displacement graph fixes which links turn about which axes and which mesh; it does
+not say which central gear is a sun and which a ring, nor whether a planet carries one
+gear or a stepped pair. The atlas draws every graph the same documented way (the
+classical realisation of the literature's sketches):
+
+- the *main axis* is the axis of the most links (frame, input and output turn about it);
+  ties go to the lowest axis number of the canonical labelling;
+- relative to the carrier of a gear pair, a gear on the carrier's own axis is *central*
+  and a gear on an axis the carrier holds is a *planet*;
+- a planet's first mesh with a central gear is with a sun, its later ones with rings;
+  the sun and the first ring share one planet gear (the simple planetary's S-P-R), each
+  further ring meshes a planet gear of its own (the Wolfrom train's stepped planet); a
+  planet-planet mesh is external and uses the planet's first gear. No planet gear
+  meshes two suns or two rings, whose equal centre distances would force equal radii
+  and a degenerate train.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cached_property
+
+import networkx as nx
+
+from davies_sym.atlas.graphs import GearPair, TrainGraph
+
+#: Names of the axes in the train files and the docs: a is the main axis.
+AXIS_LETTERS = "abcdefghijklmnopqrstuvwxyz"
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """One gear of the drawn train: on ``link``, turning about ``axis``."""
+
+    name: str
+    link: int
+    axis: int
+    internal: bool
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    """The gears a gear pair meshes, in the order (central or lower link, other)."""
+
+    pair: GearPair
+    first: str
+    second: str
+
+
+@dataclass(frozen=True)
+class Realisation:
+    """A graph drawn as a train: the main axis, the rooted tree of axes, the gears.
+
+    Without a ``frame`` the train is drawn in a housing that holds one member of the main
+    axis in each state; with one, that link (a member of the main axis) is the frame and
+    every state drives and loads two links that turn in its bearings, coaxial or not."""
+
+    graph: TrainGraph
+    main_axis: int
+    frame: int | None = None
+
+    @cached_property
+    def parent_axis(self) -> dict[int, int]:
+        """The axis each link turns about towards the main axis (its own axis)."""
+        tree = self.graph.incidence
+        parents = nx.bfs_predecessors(tree, ("a", self.main_axis))
+        return {node[1]: parent[1] for node, parent in parents if node[0] == "l"}
+
+    @cached_property
+    def holder(self) -> dict[int, int]:
+        """The link that holds each axis other than the main one (its carrier)."""
+        tree = self.graph.incidence
+        parents = nx.bfs_predecessors(tree, ("a", self.main_axis))
+        return {node[1]: parent[1] for node, parent in parents if node[0] == "a"}
+
+    def axis_name(self, axis: int) -> str:
+        """a for the main axis, then b, c, ... in the order of the canonical labelling."""
+        others = [k for k in range(len(self.graph.axes)) if k != self.main_axis]
+        return AXIS_LETTERS[0 if axis == self.main_axis else 1 + others.index(axis)]
+
+    def is_central(self, link: int, axis: int, carrier: int) -> bool:
+        """A gear of ``link`` about ``axis`` is central for ``carrier`` when the carrier
+        turns about that axis too (the axis is not one the carrier holds)."""
+        return self.holder.get(axis) != carrier and link != carrier
+
+    @cached_property
+    def meshes(self) -> tuple[MeshSpec, ...]:
+        """Every gear pair with the gears it meshes (rules in the module docstring)."""
+        return self._gears[1]
+
+    @cached_property
+    def gears(self) -> tuple[GearSpec, ...]:
+        """Every gear, in the order of the links and then of their meshes."""
+        return self._gears[0]
+
+    @cached_property
+    def _gears(self) -> tuple[tuple[GearSpec, ...], tuple[MeshSpec, ...]]:
+        central: dict[tuple[int, int, bool], str] = {}
+        planet_gears: dict[tuple[int, int], list[dict[str, int]]] = defaultdict(list)
+        specs: dict[str, GearSpec] = {}
+        meshes: list[MeshSpec] = []
+
+        def gear(link: int, axis: int, internal: bool, suffix: str) -> str:
+            name = f"G{link}{self.axis_name(axis)}{suffix}"
+            specs.setdefault(name, GearSpec(name, link, axis, internal))
+            return name
+
+        def central_gear(link: int, axis: int, internal: bool) -> str:
+            key = (link, axis, internal)
+            if key not in central:
+                central[key] = gear(link, axis, internal, "r" if internal else "")
+            return central[key]
+
+        def planet_gear(link: int, axis: int, role: str) -> str:
+            # The first gear of the planet without a mesh of this role takes it.
+            steps = planet_gears[(link, axis)]
+            for index, used in enumerate(steps):
+                if used.get(role, 0) == 0 or role == "planet":
+                    used[role] = used.get(role, 0) + 1
+                    return gear(link, axis, False, "" if index == 0 else str(index + 1))
+            steps.append({role: 1})
+            return gear(link, axis, False, "" if len(steps) == 1 else str(len(steps)))
+
+        suns_of: dict[tuple[int, int], int] = defaultdict(int)
+        for pair in self.graph.gear_pairs:
+            first_central = self.is_central(pair.first, pair.first_axis, pair.carrier)
+            second_central = self.is_central(pair.second, pair.second_axis, pair.carrier)
+            if first_central or second_central:
+                hub, hub_axis, planet, planet_axis = (
+                    (pair.first, pair.first_axis, pair.second, pair.second_axis)
+                    if first_central
+                    else (pair.second, pair.second_axis, pair.first, pair.first_axis)
+                )
+                ring = suns_of[(planet, planet_axis)] > 0
+                suns_of[(planet, planet_axis)] += 1
+                meshes.append(
+                    MeshSpec(
+                        pair,
+                        central_gear(hub, hub_axis, ring),
+                        planet_gear(planet, planet_axis, "ring" if ring else "sun"),
+                    )
+                )
+            else:
+                meshes.append(
+                    MeshSpec(
+                        pair,
+                        planet_gear(pair.first, pair.first_axis, "planet"),
+                        planet_gear(pair.second, pair.second_axis, "planet"),
+                    )
+                )
+        ordered = tuple(sorted(specs.values(), key=lambda g: (g.link, g.axis, g.name)))
+        return ordered, tuple(meshes)
+
+    @cached_property
+    def geared_axes(self) -> dict[int, frozenset[int]]:
+        """The axes each link has gears about."""
+        found: dict[int, set[int]] = defaultdict(set)
+        for g in self.gears:
+            found[g.link].add(g.axis)
+        return {link: frozenset(axes) for link, axes in found.items()}
+
+    def drawable(self) -> str | None:
+        """Why the topology language cannot write this train, or None: its planar trains
+        put the gears of a link about the axis the link turns about."""
+        for link, axes in sorted(self.geared_axes.items()):
+            if len(axes) > 1:
+                names = ", ".join(self.axis_name(a) for a in sorted(axes))
+                return f"link {link} carries gears about two axes ({names})"
+            (axis,) = axes
+            if axis != self.parent_axis.get(link, axis):
+                return f"link {link} carries a gear about axis {self.axis_name(axis)}, which it holds"
+        return None
+
+
+def main_axis(graph: TrainGraph) -> int:
+    """The axis of the most links; the lowest number among equals."""
+    return max(range(len(graph.axes)), key=lambda k: (len(graph.axes[k]), -k))
+
+
+def realisations(graph: TrainGraph) -> Iterator[Realisation]:
+    """The ways the atlas draws a graph, in the order it tries them: in a housing about
+    the axis of the most links when it has three or more (frame, input and output
+    coaxial), then with each link as the frame (the links with the most neighbours
+    first), about the axis of its gears (or its first axis when it has none)."""
+    main = main_axis(graph)
+    if len(graph.axes[main]) >= 3:
+        yield Realisation(graph, main)
+    neighbours = {x: {y for k in graph.axes_of(x) for y in graph.axes[k]} - {x} for x in range(graph.links)}
+    for frame in sorted(range(graph.links), key=lambda x: (-len(neighbours[x]), x)):
+        if len(neighbours[frame]) < 2:
+            continue
+        drawn = Realisation(graph, graph.axes_of(frame)[0], frame)
+        geared = drawn.geared_axes.get(frame, frozenset())
+        own = min(geared) if len(geared) == 1 else graph.axes_of(frame)[0]
+        yield Realisation(graph, own, frame)

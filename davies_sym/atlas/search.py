@@ -1,0 +1,176 @@
+"""The tooth-number search over the whole atlas: every train of up to N links, every held
+member and both directions between two others, ranked by the closed-form efficiency.
+
+Each train is written with tooth numbers (module 1) and fixed ordinary mesh
+efficiencies; a state's efficiency is derived only when its speed ratio, from the motions
+alone, can reach the target within the bounds (`davies_sym.synthesis.search.ratio_feasible`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, replace
+from fractions import Fraction
+from typing import Any
+
+import yaml
+
+from davies_sym.atlas.entries import Entry, entry
+from davies_sym.atlas.train_file import Choice, ToothedForm, train_document, train_text
+from davies_sym.geometry.dependent import resolved_train
+from davies_sym.synthesis.formulas import state_ratio
+from davies_sym.synthesis.problem import search_problem, tooth_symbols
+from davies_sym.synthesis.search import Candidate, ratio_feasible, run_search
+from davies_sym.topology.loader import loads
+
+#: Ordinary efficiencies of the meshes (an external spur mesh loses about 2 %, an
+#: internal one about half as much), as in the search example of docs/search.md.
+MESHES = ToothedForm(external="0.98", internal="0.99")
+
+
+@dataclass(frozen=True)
+class AtlasQuestion:
+    """What the atlas search asks: one speed ratio within a tolerance, every tooth number
+    within ``teeth`` (inclusive)."""
+
+    target: Fraction
+    tolerance: Fraction
+    teeth: tuple[int, int]
+    planets: int | None
+    min_teeth: int
+    meshes: ToothedForm = MESHES
+    #: Designs kept per train and direction: the best, so that the ranking lists
+    #: different trains and uses, not one train with its idle gears resized.
+    per_state: int = 1
+
+
+@dataclass(frozen=True)
+class AtlasDesign:
+    """A feasible design: which train, which use of it, and its tooth numbers."""
+
+    train: str
+    links: int
+    code: str
+    choice: Choice
+    candidate: Candidate
+    #: The train file with tooth symbols and this direction as its only state.
+    source: str
+
+    def document(self) -> dict[str, Any]:
+        return {
+            "train": self.train,
+            "links": self.links,
+            "code": self.code,
+            "held": self.choice.held,
+            "input": self.choice.input,
+            "output": self.choice.output,
+            "state": self.choice.name,
+            **self.candidate.document(),
+        }
+
+
+def oriented(choices: tuple[Choice, ...]) -> tuple[Choice, ...]:
+    """Each choice in both directions (the input first)."""
+    return tuple(c for x in choices for c in (x, Choice(x.held, x.output, x.input)))
+
+
+def search_text(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> str:
+    """The train file of ``e`` with tooth numbers, ``choices`` as its states and the free
+    tooth numbers (those the geometry does not fix) listed in ``independent:``."""
+    title = f"{e.name} (tooth numbers to choose)"
+    document = train_document(e.drawn, title, choices, f"derive search --atlas: {e.name}", meshes, e.planar)
+    train = loads(train_text(document, title))
+    fixed = {str(r.symbol) for r in resolved_train(train).dependent or ()}
+    document["independent"] = sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)
+    return train_text(document, title)
+
+
+def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
+    """The best designs of every direction of every loaded choice of one train (no gear
+    idle: an idle one makes it a train of fewer links, searched there): the train
+    written and read once with every direction as a state."""
+    out: list[AtlasDesign] = []
+    directions = oriented(e.loaded)
+    if not directions:
+        return out
+    text = search_text(e, directions, question.meshes)
+    train = loads(text)
+    free = list(yaml.safe_load(text)["independent"])
+    states = {s.name: s for s in train.states}
+    for choice in directions:
+        # The search asks a target of every state of its train: this direction alone.
+        problem = search_problem(
+            replace(train, states=(states[choice.name],)),
+            [(choice.name, question.target)],
+            question.tolerance,
+            dict.fromkeys(free, question.teeth),
+            question.planets,
+            question.min_teeth,
+        )
+        feasible = ratio_feasible(problem, [state_ratio(problem, choice.name)])
+        if not len(feasible[0]):
+            continue
+        result = run_search(problem, best=question.per_state, feasible=feasible)
+        out += [AtlasDesign(e.name, e.links, e.code, choice, c, text) for c in result.candidates[: question.per_state]]
+    return out
+
+
+def _designs_of(task: tuple[int, int, int, str, str, Any, AtlasQuestion]) -> list[AtlasDesign]:
+    *where, question = task
+    e = entry(*where)
+    return [] if e.not_drawable else _entry_designs(e, question)
+
+
+def atlas_search(
+    most_links: int, question: AtlasQuestion, jobs: int = 1, say: Callable[[str], None] | None = None
+) -> tuple[tuple[AtlasDesign, ...], int]:
+    """Every feasible design of every atlas train of up to ``most_links`` links, best
+    first (score, then ratio error, then size), and how many trains were searched."""
+    from davies_sym.atlas.enumeration import atlas
+
+    tasks = []
+    for links in range(4, most_links + 1):
+        found = atlas(links)
+        tasks += [
+            (links, r + 1, d + 1, code, group.code, graph, question)
+            for r, group in enumerate(found.rotation_graphs)
+            for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
+        ]
+    if say:
+        say(f"searching {len(tasks)} trains of 4 to {most_links} links")
+    designs: list[AtlasDesign] = []
+    for found_designs in _mapped(tasks, jobs):
+        designs += found_designs
+    # Among equals the train of fewer links comes first (an extra link that carries no
+    # power leaves the efficiency as it is).
+    designs.sort(
+        key=lambda d: (-d.candidate.score, d.candidate.ratio_error, d.links, d.candidate.size, d.train, d.choice.name)
+    )
+    return tuple(designs), len(tasks)
+
+
+def _mapped(tasks: list[Any], jobs: int) -> Iterator[list[AtlasDesign]]:
+    if jobs == 1:
+        yield from map(_designs_of, tasks)
+        return
+    with ProcessPoolExecutor(max_workers=jobs) as pool:
+        yield from pool.map(_designs_of, tasks, chunksize=2)
+
+
+def design_file(design: AtlasDesign, rank: int) -> str:
+    """The design as a train file with numbers (its direction the only state and the
+    ports), which ``derive`` evaluates to the efficiency it was ranked by."""
+    data: Any = yaml.safe_load(design.source)
+    data["states"] = {design.choice.name: data["states"][design.choice.name]}
+    for gear in data["gears"].values():
+        gear["teeth"] = design.candidate.teeth[gear["teeth"]] if isinstance(gear["teeth"], str) else gear["teeth"]
+    data.pop("independent", None)
+    state = data["states"][design.choice.name]
+    data["ports"] = {"input": state["input"], "output": state["output"]}
+    note = (
+        f"Design {rank} of derive search --atlas: {design.train}, {state['description']}; "
+        f"efficiency {design.candidate.score:.6f}, speed ratio {float(design.candidate.ratios[design.choice.name]):.6f}"
+    )
+    data["name"] = f"{design.train} {design.choice.name} (design {rank})"
+    return train_text(data, note)

@@ -1,0 +1,187 @@
+"""The train file of an atlas graph: symbolic radii, a housing that holds one coaxial
+member in each state, ports for the first admissible choice and every held / input /
+output choice as a state.
+
+The coaxial members (the links on the main axis) turn in bearings of the housing, as in
+the catalog's Ravigneaux and Simpson sets; each state brakes one of them to the housing,
+drives a second and takes the output off a third. The choices whose speed ratio is not a
+finite, non-zero function of the radii are left out (`admissible_choices`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import yaml
+
+from davies_sym.atlas.realisation import Realisation
+
+#: Name of the housing link in the train files.
+HOUSING = "housing"
+
+
+@dataclass(frozen=True)
+class Choice:
+    """One use of the train: ``held`` is braked to the housing, ``input`` driven,
+    ``output`` taken off (links of the graph)."""
+
+    held: int
+    input: int
+    output: int
+
+    @property
+    def name(self) -> str:
+        return f"h{self.held}_i{self.input}_o{self.output}"
+
+
+def link_name(link: int) -> str:
+    return f"l{link}"
+
+
+def bearing_name(link: int) -> str:
+    """The bearing of a member of the main axis in the housing (or the frame)."""
+    return f"B{link}"
+
+
+def port_name(drawn: Realisation, link: int) -> str:
+    """The bearing that drives or loads ``link``: in the housing (or the frame) for a
+    member of the main axis, else the frame's bearing on the axis they share."""
+    if link in drawn.graph.axes[drawn.main_axis]:
+        return bearing_name(link)
+    shared = next(k for k in drawn.graph.axes_of(link) if drawn.holder.get(k) == drawn.frame)
+    return f"J{drawn.axis_name(shared)}{link}"
+
+
+def radius_symbol(gear: str) -> str:
+    return "r" + gear[1:]
+
+
+def _description(drawn: Realisation, link: int) -> str:
+    held = sorted(k for k, holder in drawn.holder.items() if holder == link)
+    own = drawn.parent_axis[link]
+    words = "coaxial member" if own == drawn.main_axis else f"turns about axis {drawn.axis_name(own)}"
+    if held:
+        words += ", carrier of axis " + ", ".join(drawn.axis_name(k) for k in held)
+    return words
+
+
+def _axis_bearings(drawn: Realisation) -> dict[str, dict[str, Any]]:
+    """The bearings of every axis but the main one: the first link about it turns in a
+    bearing of the axis's holder (on its own axis), every other one in a bearing of that
+    first link on the first link's axis (`axis:`), so the layout reads which links are
+    coaxial from the file and never has to guess it from the meshes."""
+    bearings: dict[str, dict[str, Any]] = {}
+    for axis, links in enumerate(drawn.graph.axes):
+        if axis == drawn.main_axis:
+            continue
+        holder = drawn.holder[axis]
+        name = drawn.axis_name(axis)
+        for x in links:
+            if x != holder:
+                bearings[f"J{name}{x}"] = {"type": "revolute", "links": [link_name(holder), link_name(x)]}
+    return bearings
+
+
+@dataclass(frozen=True)
+class ToothedForm:
+    """A train file for a search: tooth numbers (module 1) instead of radii, and every
+    mesh's ordinary efficiency fixed (external and internal meshes)."""
+
+    external: str
+    internal: str
+
+
+def tooth_symbol(gear: str) -> str:
+    return "z" + gear[1:]
+
+
+def _gear_entry(name: str, link: int, internal: bool, toothed: ToothedForm | None) -> dict[str, Any]:
+    size = {"radius": radius_symbol(name)} if toothed is None else {"teeth": tooth_symbol(name), "module": 1}
+    return {"link": link_name(link), **size} | ({"internal": True} if internal else {})
+
+
+def train_document(
+    drawn: Realisation,
+    title: str,
+    choices: Sequence[Choice],
+    source: str,
+    toothed: ToothedForm | None = None,
+    planar: bool = False,
+) -> dict[str, Any]:
+    """The train file as a mapping (YAML-ready), in the order a person reads it."""
+    if not choices:
+        raise ValueError("a train file needs at least one admissible choice")
+    graph = drawn.graph
+    housed = drawn.frame is None
+    reference = HOUSING if drawn.frame is None else link_name(drawn.frame)
+    links: dict[str, Any] = (
+        {HOUSING: {"description": "housing (reference), holds one coaxial member per state"}} if housed else {}
+    )
+    links |= {link_name(i): {"description": _description(drawn, i)} for i in range(graph.links)}
+    if not housed:
+        links[reference]["description"] += " (the frame, reference)"
+    gears = {g.name: _gear_entry(g.name, g.link, g.internal, toothed) for g in drawn.gears}
+    internal = {g.name for g in drawn.gears if g.internal}
+    couplings: dict[str, Any] = {
+        bearing_name(x): {"type": "revolute", "links": [reference, link_name(x)], "axis": reference}
+        for x in graph.axes[drawn.main_axis]
+        if link_name(x) != reference
+    }
+    couplings |= _axis_bearings(drawn)
+    for index, m in enumerate(drawn.meshes):
+        mesh: dict[str, Any] = {"type": "mesh", "gears": [m.first, m.second]}
+        if toothed is not None:
+            mesh["efficiency"] = toothed.internal if internal & {m.first, m.second} else toothed.external
+        couplings[f"M{index}"] = mesh
+    first = choices[0]
+    states = {
+        c.name: {
+            "description": f"{link_name(c.held)} held, {link_name(c.input)} in, {link_name(c.output)} out",
+            "input": port_name(drawn, c.input),
+            "output": port_name(drawn, c.output),
+        }
+        | ({"brake": [link_name(c.held)]} if housed else {})
+        for c in choices
+    }
+    return {
+        "format": 1,
+        "name": title,
+        "source": source,
+        # Meshes between planets of one carrier that a line cannot close: drawn in 2-D.
+        **({"placement": [0, 1]} if planar else {}),
+        "links": links,
+        "reference": reference,
+        "gears": gears,
+        "couplings": couplings,
+        "ports": {"input": port_name(drawn, first.input), "output": port_name(drawn, first.output)},
+        "states": states,
+    }
+
+
+class _Entry(dict[str, Any]):
+    """An entry written on one line (a YAML flow mapping), as in the catalog files."""
+
+
+class _Dumper(yaml.SafeDumper):
+    pass
+
+
+_Dumper.add_representer(
+    _Entry, lambda dumper, data: dumper.represent_mapping("tag:yaml.org,2002:map", data, flow_style=True)
+)
+
+
+def train_text(document: dict[str, Any], comment: str) -> str:
+    """The YAML text: a comment block, then the document with one line per link, gear,
+    coupling and state."""
+    lines = "".join(f"# {line}\n" if line else "#\n" for line in comment.splitlines())
+    flowing = {
+        key: {name: _Entry(entry) for name, entry in value.items()}
+        if key in ("links", "gears", "couplings", "states")
+        else (_Entry(value) if isinstance(value, dict) else value)
+        for key, value in document.items()
+    }
+    body = yaml.dump(flowing, Dumper=_Dumper, sort_keys=False, width=200, allow_unicode=True)
+    return lines + body

@@ -1,0 +1,106 @@
+"""``derive search --atlas``: the ranking over every train of the atlas, its best design
+against the textbook efficiency of a planetary set, every listed design evaluated again
+by ``derive --eval`` on the file it writes, and the docs' example of 6 links."""
+
+from __future__ import annotations
+
+import re
+import shlex
+from pathlib import Path
+
+import pytest
+from hand.markdown import blocks, commands
+from hostile.helpers import Result, run_main
+
+ROOT = Path(__file__).resolve().parents[1]
+#: The docs' examples: a reduction of 10 to 15 (12.5 within 20 %), teeth 17 to 40.
+FIVE = ["search", "--atlas", "5", "--target", "12.5", "--tolerance", "0.2", "--teeth", "17:40", "--quiet"]
+LINE = re.compile(r"\s*(\d+)\. (\S+) l(\d+) held, l(\d+) in, l(\d+) out: (.*)  ratio (\S+)  efficiency (\S+)")
+
+
+def run_derive(args: list[str], cwd: Path) -> Result:
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(cwd)
+        return run_main(args, timeout=3600)
+
+
+def _listed(text: str) -> list[tuple[str, dict[str, int], float, float]]:
+    out = []
+    for match in map(LINE.fullmatch, text.splitlines()):
+        if match:
+            teeth = dict(pair.split("=") for pair in match.group(6).split())
+            out.append(
+                (match.group(2), {k: int(v) for k, v in teeth.items()}, float(match.group(7)), float(match.group(8)))
+            )
+    return out
+
+
+def _evaluated(path: Path, cwd: Path) -> tuple[float, float]:
+    """The speed ratio and the efficiency ``derive FILE --eval`` prints for a design file."""
+    result = run_derive([str(path), "--eval", "--quiet"], cwd)
+    assert result.returncode == 0, result.describe()
+    ratio = float(re.search(r"speed ratio \(\w+ over \w+\): (\S+)", result.stdout).group(1))
+    return ratio, float(result.stdout.strip().splitlines()[-1])
+
+
+def test_the_best_four_link_design_is_the_textbook_planetary(tmp_path: Path) -> None:
+    """Of the trains of 4 links, for a ratio of 4.6 within 1 %: the simple planetary with
+    the ring held, the sun in and the carrier out, i = 1 + z_R / z_S, at the textbook
+    efficiency (1 + eta0 z_R / z_S) / (1 + z_R / z_S) with eta0 = 0.98 * 0.99 (the
+    external and the internal mesh; e.g. Mueller, Die Umlaufgetriebe)."""
+    args = ["search", "--atlas", "4", "--target", "4.6", "--tolerance", "0.01", "--teeth", "17:60", "--quiet"]
+    result = run_derive(args, tmp_path)
+    assert result.returncode == 0, result.describe()
+    ((train, teeth, ratio, efficiency),) = _listed(result.stdout)
+    assert train == "atlas4_r01_d2"
+    assert "l2 held, l1 in, l0 out" in result.stdout
+    basic = teeth["z2ar"] / teeth["z1a"]
+    assert teeth["z2ar"] == teeth["z1a"] + 2 * teeth["z3b"]  # coaxial sun, planet and ring
+    assert ratio == pytest.approx(1 + basic, abs=5e-5)
+    assert abs(1 + basic - 4.6) <= 0.046
+    assert efficiency == pytest.approx((1 + 0.98 * 0.99 * basic) / (1 + basic), abs=5e-6)
+
+
+def test_every_listed_design_evaluates_to_its_efficiency(tmp_path: Path) -> None:
+    result = run_derive([*FIVE, "--top", "5", "--out", "best"], tmp_path)
+    assert result.returncode == 0, result.describe()
+    listed = _listed(result.stdout)
+    files = sorted((tmp_path / "best").glob("design*.yaml"))
+    assert len(files) == len(listed) >= 2
+    for (train, _, ratio, efficiency), path in zip(listed, files, strict=True):
+        assert train in path.name
+        assert _evaluated(path, tmp_path) == pytest.approx((ratio, efficiency), abs=6e-5)
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["--atlas", "3", "--target", "4"], "--atlas: expected the most links, from 4 to 8"),
+        (["--atlas", "5", "--target", "ten"], "--target: expected a number"),
+        (["--atlas", "5", "--target", "4", "--teeth", "40:17"], "--teeth: expected LO:HI"),
+        (["--atlas", "5", "--target", "0"], "--target: a speed ratio is not zero"),
+    ],
+)
+def test_bad_atlas_search_options_get_one_clear_message(tmp_path: Path, args: list[str], says: str) -> None:
+    result = run_derive(["search", *args], tmp_path)
+    assert result.returncode == 2
+    assert says in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+@pytest.mark.slow
+def test_the_docs_six_link_example(tmp_path: Path) -> None:
+    """docs/atlas.md: the best trains of at most 6 links for a reduction of 10 to 15,
+    printed as the page shows (also checked by test_readme_examples), every listed design
+    evaluated again by ``derive --eval`` on the file ``--out`` writes."""
+    page = (ROOT / "docs" / "atlas.md").read_text(encoding="utf-8")
+    ((command, shown),) = [c for b in blocks(page, "console") for c in commands(b) if "--atlas 6" in c[0]]
+    words = shlex.split(command)
+    result = run_derive([*words[1:], "--out", "best"], tmp_path)
+    assert result.returncode == 0, result.describe()
+    assert result.stdout.strip() == shown
+    files = sorted((tmp_path / "best").glob("design*.yaml"))
+    listed = _listed(result.stdout)
+    assert len(files) == len(listed) == 8
+    for (_, _, ratio, efficiency), path in zip(listed, files, strict=True):
+        assert _evaluated(path, tmp_path) == pytest.approx((ratio, efficiency), abs=6e-5)

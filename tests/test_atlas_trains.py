@@ -1,0 +1,219 @@
+"""The atlas's train files: the catalog's planetary sets found in the atlas, every
+written train's speed ratios against Willis' equations solved here (no code shared with
+the Davies network), the files derived, and ``derive atlas`` as a command."""
+
+from __future__ import annotations
+
+import json
+import random
+from fractions import Fraction
+
+import pytest
+import sympy
+import yaml
+from hostile.helpers import Result, run_main
+
+import davies_sym
+from davies_sym.atlas.entries import Entry, entry
+from davies_sym.atlas.enumeration import atlas, canonical_code
+from davies_sym.atlas.recognition import OutsideAtlas, train_graph
+from davies_sym.geometry.dependent import resolved_train
+from davies_sym.network.analysis import analyse
+from davies_sym.topology.states import train_in_state
+
+
+def run_derive(args: list[str], cwd) -> Result:
+    """``derive ARGS`` in this process, from the folder ``cwd``."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(cwd)
+        return run_main(args, timeout=3600)
+
+
+def _entries(links: int) -> list[Entry]:
+    found = atlas(links)
+    return [
+        entry(links, r + 1, d + 1, code, group.code, graph)
+        for r, group in enumerate(found.rotation_graphs)
+        for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
+    ]
+
+
+@pytest.fixture(scope="module")
+def entries() -> dict[int, list[Entry]]:
+    return {n: _entries(n) for n in (4, 5, 6)}
+
+
+@pytest.mark.parametrize(
+    ("name", "held", "links"),
+    [
+        ("tuplin", None, 4),  # Laus Fig. 7: two annuli, one carrier
+        ("wolfrom", None, 5),
+        ("ravigneaux", "c", 6),  # ZF 3HP12, carrier held (1st gear and reverse)
+        ("ravigneaux", "s2", 6),  # large sun held (2nd gear)
+        ("simpson", "c2", 6),  # rear carrier held (1st gear)
+        ("simpson", "s", 6),  # sun held (2nd gear)
+    ],
+)
+def test_the_catalog_planetary_sets_lie_in_the_atlas(name: str, held: str | None, links: int) -> None:
+    """Read from the catalog files (not typed here): each set with one member held is a
+    displacement graph of the atlas of its link count."""
+    graph = train_graph(davies_sym.load(davies_sym.catalog_file(name)), held)
+    assert graph.links == links
+    codes = {d.code for d in atlas(links).displacements}
+    assert canonical_code(graph) in codes
+
+
+def test_a_train_outside_the_atlas_is_named_with_its_coupling() -> None:
+    with pytest.raises(OutsideAtlas, match=r"coupling W \(type: worm\)"):
+        train_graph(davies_sym.load(davies_sym.catalog_file("worm_drive")))
+
+
+def _willis_ratio(e: Entry, state: str, values: dict[sympy.Symbol, Fraction]) -> Fraction:
+    """Input over output speed from Willis' equation of every mesh about its carrier,
+    (w_a - w_k) r_a = -+(w_b - w_k) r_b (external -, internal +), the held member at
+    rest and the input at speed 1, solved exactly."""
+    document = yaml.safe_load(e.train_text())
+    train = resolved_train(davies_sym.loads(e.train_text()))
+    radius = {g.name: Fraction(str(sympy.sympify(g.radius).subs(values))) for g in train.gears}
+    internal = {g.name for g in train.gears if g.internal}
+    link_of = {name: int(gear["link"][1:]) for name, gear in document["gears"].items()}
+    chosen = e.choices[[c.name for c in e.choices].index(state)]
+    held, into, out = chosen.held, chosen.input, chosen.output
+    n = e.graph.links
+    rows, rhs = [_unit(n, held)], [Fraction(0)]
+    rows.append(_unit(n, into))
+    rhs.append(Fraction(1))
+    for index, pair in enumerate(e.drawn.meshes):
+        g, h = document["couplings"][f"M{index}"]["gears"]
+        a, b, k = link_of[g], link_of[h], pair.pair.carrier
+        sign = 1 if internal & {g, h} else -1
+        row = [Fraction(0)] * n
+        row[a] += radius[g]
+        row[k] -= radius[g]
+        row[b] -= sign * radius[h]
+        row[k] += sign * radius[h]
+        rows.append(row)
+        rhs.append(Fraction(0))
+    return 1 / _solve(rows, rhs)[out]
+
+
+def _unit(n: int, k: int) -> list[Fraction]:
+    return [Fraction(int(j == k)) for j in range(n)]
+
+
+def _solve(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction]:
+    """The unique solution of a square system, by Gauss-Jordan elimination in fractions."""
+    n = len(rows)
+    augmented = [[*row, value] for row, value in zip(rows, rhs, strict=True)]
+    for column in range(n):
+        pivot = next(r for r in range(column, n) if augmented[r][column] != 0)
+        augmented[column], augmented[pivot] = augmented[pivot], augmented[column]
+        for r in range(n):
+            if r != column and augmented[r][column] != 0:
+                factor = augmented[r][column] / augmented[column][column]
+                augmented[r] = [x - factor * y for x, y in zip(augmented[r], augmented[column], strict=True)]
+    return [augmented[r][n] / augmented[r][r] for r in range(n)]
+
+
+@pytest.mark.parametrize("links", [4, 5, 6])
+def test_every_written_train_turns_as_willis_says(entries: dict[int, list[Entry]], links: int) -> None:
+    """Every state of every drawable train: the package's speed ratio (null space of
+    M_N) equals Willis' at a random point of positive radii."""
+    chooser = random.Random(links)
+    checked = 0
+    for e in entries[links]:
+        if e.not_drawable:
+            continue
+        train = davies_sym.loads(e.train_text())
+        resolved = resolved_train(train)
+        free = sorted({s for g in resolved.gears for s in sympy.sympify(g.radius).free_symbols}, key=str)
+        for state in train.states:
+            ratio = analyse(train_in_state(train, state)).speed_ratio().to_expr()
+            # A point of positive radii where the output turns (the ratio is finite, not zero).
+            for _ in range(200):
+                values = {s: Fraction(chooser.randint(5, 60)) for s in free}
+                at = ratio.subs(values)
+                if all(sympy.sympify(g.radius).subs(values) > 0 for g in resolved.gears) and at.is_finite and at != 0:
+                    break
+            assert Fraction(str(at)) == _willis_ratio(e, state.name, values), (e.name, state.name)
+            checked += 1
+    assert checked >= {4: 3, 5: 12, 6: 200}[links]
+
+
+def test_the_atlas_draws_most_six_link_trains(entries: dict[int, list[Entry]]) -> None:
+    """Of the 81 six-link trains, those the topology language can write (a link's gears
+    about the axis it turns about; a held member with two others at a set ratio)."""
+    drawn = [e for e in entries[6] if not e.not_drawable]
+    assert len(entries[6]) == 81
+    assert len(drawn) >= 71
+    for e in entries[6]:
+        if e.not_drawable:
+            assert e.not_drawable.startswith(("link", "no held member"))
+
+
+def test_derive_atlas_counts_and_json(tmp_path) -> None:
+    """Yang & Ding (2019): 27 rotation graphs and 81 displacement graphs of 6 links."""
+    result = run_derive(["atlas", "--links", "6", "--json", "--quiet"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    document = json.loads(result.stdout)
+    assert (document["rotation_graphs"], document["displacement_graphs"]) == (27, 81)
+    assert document["published"]["rotation_graphs"] == 27
+    graph = document["graphs"][0]
+    assert {"code", "rotation_code", "levels", "gears", "coaxial", "held", "choices"} <= set(graph)
+    assert sum(1 for g in document["graphs"] if g["train_file"]) >= 71
+    assert all(g["choices"] for g in document["graphs"] if g["train_file"])
+
+
+def test_the_four_and_five_link_files_derive(tmp_path) -> None:
+    """Every file written derives as written, every state."""
+    for links in ("4", "5"):
+        result = run_derive(["atlas", "--links", links, "--out", "trains", "--quiet"], cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+    files = sorted(str(p) for p in (tmp_path / "trains").glob("*.yaml"))
+    assert len(files) >= 6
+    result = run_derive([*files, "--out", "derived", "--quiet"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr + result.stdout
+    assert len(list((tmp_path / "derived").glob("*.tex"))) == len(files)
+
+
+@pytest.mark.slow
+def test_every_six_link_file_derives(tmp_path) -> None:
+    """The issue's check: every 6-link train file derives (every state, both directions)."""
+    result = run_derive(["atlas", "--links", "6", "--out", "trains", "--jobs", "2", "--quiet"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    files = sorted(str(p) for p in (tmp_path / "trains").glob("*.yaml"))
+    assert len(files) >= 71
+    result = run_derive([*files, "--out", "derived", "--jobs", "2", "--quiet"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr + result.stdout
+    assert len(list((tmp_path / "derived").glob("*.tex"))) == len(files)
+
+
+def test_out_and_draw_are_reproducible_and_never_overwrite_an_edit(tmp_path) -> None:
+    args = ["atlas", "--links", "4", "--out", "trains", "--draw", "--quiet"]
+    assert run_derive(args, cwd=tmp_path).returncode == 0
+    first = {p.name: p.read_bytes() for p in (tmp_path / "trains").iterdir()}
+    assert any(name.endswith(".graph.svg") for name in first) and any(name.endswith(".layout.svg") for name in first)
+    assert run_derive(args, cwd=tmp_path).returncode == 0  # the same files again: written alike
+    assert {p.name: p.read_bytes() for p in (tmp_path / "trains").iterdir()} == first
+    edited = next(p for p in (tmp_path / "trains").iterdir() if p.suffix == ".yaml")
+    edited.write_text(edited.read_text() + "# my note\n")
+    result = run_derive(args, cwd=tmp_path)
+    assert result.returncode == 2
+    assert edited.name in result.stderr and "left as it is" in result.stderr
+    assert edited.read_text().endswith("# my note\n")
+
+
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        (["--links", "2"], "--links: expected a number of links from 3 to 8"),
+        (["--links", "six"], "--links: expected a number of links"),
+        (["--links", "4", "--draw"], "--draw writes the drawings beside the train files: add --out DIR"),
+        (["--links", "4", "--jobs", "0"], "--jobs: expected a number of processes"),
+    ],
+)
+def test_bad_atlas_options_get_one_clear_message(tmp_path, args: list[str], says: str) -> None:
+    result = run_derive(["atlas", *args], cwd=tmp_path)
+    assert result.returncode == 2
+    assert says in result.stderr
+    assert "Traceback" not in result.stderr

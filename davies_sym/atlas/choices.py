@@ -44,6 +44,8 @@ class Admissible:
     choices: tuple[Choice, ...]
     planar: bool
     loaded: tuple[Choice, ...] = ()
+    #: Why there is no choice when the layout cannot be drawn.
+    reason: str | None = None
 
 
 def _written(drawn: Realisation, candidates: tuple[Choice, ...], planar: bool) -> Train:
@@ -64,6 +66,10 @@ def admissible_choices(drawn: Realisation) -> Admissible:
     except GeometryError:
         planar = True
         train = _written(drawn, candidates, planar)
+        try:
+            train_layout(train)
+        except GeometryError as exc:
+            return Admissible((), planar, (), f"neither a line nor 2-D placement draws it ({exc.problems[0].message})")
     kept, loaded = [], []
     for choice, state in zip(candidates, train.states, strict=True):
         try:

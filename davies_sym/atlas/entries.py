@@ -104,28 +104,25 @@ class Entry:
 
 
 def entry(links: int, rotation: int, index: int, code: str, rotation_code: str, graph: TrainGraph) -> Entry:
-    """The entry of one displacement graph: drawn the first way of `realisations` the
-    topology language can write and that leaves a choice (its choices read from the
-    train's motions); the reason of the first way tried when none does."""
-    reason = None
+    """The entry of one displacement graph: drawn the first way of `realisations` that
+    leaves a choice (the choices read from the train's motions), or the reason none does."""
+    reasons = []
     for drawn in realisations(graph):
-        why = drawn.drawable()
-        if why is None:
-            found = admissible_choices(drawn)
-            if found.choices:
-                return Entry(
-                    links,
-                    rotation,
-                    index,
-                    code,
-                    rotation_code,
-                    graph,
-                    found.choices,
-                    None,
-                    found.planar,
-                    drawn,
-                    found.loaded,
-                )
-            why = "no held member leaves two others turning at a ratio set by the gears"
-        reason = reason or why
-    return Entry(links, rotation, index, code, rotation_code, graph, (), reason or "no link turns in two bearings")
+        found = admissible_choices(drawn)
+        reasons.append(found.reason)
+        if found.choices:
+            return Entry(
+                links,
+                rotation,
+                index,
+                code,
+                rotation_code,
+                graph,
+                found.choices,
+                None,
+                found.planar,
+                drawn,
+                found.loaded,
+            )
+    reason = next((r for r in reasons if r), "no held member leaves two others turning at a ratio set by the gears")
+    return Entry(links, rotation, index, code, rotation_code, graph, (), reason)

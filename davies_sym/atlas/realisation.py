@@ -164,17 +164,12 @@ class Realisation:
             found[g.link].add(g.axis)
         return {link: frozenset(axes) for link, axes in found.items()}
 
-    def drawable(self) -> str | None:
-        """Why the topology language cannot write this train, or None: its planar trains
-        put the gears of a link about the axis the link turns about."""
-        for link, axes in sorted(self.geared_axes.items()):
-            if len(axes) > 1:
-                names = ", ".join(self.axis_name(a) for a in sorted(axes))
-                return f"link {link} carries gears about two axes ({names})"
-            (axis,) = axes
-            if axis != self.parent_axis.get(link, axis):
-                return f"link {link} carries a gear about axis {self.axis_name(axis)}, which it holds"
-        return None
+    def about(self, gear: GearSpec) -> int | None:
+        """The link whose axis a gear is centred on when it is not its own link's (a gear
+        fixed to a carrier about a pin it holds: a link turning on that pin), or None."""
+        if gear.axis == self.parent_axis.get(gear.link, gear.axis):
+            return None
+        return min(x for x in self.graph.axes[gear.axis] if x != gear.link)
 
 
 def main_axis(graph: TrainGraph) -> int:

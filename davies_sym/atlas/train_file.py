@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from davies_sym.atlas.realisation import Realisation
+from davies_sym.atlas.realisation import GearSpec, Realisation
 
 #: Name of the housing link in the train files.
 HOUSING = "housing"
@@ -97,9 +97,15 @@ def tooth_symbol(gear: str) -> str:
     return "z" + gear[1:]
 
 
-def _gear_entry(name: str, link: int, internal: bool, toothed: ToothedForm | None) -> dict[str, Any]:
+def _gear_entry(drawn: Realisation, gear: GearSpec, toothed: ToothedForm | None) -> dict[str, Any]:
+    name = gear.name
     size = {"radius": radius_symbol(name)} if toothed is None else {"teeth": tooth_symbol(name), "module": 1}
-    return {"link": link_name(link), **size} | ({"internal": True} if internal else {})
+    about = drawn.about(gear)
+    return (
+        {"link": link_name(gear.link), **size}
+        | ({"internal": True} if gear.internal else {})
+        | ({"about": link_name(about)} if about is not None else {})
+    )
 
 
 def train_document(
@@ -122,7 +128,7 @@ def train_document(
     links |= {link_name(i): {"description": _description(drawn, i)} for i in range(graph.links)}
     if not housed:
         links[reference]["description"] += " (the frame, reference)"
-    gears = {g.name: _gear_entry(g.name, g.link, g.internal, toothed) for g in drawn.gears}
+    gears = {g.name: _gear_entry(drawn, g, toothed) for g in drawn.gears}
     internal = {g.name for g in drawn.gears if g.internal}
     couplings: dict[str, Any] = {
         bearing_name(x): {"type": "revolute", "links": [reference, link_name(x)], "axis": reference}

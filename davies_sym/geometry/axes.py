@@ -124,9 +124,16 @@ def _bearing_tree(train: Train, revolutes: Sequence[Revolute]) -> tuple[dict[str
 Choice = tuple[MeshFrame, tuple[str, str] | None]
 
 
-def _options(mesh: GearMesh, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
+def axis_links(train: Train, mesh: GearMesh) -> tuple[str, str]:
+    """The links whose axes the two gears of ``mesh`` turn about: their own links, or the
+    link a gear names with ``about`` (a gear fixed to a carrier about a pin it holds)."""
+    first, second = (train.gear(name).axis_link for name in mesh.gears)
+    return first, second
+
+
+def _options(train: Train, mesh: GearMesh, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
     """The ways ``mesh`` can keep its centre distance: (frame, the two links it makes coaxial)."""
-    a, b = mesh.links
+    a, b = axis_links(train, mesh)
     pa, pb = parent.get(a), parent.get(b)
     if pa is not None and pa == pb:
         return [(MeshFrame(pa, None), None)]
@@ -148,20 +155,22 @@ def _mesh_frames(
 ) -> dict[str, MeshFrame]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
     joins two coaxial links."""
+    ends = {m.name: axis_links(train, m) for m in meshes}
     for mesh in meshes:
-        if coaxial.find(mesh.links[0]) == coaxial.find(mesh.links[1]):
+        a, b = ends[mesh.name]
+        if coaxial.find(a) == coaxial.find(b):
             raise GeometryError(
                 [
                     train.problem(
                         f"couplings.{mesh.name}",
-                        f"links {mesh.links[0]!r} and {mesh.links[1]!r} turn about one axis "
+                        f"links {a!r} and {b!r} turn about one axis "
                         "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
                         "`axis:` on its revolute",
                     )
                 ],
                 train.path,
             )
-    choices = [_options(m, parent, depth) for m in meshes]
+    choices = [_options(train, m, parent, depth) for m in meshes]
     for assignment in _assignments(choices):
         groups = LinkGroups(sorted(train.link_names))
         for link in train.link_names:
@@ -169,7 +178,7 @@ def _mesh_frames(
         for _, equal in assignment:
             if equal is not None:
                 groups.union(*equal)
-        if all(groups.find(m.links[0]) != groups.find(m.links[1]) for m in meshes):
+        if all(groups.find(ends[m.name][0]) != groups.find(ends[m.name][1]) for m in meshes):
             for _, equal in assignment:
                 if equal is not None:
                     coaxial.union(*equal)
@@ -207,7 +216,7 @@ def _root(train: Train, axis: Mapping[str, str], bearing_axis: Mapping[str, str]
     the reference's axis when gears turn about it; else, where a bearing gives a geared
     axis its `at`, the reference's axis too (the origin the `at` values are measured from),
     so that every `at` is kept as written; else the first geared class (by name)."""
-    geared = {axis[g.link] for g in train.gears}
+    geared = {axis[g.axis_link] for g in train.gears}
     if axis[train.reference] in geared:
         return axis[train.reference]
     stated = any(c.at is not None and bearing_axis.get(c.name) in geared for c in bearings(train.couplings))

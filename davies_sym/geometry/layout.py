@@ -78,7 +78,7 @@ def line_point(y: sympy.Expr) -> Vector:
 def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
     """The geared links, and the groups of them that share one axis (joined by a revolute
     that names no axis: coaxial members)."""
-    geared = {g.link for g in train.gears}
+    geared = {g.axis_link for g in train.gears}
     groups = LinkGroups(list(train.link_names))
     for c in bearings(train.couplings):
         if c.axis is None and c.links[0] in geared and c.links[1] in geared:
@@ -89,7 +89,7 @@ def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
 def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, object], problems: list[Problem]) -> None:
     """Every gear's axis group has a position, or the layout fails with all problems."""
     for g in train.gears:
-        if groups.find(g.link) not in positions:
+        if groups.find(g.axis_link) not in positions:
             problems.append(
                 train.problem(
                     f"gears.{g.name}",

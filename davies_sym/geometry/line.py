@@ -68,7 +68,7 @@ def place_classes(
     the main axis when no gear turns about it.  ``via`` records which mesh placed each class from which."""
     positions: dict[str, sympy.Expr] = {structure.root: sympy.Integer(0)}
     bearings = sorted((c for c in all_bearings(train.couplings) if c.at is not None), key=lambda c: c.name)
-    geared = {structure.axis[g.link] for g in train.gears}
+    geared = {structure.axis[g.axis_link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
             positions[structure.bearing_axis[c.name]] = c.at
@@ -83,7 +83,7 @@ def place_classes(
         if not rest:
             return positions
         if rest[0] in geared:
-            gear = next(g for g in train.gears if structure.axis[g.link] == rest[0])
+            gear = next(g for g in train.gears if structure.axis[g.axis_link] == rest[0])
             problems.append(
                 train.problem(
                     f"gears.{gear.name}",
@@ -103,7 +103,7 @@ def _place_one(
 ) -> bool:
     """Place the class of the first mesh (by name) with exactly one end placed."""
     for mesh in meshes:
-        ends = [structure.axis[link] for link in mesh.links]
+        ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
         placed = [end in positions for end in ends]
         if placed[0] == placed[1]:
             continue
@@ -131,7 +131,7 @@ def planar_line_layout(train: Train) -> Layout:
     # An annulus is larger than its pinion, and every radius is positive (3 r2 - r1 too):
     # that decides on which side a loop closes.
     oracle = SignOracle([centre_distance(m, gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
-    centres = {g.name: positions[structure.axis[g.link]] for g in train.gears}
+    centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
     points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
     constraints: list[GeometricConstraint] = []
     facts: list[sympy.Expr] = []
@@ -159,7 +159,7 @@ def planar_line_layout(train: Train) -> Layout:
             points[mesh.name] = line_point(centres[ann.name] + towards * ann.radius)
         else:
             points[mesh.name] = line_point(centres[g.name] + side * g.radius)
-        ends = [structure.axis[link] for link in mesh.links]
+        ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
         add_constraint(
             train,
             constraints,

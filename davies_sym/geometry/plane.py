@@ -51,7 +51,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     if problems:
         raise GeometryError(problems, train.path)
     oracle = SignOracle()
-    centres = {g.name: positions[structure.axis[g.link]] for g in train.gears}
+    centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
     points: dict[str, Vector] = {}
     tangents: dict[str, Vector] = {}
     normals: dict[str, Vector] = {}
@@ -141,7 +141,7 @@ def _place_classes(
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
     bearings = sorted((c for c in all_bearings(train.couplings) if c.at is not None), key=lambda c: c.name)
-    geared = {structure.axis[g.link] for g in train.gears}
+    geared = {structure.axis[g.axis_link] for g in train.gears}
     for c in bearings:  # positions the user gives come first
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
             positions[structure.bearing_axis[c.name]] = (c.at * unit[0], c.at * unit[1])
@@ -156,7 +156,7 @@ def _place_classes(
         if not rest:
             return positions
         if rest[0] in geared:
-            gear = next(g for g in train.gears if structure.axis[g.link] == rest[0])
+            gear = next(g for g in train.gears if structure.axis[g.axis_link] == rest[0])
             problems.append(
                 train.problem(
                     f"gears.{gear.name}",
@@ -182,7 +182,7 @@ def _place_one(
     reach: dict[str, list[tuple[Point, sympy.Expr, str]]] = {}
     first: tuple[str, Point, str] | None = None
     for mesh in meshes:
-        ends = [structure.axis[link] for link in mesh.links]
+        ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
         for k in (0, 1):
             here, there = ends[1 - k], ends[k]
             if here in positions or there not in positions:

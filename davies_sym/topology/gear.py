@@ -24,3 +24,11 @@ class Gear:
     #: The axis is tilted by the cone geometry: derived from the two coaxial gears this
     #: gear meshes (the Humpage planet, Laus eq. (80)).
     tilted: bool = False
+    #: The link whose axis the gear is centred on when it is not ``link``'s own (a gear
+    #: fixed to a carrier about a pin it holds); None: the axis of ``link``.
+    about: str | None = None
+
+    @property
+    def axis_link(self) -> str:
+        """The link whose axis the gear turns about (for the layout)."""
+        return self.about or self.link

@@ -39,8 +39,16 @@ def read_gears(value: Any, reader: EntryReader, links: set[str]) -> dict[str, Ge
         radius, teeth, module = _read_size(entry, path, reader)
         tilted = entry.get("axis") == "tilted"
         axis = read_direction(entry["axis"], f"{path}.axis", reader) if "axis" in entry and not tilted else None
+        about = reader.name(entry["about"], f"{path}.about") if "about" in entry else None
+        if about is not None and about not in links:
+            reader.unknown(f"{path}.about", "link", about)
+            about = None
+        elif about is not None and "axis" in entry:
+            reader.problem(
+                f"{path}.about", "a gear centred on another link's axis is a parallel-axis gear: drop `axis`"
+            )
         if link is not None and radius is not None:
-            gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted)
+            gears[name] = Gear(name, link, radius, internal, teeth, module, axis, tilted, about)
         else:
             reader.broken.add(name)
     if table and not gears:

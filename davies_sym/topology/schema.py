@@ -88,6 +88,13 @@ GEAR = (
     Field("module", "number or expression", False, "Module (used with `teeth`)."),
     Field("internal", "boolean", False, "True for an annulus (internal teeth). Default false."),
     Field(
+        "about",
+        "link",
+        False,
+        "The link whose axis the gear is centred on, when it is not its own link's: a gear fixed to a "
+        "carrier about one of the pins it holds (the link turning on that pin). Parallel-axis trains only.",
+    ),
+    Field(
         "axis",
         "`x`, `y`, `z`, `-z`, ... or [x, y, z], or `tilted`",
         False,

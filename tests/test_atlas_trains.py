@@ -219,9 +219,19 @@ def test_out_and_draw_are_reproducible_and_never_overwrite_an_edit(tmp_path) -> 
     assert edited.read_text().endswith("# my note\n")
 
 
+def test_count_alone(tmp_path) -> None:
+    """Yang & Ding (2019): 152 rotation graphs and 647 displacement graphs of 7 links."""
+    result = run_derive(["atlas", "--links", "7", "--count", "--json"], cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    document = json.loads(result.stdout)
+    assert (document["rotation_graphs"], document["displacement_graphs"]) == (152, 647)
+    assert "graphs" not in document
+
+
 @pytest.mark.parametrize(
     ("args", "says"),
     [
+        (["--links", "4", "--count", "--out", "x"], "--count writes no train file"),
         (["--links", "2"], "--links: expected a number of links from 3 to 8"),
         (["--links", "six"], "--links: expected a number of links"),
         (["--links", "4", "--draw"], "--draw writes the drawings beside the train files: add --out DIR"),

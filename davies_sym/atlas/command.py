@@ -58,6 +58,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="the atlas as JSON (counts, codes, levels, coaxial members)")
     p.add_argument("--out", metavar="DIR", help="write one train file per displacement graph into DIR")
     p.add_argument("--draw", action="store_true", help="with --out: an SVG of each graph and of its train's layout")
+    p.add_argument("--count", action="store_true", help="only the counts, beside the published ones (no train is read)")
     p.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes (or auto)")
     p.add_argument("--quiet", action="store_true", help="no progress on standard error")
     return p
@@ -88,14 +89,28 @@ def run(argv: Sequence[str]) -> int:
     if args.draw and not args.out:
         print("derive atlas: --draw writes the drawings beside the train files: add --out DIR", file=sys.stderr)
         return 2
+    if args.count and (args.out or args.draw):
+        print("derive atlas: --count writes no train file: drop --out and --draw, or --count", file=sys.stderr)
+        return 2
     if folder_refused("derive atlas", args.out):
         return 2
 
     say = progress("derive atlas", args.quiet)
 
     from davies_sym.atlas.entries import PUBLISHED, PUBLISHED_COUNTS
-    from davies_sym.atlas.report import atlas_text
+    from davies_sym.atlas.report import atlas_text, counts_text
 
+    published = PUBLISHED_COUNTS.get(args.links)
+    if args.count:
+        from davies_sym.atlas.enumeration import atlas
+
+        found = atlas(args.links)
+        counts = (found.rotation_count, found.displacement_count)
+        if args.json:
+            sys.stdout.write(json.dumps(_counts(args.links, counts, published, PUBLISHED), indent=2) + "\n")
+        else:
+            sys.stdout.write(counts_text(args.links, counts, published))
+        return 0
     entries = list(_entries(args.links, args.jobs, say))
     rotation = len({e.rotation for e in entries})
     try:
@@ -111,21 +126,25 @@ def run(argv: Sequence[str]) -> int:
     except OSError as exc:
         print(f"derive atlas: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
         return 2
-    published = PUBLISHED_COUNTS.get(args.links)
     if args.json:
-        document: dict[str, Any] = {
-            "links": args.links,
-            "rotation_graphs": rotation,
-            "displacement_graphs": len(entries),
-            "published": {"rotation_graphs": published[0], "displacement_graphs": published[1], "source": PUBLISHED}
-            if published
-            else None,
-            "graphs": [e.document() for e in entries],
-        }
+        document = _counts(args.links, (rotation, len(entries)), published, PUBLISHED)
+        document["graphs"] = [e.document() for e in entries]
         sys.stdout.write(json.dumps(document, indent=2) + "\n")
     else:
         sys.stdout.write(atlas_text(args.links, entries, published))
     return 0
+
+
+def _counts(links: int, counts: tuple[int, int], published: tuple[int, int] | None, source: str) -> dict[str, Any]:
+    """The counts of ``derive atlas --json`` and the published ones (None where none are)."""
+    return {
+        "links": links,
+        "rotation_graphs": counts[0],
+        "displacement_graphs": counts[1],
+        "published": {"rotation_graphs": published[0], "displacement_graphs": published[1], "source": source}
+        if published
+        else None,
+    }
 
 
 class EditedFile(Exception):

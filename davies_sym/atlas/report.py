@@ -23,13 +23,19 @@ def _entry_line(e: Entry) -> str:
     return f"  {e.name}  axes {levels}  gears {gears}  {tail}"
 
 
+def counts_text(links: int, counts: tuple[int, int], published: tuple[int, int] | None) -> str:
+    """The counts and, where published, whether they agree (``derive atlas --count``)."""
+    lines = [f"{links} links: {counts[0]} rotation graphs, {counts[1]} displacement graphs"]
+    if published is not None:
+        agree = "agrees" if published == counts else "DIFFERS"
+        lines.append(f"published ({PUBLISHED}): {published[0]} and {published[1]}: {agree}")
+    return "\n".join(lines) + "\n"
+
+
 def atlas_text(links: int, entries: Sequence[Entry], published: tuple[int, int] | None) -> str:
     """The ``derive atlas`` report."""
     rotation = len({e.rotation for e in entries})
-    lines = [f"{links} links: {rotation} rotation graphs, {len(entries)} displacement graphs"]
-    if published is not None:
-        agree = "agrees" if published == (rotation, len(entries)) else "DIFFERS"
-        lines.append(f"published ({PUBLISHED}): {published[0]} and {published[1]}: {agree}")
+    lines = counts_text(links, (rotation, len(entries)), published).splitlines()
     lines.append("gear pairs are written first-second/carrier; axis a is the main axis (housing or frame)")
     current = 0
     for e in entries:

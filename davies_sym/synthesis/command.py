@@ -29,6 +29,8 @@ def parser() -> argparse.ArgumentParser:
         prog="derive search",
         description="Find the tooth numbers of a train (symbolic teeth, free ones listed in independent:) "
         "whose speed ratios hit the targets, and rank the feasible designs by their exact efficiency.",
+        epilog="Over every planetary train of the atlas instead of one file: derive search --atlas N "
+        "--target RATIO ... (derive search --atlas 6 --help).",
     )
     p.add_argument("train", metavar="TRAIN.yaml")
     p.add_argument(

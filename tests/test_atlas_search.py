@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 from hand.markdown import blocks, commands
-from hostile.helpers import Result, run_main
+from hostile.helpers import Result, run_main_in
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The docs' examples: a reduction of 10 to 15 (12.5 within 20 %), teeth 17 to 40.
@@ -19,9 +19,8 @@ LINE = re.compile(r"\s*(\d+)\. (\S+) l(\d+) held, l(\d+) in, l(\d+) out: (.*)  r
 
 
 def run_derive(args: list[str], cwd: Path) -> Result:
-    with pytest.MonkeyPatch.context() as patch:
-        patch.chdir(cwd)
-        return run_main(args, timeout=3600)
+    """``derive ARGS`` in this process, from the folder ``cwd``."""
+    return run_main_in(cwd, args, timeout=3600)
 
 
 def _listed(text: str) -> list[tuple[str, dict[str, int], float, float]]:

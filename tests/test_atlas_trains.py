@@ -8,11 +8,12 @@ import json
 import random
 import re
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 import sympy
 import yaml
-from hostile.helpers import Result, run_main
+from hostile.helpers import Result, run_main_in
 
 import davies_sym
 from davies_sym.atlas.entries import Entry, entry
@@ -23,11 +24,9 @@ from davies_sym.network.analysis import analyse
 from davies_sym.topology.states import train_in_state
 
 
-def run_derive(args: list[str], cwd) -> Result:
+def run_derive(args: list[str], cwd: Path) -> Result:
     """``derive ARGS`` in this process, from the folder ``cwd``."""
-    with pytest.MonkeyPatch.context() as patch:
-        patch.chdir(cwd)
-        return run_main(args, timeout=3600)
+    return run_main_in(cwd, args, timeout=3600)
 
 
 def _entries(links: int) -> list[Entry]:

@@ -30,8 +30,7 @@ def every_choice(drawn: Realisation) -> tuple[Choice, ...]:
     lower link written as the input)."""
     graph = drawn.graph
     if drawn.frame is not None:
-        around = sorted({y for k in graph.axes_of(drawn.frame) for y in graph.axes[k]} - {drawn.frame})
-        return tuple(Choice(drawn.frame, a, b) for a, b in combinations(around, 2))
+        return tuple(Choice(drawn.frame, a, b) for a, b in combinations(graph.neighbours(drawn.frame), 2))
     coaxial = graph.axes[drawn.main_axis]
     return tuple(Choice(held, a, b) for held in coaxial for a, b in combinations([x for x in coaxial if x != held], 2))
 

@@ -79,3 +79,7 @@ class TrainGraph:
     def axes_of(self, link: int) -> tuple[int, ...]:
         """The axes a link turns about (a carrier holds several)."""
         return tuple(k for k, axis in enumerate(self.axes) if link in axis)
+
+    def neighbours(self, link: int) -> tuple[int, ...]:
+        """The links that turn about an axis with ``link`` (in its bearings or it in theirs)."""
+        return tuple(sorted({y for k in self.axes_of(link) for y in self.axes[k]} - {link}))

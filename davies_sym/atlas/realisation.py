@@ -27,6 +27,7 @@ from functools import cached_property
 
 import networkx as nx
 
+from davies_sym.atlas.enumeration import gear_axes
 from davies_sym.atlas.graphs import GearPair, TrainGraph
 
 #: Names of the axes in the train files and the docs: a is the main axis.
@@ -156,14 +157,6 @@ class Realisation:
         ordered = tuple(sorted(specs.values(), key=lambda g: (g.link, g.axis, g.name)))
         return ordered, tuple(meshes)
 
-    @cached_property
-    def geared_axes(self) -> dict[int, frozenset[int]]:
-        """The axes each link has gears about."""
-        found: dict[int, set[int]] = defaultdict(set)
-        for g in self.gears:
-            found[g.link].add(g.axis)
-        return {link: frozenset(axes) for link, axes in found.items()}
-
     def about(self, gear: GearSpec) -> int | None:
         """The link whose axis a gear is centred on when it is not its own link's (a gear
         fixed to a carrier about a pin it holds: a link turning on that pin), or None."""
@@ -185,11 +178,9 @@ def realisations(graph: TrainGraph) -> Iterator[Realisation]:
     main = main_axis(graph)
     if len(graph.axes[main]) >= 3:
         yield Realisation(graph, main)
-    neighbours = {x: {y for k in graph.axes_of(x) for y in graph.axes[k]} - {x} for x in range(graph.links)}
-    for frame in sorted(range(graph.links), key=lambda x: (-len(neighbours[x]), x)):
-        if len(neighbours[frame]) < 2:
+    geared = gear_axes(graph)
+    for frame in sorted(range(graph.links), key=lambda x: (-len(graph.neighbours(x)), x)):
+        if len(graph.neighbours(frame)) < 2:
             continue
-        drawn = Realisation(graph, graph.axes_of(frame)[0], frame)
-        geared = drawn.geared_axes.get(frame, frozenset())
-        own = min(geared) if len(geared) == 1 else graph.axes_of(frame)[0]
-        yield Realisation(graph, own, frame)
+        own = geared.get(frame, ())
+        yield Realisation(graph, own[0] if len(own) == 1 else graph.axes_of(frame)[0], frame)

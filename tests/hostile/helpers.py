@@ -296,3 +296,14 @@ def rename_everywhere(data: dict[str, Any], table: str, old: Any, new: Any) -> d
     elif isinstance(out.get(table), list):
         pass  # replace_scalars renamed the list item
     return out
+
+
+def run_main_in(folder: str | os.PathLike[str], args: Sequence[str], timeout: float = HANG_GUARD) -> Result:
+    """``derive ARGS`` in this process (as `run_main`), with ``folder`` as the working
+    directory for the run."""
+    previous = os.getcwd()
+    os.chdir(folder)
+    try:
+        return run_main(args, timeout)
+    finally:
+        os.chdir(previous)

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 default=$(python3 -c 'import sys; print(f"{sys.version_info[0]}.{sys.version_info[1]}")')
-fast_tests=(tests/test_code_layout.py tests/test_api_values.py tests/test_exit_statuses.py tests/test_one_contract.py)
+fast_tests=(tests/test_code_layout.py tests/test_api_values.py tests/test_exit_statuses.py tests/test_one_contract.py tests/test_atlas_enumeration.py)
 status=0
 versions=("$@")
 [ ${#versions[@]} -gt 0 ] || versions=(3.10 3.11 3.12 3.13)

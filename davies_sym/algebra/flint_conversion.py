@@ -6,6 +6,7 @@ expressions (`davies_sym.algebra.signs`)."""
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Mapping, Sequence
 from math import lcm
 
@@ -15,8 +16,28 @@ from flint import fmpz_mpoly, fmpz_mpoly_ctx
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import DerivationError
 
+#: Factorisations already found, by context and polynomial text (most recent last): the
+#: turning conditions, loaded forces and sums of one derivation factor the same
+#: polynomials again and again (some ten times each on a 7-link planetary train).
+_FACTORED: OrderedDict[tuple[fmpz_mpoly_ctx, str], tuple[int, tuple[tuple[fmpz_mpoly, int], ...]]] = OrderedDict()
+_FACTORED_LIMIT = 4096
+
 
 def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
+    """Content and irreducible factors of ``p`` (flint); a polynomial factored before is
+    looked up (a pure function's memo, bounded: flint polynomials are immutable)."""
+    key = (p.context(), str(p))
+    found = _FACTORED.get(key)
+    if found is None:
+        found = _FACTORED[key] = _factored(p)
+        if len(_FACTORED) > _FACTORED_LIMIT:
+            _FACTORED.popitem(last=False)
+    else:
+        _FACTORED.move_to_end(key)
+    return found[0], list(found[1])
+
+
+def _factored(p: fmpz_mpoly) -> tuple[int, tuple[tuple[fmpz_mpoly, int], ...]]:
     """Content and irreducible factors of ``p`` (flint), also where python-flint 0.9 cannot
     order factors whose coefficients exceed a C long (OverflowError in its sort key):
     then sympy factors the same polynomial, a rare and slower path."""
@@ -27,8 +48,8 @@ def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
         gens = sympy.symbols([f"x{i}" for i in range(len(ctx.names()))])
         poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens, domain="ZZ")
         whole, parts = poly.factor_list()
-        return int(whole), [(ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts]
-    return int(content), [(f, int(e)) for f, e in factors]
+        return int(whole), tuple((ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts)
+    return int(content), tuple((f, int(e)) for f, e in factors)
 
 
 def expanded_expr(p: fmpz_mpoly, symbols: Sequence[sympy.Expr]) -> sympy.Expr:

@@ -163,24 +163,28 @@ class ParameterDomain:
         facts = [FloatPolynomial.of(p, ring.symbols) for rf in self._positive for p in (rf.num, rf.den)]
         return eliminated, facts
 
-    def _clearly_inadmissible(self, point: Mapping[sympy.Symbol, int]) -> bool:
-        """Whether floating point shows ``point`` (drawn integers over 100) outside the
-        domain beyond its rounding error: an eliminated symbol not positive, or a fact's
-        numerator and denominator of opposite signs.  Unclear points go to the exact test."""
+    def _float_verdict(self, point: Mapping[sympy.Symbol, int]) -> bool | None:
+        """Whether floating point shows ``point`` (drawn integers over 100) inside the
+        domain (True) or outside it (False) beyond its rounding error: an eliminated symbol
+        not positive, or a fact's numerator and denominator of opposite signs.  None where
+        a sign is too close to zero to tell: the exact test decides."""
         eliminated, facts = self._float_checks
         values = {s: v / 100 for s, v in point.items()}
+        clear = True
         for symbol, num, den in eliminated:
             n, d = num.sign(values), den.sign(values)
             if n is None or d is None:
-                return False
+                return None  # its value feeds the facts: nothing after it is clear
             if n * d < 0:
-                return True
+                return False
             values[symbol] = num.value(values) / den.value(values)
         for k in range(0, len(facts), 2):
             n, d = facts[k].sign(values), facts[k + 1].sign(values)
-            if n is not None and d is not None and n * d < 0:
-                return True
-        return False
+            if n is None or d is None:
+                clear = False
+            elif n * d < 0:
+                return False
+        return True if clear else None
 
     def _admissible(self, point: Point) -> bool:
         if any(point[s] <= 0 for s in self.eliminated):
@@ -210,12 +214,13 @@ class ParameterDomain:
         produced = 0
         for _ in range(count * attempts):
             drawn = {s: rng.randint(100, 10000) for s in free}
-            if self._clearly_inadmissible(drawn):
+            verdict = self._float_verdict(drawn)
+            if verdict is False:
                 continue
             point: Point = {s: sympy.Rational(v, 100) for s, v in drawn.items()}
             for symbol, expr in self.eliminated.items():
                 point[symbol] = self.value(expr, point)
-            if not self._admissible(point):
+            if verdict is None and not self._admissible(point):
                 continue
             for s in others:
                 point[s] = sympy.Rational(rng.randint(*extra_range), extra_scale)

@@ -1,7 +1,8 @@
 """``derive FILES... --out DIR`` on several processes (``--jobs N``) and on a Dask cluster
 (``--scheduler ADDRESS``): the files written are byte for byte those of the serial run
-(the committed ``derivations/``), a file that fails is reported while the others are
-still written, and the options refuse what they cannot do with exit status 2."""
+(the committed ``derivations/``), with ``--json`` or ``--latex`` byte for byte what
+``derive FILE`` prints with that option, a file that fails is reported while the others
+are still written, and the options refuse what they cannot do with exit status 2."""
 
 from __future__ import annotations
 
@@ -34,6 +35,38 @@ def test_jobs_write_what_the_serial_run_writes(tmp_path: Path) -> None:
         f"wrote the derivations of {t}" for t in TRAINS
     ), result.describe()
     assert f"[{len(TRAINS)}/{len(TRAINS)}]" in result.stderr
+
+
+def test_json_documents_are_what_derive_file_json_prints(tmp_path: Path) -> None:
+    """A train with operating states, one driven at two ports, a machine and a plain
+    train: each ``.json`` is the document ``derive FILE --json`` prints, and nothing else
+    is written."""
+    names = ["simpson", "sr20_differential", "four_bar", "tuplin"]
+    files = [CATALOG / f"{n}.yaml" for n in names]
+    result = run_main([*files, "--out", tmp_path, "--json", "--jobs", "2", "--quiet"], timeout=600)
+    assert result.returncode == 0, result.describe()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(f"{n}.json" for n in names)
+    for name, path in zip(names, files, strict=True):
+        alone = run_main([path, "--json", "--quiet"], timeout=600)
+        assert alone.returncode == 0, alone.describe()
+        assert (tmp_path / f"{name}.json").read_text(encoding="utf-8") == alone.stdout, name
+
+
+def test_latex_writes_the_documents_alone(tmp_path: Path) -> None:
+    result = run_main([*(CATALOG / f"{t}.yaml" for t in TRAINS[:2]), "--out", tmp_path, "--latex", "--quiet"])
+    assert result.returncode == 0, result.describe()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(f"{t}.tex" for t in TRAINS[:2])
+    for t in TRAINS[:2]:
+        assert (tmp_path / f"{t}.tex").read_bytes() == (DERIVATIONS / f"{t}.tex").read_bytes(), t
+
+
+@pytest.mark.parametrize("option", [["--python", "x.py"], ["--emit", "c"], ["--eval"], ["--plot"]])
+def test_one_file_options_are_refused_with_several(tmp_path: Path, option: list[str]) -> None:
+    files = [CATALOG / "simple_pair.yaml", CATALOG / "tuplin.yaml"]
+    result = run_main([*files, "--out", tmp_path, *option])
+    assert result.returncode == 2, result.describe()
+    assert "--python, --emit, --eval and --plot take one file" in result.stderr, result.describe()
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_bad_file_is_reported_and_the_others_are_written(tmp_path: Path) -> None:

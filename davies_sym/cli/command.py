@@ -141,17 +141,18 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     if not args.out or (os.path.exists(args.out) and not os.path.isdir(args.out)):
         print("derive: several files need --out DIR (a directory)", file=sys.stderr)
         return 2
-    if args.json or args.latex or args.python or args.emit or args.eval is not None or args.plot:
+    if args.python or args.emit or args.eval is not None or args.plot is not None:
         print(
-            "derive: with --out DIR each train gets its .tex and .py; --json, --latex, --python, --emit, --eval "
-            "and --plot take one file",
+            "derive: with --out DIR each train gets its .tex and .py (with --json its .json, with --latex its "
+            ".tex alone); --python, --emit, --eval and --plot take one file",
             file=sys.stderr,
         )
         return 2
     from davies_sym.cli.many_files import derive_into
 
     _folder_for_outputs(args.out, args.files[0])
-    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler)
+    documents = ("json",) if args.json else ("tex",) if args.latex else ()
+    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler, documents)
 
 
 class _StdoutFailed(Exception):

@@ -72,7 +72,7 @@ def parser() -> argparse.ArgumentParser:
         metavar="FILE|DIR",
         help="write the document to FILE (atomically) instead of stdout; with a directory, write "
         "<name>.tex and <name>.py of every train there (e.g. derive catalog/*.yaml --out "
-        "derivations/)",
+        "derivations/), with --json <name>.json alone, with --latex <name>.tex alone",
     )
     out.complete = ANY_FILE  # type: ignore[attr-defined]
     python = p.add_argument(

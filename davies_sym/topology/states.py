@@ -97,7 +97,7 @@ def train_in_state(train: Train, state: State) -> Train:
         reference=rename(train.reference),
         degrees_of_freedom=None,
         states=(),
-        whole=_without(train.whole or train, free, Ports(state.input, state.output)),
+        whole=_without(train.whole or train, free),
         # The state's ports are written in its own entry: a problem with them points there.
         renamed=MappingProxyType(
             {"ports": f"states.{state.name}", **{f"ports.{key}": f"states.{state.name}.{key}" for key in PORT_KEYS}}
@@ -105,25 +105,26 @@ def train_in_state(train: Train, state: State) -> Train:
     )
 
 
-def _without(train: Train, free: set[str], ports: Ports) -> Train:
+def _without(train: Train, free: set[str]) -> Train:
     """``train`` without the ``free`` members and their gears and couplings: the geometry a
     state keeps (brakes and clutches join members without moving axes; free members take
     no part, so no axis of the state depends on theirs).  Cached with the train, so the
-    states that free the same members share one whole train: its layout is solved once,
-    its coupling screws and screw systems worked out once (`davies_sym.network.shared_screws`)."""
-    return _WITHOUT.get(train, lambda: _reduced(train, free, ports), (frozenset(free), ports))
+    states that free the same members share one whole train, whatever their ports: its
+    layout is solved once, its coupling screws and screw systems worked out once
+    (`davies_sym.network.shared_screws`).  Its ports stay the file's, which may name a
+    coupling of a free member: neither the layout nor the screws read them."""
+    return _WITHOUT.get(train, lambda: _reduced(train, free), frozenset(free))
 
 
-#: The reduced train of each set of free members and ports, while the whole train lives.
+#: The reduced train of each set of free members, while the whole train lives.
 _WITHOUT: IdentityCache[Train, Train] = IdentityCache()
 
 
-def _reduced(train: Train, free: set[str], ports: Ports) -> Train:
+def _reduced(train: Train, free: set[str]) -> Train:
     if not free:
-        return replace(train, ports=ports, states=())
+        return replace(train, states=())
     return replace(
         train,
-        ports=ports,
         links=tuple(link for link in train.links if link.name not in free),
         gears=tuple(g for g in train.gears if g.link not in free),
         couplings=tuple(c for c in train.couplings if not set(c.links) & free),

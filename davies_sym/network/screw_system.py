@@ -20,9 +20,11 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.algebra.linalg import exact_rank
+from davies_sym.algebra.polynomials import PolynomialRing
 from davies_sym.algebra.radicals import RadicalTable
 from davies_sym.algebra.screws import TWIST_COORDINATES, WRENCH_COORDINATES, NamedScrew, Screw, power
 from davies_sym.algebra.square_root_symbol import Radical
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import DerivationError
 from davies_sym.topology.kind_screws import CouplingScrews
 
@@ -53,7 +55,7 @@ class ScrewSystem:
 
     def reduce_wrench(self, wrench: Screw) -> tuple[sympy.Expr, ...]:
         reduced = self.lift.T * sympy.Matrix(wrench)
-        return tuple(sympy.expand(v) for v in reduced)
+        return tuple(expanded(v) for v in reduced)
 
     def contains(self, twist: Screw) -> bool:
         """Whether ``twist`` lies in the system (its lift reproduces it)."""
@@ -68,6 +70,16 @@ class ScrewSystem:
         """Whether ``value`` vanishes, its radicals reduced."""
         value = sympy.expand(value)
         return value == 0 or (bool(self.radicals) and RadicalTable(list(self.radicals)).reduce(value) == 0)
+
+
+def expanded(value: sympy.Expr) -> sympy.Expr:
+    """``value`` expanded; a quotient (a moment about a planet centre placed in 2-D, whose
+    coordinates are fractions with square roots) as its reduced numerator over its
+    denominator, each expanded, by flint: ``sympy.expand`` would spread the denominator
+    over every term of the numerator, tens of thousands of operations for one moment."""
+    if not any(p.exp.is_negative and p.base.free_symbols for p in value.atoms(sympy.Pow)):
+        return sympy.expand(value)
+    return PolynomialRing(sorted_symbols(value.free_symbols)).rational(value).to_expr(factored=False)
 
 
 def essential_twists(screws: Iterable[CouplingScrews], spatial: bool) -> list[Screw]:

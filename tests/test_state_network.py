@@ -120,3 +120,20 @@ def test_a_coupling_other_than_its_whole_s_is_not_shared() -> None:
     assert shared_screws(state) is not None
     # Screws are shared only for the whole's own couplings (their ends aside).
     assert shared_screws(replace(state, couplings=(replace(first, name=f"{first.name}2"), *rest))) is None
+
+
+def test_states_that_free_the_same_members_share_one_whole_whatever_their_ports() -> None:
+    """A whole train per set of free members, not per pair of ports: the Simpson states
+    that free no member, and one driven at its output, share one whole (its layout
+    solved once); the reverse state, which frees two members, has the whole without them."""
+    train = davies_sym.load(ROOT / "catalog/simpson.yaml")
+    first = train.states[0]
+    fixed = [s for s in train.states if not s.free]
+    fixed.append(replace(first, name="driven_at_the_output", input=first.output, output=first.input))
+    states = [davies_sym.train_in_state(train, s) for s in fixed]
+    assert len({(s.ports.input, s.ports.output) for s in states}) == 2
+    assert len({id(s.whole) for s in states}) == 1
+    (reverse,) = (s for s in train.states if s.free)
+    alone = davies_sym.train_in_state(train, reverse)
+    assert alone.whole is not states[0].whole
+    assert alone.whole is not None and not set(reverse.free) & set(alone.whole.link_names)

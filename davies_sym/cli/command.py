@@ -102,35 +102,16 @@ def _path_text(path: str) -> str:
 
 
 def _one_file(args: argparse.Namespace, progress: Progress) -> int:
-    from davies_sym.cli.one_input import one_input_outputs
-    from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_outputs
-    from davies_sym.machines.loader import build_machine, is_machine
+    from davies_sym.cli.file_outputs import file_outputs
     from davies_sym.topology.documents import read_document
-    from davies_sym.topology.loader import build_train
 
     path = args.files[0]
     targets = [(t, option) for t, option in ((args.python, "--python"), (args.out, "-o")) if t is not None]
     for target, option in targets:
         _check_target(target, option, [path])
     _check_distinct(targets, path)
-    document = read_document(path)
     failures: list[str] = []
-    if is_machine(document.data):
-        from davies_sym.cli.machine_input import machine_outputs
-
-        outputs = machine_outputs(build_machine(document), args, progress)
-    else:
-        train = build_train(document)
-        if args.task or args.plot == "":
-            option = "--task" if args.task else "--plot"
-            raise InputError(
-                [Problem(option, "--task is for machines; for a gear train write --plot NAME=START:STOP")], path
-            )
-        outputs = (
-            several_outputs(train, args, progress)
-            if several_degrees_of_freedom(train)
-            else one_input_outputs(train, args, progress, failures)
-        )
+    outputs = file_outputs(read_document(path), args, progress, failures)
     _write(outputs, {target: option for target, option in targets}, path)
     for line in failures:
         print(line, file=sys.stderr)
@@ -151,8 +132,8 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
     from davies_sym.cli.many_files import derive_into
 
     _folder_for_outputs(args.out, args.files[0])
-    documents = ("json",) if args.json else ("tex",) if args.latex else ()
-    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler, documents)
+    document = "json" if args.json else "tex" if args.latex else None
+    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler, document)
 
 
 class _StdoutFailed(Exception):

@@ -1,6 +1,6 @@
 """``derive FILES... --out DIR``: the LaTeX document and the formula module of every
-train (or only the documents asked for: ``--json`` the JSON document, ``--latex`` the
-LaTeX one, each what ``derive FILE`` prints with that option), each file one task.
+train (or only the document asked for: ``--json`` the JSON document, ``--latex`` the
+LaTeX one, what ``derive FILE`` prints with that option), each file one task.
 The tasks run in this process, on N local processes (``--jobs N``, the standard
 library's process pool) or on a Dask cluster (``--scheduler ADDRESS``); the results come
 back as text and are written here, atomically, as each task finishes.  A file that
@@ -14,11 +14,12 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
-from davies_sym.cli.machine_input import machine_derivations, machine_outputs
+from davies_sym.cli.file_outputs import file_outputs
+from davies_sym.cli.machine_input import machine_derivations
 from davies_sym.cli.messages import message
-from davies_sym.cli.one_input import one_input_outputs, write_derivations
+from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.parser import parser
-from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations, several_outputs
+from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, MissingDependencyError, Problem, TopologyError
 from davies_sym.machines.loader import build_machine, is_machine
@@ -37,8 +38,9 @@ class Task:
     path: str
     data: bytes
     stem: str
-    #: The documents asked for (``json``, ``tex``); none: the LaTeX document and the modules.
-    documents: tuple[str, ...] = ()
+    #: The document asked for alone (``json``, ``tex``: the suffix of its file, a key of
+    #: `DOCUMENTS`); None: the LaTeX document and the modules.
+    document: str | None = None
 
 
 @dataclass(frozen=True)
@@ -61,8 +63,8 @@ def derive_task(task: Task, progress: Progress = _silent) -> Derived:
     message in the result, never an exception, so one bad file stops nothing else."""
     try:
         document = document_from_bytes(task.data, task.path)
-        if task.documents:
-            return Derived(task.path, *_documents(document, task, progress))
+        if task.document is not None:
+            return _document_alone(document, task, task.document, progress)
         if is_machine(document.data):
             return Derived(task.path, 0, (), tuple(machine_derivations(build_machine(document), task.stem, progress)))
         train = build_train(document)
@@ -87,27 +89,15 @@ def derive_task(task: Task, progress: Progress = _silent) -> Derived:
 DOCUMENTS = {"json": "--json", "tex": "--latex"}
 
 
-def _documents(
-    document: SourceDocument, task: Task, progress: Progress
-) -> tuple[int, tuple[str, ...], tuple[tuple[str, str], ...]]:
-    """Exit status, messages and files of the documents ``task`` asks for: each one is
-    what ``derive FILE`` with its option prints (`one_input_outputs` and its peers, given
-    the arguments that command line parses to), so that both ways give the same bytes."""
+def _document_alone(document: SourceDocument, task: Task, kind: str, progress: Progress) -> Derived:
+    """The one document of ``kind`` (a key of `DOCUMENTS`) that ``task`` asks for: what
+    ``derive FILE`` with its option prints (`file_outputs`, given the arguments that command
+    line parses to)."""
     failures: list[str] = []
-    written: list[tuple[str, str]] = []
-    for suffix in task.documents:
-        args = parser().parse_args([task.path, DOCUMENTS[suffix]])
-        if is_machine(document.data):
-            outputs = machine_outputs(build_machine(document), args, progress)
-        else:
-            train = build_train(document)
-            if several_degrees_of_freedom(train):
-                outputs = several_outputs(train, args, progress)
-            else:
-                outputs = one_input_outputs(train, args, progress, failures)
-        ((_, text),) = outputs
-        written.append((f"{task.stem}.{suffix}", text if isinstance(text, str) else text.decode()))
-    return (2 if failures else 0), tuple(dict.fromkeys(failures)), tuple(written)
+    args = parser().parse_args([task.path, DOCUMENTS[kind]])
+    ((_, text),) = file_outputs(document, args, progress, failures)
+    content = text if isinstance(text, str) else text.decode()
+    return Derived(task.path, 2 if failures else 0, tuple(failures), ((f"{task.stem}.{kind}", content),))
 
 
 def _crashed(path: str, exc: BaseException) -> Derived:
@@ -164,10 +154,10 @@ def _clash(directory: str, stem: str, files: Sequence[str]) -> str | None:
     return next((o for o in outputs if os.path.exists(o) and any(same_file(o, f) for f in inputs)), None)
 
 
-def _tasks(directory: str, files: Sequence[str], documents: tuple[str, ...]) -> tuple[list[Task], list[str]]:
+def _tasks(directory: str, files: Sequence[str], document: str | None) -> tuple[list[Task], list[str]]:
     """The tasks, and the refusals of files whose outputs would overwrite an input or the
     outputs of another file of the same name."""
-    suffixes = documents or ("tex", "py")
+    suffixes = (document,) if document is not None else ("tex", "py")
     tasks: list[Task] = []
     refused: list[str] = []
     stems: dict[str, str] = {}
@@ -190,7 +180,7 @@ def _tasks(directory: str, files: Sequence[str], documents: tuple[str, ...]) -> 
             refused.append(exc.report())
             continue
         stems[stem] = path
-        tasks.append(Task(path, data, stem, documents))
+        tasks.append(Task(path, data, stem, document))
     return tasks, refused
 
 
@@ -232,14 +222,14 @@ def derive_into(
     quiet: bool = False,
     jobs: int = 1,
     scheduler: str | None = None,
-    documents: tuple[str, ...] = (),
+    document: str | None = None,
 ) -> int:
     """LaTeX document and formula module of every train file into ``directory`` (a train
-    with states gets one document and a module per state), or only the ``documents``
-    named (`DOCUMENTS`); the exit status is the worst of the files' (0 all derived, 2 a
+    with states gets one document and a module per state), or only the ``document``
+    named (a key of `DOCUMENTS`); the exit status is the worst of the files' (0 all derived, 2 a
     file or state refused, 1 a task that failed)."""
     os.makedirs(directory, exist_ok=True)
-    tasks, refused = _tasks(directory, files, documents)
+    tasks, refused = _tasks(directory, files, document)
     counter = _Counter(len(tasks), progress, quiet)
     counter.report(refused)
     statuses = {2} if refused else set()

@@ -7,6 +7,7 @@ interface turns these errors into one-line messages and exit status 2.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 
@@ -29,6 +30,36 @@ class Problem:
         return f"{where}:{entry} {_one_line(self.message)}"
 
 
+@dataclass(frozen=True)
+class FileLines:
+    """Where a file writes its entries: the file's path, the line of each entry path
+    (``couplings.C.gears`` -> 12) and the entries the later stages name that the file
+    writes elsewhere (a state's ports: ``ports.input`` -> ``states.NAME.input``).
+
+    The stages after loading name the entry a problem is about; the error they raise,
+    given these lines, puts each problem where the file writes it."""
+
+    path: str | None
+    lines: Mapping[str, int]
+    renamed: Mapping[str, str]
+
+    def locate(self, problem: Problem) -> Problem:
+        """``problem`` at the entry the file writes, with that entry's line (the nearest
+        enclosing entry that has one); a problem already given a line, or with an option
+        of the command (``--eval``), is kept."""
+        if problem.line is not None or problem.entry.startswith("--"):
+            return problem
+        entry = problem.entry
+        for name in sorted(self.renamed, key=len, reverse=True):
+            if entry == name or entry.startswith((f"{name}.", f"{name}[")):
+                entry = self.renamed[name] + entry[len(name) :]
+                break
+        path = entry
+        while path and path not in self.lines:
+            path = path.rpartition(".")[0]
+        return Problem(entry, problem.message, self.lines.get(path))
+
+
 def _one_line(text: str) -> str:
     """``text`` with control characters escaped, so a problem stays on one line whatever
     the user's keys and values hold."""
@@ -44,7 +75,10 @@ class InputError(DaviesError):
 
     kind = "input error"
 
-    def __init__(self, problems: list[Problem], source: str | None = None):
+    def __init__(self, problems: list[Problem], source: str | FileLines | None = None):
+        if isinstance(source, FileLines):
+            problems = [source.locate(p) for p in problems]
+            source = source.path
         self.problems = list(problems)
         self.source = source
         super().__init__(self.report())

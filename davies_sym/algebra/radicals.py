@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import sympy
 
 from davies_sym.algebra.polynomials import PolynomialRing
+from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.square_root_symbol import Radical
 
@@ -91,6 +92,10 @@ class RadicalTable:
         ring = PolynomialRing(symbols, self.radicals)
         value = ring.rational(expr)
         return ring.to_expr(value.num) / ring.to_expr(value.den)
+
+    def reduced(self, components: Iterable[sympy.Expr | int]) -> Vector:
+        """The vector of ``components`` (expressions or numbers), each one `reduce`d."""
+        return vector([self.reduce(sympy.sympify(x)) for x in components])
 
     def restore(self, expr: sympy.Expr) -> sympy.Expr:
         """Radical symbols replaced by their square roots (for output)."""

@@ -39,14 +39,14 @@ def check_mesh_friction(train: Train) -> None:
     has a load-dependent friction law with a symbol of its own."""
     problems = [p for c in toothed_meshes(train.couplings) for p in _problems(train, c)]
     if problems:
-        raise TopologyError(problems, train.path)
+        raise TopologyError(problems, train.file_lines)
 
 
 def _problems(train: Train, mesh: ToothedMesh) -> list[Problem]:
     entry = f"couplings.{mesh.name}.friction"
     if mesh.friction.loaded is None:
         return [
-            train.problem(
+            Problem(
                 entry,
                 f"a mesh needs a coulomb or linear friction law, from which its ordinary "
                 f"efficiency is derived; remove `friction:` (the default is coulomb: zeta_{mesh.name})",
@@ -55,7 +55,7 @@ def _problems(train: Train, mesh: ToothedMesh) -> list[Problem]:
     law, coefficient = mesh.friction.loaded
     if not isinstance(coefficient, sympy.Symbol):
         return [
-            train.problem(
+            Problem(
                 f"{entry}.{law}",
                 f"the coefficient is solved from the mesh's ordinary efficiency, so "
                 f"it must be a symbol, not {sympy.sstr(coefficient)[:40]}; write {law}: "
@@ -64,7 +64,7 @@ def _problems(train: Train, mesh: ToothedMesh) -> list[Problem]:
         ]
     if any(coefficient in q.free_symbols for q in _other_quantities(train, mesh)):
         return [
-            train.problem(
+            Problem(
                 f"{entry}.{law}",
                 f"{coefficient} is also used elsewhere in the train; give each mesh "
                 f"a friction symbol of its own, e.g. zeta_{mesh.name}",

@@ -59,14 +59,14 @@ class _SeveralInputAnalysis(Analysis):
             extra = sorted(free - set(inputs))
             raise MobilityError(
                 [
-                    self.train.problem(
+                    Problem(
                         "ports.input",
                         f"the train has {len(free)} degrees of freedom but {len(inputs)} input ports drive "
                         "it"
                         + (f" (also free: {', '.join(extra)})" if extra else "; an input port cannot turn on its own"),
                     )
                 ],
-                self.train.path,
+                self.train.file_lines,
             )
         speeds = {name: RationalFunction.polynomial(self.ring, self.ring.gen(s)) for name, s in inputs.items()}
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -128,7 +128,7 @@ def derive_several_inputs(
                     "", f"{', '.join(clash)} name the input speeds and the load torque; rename the symbol in the file"
                 )
             ],
-            train.path,
+            train.file_lines,
         )
     analysis = _SeveralInputAnalysis(
         train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=[*etas, *speeds, LOAD_TORQUE]

@@ -141,7 +141,7 @@ class VariantSet:
                         f"{self.train.ports.input}, {self.train.ports.output})",
                     )
                 ],
-                self.train.path,
+                self.train.file_lines,
             )
         return holding_variant(self.variants, self.conditions, port, values, self.train.path, self.excluded)
 
@@ -186,10 +186,12 @@ class VariantSet:
         definitions = [d for d in self.train.definitions if d.symbol not in given]
         missing = [str(s) for s in sorted_symbols(parameters_of(self._used, definitions)) if s not in given]
         if missing:
-            raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.path)
+            raise MissingValuesError(
+                [Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.file_lines
+            )
         outside = [why for p in self.parameter_table if (why := _range_problem(p, given)) is not None]
         if outside:
-            raise DesignError([Problem("--eval", why) for why in outside], self.train.path)
+            raise DesignError([Problem("--eval", why) for why in outside], self.train.file_lines)
         check_constraints(self.analysis.network.layout.constraints, given, self.train.path)
         ports = self.train.ports
         other = ports.output if port == ports.input else ports.input
@@ -227,19 +229,19 @@ def derive_variants(
     strangers = [p for p in inputs or () if p not in ports]
     if strangers:  # refused as --input refuses them
         why = f"{shortened(strangers[0])} is not a port (ports: {', '.join(ports)})"
-        raise InputError([Problem("--input", why)], train.path)
+        raise InputError([Problem("--input", why)], train.file_lines)
     if len(train.ports.inputs) > 1:
         # One efficiency per input port is this function's answer; several inputs have regions.
         raise InputError(
             [
-                train.problem(
+                Problem(
                     "ports",
                     f"the train is driven at {', '.join(train.ports.inputs)}: its efficiency depends on "
                     "the power-flow region; derive it with davies_sym.derive_several_inputs(train), as the "
                     "derive command does",
                 )
             ],
-            train.path,
+            train.file_lines,
         )
     check_mesh_friction(train)
     if layout is None:
@@ -255,7 +257,7 @@ def derive_variants(
                     "rename the symbol in the file",
                 )
             ],
-            train.path,
+            train.file_lines,
         )
     extra = [*etas, *OPERATING_SYMBOLS]
     analysis = Analysis(

@@ -22,7 +22,7 @@ import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
-from davies_sym.errors import DerivationError, TopologyError
+from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.toothed_mesh import ToothedMesh
 
@@ -119,14 +119,14 @@ def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twis
     train = analysis.train
     raise TopologyError(
         [
-            train.problem(
+            Problem(
                 f"couplings.{mesh.name}",
                 "no other link holds the axes of both gears (the "
                 "mesh has no carrier), so its ordinary efficiency is not defined; check which "
                 "links the bearings join",
             )
         ],
-        train.path,
+        train.file_lines,
     )
 
 
@@ -151,13 +151,13 @@ def mesh_power_flow(analysis: Analysis, mesh: ToothedMesh) -> MeshPowerFlow:
     if len(lossless) != 1 or law.transmitted != lossless[0].name:
         raise TopologyError(
             [
-                analysis.train.problem(
+                Problem(
                     f"couplings.{mesh.name}",
                     f"mesh {mesh.name} transmits {len(lossless)} actions in this screw system; its ordinary "
                     "efficiency needs exactly one (the tooth force): does a coupling move out of the gears' plane?",
                 )
             ],
-            analysis.train.path,
+            analysis.train.file_lines,
         )
     carrier, sides = find_carrier(analysis, mesh)
     ring = analysis.ring

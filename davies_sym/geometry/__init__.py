@@ -17,7 +17,8 @@ import sympy
 
 from davies_sym.algebra.screws import Vector
 from davies_sym.caches import IdentityCache
-from davies_sym.errors import GeometryError
+from davies_sym.errors import GeometryError, Problem
+from davies_sym.geometry.axes import axis_structure
 from davies_sym.geometry.cone import conical_layout
 from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
@@ -58,9 +59,10 @@ def _layout(train: Train) -> Layout:
         return skew_layout(train, _layout)
     if any(g.axis is not None or g.tilted for g in train.gears):
         return conical_layout(train)
+    # The axis classes are found once and handed to the layout that places them.
     if train.placement is not None:
-        return plane_layout(train, train.placement)
-    return planar_line_layout(train)
+        return plane_layout(train, train.placement, axis_structure(train))
+    return planar_line_layout(train, axis_structure(train))
 
 
 def _following(layout: Layout, train: Train) -> Layout:
@@ -75,13 +77,13 @@ def _following(layout: Layout, train: Train) -> Layout:
         try:
             where = mesh.locate(layout, gears)
         except LocationError as e:
-            problems.append(train.problem(f"couplings.{mesh.name}.{e.key}", e.message))
+            problems.append(Problem(f"couplings.{mesh.name}.{e.key}", e.message))
             continue
         if where is not None:
             points[mesh.name], tangents[mesh.name], normals[mesh.name] = where.point, where.tangent, where.normal
             placed = True
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     # A train of gear pairs only keeps the layout its layouts drew.
     return replace(layout, coupling_points=points, mesh_tangents=tangents, mesh_normals=normals) if placed else layout
 
@@ -94,13 +96,13 @@ def _helical(layout: Layout, train: Train) -> Layout:
     if layout.gear_axes:
         raise GeometryError(
             [
-                train.problem(
+                Problem(
                     f"couplings.{helical[0].name}.helix_angle",
                     "helical gears are covered on parallel axes; this train has intersecting axes (spiral "
                     "bevel gears are not covered): remove `helix_angle`",
                 )
             ],
-            train.path,
+            train.file_lines,
         )
     return replace(layout, thrust=True)
 

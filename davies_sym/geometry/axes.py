@@ -20,7 +20,7 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from itertools import product
 
-from davies_sym.errors import GeometryError
+from davies_sym.errors import GeometryError, Problem
 from davies_sym.topology.coupling_kinds import bearings, gear_meshes
 from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.link_groups import LinkGroups
@@ -54,6 +54,10 @@ class AxisStructure:
     bearing_axis: Mapping[str, str]
     meshes: Mapping[str, MeshFrame]
     root: str
+
+    def planet_second(self) -> frozenset[str]:
+        """The meshes whose second gear turns on a planet axis."""
+        return frozenset(name for name, frame in self.meshes.items() if frame.planet == 1)
 
     def classes(self) -> list[str]:
         """Every axis class, sorted."""
@@ -161,14 +165,14 @@ def _mesh_frames(
         if coaxial.find(a) == coaxial.find(b):
             raise GeometryError(
                 [
-                    train.problem(
+                    Problem(
                         f"couplings.{mesh.name}",
                         f"links {a!r} and {b!r} turn about one axis "
                         "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
                         "`axis:` on its revolute",
                     )
                 ],
-                train.path,
+                train.file_lines,
             )
     choices = [_options(train, m, parent, depth) for m in meshes]
     for assignment in _assignments(choices):
@@ -184,7 +188,7 @@ def _mesh_frames(
                     coaxial.union(*equal)
             return {m.name: frame for m, (frame, _) in zip(meshes, assignment, strict=True)}
     problems = [
-        train.problem(
+        Problem(
             f"couplings.{m.name}",
             "no link holds both gear axes of this mesh together with "
             "the other meshes: the planet's carrier must turn about the axis of the gear it "
@@ -194,7 +198,7 @@ def _mesh_frames(
         if len(c) != 1
     ]
     raise GeometryError(
-        problems or [train.problem("couplings", "the meshes cannot all keep their centre distances")], train.path
+        problems or [Problem("couplings", "the meshes cannot all keep their centre distances")], train.file_lines
     )
 
 

@@ -27,7 +27,7 @@ def _norm_squared(v: Vector) -> sympy.Expr:
 
 def _unit(v: Vector, radicals: RadicalTable) -> Vector:
     norm = radicals.sqrt(_norm_squared(v))
-    return vector([radicals.reduce(x / norm) for x in v])
+    return radicals.reduced(x / norm for x in v)
 
 
 def _dot(a: Vector, b: Vector) -> sympy.Expr:
@@ -43,7 +43,7 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
         axis = _unit(vector([radicals.absorb(x) for x in g.axis]), radicals)
         previous = axes.get(g.link)
         if previous is not None and any(radicals.reduce(x) != 0 for x in cross(previous, axis)):
-            problems.append(train.problem(f"gears.{g.name}.axis", f"gears of link {g.link!r} must share one axis"))
+            problems.append(Problem(f"gears.{g.name}.axis", f"gears of link {g.link!r} must share one axis"))
         axes.setdefault(g.link, axis)
     for g in train.gears:
         if g.tilted and g.link not in axes:
@@ -54,7 +54,7 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
     for g in train.gears:
         if g.link not in axes and g.link not in tilted_links:  # a failed tilt is reported already
             problems.append(
-                train.problem(
+                Problem(
                     f"gears.{g.name}.axis",
                     "in a train with intersecting axes every gear needs its axis direction (a direction, or `tilted`)",
                 )
@@ -81,13 +81,13 @@ def _tilted_axis(
                 partners.append(other)
     if len(partners) != 2:
         problems.append(
-            train.problem(entry, f"a tilted axis needs two meshes with gears of known axes, found {len(partners)}")
+            Problem(entry, f"a tilted axis needs two meshes with gears of known axes, found {len(partners)}")
         )
         return None
     a, b = (axes[p.link] for p in partners)
     if any(radicals.reduce(x + y) != 0 for x, y in zip(a, b, strict=True)):
         problems.append(
-            train.problem(
+            Problem(
                 entry,
                 f"a tilted axis needs gears {partners[0].name!r} and "
                 f"{partners[1].name!r} on one axis, facing each other "
@@ -102,9 +102,9 @@ def _tilted_axis(
     try:
         rise = radicals.sqrt(4 * rp**2 - step**2)
     except RadicalError as exc:
-        problems.append(train.problem(entry, f"the cone geometry cannot be built: {exc}"))
+        problems.append(Problem(entry, f"the cone geometry cannot be built: {exc}"))
         return None
-    return vector([radicals.reduce((rise * e - step * z) / (2 * rp)) for e, z in zip(radial, b, strict=True)])
+    return radicals.reduced((rise * e - step * z) / (2 * rp) for e, z in zip(radial, b, strict=True))
 
 
 def conical_layout(train: Train) -> Layout:
@@ -122,7 +122,7 @@ def conical_layout(train: Train) -> Layout:
     radicals = RadicalTable()
     axes = _link_axes(train, radicals, problems)
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     gear_axes = {g.name: axes[g.link] for g in train.gears}
     structure = axis_structure(train)
     origin = vector((0, 0, 0))
@@ -135,27 +135,27 @@ def conical_layout(train: Train) -> Layout:
         if mesh is not None:
             g, h = (train.gear(n) for n in mesh.gears)
             a, b = gear_axes[g.name], gear_axes[h.name]
-            normal = vector([radicals.reduce(x) for x in cross(a, b)])
+            normal = radicals.reduced(cross(a, b))
             if all(x == 0 for x in normal):
                 problems.append(
-                    train.problem(
+                    Problem(
                         f"couplings.{c.name}",
                         "the gear axes are parallel: give the train without axis directions (planar layout)",
                     )
                 )
                 continue
             sin = radicals.sqrt(_norm_squared(normal))
-            pitch = vector([radicals.reduce((h.radius * x + g.radius * y) / sin) for x, y in zip(a, b, strict=True)])
+            pitch = radicals.reduced((h.radius * x + g.radius * y) / sin for x, y in zip(a, b, strict=True))
             points[c.name] = pitch
             coupling_axes[c.name] = pitch
-            tangents[c.name] = vector([radicals.reduce(x / sin) for x in normal])
+            tangents[c.name] = radicals.reduced(x / sin for x in normal)
             distance = radicals.reduce(_norm_squared(pitch))
             for gear in (g, h):
                 if gear.name in cone_distance:
                     other, previous = cone_distance[gear.name]
                     if radicals.reduce(distance - previous) != 0:
                         problems.append(
-                            train.problem(
+                            Problem(
                                 f"couplings.{c.name}",
                                 f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
                                 f"sqrt({radicals.restore(distance)}) and in {other!r} at "
@@ -171,9 +171,7 @@ def conical_layout(train: Train) -> Layout:
             )
             if holder is None:
                 problems.append(
-                    train.problem(
-                        f"couplings.{c.name}", "no gear turns about this bearing's axis: its direction is unknown"
-                    )
+                    Problem(f"couplings.{c.name}", "no gear turns about this bearing's axis: its direction is unknown")
                 )
                 continue
             points[c.name] = origin
@@ -181,7 +179,7 @@ def conical_layout(train: Train) -> Layout:
         else:
             points[c.name] = origin
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     return Layout(
         gear_centres={g.name: origin for g in train.gears},
         coupling_points=points,

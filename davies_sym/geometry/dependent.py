@@ -25,8 +25,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.caches import IdentityCache
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
-from davies_sym.geometry.axes import axis_structure
-from davies_sym.geometry.layout import GeometricConstraint, solve_linear
+from davies_sym.geometry.layout import Layout, solve_linear
 from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Relation, Train
 
@@ -47,7 +46,7 @@ def _resolved(train: Train) -> Train:
     if train.whole is not None:
         whole = resolved_train(train.whole)
         return _substituted(replace(train, whole=whole), whole.dependent or ())
-    return _substituted(train, _solve(train, train_layout(train).constraints))
+    return _substituted(train, _solve(train, train_layout(train)))
 
 
 def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
@@ -56,13 +55,13 @@ def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
     return replace(train, gears=gears, dependent=relations)
 
 
-def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[Relation, ...]:
+def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:
     """One parameter per constraint, solved in order, each substituted into the next."""
     independent = set(train.independent or ())
-    preferred = _preferred(train)
+    preferred = _preferred(train, layout.planet_second)
     relations: list[Relation] = []
     problems: list[Problem] = []
-    for c in constraints:
+    for c in layout.constraints:
         values = {r.symbol: r.expression for r in relations}
         expr = without_positive_factors(sympy.expand(c.expression.subs(values)))
         if expr == 0:
@@ -72,7 +71,7 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
         ]
         if not candidates:
             problems.append(
-                train.problem(
+                Problem(
                     "independent" if independent else f"couplings.{c.coupling}",
                     f"the geometric constraint {c} leaves no parameter to solve for"
                     + (
@@ -90,21 +89,17 @@ def _solve(train: Train, constraints: tuple[GeometricConstraint, ...]) -> tuple[
         ]
         relations.append(Relation(symbol, solution, str(c)))
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     return tuple(relations)
 
 
-def _preferred(train: Train) -> dict[str, list[sympy.Symbol]]:
-    """Mesh -> the radius symbols of its gears, the planet's gear first (called after the
-    layout, which has built the same axis structure)."""
-    frames = axis_structure(train).meshes
+def _preferred(train: Train, planet_second: frozenset[str]) -> dict[str, list[sympy.Symbol]]:
+    """Mesh -> the radius symbols of its gears, the planet's gear first."""
+    gears = {g.name: g for g in train.gears}
     out: dict[str, list[sympy.Symbol]] = {}
     for c in gear_meshes(train.couplings):
-        order = list(c.gears)
-        frame = frames.get(c.name)
-        if frame is not None and frame.planet == 1:
-            order = order[::-1]  # the planet's gear first
-        out[c.name] = [s for g in order for s in sorted_symbols(train.gear(g).radius.free_symbols)]
+        order = c.gears[::-1] if c.name in planet_second else c.gears
+        out[c.name] = [s for g in order for s in sorted_symbols(gears[g].radius.free_symbols)]
     return out
 
 
@@ -143,7 +138,7 @@ def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dic
                 )
             )
     if problems:
-        raise DesignError(problems, train.path)
+        raise DesignError(problems, train.file_lines)
     return out
 
 

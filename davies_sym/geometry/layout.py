@@ -68,6 +68,9 @@ class Layout:
     #: file's `placement`): the drawing is the upright one (planets along +y) turned to
     #: it, and the network solves its equations turned back (`davies_sym.network.null_space`).
     frame: tuple[sympy.Expr, sympy.Expr] = (sympy.Integer(0), sympy.Integer(1))
+    #: The meshes whose second gear turns on a planet axis (`.axes`): a constraint they
+    #: close is solved for the planet's radius first (`davies_sym.geometry.dependent`).
+    planet_second: frozenset[str] = frozenset()
 
 
 def line_point(y: sympy.Expr) -> Vector:
@@ -91,14 +94,14 @@ def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, objec
     for g in train.gears:
         if groups.find(g.axis_link) not in positions:
             problems.append(
-                train.problem(
+                Problem(
                     f"gears.{g.name}",
                     "its position cannot be derived: no mesh or revolute with `at` connects it "
                     "to the rest of the train",
                 )
             )
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
 
 
 def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> list[dict[sympy.Symbol, sympy.Expr]]:
@@ -162,7 +165,7 @@ def add_constraint(
     if difference.is_number or oracle.sign(difference) in (1, -1):
         through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""
         problems.append(
-            train.problem(
+            Problem(
                 entry or f"couplings.{coupling}",
                 message
                 or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "

@@ -19,7 +19,7 @@ import sympy
 
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.geometry.axes import AxisStructure, axis_structure
+from davies_sym.geometry.axes import AxisStructure
 from davies_sym.geometry.layout import (
     X_AXIS,
     Y_AXIS,
@@ -33,15 +33,6 @@ from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_me
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
 from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Gear, Train
-
-
-def centre_distance(mesh: GearMesh, gears: Mapping[str, Gear]) -> sympy.Expr:
-    """r_g + r_h for an external mesh, R - r for an internal one."""
-    g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
-    if mesh.internal:
-        ann, pin = (g, h) if g.internal else (h, g)
-        return sympy.expand(ann.radius - pin.radius)
-    return sympy.expand(g.radius + h.radius)
 
 
 def side_of_second(mesh: GearMesh, structure: AxisStructure, gears: Mapping[str, Gear]) -> int | None:
@@ -85,7 +76,7 @@ def place_classes(
         if rest[0] in geared:
             gear = next(g for g in train.gears if structure.axis[g.axis_link] == rest[0])
             problems.append(
-                train.problem(
+                Problem(
                     f"gears.{gear.name}",
                     "its position cannot be derived: no mesh connects "
                     "it to the main axis; give a bearing of its link an `at`",
@@ -109,7 +100,7 @@ def _place_one(
             continue
         known = 0 if placed[0] else 1
         side = side_of_second(mesh, structure, gears)
-        distance = centre_distance(mesh, gears)
+        distance = mesh.centre_distance(gears)
         # A fixed-axis external pair: the gear placed now goes outward, whichever is written first.
         step = distance if side is None else (side if known == 0 else -side) * distance
         positions[ends[1 - known]] = sympy.expand(positions[ends[known]] + step)
@@ -118,19 +109,19 @@ def _place_one(
     return False
 
 
-def planar_line_layout(train: Train) -> Layout:
-    """Derive axis positions, pitch points and geometric constraints of a planar train."""
+def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
+    """Derive axis positions, pitch points and geometric constraints of a planar train
+    with the axis classes of ``structure``."""
     problems: list[Problem] = []
-    structure = axis_structure(train)
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
     via: dict[str, tuple[str, str]] = {}
     positions = place_classes(train, structure, meshes, gears, problems, via)
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     # An annulus is larger than its pinion, and every radius is positive (3 r2 - r1 too):
     # that decides on which side a loop closes.
-    oracle = SignOracle([centre_distance(m, gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
+    oracle = SignOracle([m.centre_distance(gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
     points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
     constraints: list[GeometricConstraint] = []
@@ -143,7 +134,7 @@ def planar_line_layout(train: Train) -> Layout:
             side = oracle.sign(offset) if offset != 0 else None
             if side not in (1, -1):
                 problems.append(
-                    train.problem(
+                    Problem(
                         f"couplings.{mesh.name}",
                         f"cannot tell on which side of gear {g.name!r} gear {h.name!r} lies "
                         f"(centre offset {offset}): the meshes of carrier "
@@ -153,19 +144,17 @@ def planar_line_layout(train: Train) -> Layout:
                 )
                 continue
         if mesh.internal:
-            ann = g if g.internal else h
-            facts.append(centre_distance(mesh, gears))
-            towards = side if ann is g else -side
-            points[mesh.name] = line_point(centres[ann.name] + towards * ann.radius)
-        else:
-            points[mesh.name] = line_point(centres[g.name] + side * g.radius)
+            facts.append(mesh.centre_distance(gears))
+        base, _ = mesh.pitch_circle(gears)
+        towards = side if base is g else -side
+        points[mesh.name] = line_point(centres[base.name] + towards * base.radius)
         ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
         add_constraint(
             train,
             constraints,
             problems,
             side * offset,
-            centre_distance(mesh, gears),
+            mesh.centre_distance(gears),
             mesh.name,
             oracle,
             loop=loop_through(via, ends[0], ends[1], mesh.name),
@@ -191,7 +180,7 @@ def planar_line_layout(train: Train) -> Layout:
         elif as_gear_mesh(c) is None:
             points[c.name] = line_point(sympy.Integer(0))
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     return Layout(
         gear_centres={name: line_point(y) for name, y in centres.items()},
         coupling_points=points,
@@ -199,4 +188,5 @@ def planar_line_layout(train: Train) -> Layout:
         mesh_normals={m.name: Y_AXIS for m in meshes},
         constraints=tuple(constraints),
         positive_facts=tuple(facts),
+        planet_second=structure.planet_second(),
     )

@@ -22,9 +22,9 @@ from davies_sym.algebra.radicals import RadicalError, RadicalTable, has_square_r
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.geometry.axes import AxisStructure, axis_structure
+from davies_sym.geometry.axes import AxisStructure
 from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constraint
-from davies_sym.geometry.line import centre_distance, side_of_second
+from davies_sym.geometry.line import side_of_second
 from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
 from davies_sym.topology.gear_mesh import GearMesh
@@ -33,23 +33,23 @@ from davies_sym.topology.model import Gear, Train
 Point = tuple[sympy.Expr, sympy.Expr]
 
 
-def plane_layout(train: Train, direction: Point) -> Layout:
-    """Axis positions, pitch points and constraints of a planar train drawn in 2-D;
-    ``direction`` (x, y) is the placement direction of the planets."""
+def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> Layout:
+    """Axis positions, pitch points and constraints of a planar train drawn in 2-D with
+    the axis classes of ``structure``; ``direction`` (x, y) is the placement direction
+    of the planets."""
     problems: list[Problem] = []
     radicals = RadicalTable(
-        facts=[centre_distance(m, {g.name: g for g in train.gears}) for m in gear_meshes(train.couplings) if m.internal]
+        facts=[m.centre_distance({g.name: g for g in train.gears}) for m in gear_meshes(train.couplings) if m.internal]
     )
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
-    structure = axis_structure(train)
     gears = {g.name: g for g in train.gears}
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
     positions = _place_classes(train, structure, meshes, gears, unit, radicals, problems, used)
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     oracle = SignOracle()
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
     points: dict[str, Vector] = {}
@@ -58,14 +58,11 @@ def plane_layout(train: Train, direction: Point) -> Layout:
     constraints: list[GeometricConstraint] = []
     facts: list[sympy.Expr] = []
     for mesh in meshes:
-        g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
-        distance = centre_distance(mesh, gears)
+        distance = mesh.centre_distance(gears)
+        on, other = mesh.pitch_circle(gears)
         if mesh.internal:
-            ann, pin = (g, h) if g.internal else (h, g)
-            facts.append(ann.radius - pin.radius)
-            base, towards, reach = centres[ann.name], centres[pin.name], ann.radius
-        else:
-            base, towards, reach = centres[g.name], centres[h.name], g.radius
+            facts.append(on.radius - other.radius)
+        base, towards, reach = centres[on.name], centres[other.name], on.radius
         offset = (radicals.reduce(towards[0] - base[0]), radicals.reduce(towards[1] - base[1]))
         if mesh.name not in used:
             squared = radicals.reduce(offset[0] ** 2 + offset[1] ** 2)
@@ -82,9 +79,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
                 add_constraint(train, constraints, problems, actual, distance, mesh.name, oracle)
         # The line of centres has length `distance` on an admissible design.
         u = (radicals.reduce(offset[0] / distance), radicals.reduce(offset[1] / distance))
-        points[mesh.name] = vector(
-            (radicals.reduce(base[0] + reach * u[0]), radicals.reduce(base[1] + reach * u[1]), 0)
-        )
+        points[mesh.name] = radicals.reduced((base[0] + reach * u[0], base[1] + reach * u[1], 0))
         tangents[mesh.name] = vector((u[1], -u[0], 0))
         normals[mesh.name] = vector((u[0], u[1], 0))
     for c in train.couplings:
@@ -108,7 +103,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
         elif as_gear_mesh(c) is None:
             points[c.name] = vector((0, 0, 0))
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
     return Layout(
         gear_centres={name: vector((*p, 0)) for name, p in centres.items()},
         coupling_points=points,
@@ -118,6 +113,7 @@ def plane_layout(train: Train, direction: Point) -> Layout:
         positive_facts=tuple(facts) + tuple(r.radicand for r in radicals.radicals),
         radicals=tuple(radicals.radicals),
         frame=unit,
+        planet_second=structure.planet_second(),
     )
 
 
@@ -158,7 +154,7 @@ def _place_classes(
         if rest[0] in geared:
             gear = next(g for g in train.gears if structure.axis[g.axis_link] == rest[0])
             problems.append(
-                train.problem(
+                Problem(
                     f"gears.{gear.name}",
                     "its position cannot be derived: no mesh connects "
                     "it to the main axis; give a bearing of its link an `at`",
@@ -187,11 +183,11 @@ def _place_one(
             here, there = ends[1 - k], ends[k]
             if here in positions or there not in positions:
                 continue
-            reach.setdefault(here, []).append((positions[there], centre_distance(mesh, gears), mesh.name))
+            reach.setdefault(here, []).append((positions[there], mesh.centre_distance(gears), mesh.name))
             if first is None:
                 # ``here`` lies on the side the drawing rules give the mesh's second gear.
                 side = side_of_second(mesh, structure, gears)
-                distance = centre_distance(mesh, gears)
+                distance = mesh.centre_distance(gears)
                 step = distance if side is None else (side if k == 0 else -side) * distance
                 x, y = positions[there]
                 first = (here, (radicals.reduce(x + step * unit[0]), radicals.reduce(y + step * unit[1])), mesh.name)
@@ -230,7 +226,7 @@ def _triangle(
         length = radicals.sqrt(radicals.reduce(ab[0] ** 2 + ab[1] ** 2))
     except RadicalError as exc:
         problems.append(
-            train.problem(
+            Problem(
                 f"couplings.{mesh_b}",
                 f"the meshes {mesh_a} and {mesh_b} would close a "
                 f"triangle whose side is not known to be real ({exc}); give the radii as "
@@ -242,7 +238,7 @@ def _triangle(
     roots = {r.symbol for r in radicals.radicals}
     if (sympy.sympify(along).free_symbols | sympy.sympify(length).free_symbols) & roots:
         problems.append(
-            train.problem(
+            Problem(
                 f"couplings.{mesh_b}", "this planet would sit on nested square roots; give the train another placement"
             )
         )
@@ -251,7 +247,7 @@ def _triangle(
         height = radicals.sqrt(radicals.reduce(da**2 - along**2))
     except RadicalError as exc:
         problems.append(
-            train.problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a triangle: {exc}")
+            Problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a triangle: {exc}")
         )
         return None
     u = (radicals.reduce(ab[0] / length), radicals.reduce(ab[1] / length))

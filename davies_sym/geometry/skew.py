@@ -41,8 +41,8 @@ def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
     layout = parallel(rest)
     if layout.axis != vector((0, 0, 1)) or layout.gear_axes:
         raise GeometryError(
-            [train.problem(f"couplings.{meshes[0].name}", "a skew mesh needs a wheel on a parallel-axis train")],
-            train.path,
+            [Problem(f"couplings.{meshes[0].name}", "a skew mesh needs a wheel on a parallel-axis train")],
+            train.file_lines,
         )
     centres, gear_axes = dict(layout.gear_centres), dict(layout.gear_axes)
     points, coupling_axes = dict(layout.coupling_points), dict(layout.coupling_axes)
@@ -96,18 +96,18 @@ def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, Ske
         entry = f"couplings.{mesh.name}.gears"
         if worm.link in seen:
             problems.append(
-                train.problem(entry, f"link {worm.link!r} already carries the first gear of mesh {seen[worm.link]}")
+                Problem(entry, f"link {worm.link!r} already carries the first gear of mesh {seen[worm.link]}")
             )
             continue
         seen[worm.link] = mesh.name
         if worm.link == train.reference:
             problems.append(
-                train.problem(entry, f"the first gear {worm.name!r} is on the reference link; write the wheel first")
+                Problem(entry, f"the first gear {worm.name!r} is on the reference link; write the wheel first")
             )
         others = [g.name for g in train.gears if g.link == worm.link and g.name != worm.name]
         if others:
             problems.append(
-                train.problem(
+                Problem(
                     entry,
                     f"link {worm.link!r} of the first gear {worm.name!r} also carries {', '.join(others)}: put the "
                     "worm (or first crossed helical gear) on a link of its own, joined to its shaft by a revolute",
@@ -115,28 +115,24 @@ def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, Ske
             )
         if wheel.link in worms:
             problems.append(
-                train.problem(
-                    entry, f"the second gear {wheel.name!r} is on the worm link of mesh {worms[wheel.link].name}"
-                )
+                Problem(entry, f"the second gear {wheel.name!r} is on the worm link of mesh {worms[wheel.link].name}")
             )
         bearings = _bearings(train, worm.link)
         if not bearings:
-            problems.append(train.problem(entry, f"link {worm.link!r} of {worm.name!r} needs a revolute (its bearing)"))
+            problems.append(Problem(entry, f"link {worm.link!r} of {worm.name!r} needs a revolute (its bearing)"))
         for bearing in bearings:
             other = bearing.links[1] if bearing.links[0] == worm.link else bearing.links[0]
             if other in worms:
                 problems.append(
-                    train.problem(f"couplings.{bearing.name}", "a revolute between two worm links is not supported")
+                    Problem(f"couplings.{bearing.name}", "a revolute between two worm links is not supported")
                 )
         for c in train.couplings:
             if worm.link in c.links and coupling_kinds.as_bearing(c) is None and coupling_kinds.as_skew_mesh(c) is None:
                 problems.append(
-                    train.problem(
-                        f"couplings.{c.name}", f"link {worm.link!r} of a worm joins only revolutes and its mesh"
-                    )
+                    Problem(f"couplings.{c.name}", f"link {worm.link!r} of a worm joins only revolutes and its mesh")
                 )
     if problems:
-        raise GeometryError(problems, train.path)
+        raise GeometryError(problems, train.file_lines)
 
 
 def _parallel_part(train: Train, worm_links: set[str]) -> Train:

@@ -18,7 +18,7 @@ from davies_sym.algebra.linalg import Reduce, Row, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
-from davies_sym.errors import DerivationError, MobilityError
+from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.analysis_display import analysis_html, analysis_latex
@@ -125,7 +125,7 @@ class Analysis:
         free = elimination.free
         problems = mobility_problems(self.train, net, free, index)
         if problems:
-            raise MobilityError(problems, self.train.path)
+            raise MobilityError(problems, self.train.file_lines)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
         return len(free), {v.name: solution[k].get(index, zero) for k, v in enumerate(net.motions)}
@@ -191,26 +191,26 @@ class Analysis:
         if index not in free:
             raise MobilityError(
                 [
-                    self.train.problem(
+                    Problem(
                         "ports.input",
                         f"the input torque on {self.train.ports.input!r} is determined by the other "
                         "actions: the input does no work",
                     )
                 ],
-                self.train.path,
+                self.train.file_lines,
             )
         others = [cols[j].name for j in free if j != index]
         if others:
             first = next(cols[j].coupling for j in free if j != index)
             raise MobilityError(
                 [
-                    self.train.problem(
+                    Problem(
                         f"couplings.{first}",
                         f"the actions are not determined by the input: {', '.join(others)} stay free "
                         "(the network is overconstrained in this screw system, or a port is missing)",
                     )
                 ],
-                self.train.path,
+                self.train.file_lines,
             )
 
     # -- friction signs (eqs. (21), (24), (41)) --------------------------------------

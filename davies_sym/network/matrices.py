@@ -121,7 +121,7 @@ class Network:
                     self.reduced[c.name] = reduce_coupling(self.system, full[c.name], c.name)
             except CouplingScrewError as exc:
                 entry = f"couplings.{c.name}" + (".motions" if written is not None else "")
-                raise TopologyError([train.problem(entry, exc.reason)], train.path) from exc
+                raise TopologyError([Problem(entry, exc.reason)], train.file_lines) from exc
         self.motions, self.actions, self.laws = self._variables()
         self._check_names()
 
@@ -229,7 +229,7 @@ class Network:
             if c.friction.load == "radial" and len(constraints) == 1:
                 return constraints[0].name  # the one reaction the screw system leaves it
             if not loads:
-                raise TopologyError([self._no_load(bearing)], self.train.path)
+                raise TopologyError([self._no_load(bearing)], self.train.file_lines)
             constraints, what = loads, f"{c.friction.load} reaction force"
         elif len(constraints) == 1:
             return constraints[0].name
@@ -242,12 +242,12 @@ class Network:
     def _no_load(self, c: Revolute) -> Problem:
         """The problem of a bearing law whose load this train never exerts."""
         if c.friction.load == "axial":
-            return self.train.problem(
+            return Problem(
                 f"couplings.{c.name}.friction.thrust",
                 "no gear of this train thrusts along the axes (spur gears), so a thrust face carries no "
                 "load: give the meshes a `helix_angle`, or remove `thrust`",
             )
-        return self.train.problem(
+        return Problem(
             f"couplings.{c.name}.friction",
             "this bearing carries no radial force in this train, so its journal has no load: remove the law",
         )
@@ -283,7 +283,7 @@ class Network:
                     )
                     for n in sorted(clash)
                 ],
-                self.train.path,
+                self.train.file_lines,
             )
 
     # -- lookups ---------------------------------------------------------------------
@@ -378,7 +378,7 @@ def _check_reciprocal(train: Train, c: ScrewCoupling, screws: CouplingScrews) ->
         for m in screws.motions:
             if sympy.expand(power(a.screw, m.screw)) != 0:
                 problems.append(
-                    train.problem(
+                    Problem(
                         f"couplings.{c.name}.actions",
                         f"action {a.name!r} does work on "
                         f"motion {m.name!r} (power {sympy.expand(power(a.screw, m.screw))}); "
@@ -386,4 +386,4 @@ def _check_reciprocal(train: Train, c: ScrewCoupling, screws: CouplingScrews) ->
                     )
                 )
     if problems:
-        raise TopologyError(problems, train.path)
+        raise TopologyError(problems, train.file_lines)

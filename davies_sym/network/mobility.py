@@ -19,17 +19,17 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
         # One cause, one problem: the input cannot move because nothing can.
         port = train.ports.input
         return [
-            train.problem(
+            Problem(
                 "ports", f"the train has no degree of freedom (it is locked): the input coupling {port!r} cannot move"
             )
         ]
     if input_index not in free:
         problems.append(
-            train.problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked")
+            Problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked")
         )
     if train.degrees_of_freedom is not None and dof != train.degrees_of_freedom:
         problems.append(
-            train.problem(
+            Problem(
                 "degrees_of_freedom",
                 f"the train has {dof} degree(s) of freedom, the file says {train.degrees_of_freedom}",
             )
@@ -45,5 +45,5 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
             text += f"; also free: {', '.join(extra)}"
         if dof == 0:
             text = "the train has no degree of freedom"
-        problems.append(train.problem("ports", text))
+        problems.append(Problem("ports", text))
     return problems

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import replace
 
-from davies_sym.errors import TopologyError
+from davies_sym.errors import Problem, TopologyError
 from davies_sym.network.friction_laws import FrictionLaw
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
@@ -34,15 +34,13 @@ def pressed_laws(train: Train, laws: Sequence[FrictionLaw]) -> tuple[FrictionLaw
                 if pressing not in names
                 else f"{pressing} is no mesh with a `pressure_angle` (and a friction law), so it presses no guide"
             )
-            problems.append(train.problem(entry, f"{why}: name the mesh of the rack this guide holds"))
+            problems.append(Problem(entry, f"{why}: name the mesh of the rack this guide holds"))
             continue
         if not set(mesh.links) & set(guide.links):
-            problems.append(
-                train.problem(entry, f"mesh {pressing} moves neither link of this guide, so it cannot press it")
-            )
+            problems.append(Problem(entry, f"mesh {pressing} moves neither link of this guide, so it cannot press it"))
             continue
         coefficient = law.coefficient * mesh.separating
         out.append(replace(law, coefficient=coefficient, transmitted=tooth_force[pressing].transmitted))
     if problems:
-        raise TopologyError(problems, train.path)
+        raise TopologyError(problems, train.file_lines)
     return tuple(out)

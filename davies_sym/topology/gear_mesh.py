@@ -111,6 +111,25 @@ class GearMesh(ToothedMesh):
     def angles(self) -> tuple[AngleFunctions, ...]:
         return () if self.helix is None else (self.helix,)
 
+    def centre_distance(self, gears: Mapping[str, Gear]) -> sympy.Expr:
+        """The distance between the gears' axes: r_g + r_h for an external mesh, R - r
+        for an internal one (the loops of meshes close on these, Laus section 3.4.1.6).
+        Positive for an internal mesh, which the layouts record as a fact."""
+        g, h = gears[self.mesh_gears[0]], gears[self.mesh_gears[1]]
+        if self.internal:
+            ann, pin = (g, h) if g.internal else (h, g)
+            return sympy.expand(ann.radius - pin.radius)
+        return sympy.expand(g.radius + h.radius)
+
+    def pitch_circle(self, gears: Mapping[str, Gear]) -> tuple[Gear, Gear]:
+        """(gear, other): the pitch point lies on ``gear``'s pitch circle, its radius from
+        that gear's centre towards the other's (the annulus of an internal mesh, else the
+        first gear)."""
+        g, h = gears[self.mesh_gears[0]], gears[self.mesh_gears[1]]
+        if self.internal and h.internal:
+            return h, g
+        return g, h
+
     def report_fields(self) -> dict[str, Any]:
         return {"gears": list(self.gears), "mesh": "internal" if self.internal else "external"}
 

@@ -11,7 +11,7 @@ from types import MappingProxyType
 
 import sympy
 
-from davies_sym.errors import InputError, Problem
+from davies_sym.errors import FileLines, InputError, Problem
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.calibration_entry import CalibrationDefaults
 from davies_sym.topology.couplings import Coupling
@@ -157,17 +157,16 @@ class Train:
         gears = [(g.name, latex(g.radius), g.link) for g in self.gears]
         return train_latex(self.name, (", ".join(self.ports.inputs), self.ports.output), gears)
 
+    @property
+    def file_lines(self) -> FileLines:
+        """Where the file writes each entry: an error raised with these puts its problems
+        at their lines (`davies_sym.errors.FileLines`)."""
+        return FileLines(self.path, self.locations, self.renamed)
+
     def problem(self, entry: str, message: str) -> Problem:
         """A `Problem` at ``entry`` (where the file writes it, see ``renamed``) with the
         line it has in the source file."""
-        for name in sorted(self.renamed, key=len, reverse=True):
-            if entry == name or entry.startswith((f"{name}.", f"{name}[")):
-                entry = self.renamed[name] + entry[len(name) :]
-                break
-        path = entry
-        while path and path not in self.locations:
-            path = path.rpartition(".")[0]
-        return Problem(entry, message, self.locations.get(path))
+        return self.file_lines.locate(Problem(entry, message))
 
     def symbol_problem(self, name: str, message: str) -> Problem:
         """A `Problem` with the symbol ``name``, at the entry where the file first writes it."""

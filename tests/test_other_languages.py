@@ -49,6 +49,7 @@ from davies_sym.cli import main
 from davies_sym.efficiency.parameters import file_parameters
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.efficiency.variants import VariantSet, derive_variants
+from davies_sym.emit.derived_result import DerivedResult, OneInputResult, SeveralInputResult
 from davies_sym.emit.languages import LANGUAGES, emit_code, program_of
 from davies_sym.emit.languages.program import Kind, Program
 from davies_sym.emit.python_module import python_module
@@ -128,6 +129,13 @@ class Case:
     port: np.ndarray  # index of the input port per point (one-input trains)
     expected: np.ndarray  # the Python module's efficiency per point
     classes: int  # (port, variant) classes covered, the not-covered class included
+
+    @property
+    def result(self) -> DerivedResult:
+        """The derived train as its outputs take it."""
+        if isinstance(self.derived, SeveralInputs):
+            return SeveralInputResult(self.derived)
+        return OneInputResult(self.train, ((self.state or "", self.derived),), self.state)
 
     @property
     def several(self) -> bool:
@@ -403,10 +411,10 @@ def _compare_compiled(case: Case, library: ctypes.CDLL, program: Program, prefix
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_c_matches_the_python_module(built: Callable[[str], Case], name: str, tmp_path: Path) -> None:
     case = built(name)
-    program = program_of(case.derived, "c", case.state)
+    program = program_of(case.result, "c")
     assert program.parameters == case.parameters  # the choice takes the Python module's parameters, in its order
     source = tmp_path / f"{name}.c"
-    source.write_text(emit_code(case.derived, "c", case.state))
+    source.write_text(emit_code(case.result, "c"))
     started = time.perf_counter()
     subprocess.run(
         [
@@ -456,9 +464,9 @@ def _rust_wrapper(program: Program, generated: Path) -> str:
 def test_rust_matches_the_python_module(built: Callable[[str], Case], name: str, tmp_path: Path) -> None:
     assert RUSTC is not None
     case = built(name)
-    program = program_of(case.derived, "rust", case.state)
+    program = program_of(case.result, "rust")
     generated = tmp_path / f"{name}.rs"
-    generated.write_text(emit_code(case.derived, "rust", case.state))
+    generated.write_text(emit_code(case.result, "rust"))
     wrapper = tmp_path / "wrapper.rs"
     wrapper.write_text(_rust_wrapper(program, generated))
     started = time.perf_counter()
@@ -643,8 +651,8 @@ def _modelica_functions(functions: dict[str, ModelicaFunction]) -> dict[str, Cal
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_modelica_package_reads_back(built: Callable[[str], Case], name: str) -> None:
     case = built(name)
-    program = program_of(case.derived, "modelica", case.state)
-    text = emit_code(case.derived, "modelica", case.state)
+    program = program_of(case.result, "modelica")
+    text = emit_code(case.result, "modelica")
     assert not re.search(r"[*/^]\s*-", text.split("\npackage ")[1]), "Modelica allows unary minus only first"
     package, functions = _read_modelica(text)
     assert package == program.module
@@ -740,8 +748,8 @@ def _as_python(expression: str) -> str:
 def test_julia_and_octave_files_hold_every_function(built: Callable[[str], Case], name: str) -> None:
     case = built(name)
     for language, openers in (("julia", ("function", "if", "module")), ("octave", ("function", "if"))):
-        program = program_of(case.derived, language, case.state)
-        text = emit_code(case.derived, language, case.state)
+        program = program_of(case.result, language)
+        text = emit_code(case.result, language)
         code = [line for line in text.split("\n") if not line.startswith(("#", "%"))]
         assert _blocks_balance(code, openers), f"unbalanced blocks in the {language} file"
         defined = re.findall(r"^function (?:\w+ = )?(\w+)\(", text, flags=re.M)
@@ -789,9 +797,9 @@ def test_the_command_writes_the_same_bytes_as_the_library(built: Callable[[str],
         target = tmp_path / f"tuplin.{language}"
         status, out, err = _run(path, "--emit", language, "-o", str(target))
         assert status == 0 and out == "" and err == "", err
-        assert target.read_text() == emit_code(case.derived, language)
+        assert target.read_text() == emit_code(case.result, language)
     status, out, _ = _run(path, "--emit", "c")
-    assert status == 0 and out == emit_code(case.derived, "c")
+    assert status == 0 and out == emit_code(case.result, "c")
     # --python beside --emit: both files.
     status, _, err = _run(path, "--emit", "julia", "-o", str(tmp_path / "t.jl"), "--python", str(tmp_path / "t.py"))
     assert status == 0, err
@@ -860,7 +868,7 @@ def test_a_keyword_symbol_is_refused_by_name(language: str, word: str, tmp_path:
 @pytest.mark.slow
 def test_a_train_driven_at_several_ports_has_its_region_choice(built: Callable[[str], Case]) -> None:
     case = built("sr20_differential")
-    text = emit_code(case.derived, "c")
+    text = emit_code(case.result, "c")
     assert "double efficiency(double D_P, double eta_M, double omega_A, double omega_K, double tau_out)" in text
     assert all(f"double region_{r.number}(" in text for r in case.derived.regions)  # type: ignore[union-attr]
     assert case.classes >= 4  # regions reached by the random speeds, and none on the lines

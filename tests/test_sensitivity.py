@@ -119,16 +119,19 @@ def test_c_sensitivity_is_the_python_modules(name: str, tmp_path: Path) -> None:
     import subprocess
 
     from davies_sym.efficiency.variants import derive_variants
+    from davies_sym.emit.derived_result import OneInputResult
     from davies_sym.emit.languages import emit_code
     from davies_sym.emit.languages.registry import program_of
 
     compiler = shutil.which("cc")
     if compiler is None:
         pytest.skip("no C compiler")
-    variants = derive_variants(davies_sym_load(name))
-    program = program_of(variants, "c")
+    train = davies_sym_load(name)
+    variants = derive_variants(train)
+    derived = OneInputResult(train, (("", variants),))
+    program = program_of(derived, "c")
     source = tmp_path / f"{name}.c"
-    source.write_text(emit_code(variants, "c"), encoding="utf-8")
+    source.write_text(emit_code(derived, "c"), encoding="utf-8")
     library_path = tmp_path / "lib.so"
     flags = ["-O1", "-std=c99", "-Wall", "-Wextra", "-Werror", "-shared", "-fPIC"]
     subprocess.run([compiler, *flags, str(source), "-o", str(library_path), "-lm"], check=True, capture_output=True)

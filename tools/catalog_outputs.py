@@ -14,21 +14,15 @@ from __future__ import annotations
 
 import contextlib
 import io
-import json
 import sys
 from pathlib import Path
 
 from davies_sym.cli import main
-from davies_sym.cli.one_input import derive_sets, one_input_document
-from davies_sym.efficiency.parameters import file_parameters
-from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
-from davies_sym.efficiency.variants import VariantSet
+from davies_sym.cli.one_input import derive_sets
+from davies_sym.efficiency.several_inputs import derive_several_inputs
+from davies_sym.emit.derived_result import DerivedResult, OneInputResult, SeveralInputResult
 from davies_sym.emit.languages import LANGUAGES, emit_code
-from davies_sym.emit.latex import latex_document, latex_states_document
-from davies_sym.emit.python_module import python_module
-from davies_sym.emit.several_inputs_latex import several_inputs_latex
-from davies_sym.emit.several_inputs_module import several_inputs_module
-from davies_sym.emit.several_inputs_report import several_inputs_document, several_inputs_text
+from davies_sym.emit.latex import latex_states_document
 from davies_sym.errors import DaviesError
 from davies_sym.machines.loader import is_machine
 from davies_sym.topology.catalog_files import catalog_folder
@@ -50,12 +44,16 @@ def _machine_outputs(path: Path) -> dict[str, str]:
     return out
 
 
-def _code(derived: VariantSet | SeveralInputs, language: str, state: str | None = None) -> str:
+def _code(result: DerivedResult, language: str) -> str:
     """The ``--emit`` code, or the refusal (a symbol the language cannot hold) as the output."""
     try:
-        return emit_code(derived, language, state)
+        return emit_code(result, language)
     except DaviesError as exc:
         return f"refused: {exc}\n"
+
+
+def _documents(result: DerivedResult) -> dict[str, str]:
+    return {".txt": result.report(False), ".json": result.report(True), ".tex": result.latex()}
 
 
 def outputs(path: Path) -> dict[str, str]:
@@ -65,26 +63,23 @@ def outputs(path: Path) -> dict[str, str]:
         return _machine_outputs(path)
     train = build_train(document)
     if len(train.ports.inputs) > 1:
-        si = derive_several_inputs(train)
+        regions = SeveralInputResult(derive_several_inputs(train))
         return {
-            ".txt": several_inputs_text(several_inputs_document(si)) + "\n",
-            ".json": json.dumps(several_inputs_document(si), indent=2) + "\n",
-            ".tex": several_inputs_latex(si),
-            ".py": several_inputs_module(si),
-            **{f".{language}": _code(si, language) for language in LANGUAGES},
+            **_documents(regions),
+            ".py": regions.module(),
+            **{f".{language}": _code(regions, language) for language in LANGUAGES},
         }
     failures: list[str] = []
-    sets = derive_sets(train, None, _quiet, failures)
-    out = {
-        ".txt": one_input_document(train, sets, False, _quiet),
-        ".json": one_input_document(train, sets, True, _quiet),
-        ".tex": latex_states_document([vs for _, vs in sets]) if train.states else latex_document(sets[0][1]),
-        ".failures": "\n".join(failures),
-    }
+    sets = tuple(derive_sets(train, None, _quiet, failures))
+    # Every state's own document would be one state's: the file's documents have them all.
+    out = {**_documents(OneInputResult(train, sets, None, _quiet)), ".failures": "\n".join(failures)}
+    if train.states and len(sets) == 1:  # `latex` writes a lone state's section alone
+        out[".tex"] = latex_states_document([sets[0][1]])
     for name, vs in sets:
         stem = f"_{name}" if name else ""
-        out[f"{stem}.py"] = python_module(vs, file_parameters(train))
-        out.update({f"{stem}.{language}": _code(vs, language, name or None) for language in LANGUAGES})
+        state = OneInputResult(train, ((name, vs),), name or None, _quiet)
+        out[f"{stem}.py"] = state.module()
+        out.update({f"{stem}.{language}": _code(state, language) for language in LANGUAGES})
     return out
 
 

@@ -4,7 +4,6 @@ LaTeX, of every operating state), the formula module, the figures and ``--eval``
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from collections.abc import Callable, Sequence
 from dataclasses import replace
@@ -14,7 +13,6 @@ import sympy
 from davies_sym.cli.arguments import (
     check_emit,
     check_sweep_ranges,
-    document_asked,
     eval_port,
     figure_suffix,
     held_values,
@@ -25,20 +23,16 @@ from davies_sym.cli.arguments import (
     values,
 )
 from davies_sym.cli.messages import message
+from davies_sym.cli.result_outputs import result_outputs
 from davies_sym.efficiency.design_values import solved_coefficients
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
-from davies_sym.efficiency.parameters import file_parameters, formula_symbols
+from davies_sym.efficiency.parameters import formula_symbols
 from davies_sym.efficiency.variants import VariantSet, derive_variants
-from davies_sym.emit.evaluation import evaluate
-from davies_sym.emit.languages import emit_code
-from davies_sym.emit.latex import latex_document, latex_states_document
+from davies_sym.emit.derived_result import OneInputResult
+from davies_sym.emit.evaluation import Evaluation, evaluate
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
-from davies_sym.emit.python_module import python_module
-from davies_sym.emit.report import summary_document, text_summary, train_document
 from davies_sym.emit.sensitivity import sensitivity_latex, sensitivity_text
-from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.errors import DaviesError, InputError, MissingValuesError, Problem
-from davies_sym.network.analysis import Analysis
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 
@@ -132,52 +126,6 @@ def _published_complete(train: Train, sets: list[tuple[str, VariantSet]]) -> lis
     return sets
 
 
-def _state_entry(vs: VariantSet) -> dict[str, object]:
-    ratio = vs.analysis.speed_ratio().to_expr()
-    return {
-        "name": vs.train.name,
-        "input": vs.train.ports.input,
-        "output": vs.train.ports.output,
-        "speed_ratio": sympy.sstr(ratio),
-        **variants_document(vs),
-    }
-
-
-def one_input_document(train: Train, sets: list[tuple[str, VariantSet]], as_json: bool, progress: Progress) -> str:
-    """The text report (or with ``as_json`` the JSON document) of the train's variants, or
-    of each of its states'."""
-    if not train.states:
-        ((_, vs),) = sets
-        analysis = Analysis(train, progress=progress)
-        if as_json:
-            document = {"status": "ok", **train_document(analysis), **variants_document(vs)}
-            return json.dumps(document, indent=2) + "\n"
-        # The text prints a summary: the screws, magnitudes and LaTeX are not formed.
-        return text_summary(summary_document(analysis)) + "\n" + variants_text(vs) + "\n"
-    if as_json:
-        return (
-            json.dumps(
-                {
-                    "status": "ok",
-                    "name": train.name,
-                    "source": train.source,
-                    "file": train.path,
-                    "states": {name: _state_entry(vs) for name, vs in sets},
-                },
-                indent=2,
-            )
-            + "\n"
-        )
-    parts = [train.name]
-    for name, vs in sets:
-        parts.append(
-            f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "
-            f"{vs.train.ports.output}; speed ratio {sympy.sstr(vs.analysis.speed_ratio().to_expr())}"
-        )
-        parts.append(variants_text(vs))
-    return "\n".join(parts) + "\n"
-
-
 def _chosen(train: Train, state: str | None) -> Train:
     """The train of the chosen state (the train itself without one, or for an unknown one,
     which `derive_sets` refuses)."""
@@ -240,56 +188,23 @@ def one_input_outputs(
             raise InputError([Problem("--sensitivity", "alone, or with --latex and -o FILE")], train.path)
         writer = sensitivity_latex if args.latex else sensitivity_text
         return [(args.out, "".join(writer(vs, args.sensitivity) for _, vs in sets))]
-    if args.emit:
-        code = emit_code(sets[0][1], args.emit, args.state)
-        module = [(args.python, python_module(sets[0][1], file_parameters(train)))] if args.python else []
-        return [*module, (args.out, code)]
-    # Everything is computed (and every value checked) before anything is written.
-    chosen = sets[0][1].train  # the state's train: its own ports and symbols
-    operating = operating_symbols(sets[0][1])
-    evaluation = None
-    if args.eval is not None:
+    result = OneInputResult(train, tuple(sets), args.state, progress)
+
+    def answer() -> Evaluation:
+        chosen = result.train  # the state's train: its own ports and symbols
         pairs, published = published_start(train, args.eval, args.state)
         # A published value for a name the state's formulas do not take is no value to refuse.
         published = {k: v for k, v in published.items() if k in chosen.symbols}
         try:
-            evaluation = evaluate(
-                sets[0][1], values(chosen, pairs, "--eval", operating, published), eval_port(chosen, args)
-            )
+            given = values(chosen, pairs, "--eval", operating_symbols(result.chosen), published)
+            return evaluate(result.chosen, given, eval_port(chosen, args))
         except MissingValuesError as exc:
             raise published_hint(exc, train, args.state, args.eval) from None
-    outputs: list[tuple[str | None, str | bytes]] = []
-    if args.python:
-        outputs.append((args.python, python_module(sets[0][1], file_parameters(train))))
-    # The document only where it is asked for: a module or an evaluation alone is written quietly.
-    if document_asked(args, evaluation is not None):
-        if args.latex:
-            text = latex_document(sets[0][1]) if len(sets) == 1 else latex_states_document([vs for _, vs in sets])
-        else:
-            text = one_input_document(train, sets, args.json, progress)
-        outputs.append((args.out, text))
-    if evaluation is not None:
-        state = {"state": args.state} if args.state else {}
-        outputs.append(
-            (
-                None,
-                json.dumps({"file": train.path, **state, **evaluation.document()}, indent=2) + "\n"
-                if args.json
-                else evaluation.text(),
-            )
-        )
-    return outputs
+
+    return result_outputs(result, args, answer)
 
 
 def write_derivations(train: Train, stem: str, progress: Progress, failures: list[str]) -> list[tuple[str, str]]:
     """(file name, content) of the LaTeX document and formula module of every state that
     derives (a state that does not is reported in ``failures``)."""
-    sets = derive_sets(train, None, progress, failures)
-    if train.states:
-        return [(f"{stem}.tex", latex_states_document([vs for _, vs in sets]))] + [
-            (f"{stem}_{name}.py", python_module(vs, file_parameters(train))) for name, vs in sets
-        ]
-    return [
-        (f"{stem}.tex", latex_document(sets[0][1])),
-        (f"{stem}.py", python_module(sets[0][1], file_parameters(train))),
-    ]
+    return OneInputResult(train, tuple(derive_sets(train, None, progress, failures))).derivations(stem)

@@ -11,25 +11,24 @@ from collections.abc import Callable
 from davies_sym.cli.arguments import (
     check_emit,
     check_sweep_ranges,
-    document_asked,
     figure_suffix,
     held_values,
     plot_sweeps,
     published_hint,
     published_start,
 )
+from davies_sym.cli.result_outputs import result_outputs
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
-from davies_sym.emit.languages import emit_code
+from davies_sym.emit.derived_result import SeveralInputResult
 from davies_sym.emit.plots import figure_bytes
 from davies_sym.emit.report import kinematics_document, kinematics_text
-from davies_sym.emit.several_inputs_latex import several_inputs_latex
-from davies_sym.emit.several_inputs_module import several_inputs_formulas, several_inputs_module
+from davies_sym.emit.several_inputs_module import several_inputs_formulas
 from davies_sym.emit.several_inputs_plots import (
     several_efficiency_figure,
     several_region_figure,
 )
-from davies_sym.emit.several_inputs_report import evaluate_several, several_inputs_document, several_inputs_text
+from davies_sym.emit.several_inputs_report import SeveralEvaluation, evaluate_several
 from davies_sym.errors import InputError, MissingValuesError, Problem
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.expressions import assignments
@@ -111,34 +110,16 @@ def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) 
     si = derive_several_inputs(train, progress=progress)
     if args.plot:
         return [(args.out, _plot(si, args))]
-    if args.emit:
-        module = [(args.python, several_inputs_module(si))] if args.python else []
-        return [*module, (args.out, emit_code(si, args.emit))]
-    if args.latex:
-        text = several_inputs_latex(si)
-    else:
-        document = several_inputs_document(si)
-        text = json.dumps(document, indent=2) + "\n" if args.json else several_inputs_text(document) + "\n"
-    answer = None
-    if args.eval is not None:
+    result = SeveralInputResult(si)
+
+    def answer() -> SeveralEvaluation:
         pairs, published = published_start(train, args.eval, None)
         try:
-            answer = evaluate_several(si, {**published, **assignments(pairs, "--eval", train.path)})
+            return evaluate_several(si, {**published, **assignments(pairs, "--eval", train.path)})
         except MissingValuesError as exc:
             raise published_hint(exc, train, None, args.eval) from None
-    outputs: list[tuple[str | None, str | bytes]] = []
-    if args.python:
-        outputs.append((args.python, several_inputs_module(si)))
-    if document_asked(args, answer is not None):
-        outputs.append((args.out, text))
-    if answer is not None:
-        outputs.append(
-            (
-                None,
-                json.dumps({"file": train.path, **answer.document()}, indent=2) + "\n" if args.json else answer.text(),
-            )
-        )
-    return outputs
+
+    return result_outputs(result, args, answer)
 
 
 def several_derivations(train: Train, stem: str, progress: Progress) -> list[tuple[str, str]]:
@@ -147,5 +128,4 @@ def several_derivations(train: Train, stem: str, progress: Progress) -> list[tup
     has no formulas to write)."""
     if len(train.ports.inputs) == 1:
         return []
-    si = derive_several_inputs(train, progress=progress)
-    return [(f"{stem}.tex", several_inputs_latex(si)), (f"{stem}.py", several_inputs_module(si))]
+    return SeveralInputResult(derive_several_inputs(train, progress=progress)).derivations(stem)

@@ -123,6 +123,7 @@ def conical_layout(train: Train) -> Layout:
     axes = _link_axes(train, radicals, problems)
     if problems:
         raise GeometryError(problems, train.file_lines)
+    gears = {g.name: g for g in train.gears}
     gear_axes = {g.name: axes[g.link] for g in train.gears}
     structure = axis_structure(train)
     origin = vector((0, 0, 0))
@@ -133,7 +134,7 @@ def conical_layout(train: Train) -> Layout:
     for c in train.couplings:
         mesh = as_gear_mesh(c)
         if mesh is not None:
-            g, h = (train.gear(n) for n in mesh.gears)
+            g, h = (gears[n] for n in mesh.gears)
             a, b = gear_axes[g.name], gear_axes[h.name]
             normal = radicals.reduced(cross(a, b))
             if all(x == 0 for x in normal):

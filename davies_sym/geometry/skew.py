@@ -12,7 +12,7 @@ spatial, and a spur mesh becomes a point contact (`Layout.spatial`).
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 
 import sympy
@@ -21,7 +21,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.layout import X_AXIS, Layout
 from davies_sym.topology import coupling_kinds
-from davies_sym.topology.model import Train
+from davies_sym.topology.model import Gear, Train
 from davies_sym.topology.revolute import Revolute
 from davies_sym.topology.skew_mesh import SkewMesh
 
@@ -35,8 +35,9 @@ def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
     """The layout of ``train``: its parallel-axis part by ``parallel``, then each worm link
     placed across its wheel's axis."""
     meshes = skew_meshes(train)
-    worms = {train.gear(m.gears[0]).link: m for m in meshes}
-    _check_worm_links(train, meshes, worms)
+    gears = {g.name: g for g in train.gears}
+    worms = {gears[m.gears[0]].link: m for m in meshes}
+    _check_worm_links(train, gears, meshes, worms)
     rest = _parallel_part(train, set(worms))
     layout = parallel(rest)
     if layout.axis != vector((0, 0, 1)) or layout.gear_axes:
@@ -48,7 +49,7 @@ def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
     points, coupling_axes = dict(layout.coupling_points), dict(layout.coupling_axes)
     tangents, normals = dict(layout.mesh_tangents), dict(layout.mesh_normals)
     for link, mesh in worms.items():
-        worm, wheel = train.gear(mesh.gears[0]), train.gear(mesh.gears[1])
+        worm, wheel = gears[mesh.gears[0]], gears[mesh.gears[1]]
         assert mesh.helix is not None and mesh.pressure is not None
         first, second = mesh.helix
         centre = centres[wheel.name]
@@ -86,13 +87,15 @@ def _bearings(train: Train, link: str) -> list[Revolute]:
     return [c for c in coupling_kinds.bearings(train.couplings) if link in c.links]
 
 
-def _check_worm_links(train: Train, meshes: list[SkewMesh], worms: dict[str, SkewMesh]) -> None:
+def _check_worm_links(
+    train: Train, gears: Mapping[str, Gear], meshes: list[SkewMesh], worms: dict[str, SkewMesh]
+) -> None:
     """A worm's link carries that worm only and turns in bearings on the worm's axis; the
     wheel is on the parallel-axis part of the train."""
     problems: list[Problem] = []
     seen: dict[str, str] = {}
     for mesh in meshes:
-        worm, wheel = train.gear(mesh.gears[0]), train.gear(mesh.gears[1])
+        worm, wheel = gears[mesh.gears[0]], gears[mesh.gears[1]]
         entry = f"couplings.{mesh.name}.gears"
         if worm.link in seen:
             problems.append(

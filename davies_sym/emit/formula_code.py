@@ -11,7 +11,7 @@ import importlib
 import inspect
 import keyword
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from types import ModuleType
 
@@ -271,3 +271,35 @@ def compiled_module(source: str, name: str) -> ModuleType:
     module = ModuleType("davies_sym_formulas")
     exec(compile(source, f"<formulas of {name}>", "exec"), module.__dict__)
     return module
+
+
+@dataclass(frozen=True)
+class FormulaTables:
+    """The formula functions of a generated module as they are written, each entered in
+    the table that names it by key (``_EFFICIENCY``: variant or region -> its function
+    and arguments), which the module's runtime reads."""
+
+    tables: dict[str, list[tuple[str, str, Sequence[str]]]]
+    functions: list[ast.FunctionDef] = field(default_factory=list)
+
+    @classmethod
+    def named(cls, *tables: str) -> FormulaTables:
+        """Empty tables of these names, in this order."""
+        return cls({name: [] for name in tables})
+
+    def add(
+        self,
+        table: str,
+        key: str,
+        name: str,
+        doc: str,
+        exprs: Sequence[sympy.Expr],
+        returns: str = "Array",
+        relation: bool = False,
+    ) -> tuple[str, ...]:
+        """The `formula_function` ``name`` of ``exprs``, entered in ``table`` under
+        ``key``; its argument names."""
+        function, args = formula_function(name, doc, exprs, returns, relation)
+        self.functions.append(function)
+        self.tables[table].append((key, name, args))
+        return args

@@ -225,6 +225,28 @@ def map_regions(
         axis.legend(handles=handles, fontsize=8, loc="best")
 
 
+def efficiency_panel(
+    axes: tuple[Any, Any], xs: np.ndarray, eta: np.ndarray, numbers: np.ndarray, describe: Callable[[int], str]
+) -> None:
+    """The efficiency curve in percent on the upper of ``axes``, both shaded by the
+    variant or region that holds (``numbers``, named by ``describe``)."""
+    top, _ = axes
+    top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
+    shade_regions(axes, xs, numbers, describe)
+    top.set_ylabel("efficiency [%]")
+    top.grid(True, alpha=0.3)
+
+
+def condition_levels(module: ModuleType, kwargs: Mapping[str, Any], shape: tuple[int, ...]) -> dict[str, np.ndarray]:
+    """Each turning (or speed) condition of ``module`` on a grid: its zero line bounds the
+    variants (or regions)."""
+    with np.errstate(all="ignore"):
+        return {
+            name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), shape)
+            for name, (function, args) in module._CONDITIONS.items()
+        }
+
+
 def efficiency_figure(
     variants: VariantSet, sweep: Sweep, values: Mapping[str, float], input: str, module: ModuleType | None = None
 ) -> Any:
@@ -242,12 +264,9 @@ def efficiency_figure(
     numbers = _variant_numbers(module, arguments, input, xs.shape)
     figure = new_figure(7.0, 6.0)
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
-    top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
-    shade_regions((top, bottom), xs, numbers, lambda n: _describe(module, n))
-    top.set_ylabel("efficiency [%]")
+    efficiency_panel((top, bottom), xs, eta, numbers, lambda n: _describe(module, n))
     top.set_title(f"{variants.train.name}\ninput {input}; {fixed_text(values, [sweep.name])}", fontsize=9)
     top.legend(fontsize=8, loc="best")
-    top.grid(True, alpha=0.3)
     if losses:
         bottom.stackplot(xs, *[100 * v for v in losses.values()], labels=[f"loss in {k}" for k in losses], alpha=0.8)
         bottom.legend(fontsize=8, loc="upper left")
@@ -269,13 +288,9 @@ def region_figure(
     require_drawn(eta, partial(module.efficiency, input=input), arguments, f"{x.name} and {y.name}")
     numbers = _variant_numbers(module, arguments, input, gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
+    levels = condition_levels(module, kwargs, gx.shape)
     figure = new_figure(7.0, 5.5)
     axis = figure.subplots()
-    with np.errstate(all="ignore"):
-        levels = {
-            name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
-            for name, (function, args) in module._CONDITIONS.items()
-        }
     map_regions(
         axis,
         gx,

@@ -49,9 +49,9 @@ from davies_sym.emit.force_conditions import force_text
 from davies_sym.emit.formula_code import (
     NOT_A_FUNCTION,
     NOT_A_PARAMETER,
+    FormulaTables,
     call,
     constant,
-    formula_function,
     name_node,
     refused_name,
     runtime_of,
@@ -236,31 +236,10 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
         if not _usable(s) or s.startswith("_"):
             raise refused_name(train, "symbol", s, NOT_A_PARAMETER)
     lossy = lossy_couplings(variants)
-    functions: list[ast.FunctionDef] = []
-    tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
-        "_CONDITIONS": [],
-        "_RELATIONS": [],
-        "_DEPENDENT": [],
-        "_EFFICIENCY": [],
-        "_LOSSES": [],
-        "_GRADIENT": [],
-        "_RATIO": [],
-        "_FORCES": [],
-    }
-
-    def add(
-        table: str,
-        key: str,
-        name: str,
-        doc: str,
-        exprs: Sequence[sympy.Expr],
-        returns: str = "Array",
-        relation: bool = False,
-    ) -> tuple[str, ...]:
-        function, args = formula_function(name, doc, exprs, returns, relation)
-        functions.append(function)
-        tables[table].append((key, name, args))
-        return args
+    formulas = FormulaTables.named(
+        "_CONDITIONS", "_RELATIONS", "_DEPENDENT", "_EFFICIENCY", "_LOSSES", "_GRADIENT", "_RATIO", "_FORCES"
+    )
+    tables, functions, add = formulas.tables, formulas.functions, formulas.add
 
     for c in variants.conditions:
         add(

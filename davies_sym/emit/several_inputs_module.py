@@ -36,10 +36,10 @@ from davies_sym.emit.code_layout import docstring, keyword_function, literal, mo
 from davies_sym.emit.formula_code import (
     NOT_A_FUNCTION,
     NOT_A_PARAMETER,
+    FormulaTables,
     call,
     compiled_module,
     constant,
-    formula_function,
     name_node,
     refused_name,
     runtime_of,
@@ -92,22 +92,8 @@ def several_inputs_module(si: SeveralInputs) -> str:
         """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
         return given_form(expr, train, radicals)
 
-    functions: list[ast.FunctionDef] = []
-    tables: dict[str, list[tuple[str, str, Sequence[str]]]] = {
-        "_CONDITIONS": [],
-        "_SPEEDS": [],
-        "_EFFICIENCY": [],
-        "_TORQUES": [],
-        "_FORCES": [],
-    }
-
-    def add(
-        table_name: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array"
-    ) -> tuple[str, ...]:
-        function, args = formula_function(name, doc, exprs, returns)
-        functions.append(function)
-        tables[table_name].append((key, name, args))
-        return args
+    formulas = FormulaTables.named("_CONDITIONS", "_SPEEDS", "_EFFICIENCY", "_TORQUES", "_FORCES")
+    tables, functions, add = formulas.tables, formulas.functions, formulas.add
 
     for c in si.conditions:
         add(

@@ -24,12 +24,13 @@ from davies_sym.emit.plots import (
     POINTS_1D,
     POINTS_2D,
     Sweep,
+    condition_levels,
+    efficiency_panel,
     fixed_text,
     label,
     map_regions,
     new_figure,
     require_drawn,
-    shade_regions,
 )
 from davies_sym.emit.several_inputs_module import several_inputs_formulas
 
@@ -56,11 +57,7 @@ def several_region_figure(
     require_drawn(eta, module.efficiency, {k: kwargs[k] for k in required}, f"{x.name} and {y.name}")
     numbers = np.broadcast_to(module.region(**{k: kwargs[k] for k in required}), gx.shape).astype(float)
     numbers[np.isnan(eta)] = np.nan
-    with np.errstate(all="ignore"):
-        levels = {
-            name: np.broadcast_to(function(**{a: kwargs[a] for a in args}), gx.shape)
-            for name, (function, args) in module._CONDITIONS.items()
-        }
+    levels = condition_levels(module, kwargs, gx.shape)
     figure = new_figure(7.5, 7.5)
     axis = figure.subplots()
     map_regions(
@@ -100,12 +97,9 @@ def several_efficiency_figure(
     numbers = np.broadcast_to(module.region(**required), xs.shape)
     figure = new_figure(7.5, 6.5)
     top, bottom = figure.subplots(2, 1, sharex=True, height_ratios=[3, 2])
-    top.plot(xs, 100 * eta, color="black", linewidth=2, label="efficiency")
-    shade_regions((top, bottom), xs, numbers, lambda n: _describe(module, n))
-    top.set_ylabel("efficiency [%]")
+    efficiency_panel((top, bottom), xs, eta, numbers, lambda n: _describe(module, n))
     top.set_title(f"{si.train.name}\n{fixed_text(values, [sweep.name])}", fontsize=9)
     top.legend(fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.12), ncols=2)
-    top.grid(True, alpha=0.3)
     for port, torque in torques.items():
         bottom.plot(xs, torque, label=f"torque at {port}")
     bottom.legend(fontsize=8, loc="best")

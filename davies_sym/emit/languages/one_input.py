@@ -36,6 +36,7 @@ from davies_sym.emit.languages.program import Program, Routine
 from davies_sym.emit.languages.routines import (
     Check,
     checks_routine,
+    forces_agree_routine,
     formula_routine,
     fresh,
 )
@@ -102,15 +103,8 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
             )
         )
         if v.loaded_forces:
-            checks: list[Check] = [
-                (public(f.to_expr() * sign), ">=", sympy.Integer(0)) for f, sign in v.loaded_forces.values()
-            ]
-            forces[v.name] = checks_routine(
-                f"{v.name}_forces_agree",
-                f"whether the loaded forces of {', '.join(v.loaded_forces)} have the signs variant ({v.number}) needs",
-                checks,
-                names,
-            )
+            needs = f"variant ({v.number}) needs"
+            forces[v.name] = forces_agree_routine(v.name, needs, v.loaded_forces, public, names)
     routines += forces.values()
     relations = [r for r in admissible_relations(variants) if {str(s) for s in r.free_symbols} <= set(names)]
     checks = [*range_checks(table, names), *((r, ">", sympy.Integer(0)) for r in relations)]

@@ -5,11 +5,12 @@ returning whether all hold, and calls of routines as expressions of another rout
 from __future__ import annotations
 
 import re
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 
 import sympy
 from sympy.core.function import AppliedUndef
 
+from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.emit.languages.program import Argument, Kind, Routine, Step
 from davies_sym.errors import DerivationError
 
@@ -88,6 +89,21 @@ def checks_routine(
     relations = [relation(r, op, bound) for r, (_, op, bound) in zip(reduced, checks, strict=True)]
     result = sympy.And(*relations) if relations else sympy.true
     return Routine(name, summary, arguments, Kind.BOOL, steps, result, exported)
+
+
+def forces_agree_routine(
+    name: str,
+    needs: str,
+    loaded_forces: Mapping[str, tuple[RationalFunction, int]],
+    public: Callable[[sympy.Expr], sympy.Expr],
+    order: Sequence[str],
+) -> Routine:
+    """``<name>_forces_agree(...)``: whether each loaded force (a tooth force, a bearing
+    reaction) has the sign a variant or region ``needs`` (``public``: the formula in the
+    parameters the user gives)."""
+    checks: list[Check] = [(public(f.to_expr() * sign), ">=", sympy.Integer(0)) for f, sign in loaded_forces.values()]
+    summary = f"whether the loaded forces of {', '.join(loaded_forces)} have the signs {needs}"
+    return checks_routine(f"{name}_forces_agree", summary, checks, order)
 
 
 def call(routine: Routine) -> AppliedUndef:

@@ -25,7 +25,14 @@ from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInp
 from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.one_input import range_checks
 from davies_sym.emit.languages.program import NOT_COVERED, Argument, Kind, Program, Routine, Step
-from davies_sym.emit.languages.routines import Check, call, checks_routine, formula_routine, fresh, relation
+from davies_sym.emit.languages.routines import (
+    call,
+    checks_routine,
+    forces_agree_routine,
+    formula_routine,
+    fresh,
+    relation,
+)
 from davies_sym.emit.languages.text import origin_text, parameter_lines
 from davies_sym.emit.languages.variant_choice import working
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
@@ -87,15 +94,8 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
             names,
         )
         if r.loaded_forces:
-            checks: list[Check] = [
-                (public(f.to_expr() * assumed), ">=", sympy.Integer(0)) for f, assumed in r.loaded_forces.values()
-            ]
-            forces[r.number] = checks_routine(
-                f"region_{r.number}_forces_agree",
-                f"whether the loaded forces of {', '.join(r.loaded_forces)} have the signs region ({r.number}) assumes",
-                checks,
-                names,
-            )
+            needs = f"region ({r.number}) assumes"
+            forces[r.number] = forces_agree_routine(f"region_{r.number}", needs, r.loaded_forces, public, names)
     routines += regions.values()
     routines += forces.values()
     in_ranges = checks_routine(

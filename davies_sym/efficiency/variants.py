@@ -18,10 +18,8 @@ as self-locking.
 
 from __future__ import annotations
 
-import random
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from functools import partial
 
 import sympy
 
@@ -31,24 +29,20 @@ from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.design_point import DesignPoint, check_constraints, check_working, turning_ratio
 from davies_sym.efficiency.design_values import design_values
-from davies_sym.efficiency.empty_regions import check_facts, emptiness_proof, geometry_facts
-from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
+from davies_sym.efficiency.empty_regions import check_facts, geometry_facts
+from davies_sym.efficiency.light_load import Derivation
 from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_laws
 from davies_sym.efficiency.operating_point import (
-    INPUT_SPEED,
     INPUT_TORQUE,
     OPERATING_SYMBOLS,
-    at_operating_point,
-    zeta_forms,
 )
-from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
+from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols
 from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, Parameter, parameters_of_train, range_problem
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition, condition_signs, mesh_roles
-from davies_sym.efficiency.variant_checks import checked_variant
 from davies_sym.efficiency.variant_choice import holding_variant
+from davies_sym.efficiency.variant_derivation import SideDerivations, VariantContext, VariantList, sampled_regions
 from davies_sym.efficiency.variant_display import variant_latex, variant_set_html
 from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
-from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.errors import DesignError, InputError, MissingValuesError, Problem, shortened
 from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
@@ -259,152 +253,49 @@ def derive_variants(
             ],
             train.file_lines,
         )
-    extra = [*etas, *OPERATING_SYMBOLS]
+    extra = (*etas, *OPERATING_SYMBOLS)
     analysis = Analysis(
-        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=extra, layout=layout
+        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=list(extra), layout=layout
     )
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
-    derivations: dict[tuple[bool, frozenset[str]], Derivation] = {}
-
-    def derive(declared_input: bool, bearings: frozenset[str]) -> Derivation:
-        """The derivation with the declared input or the other one, and the named
-        bearings' reactions reversed (solved once each)."""
-        key = (declared_input, bearings)
-        if key not in derivations:
-            side = analysis
-            if key != (True, frozenset()):
-                ports = train.ports if declared_input else train.ports.swapped()
-                side = Analysis(
-                    train.with_ports(ports),
-                    coulomb_signs=CoulombSigns.MESH_LINEAR,
-                    progress=progress,
-                    extra_symbols=extra,
-                    layout=layout,
-                    reversed_coulomb=bearings,
-                )
-            flows = (
-                {r.coupling: r.flow for r in roles}
-                if side is analysis
-                else {r.coupling: named_mesh_power_flow(side, r.coupling) for r in roles}
-            )
-            derivations[key] = Derivation(
-                side, at_operating_point(side.efficiency_rf, side), zeta_forms(flows, roles), flows
-            )
-        return derivations[key]
-
-    declared = derive(True, frozenset())
-    # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
-    # too) changes with the input side, and at light load can reverse a loaded force:
-    # derive the other side again, and the cases the losses reach.
-    resolve_again = not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles})
+    sides = SideDerivations(analysis, tuple(roles), extra, layout, progress)
+    declared = sides.derivation(True, frozenset())
     domain = ParameterDomain.of(train, analysis.network.layout)
-    others = _other_symbols(declared.form, etas, roles)
-    points = list(domain.samples(samples, seed=seed, extra=others))
-    operating = random.Random(seed)
-    for point in points:
-        # Loads and speeds well above what the small drawn loss coefficients take.
-        point.update(
-            {
-                INPUT_TORQUE: sympy.Integer(operating.randint(50, 500)),
-                INPUT_SPEED: sympy.Integer(operating.randint(1, 10)),
-            }
-        )
-    regions: dict[tuple[int, ...], list[Point]] = {}
-    for point in points:
-        key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
-        regions.setdefault(key, []).append(point)
-    variants: list[Variant] = []
-    excluded: list[ExcludedVariant] = []
-    skipped = 0
-    light: list[tuple[str, str, dict[str, int], LoadCase]] = []
-    combos = condition_signs(conditions)
-    rng = random.Random(seed)
-    facts = tuple(geometry_facts(train, analysis.network.layout, conditions))
-    proofs: dict[tuple[int, ...], tuple[tuple[Requirement, ...], tuple[Requirement, ...]] | None] = {}
-    for declared_input in (True, False):
-        port_in = train.ports.input if declared_input else train.ports.output
-        port_out = train.ports.output if declared_input else train.ports.input
-        if inputs is not None and port_in not in inputs:
-            skipped += len(combos)  # their numbers stay taken: a variant keeps its number
-            continue
-        for signs in combos:
-            number = len(variants) + len(excluded) + skipped + 1
-            first = {r.coupling: r.first_drives(signs, declared_input) for r in roles}
-            key = tuple(signs[c.name] for c in conditions)
-            region = regions.get(key, [])
-            if not region:
-                # No sample in the region: prove it empty before building anything there.
-                if key not in proofs:
-                    proofs[key] = emptiness_proof(facts, conditions, signs)
-                proof = proofs[key]
-                if proof is not None:
-                    say(f"variant {number} of {2 * len(combos)}: input {port_in}, no admissible geometry")
-                    excluded.append(ExcludedVariant(number, port_in, port_out, signs, first, *proof))
-                    continue
-            say(f"variant {number} of {2 * len(combos)}: input {port_in}")
-            if resolve_again:
-                base, *reversals = reached_cases(first, partial(derive, declared_input), roles, region, etas, seed)
-            else:
-                # Only the meshes' own friction: one solution serves both inputs.
-                same = partial(_same, declared)
-                base, *reversals = reached_cases(first, same, roles, region, etas, seed, not declared_input)
-            variant = Variant(
-                number,
-                port_in,
-                port_out,
-                signs,
-                first,
-                base.efficiency,
-                bool(region),
-                loaded_forces=base.forces,
-            )
-            variants.append(checked_variant(variant, region, etas, base.derivation.analysis, conditions, rng))
-            light += [(port_in, port_out, signs, case) for case in reversals]
-    light = [item for item in light if not _assumed_elsewhere(item[3], item[0], variants, roles)]
-    if light and skipped and train.ports.input not in (inputs or ()):
+    regions = sampled_regions(domain, conditions, samples, seed, _other_symbols(declared.form, etas, roles))
+    context = VariantContext(
+        train,
+        sides,
+        tuple(conditions),
+        tuple(condition_signs(conditions)),
+        regions,
+        tuple(geometry_facts(train, analysis.network.layout, conditions)),
+        tuple(etas),
+        # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
+        # too) changes with the input side, and at light load can reverse a loaded force:
+        # derive the other side again, and the cases the losses reach.
+        not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles}),
+        seed,
+        say,
+    )
+    found = VariantList(context)
+    found.add_side(True, inputs)
+    found.add_side(False, inputs)
+    light = found.light_load()
+    if light and found.skipped and train.ports.input not in (inputs or ()):
         # The light-load variants are numbered after the declared input's: derive those too.
         return derive_variants(train, progress, samples, seed, layout)
-    for port_in, port_out, signs, case in light:
-        reversed_ = ", ".join(sorted(case.reversed))
-        number = len(variants) + len(excluded) + skipped + 1
-        say(f"variant {number}: input {port_in}, the losses reverse {reversed_}")
-        variant = Variant(
-            number,
-            port_in,
-            port_out,
-            signs,
-            case.first_drives,
-            case.efficiency,
-            True,
-            reversed_forces=case.reversed,
-            loaded_forces=case.forces,
-        )
-        variants.append(checked_variant(variant, case.samples, etas, case.derivation.analysis, conditions, rng))
+    found.add_light_load(light)
     return VariantSet(
         train,
         analysis,
         tuple(roles),
         tuple(conditions),
-        tuple(variants),
+        tuple(found.variants),
         declared.form,
-        derivations,
-        tuple(excluded),
-        facts,
-    )
-
-
-def _same(derivation: Derivation, bearings: frozenset[str]) -> Derivation:
-    """``derivation`` whatever bearings are named (a train without bearing friction)."""
-    return derivation
-
-
-def _assumed_elsewhere(case: LoadCase, port: str, variants: Sequence[Variant], roles: Sequence[MeshRole]) -> bool:
-    """Whether ``case`` only reverses meshes into the driving gears of another region's
-    variant: that variant, with the same forces, holds where the case would."""
-    meshes = {r.coupling for r in roles}
-    return case.reversed <= meshes and any(
-        v.input == port and not v.reversed_forces and dict(v.first_drives) == dict(case.first_drives) for v in variants
+        sides.solved,
+        tuple(found.excluded),
+        context.facts,
     )
 
 

@@ -18,7 +18,7 @@ from types import ModuleType
 import sympy
 from sympy.printing.numpy import NumPyPrinter
 
-from davies_sym.emit.code_layout import WIDTH, docstring, keyword_function, literal
+from davies_sym.emit.code_layout import WIDTH, docstring, keyword_function, literal, module_source
 from davies_sym.errors import DerivationError, TopologyError
 from davies_sym.topology.model import Train
 
@@ -303,3 +303,30 @@ class FormulaTables:
         self.functions.append(function)
         self.tables[table].append((key, name, args))
         return args
+
+
+def module_text(
+    runtime: Runtime,
+    doc: str,
+    constants: Sequence[ast.stmt],
+    formulas: FormulaTables,
+    entries: Sequence[ast.FunctionDef],
+    train: Train,
+) -> str:
+    """A generated module's source, in its order: the docstring, the runtime's imports and
+    helpers, the train's constants, the formula functions and their tables, the runtime's
+    choice of variant or region, and the entry points.  A formula function whose name the
+    runtime takes, or two of one name, is refused at the entry of ``train`` that made it."""
+    names = [f.name for f in formulas.functions]
+    for f in formulas.functions:
+        if not usable(runtime, f.name) or names.count(f.name) > 1:
+            raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
+    items: list[tuple[int, str | ast.stmt]] = [(0, docstring(doc, "")), (1, runtime.imports)]
+    items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
+    items += [(2 if k == 0 else 0, node) for k, node in enumerate(constants)]
+    items += [(2, f) for f in formulas.functions]
+    tables = enumerate(formulas.tables.items())
+    items += [(2 if k == 0 else 0, constant(runtime, name, table(rows))) for k, (name, rows) in tables]
+    items += [(2, text) for text in runtime.after]
+    items += [(2, f) for f in entries]
+    return module_source(items)

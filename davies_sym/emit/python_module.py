@@ -29,10 +29,12 @@ from __future__ import annotations
 
 import ast
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.parameters import (
     admissible_relations,
     eliminated_symbols,
@@ -44,18 +46,17 @@ from davies_sym.efficiency.power_losses import all_loss_fractions, lossy_couplin
 from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit import formula_code, formula_runtime
-from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
+from davies_sym.emit.code_layout import docstring, keyword_function, literal
 from davies_sym.emit.force_conditions import force_text
 from davies_sym.emit.formula_code import (
-    NOT_A_FUNCTION,
     NOT_A_PARAMETER,
     FormulaTables,
     call,
     constant,
+    module_text,
     name_node,
     refused_name,
     runtime_of,
-    table,
     usable,
 )
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
@@ -79,22 +80,33 @@ def _usable(name: str) -> bool:
     return usable(_runtime(), name)
 
 
+@dataclass(frozen=True)
+class _Arguments:
+    """The arguments of a module's entry points: every parameter the file gives
+    (``every``), those the formulas take (``formulas``) and the speed ratio's
+    (``ratio``), the arguments of each dependent parameter's formula, and the input
+    port a call without ``input`` has."""
+
+    every: tuple[str, ...]
+    formulas: tuple[str, ...]
+    ratio: tuple[str, ...]
+    dependent: Mapping[str, tuple[str, ...]]
+    default_input: str
+
+
 def _entry_point(
-    name: str,
-    doc: str,
-    required: Sequence[str],
-    optional: Sequence[str],
-    checked: Sequence[str],
-    returns: str,
-    returned: ast.expr,
-    default_input: str,
-    ranged: Sequence[str] = (),
+    name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr, arguments: _Arguments
 ) -> ast.FunctionDef:
     """``name(*, input, errors, required..., optional=None...)``: the required arguments
-    as arrays, the ``checked`` optional ones (dependent parameters) against their
-    relations, the others accepted and ignored; returns ``returned``."""
+    as arrays, the given dependent parameters checked against their relations, the other
+    optional ones accepted (held to their ranges where the train takes them); returns
+    ``returned``."""
+    checked = [d for d, args in arguments.dependent.items() if set(args) <= set(required)]
+    optional = [a for a in arguments.every if a not in required]
+    # A parameter of the train this entry does not need is still held to its range when given.
+    ranged = [a for a in optional if a in arguments.formulas or a in arguments.ratio]
     params = [ast.arg("input", name_node("str")), ast.arg("errors", name_node("str"))]
-    defaults: list[ast.expr | None] = [ast.Constant(default_input), ast.Constant("warn")]
+    defaults: list[ast.expr | None] = [ast.Constant(arguments.default_input), ast.Constant("warn")]
     if any(isinstance(n, ast.Name) and n.id == "wrt" for n in ast.walk(returned)):
         params.insert(0, ast.arg("wrt", name_node("str")))  # what the derivative is taken in
         defaults.insert(0, None)
@@ -223,12 +235,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     """Source text of the module.  ``accepted``: the parameters of the whole file (every
     state's module takes them all and ignores those its formulas do not use)."""
     train = variants.train
-    radicals = variants.analysis.network.layout.radicals
-
-    def public(expr: sympy.Expr) -> sympy.Expr:
-        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return given_form(expr, train, radicals)
-
+    public = _public(variants)
     by_name = given_parameters(variants)
     symbols = list(by_name)
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
@@ -239,19 +246,50 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     formulas = FormulaTables.named(
         "_CONDITIONS", "_RELATIONS", "_DEPENDENT", "_EFFICIENCY", "_LOSSES", "_GRADIENT", "_RATIO", "_FORCES"
     )
-    tables, functions, add = formulas.tables, formulas.functions, formulas.add
+    relations = admissible_relations(variants)
+    _add_conditions(formulas, variants, relations)
+    fractions = all_loss_fractions(variants)
+    for v in variants.variants:
+        _add_variant(formulas, variants, v, by_name, lossy, fractions[v.name])
+    needs = {}
+    for name, r in dependent_of.items():
+        needs[name] = formulas.add(
+            "_DEPENDENT",
+            name,
+            f"_dependent_{name}",
+            f"{r} (the geometric constraint {r.constraint}).",
+            [public(r.expression)],
+        )
+    ratio = public(variants.analysis.speed_ratio().to_expr())
+    port = train.ports.input
+    ratio_args = formulas.add("_RATIO", port, "_ratio_formula", f"Speed ratio with {port} as input.", [ratio])
+    every = sorted({*symbols, *accepted, *dependent_of, *ratio_args})
+    ignored = sorted(set(every) - {*symbols, *ratio_args, *dependent_of})
+    given = _Arguments(tuple(every), tuple(symbols), ratio_args, needs, port)
+    constants = _tables(variants, lossy, ignored, relations, symbols)
+    entries = _entries(given, f"{sympy.sstr(ratio)} with {port} as input")
+    return module_text(_runtime(), _module_doc(variants, ignored), constants, formulas, entries, train)
 
+
+def _public(variants: VariantSet) -> Callable[[sympy.Expr], sympy.Expr]:
+    """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
+    train, radicals = variants.train, variants.analysis.network.layout.radicals
+    return lambda expr: given_form(expr, train, radicals)
+
+
+def _add_conditions(formulas: FormulaTables, variants: VariantSet, relations: Sequence[sympy.Expr]) -> None:
+    """The turning conditions (Laus Tables 5 and 6) and the admissible relations."""
+    public = _public(variants)
     for c in variants.conditions:
-        add(
+        formulas.add(
             "_CONDITIONS",
             c.name,
             f"condition_{c.name}",
             f"Turning condition {c.name}: {sympy.sstr(c.simplified)}.",
             [public(c.expression)],
         )
-    relations = admissible_relations(variants)
     for k, r in enumerate(relations, start=1):
-        add(
+        formulas.add(
             "_RELATIONS",
             f"{sympy.sstr(r)} > 0",
             f"_relation_{k}",
@@ -260,122 +298,103 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
             "NDArray[np.bool_]",
             relation=True,
         )
-    fractions_of = all_loss_fractions(variants)
-    for v in variants.variants:
-        doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
-        eta = public(v.efficiency)
-        add("_EFFICIENCY", v.name, v.name, doc, [eta])
-        if symbols:  # the exact partial derivatives in SENSITIVE's order, sharing their subexpressions
-            add(
-                "_GRADIENT",
-                v.name,
-                f"_gradient_{v.name}",
-                f"Partial derivatives of variant ({v.number})'s efficiency in {', '.join(symbols)}.",
-                [sympy.diff(eta, by_name[n]) for n in symbols],
-                "tuple[Array, ...]" if len(symbols) > 1 else "Array",
-            )
-        fractions = fractions_of[v.name]
-        add(
-            "_LOSSES",
+
+
+def _add_variant(
+    formulas: FormulaTables,
+    variants: VariantSet,
+    v: Variant,
+    by_name: Mapping[str, sympy.Symbol],
+    lossy: Sequence[str],
+    fractions: Mapping[str, RationalFunction],
+) -> None:
+    """A variant's efficiency, its gradient, its losses (``fractions`` of the input
+    power, by coupling) and its loaded forces."""
+    public = _public(variants)
+    doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
+    eta = public(v.efficiency)
+    formulas.add("_EFFICIENCY", v.name, v.name, doc, [eta])
+    symbols = list(by_name)
+    if symbols:  # the exact partial derivatives in SENSITIVE's order, sharing their subexpressions
+        formulas.add(
+            "_GRADIENT",
             v.name,
-            f"_losses_{v.name}",
-            f"Losses over the input power in variant ({v.number}).",
-            [public(fractions[n].to_expr()) for n in lossy],
-            "tuple[Array, ...]" if len(lossy) > 1 else "Array",
+            f"_gradient_{v.name}",
+            f"Partial derivatives of variant ({v.number})'s efficiency in {', '.join(symbols)}.",
+            [sympy.diff(eta, by_name[n]) for n in symbols],
+            "tuple[Array, ...]" if len(symbols) > 1 else "Array",
         )
-        forces = [public(f.to_expr() * sign) for f, sign in v.loaded_forces.values()]
-        if forces:
-            add(
-                "_FORCES",
-                v.name,
-                f"_forces_{v.name}",
-                f"Loaded forces of {', '.join(v.loaded_forces)} in variant "
-                f"({v.number}), each times the sign it needs: all >= 0 where the variant holds.",
-                forces,
-                "tuple[Array, ...]" if len(forces) > 1 else "Array",
-            )
-    needs = {}
-    for name, r in dependent_of.items():
-        needs[name] = add(
-            "_DEPENDENT",
-            name,
-            f"_dependent_{name}",
-            f"{r} (the geometric constraint {r.constraint}).",
-            [public(r.expression)],
-        )
-    ratio = public(variants.analysis.speed_ratio().to_expr())
-    ratio_args = add(
-        "_RATIO", train.ports.input, "_ratio_formula", f"Speed ratio with {train.ports.input} as input.", [ratio]
+    formulas.add(
+        "_LOSSES",
+        v.name,
+        f"_losses_{v.name}",
+        f"Losses over the input power in variant ({v.number}).",
+        [public(fractions[n].to_expr()) for n in lossy],
+        "tuple[Array, ...]" if len(lossy) > 1 else "Array",
     )
+    forces = [public(f.to_expr() * sign) for f, sign in v.loaded_forces.values()]
+    if forces:
+        formulas.add(
+            "_FORCES",
+            v.name,
+            f"_forces_{v.name}",
+            f"Loaded forces of {', '.join(v.loaded_forces)} in variant "
+            f"({v.number}), each times the sign it needs: all >= 0 where the variant holds.",
+            forces,
+            "tuple[Array, ...]" if len(forces) > 1 else "Array",
+        )
 
-    every = sorted({*symbols, *accepted, *dependent_of, *ratio_args})
-    ignored = sorted(set(every) - {*symbols, *ratio_args, *dependent_of})
 
-    def entry(name: str, doc: str, required: Sequence[str], returns: str, returned: ast.expr) -> ast.FunctionDef:
-        checked = [d for d, args in needs.items() if set(args) <= set(required)]
-        optional = [a for a in every if a not in required]
-        # A parameter of the train this entry does not need is still held to its range when given.
-        ranged = [a for a in optional if a in symbols or a in ratio_args]
-        return _entry_point(name, doc, required, optional, checked, returns, returned, train.ports.input, ranged)
-
+def _entries(given: _Arguments, ratio: str) -> list[ast.FunctionDef]:
+    """The module's entry points (``ratio``: the speed ratio in words, for its docstring)."""
     arrays = (name_node("input"), name_node("errors"), name_node("values"), name_node("xp"))
-    entries = [
-        entry(
+    formulas = given.formulas
+    return [
+        _entry_point(
             "efficiency",
             "Overall efficiency -P_out/P_in with `input` as the input port, the variant chosen "
             "element by element; NaN where the design is not admissible or self-locks (errors: 'warn', 'raise', "
             "'ignore').",
-            symbols,
+            formulas,
             "Array",
             call("_efficiency", *arrays),
+            given,
         ),
-        entry(
+        _entry_point(
             "losses",
             "Power lost in each element of LOSSY over the input power (they add up to 1 - efficiency), "
             "the variant chosen element by element; NaN where efficiency is.",
-            symbols,
+            formulas,
             "dict[str, Array]",
             call("_losses", *arrays),
+            given,
         ),
-        entry(
+        _entry_point(
             "sensitivity",
             "Partial derivative of the efficiency in the parameter `wrt` (one of SENSITIVE), from the exact "
             "derivative of the variant that holds, element by element; NaN where efficiency is.",
-            symbols,
+            formulas,
             "Array",
             call("_sensitivity", name_node("wrt"), *arrays),
+            given,
         ),
-        entry(
+        _entry_point(
             "variant",
             "Number of the variant that holds with `input` as the input port (VARIANTS), element by "
             "element: its turning conditions hold and its loaded forces have their signs; 0 where none does or "
             "the design is not admissible.",
-            symbols,
+            formulas,
             "NDArray[np.int64]",
             call("_variant", *arrays),
+            given,
         ),
-        entry(
+        _entry_point(
             "speed_ratio",
-            f"Input speed over output speed with `input` as the input port ({sympy.sstr(ratio)} "
-            f"with {train.ports.input} as input); NaN where the design is not admissible.",
-            ratio_args,
+            f"Input speed over output speed with `input` as the input port ({ratio}); NaN where the design is "
+            "not admissible.",
+            given.ratio,
             "Array",
             call("_speed_ratio", *arrays),
+            given,
         ),
     ]
-    names = [f.name for f in functions]
-    for f in functions:
-        if not _usable(f.name) or names.count(f.name) > 1:
-            raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
-
-    runtime = _runtime()
-    items: list[tuple[int, str | ast.stmt]] = [(0, docstring(_module_doc(variants, ignored), "")), (1, runtime.imports)]
-    items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
-    items += [
-        (2 if k == 0 else 0, node) for k, node in enumerate(_tables(variants, lossy, ignored, relations, symbols))
-    ]
-    items += [(2, f) for f in functions]
-    items += [(2 if k == 0 else 0, _constant(name, table(rows))) for k, (name, rows) in enumerate(tables.items())]
-    items += [(2, text) for text in runtime.after]
-    items += [(2, f) for f in entries]
-    return module_source(items)

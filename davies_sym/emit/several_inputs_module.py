@@ -23,27 +23,27 @@ from __future__ import annotations
 
 import ast
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from types import ModuleType
 
 import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import given_form
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
-from davies_sym.emit.code_layout import docstring, keyword_function, literal, module_source
+from davies_sym.emit.code_layout import docstring, keyword_function, literal
 from davies_sym.emit.formula_code import (
-    NOT_A_FUNCTION,
     NOT_A_PARAMETER,
     FormulaTables,
     call,
     compiled_module,
     constant,
+    module_text,
     name_node,
     refused_name,
     runtime_of,
-    table,
     usable,
 )
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
@@ -84,61 +84,10 @@ def _code(si: SeveralInputs, region: Region) -> int:
 def several_inputs_module(si: SeveralInputs) -> str:
     """Source text of the module of ``si``."""
     train = si.train
-    ports = train.ports
     runtime = runtime_of(several_inputs_runtime, _ENTRY_NAMES)
-    radicals = si.analysis.network.layout.radicals
-
-    def public(expr: sympy.Expr) -> sympy.Expr:
-        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return given_form(expr, train, radicals)
-
     formulas = FormulaTables.named("_CONDITIONS", "_SPEEDS", "_EFFICIENCY", "_TORQUES", "_FORCES")
-    tables, functions, add = formulas.tables, formulas.functions, formulas.add
-
-    for c in si.conditions:
-        add(
-            "_CONDITIONS",
-            c.name,
-            f"condition_{c.name}",
-            f"Speed condition {c.name}: {sympy.sstr(c.form)} ({'; '.join(c.decides)}).",
-            [public(c.form)],
-        )
-    speed_args: set[str] = set()
-    for p, v in si.port_speeds.items():
-        speed_args |= set(add("_SPEEDS", p, f"_speed_{p}", f"Speed of port {p}.", [public(v.to_expr())]))
-    every: set[sympy.Basic] = set()
-    for r in si.regions:
-        name = f"region_{r.number}"
-        where = " and ".join(condition_text(si, r))
-        doc = (
-            f"Efficiency in region ({r.number}), where {where}: power in at {', '.join(r.inputs)}, out at "
-            f"{', '.join(r.outputs)}; " + "; ".join(mesh_text(si, r)) + "."
-        )
-        every |= set(add("_EFFICIENCY", name, name, doc, [public(r.efficiency)]))
-        every |= set(
-            add(
-                "_TORQUES",
-                name,
-                f"_torques_{r.number}",
-                f"Torque at {', '.join(ports.every)} in region ({r.number}).",
-                [public(r.torques[p].to_expr()) for p in ports.every],
-                "tuple[Array, ...]",
-            )
-        )
-        forces = [public(f.to_expr() * assumed) for f, assumed in r.loaded_forces.values()]
-        if forces:
-            every |= set(
-                add(
-                    "_FORCES",
-                    name,
-                    f"_forces_{r.number}",
-                    f"Tooth forces and loaded reactions of {', '.join(r.loaded_forces)} in region "
-                    f"({r.number}) times the sign it assumes: the region holds where all are positive.",
-                    forces,
-                    "tuple[Array, ...]" if len(forces) > 1 else "Array",
-                )
-            )
-    condition_args = {a for _, _, args in tables["_CONDITIONS"] for a in args}
+    speed_args, every = _add_formulas(formulas, si)
+    condition_args = {a for _, _, args in formulas.tables["_CONDITIONS"] for a in args}
     required = [str(s) for s in sorted_symbols({sympy.Symbol(a) for a in every | condition_args | speed_args})]
     symbols = {
         str(s): s
@@ -152,11 +101,72 @@ def several_inputs_module(si: SeveralInputs) -> str:
     for a in required:
         if not usable(runtime, a) or a.startswith("_"):
             raise refused_name(train, "symbol", a, NOT_A_PARAMETER)
-    for f in functions:
-        if not usable(runtime, f.name) or [g.name for g in functions].count(f.name) > 1:
-            raise refused_name(train, "generated function name", f.name, NOT_A_FUNCTION)
-    parameters = si.parameter_table([symbols[a] for a in required])
-    data: dict[str, object] = {
+    data = _data(si, si.parameter_table([symbols[a] for a in required]))
+    constants = [constant(runtime, n, literal(v)) for n, v in data.items()]
+    entries = _entries(required, sorted(speed_args, key=required.index))
+    return module_text(runtime, _module_doc(si), constants, formulas, entries, train)
+
+
+def _public(si: SeveralInputs) -> Callable[[sympy.Expr], sympy.Expr]:
+    """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
+    train, radicals = si.train, si.analysis.network.layout.radicals
+    return lambda expr: given_form(expr, train, radicals)
+
+
+def _add_formulas(formulas: FormulaTables, si: SeveralInputs) -> tuple[set[str], set[str]]:
+    """The speed conditions, the port speeds and each region's efficiency, torques and
+    loaded forces; the arguments of the speeds, and of the regions' formulas."""
+    public, ports = _public(si), si.train.ports
+    for c in si.conditions:
+        formulas.add(
+            "_CONDITIONS",
+            c.name,
+            f"condition_{c.name}",
+            f"Speed condition {c.name}: {sympy.sstr(c.form)} ({'; '.join(c.decides)}).",
+            [public(c.form)],
+        )
+    speed_args: set[str] = set()
+    for p, v in si.port_speeds.items():
+        speed_args |= set(formulas.add("_SPEEDS", p, f"_speed_{p}", f"Speed of port {p}.", [public(v.to_expr())]))
+    every: set[str] = set()
+    for r in si.regions:
+        name = f"region_{r.number}"
+        where = " and ".join(condition_text(si, r))
+        doc = (
+            f"Efficiency in region ({r.number}), where {where}: power in at {', '.join(r.inputs)}, out at "
+            f"{', '.join(r.outputs)}; " + "; ".join(mesh_text(si, r)) + "."
+        )
+        every |= set(formulas.add("_EFFICIENCY", name, name, doc, [public(r.efficiency)]))
+        every |= set(
+            formulas.add(
+                "_TORQUES",
+                name,
+                f"_torques_{r.number}",
+                f"Torque at {', '.join(ports.every)} in region ({r.number}).",
+                [public(r.torques[p].to_expr()) for p in ports.every],
+                "tuple[Array, ...]",
+            )
+        )
+        forces = [public(f.to_expr() * assumed) for f, assumed in r.loaded_forces.values()]
+        if forces:
+            every |= set(
+                formulas.add(
+                    "_FORCES",
+                    name,
+                    f"_forces_{r.number}",
+                    f"Tooth forces and loaded reactions of {', '.join(r.loaded_forces)} in region "
+                    f"({r.number}) times the sign it assumes: the region holds where all are positive.",
+                    forces,
+                    "tuple[Array, ...]" if len(forces) > 1 else "Array",
+                )
+            )
+    return speed_args, every
+
+
+def _data(si: SeveralInputs, parameters: Sequence[Parameter]) -> dict[str, object]:
+    """The module's constants: ports, parameters, speeds, conditions and regions."""
+    public, ports = _public(si), si.train.ports
+    return {
         "INPUTS": tuple(ports.inputs),
         "OUTPUT": ports.output,
         "PORTS": tuple(ports.every),
@@ -190,8 +200,13 @@ def several_inputs_module(si: SeveralInputs) -> str:
             for r in si.regions
         ),
     }
+
+
+def _entries(required: Sequence[str], speed_args: Sequence[str]) -> list[ast.FunctionDef]:
+    """The module's entry points, taking the parameters ``required`` (``speeds``: only
+    the input speeds ``speed_args`` it needs)."""
     values = (name_node("errors"), name_node("values"), name_node("xp"))
-    entries = [
+    return [
         _entry(
             "efficiency",
             "Mantriota and Pennestri's efficiency (eq. (6)): the output's power over the sum of "
@@ -212,7 +227,7 @@ def several_inputs_module(si: SeveralInputs) -> str:
         _entry(
             "speeds",
             "The speed of every port (by name) in the input speeds.",
-            sorted(speed_args, key=required.index),
+            speed_args,
             "dict[str, Array]",
             call("_speeds", name_node("values"), name_node("xp")),
             errors=False,
@@ -227,8 +242,12 @@ def several_inputs_module(si: SeveralInputs) -> str:
             errors=False,
         ),
     ]
+
+
+def _module_doc(si: SeveralInputs) -> str:
+    train, ports = si.train, si.train.ports
     origin = os.path.basename(train.path) if train.path else "a topology file"
-    doc = "\n".join(
+    return "\n".join(
         [
             f"Efficiency of {train.name}, driven at {', '.join(ports.inputs)}: every power-flow region.",
             "",
@@ -242,14 +261,6 @@ def several_inputs_module(si: SeveralInputs) -> str:
             "where the formulas do not hold.",
         ]
     )
-    items: list[tuple[int, str | ast.stmt]] = [(0, docstring(doc, "")), (1, runtime.imports)]
-    items += [(2 if k else 1, text) for k, text in enumerate(runtime.before)]
-    items += [(2 if k == 0 else 0, constant(runtime, n, literal(v))) for k, (n, v) in enumerate(data.items())]
-    items += [(2, f) for f in functions]
-    items += [(2 if k == 0 else 0, constant(runtime, n, table(rows))) for k, (n, rows) in enumerate(tables.items())]
-    items += [(2, text) for text in runtime.after]
-    items += [(2, f) for f in entries]
-    return module_source(items)
 
 
 def several_inputs_formulas(si: SeveralInputs) -> ModuleType:

@@ -145,36 +145,43 @@ def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sym
     return eliminated
 
 
-def add_constraint(
-    train: Train,
-    constraints: list[GeometricConstraint],
-    problems: list[Problem],
-    offset: sympy.Expr,
-    distance: sympy.Expr,
-    coupling: str,
-    oracle: SignOracle,
-    entry: str | None = None,
-    message: str | None = None,
-    loop: Sequence[str] = (),
-) -> None:
-    """``offset = distance`` holds, is impossible (a problem naming the ``loop`` of couplings
-    that closes here), or is a constraint on the radii."""
-    difference = sympy.expand(offset - distance)
-    if difference == 0:
-        return
-    if difference.is_number or oracle.sign(difference) in (1, -1):
-        through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""
-        problems.append(
-            Problem(
-                entry or f"couplings.{coupling}",
-                message
-                or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "
-                f"{distance} where the other couplings give {offset} (difference {difference}); change the sizes so "
-                "that they agree, or write one radius as a symbol and let the constraint give it",
+@dataclass(frozen=True)
+class Closures:
+    """The geometric constraints a layout collects as its meshes and bearings close loops
+    (Laus section 3.4.1.6), and in ``problems`` the loops that cannot close; ``oracle``
+    decides the sign of a difference of lengths."""
+
+    oracle: SignOracle
+    problems: list[Problem]
+    constraints: list[GeometricConstraint] = field(default_factory=list)
+
+    def close(
+        self,
+        offset: sympy.Expr,
+        distance: sympy.Expr,
+        coupling: str,
+        entry: str | None = None,
+        message: str | None = None,
+        loop: Sequence[str] = (),
+    ) -> None:
+        """``offset = distance`` holds, is impossible (a problem naming the ``loop`` of
+        couplings that closes here), or is a constraint on the radii."""
+        difference = sympy.expand(offset - distance)
+        if difference == 0:
+            return
+        if difference.is_number or self.oracle.sign(difference) in (1, -1):
+            through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""
+            self.problems.append(
+                Problem(
+                    entry or f"couplings.{coupling}",
+                    message
+                    or f"inconsistent geometry: {through}coupling {coupling} needs a centre distance of "
+                    f"{distance} where the other couplings give {offset} (difference {difference}); change the sizes "
+                    "so that they agree, or write one radius as a symbol and let the constraint give it",
+                )
             )
-        )
-        return
-    constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
+            return
+        self.constraints.append(GeometricConstraint(offset, sympy.expand(distance), coupling))
 
 
 def loop_through(via: Mapping[str, tuple[str, str]], a: str, b: str, closing: str) -> list[str]:

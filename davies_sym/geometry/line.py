@@ -23,9 +23,8 @@ from davies_sym.geometry.axes import AxisStructure
 from davies_sym.geometry.layout import (
     X_AXIS,
     Y_AXIS,
-    GeometricConstraint,
+    Closures,
     Layout,
-    add_constraint,
     line_point,
     loop_through,
 )
@@ -124,7 +123,7 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
     oracle = SignOracle([m.centre_distance(gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
     points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
-    constraints: list[GeometricConstraint] = []
+    closures = Closures(oracle, problems)
     facts: list[sympy.Expr] = []
     for mesh in meshes:
         g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
@@ -149,14 +148,10 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
         towards = side if base is g else -side
         points[mesh.name] = line_point(centres[base.name] + towards * base.radius)
         ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
-        add_constraint(
-            train,
-            constraints,
-            problems,
+        closures.close(
             side * offset,
             mesh.centre_distance(gears),
             mesh.name,
-            oracle,
             loop=loop_through(via, ends[0], ends[1], mesh.name),
         )
     for c in train.couplings:
@@ -165,14 +160,10 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
             y = positions[structure.bearing_axis[c.name]]
             if bearing.at is not None:
                 # Where the meshes fix this axis, the bearing's `at` is a constraint.
-                add_constraint(
-                    train,
-                    constraints,
-                    problems,
+                closures.close(
                     y,
                     bearing.at,
                     c.name,
-                    oracle,
                     f"couplings.{c.name}.at",
                     f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {y}",
                 )
@@ -186,7 +177,7 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
         coupling_points=points,
         mesh_tangents={m.name: X_AXIS for m in meshes},
         mesh_normals={m.name: Y_AXIS for m in meshes},
-        constraints=tuple(constraints),
+        constraints=tuple(closures.constraints),
         positive_facts=tuple(facts),
         planet_second=structure.planet_second(),
     )

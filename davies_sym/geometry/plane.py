@@ -23,7 +23,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure
-from davies_sym.geometry.layout import GeometricConstraint, Layout, add_constraint
+from davies_sym.geometry.layout import Closures, Layout
 from davies_sym.geometry.line import side_of_second
 from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
@@ -55,7 +55,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     points: dict[str, Vector] = {}
     tangents: dict[str, Vector] = {}
     normals: dict[str, Vector] = {}
-    constraints: list[GeometricConstraint] = []
+    closures = Closures(oracle, problems)
     facts: list[sympy.Expr] = []
     for mesh in meshes:
         distance = mesh.centre_distance(gears)
@@ -74,9 +74,9 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
                 # the same condition for the positive lengths of an admissible design.
                 actual = None
             if actual is None or has_square_root(radicals.restore(actual)):
-                add_constraint(train, constraints, problems, squared, distance**2, mesh.name, oracle)
+                closures.close(squared, distance**2, mesh.name)
             else:
-                add_constraint(train, constraints, problems, actual, distance, mesh.name, oracle)
+                closures.close(actual, distance, mesh.name)
         # The line of centres has length `distance` on an admissible design.
         u = (radicals.reduce(offset[0] / distance), radicals.reduce(offset[1] / distance))
         points[mesh.name] = radicals.reduced((base[0] + reach * u[0], base[1] + reach * u[1], 0))
@@ -88,14 +88,10 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
             point = positions[structure.bearing_axis[c.name]]
             if bearing.at is not None:
                 along = radicals.reduce(point[0] * unit[0] + point[1] * unit[1])
-                add_constraint(
-                    train,
-                    constraints,
-                    problems,
+                closures.close(
                     along,
                     bearing.at,
                     c.name,
-                    oracle,
                     f"couplings.{c.name}.at",
                     f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {along}",
                 )
@@ -109,7 +105,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
         coupling_points=points,
         mesh_tangents=tangents,
         mesh_normals=normals,
-        constraints=tuple(constraints),
+        constraints=tuple(closures.constraints),
         positive_facts=tuple(facts) + tuple(r.radicand for r in radicals.radicals),
         radicals=tuple(radicals.radicals),
         frame=unit,

@@ -15,6 +15,7 @@ depend on the placement direction.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import sympy
 
@@ -47,7 +48,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     gears = {g.name: g for g in train.gears}
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
-    positions = _place_classes(train, structure, meshes, gears, unit, radicals, problems, used)
+    positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used))
     if problems:
         raise GeometryError(problems, train.file_lines)
     oracle = SignOracle()
@@ -113,16 +114,22 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     )
 
 
-def _place_classes(
-    train: Train,
-    structure: AxisStructure,
-    meshes: Sequence[GearMesh],
-    gears: Mapping[str, Gear],
-    unit: Point,
-    radicals: RadicalTable,
-    problems: list[Problem],
-    used: set[str],
-) -> dict[str, Point]:
+@dataclass(frozen=True)
+class _Drawing:
+    """What placing the axis classes of a 2-D drawing reads (the axis structure, the
+    meshes in name order, the gears, the placement direction, the square roots so far)
+    and collects (``problems``; ``used``: the meshes that placed a class)."""
+
+    structure: AxisStructure
+    meshes: Sequence[GearMesh]
+    gears: Mapping[str, Gear]
+    unit: Point
+    radicals: RadicalTable
+    problems: list[Problem]
+    used: set[str]
+
+
+def _place_classes(train: Train, drawing: _Drawing) -> dict[str, Point]:
     """The centre of every axis class: the main axis at the origin and the classes whose
     bearing gives `at` along the placement direction, then outward one class at a time
     (meshes in name order): a class meshing two placed classes with distinct centres
@@ -130,6 +137,7 @@ def _place_classes(
     the gear on its carrier's axis, the pinion of an internal pair outward of its
     annulus); a class nothing reaches is on the main axis when no gear turns about it.
     ``used`` collects the meshes that placed a class (the others close loops)."""
+    structure, unit = drawing.structure, drawing.unit
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
     bearings = sorted((c for c in all_bearings(train.couplings) if c.at is not None), key=lambda c: c.name)
@@ -138,7 +146,7 @@ def _place_classes(
         if structure.bearing_axis[c.name] not in positions and c.at is not None:
             positions[structure.bearing_axis[c.name]] = (c.at * unit[0], c.at * unit[1])
     while True:
-        if _place_one(train, structure, meshes, gears, positions, unit, radicals, problems, used):
+        if _place_one(drawing, positions):
             continue
         at = next((c for c in bearings if structure.bearing_axis[c.name] not in positions), None)
         if at is not None and at.at is not None:
@@ -149,7 +157,7 @@ def _place_classes(
             return positions
         if rest[0] in geared:
             gear = next(g for g in train.gears if structure.axis[g.axis_link] == rest[0])
-            problems.append(
+            drawing.problems.append(
                 Problem(
                     f"gears.{gear.name}",
                     "its position cannot be derived: no mesh connects "
@@ -159,21 +167,12 @@ def _place_classes(
         positions[rest[0]] = zero
 
 
-def _place_one(
-    train: Train,
-    structure: AxisStructure,
-    meshes: Sequence[GearMesh],
-    gears: Mapping[str, Gear],
-    positions: dict[str, Point],
-    unit: Point,
-    radicals: RadicalTable,
-    problems: list[Problem],
-    used: set[str],
-) -> bool:
+def _place_one(drawing: _Drawing, positions: dict[str, Point]) -> bool:
     """Place one class; False when no mesh reaches an unplaced class."""
+    structure, gears, unit, radicals = drawing.structure, drawing.gears, drawing.unit, drawing.radicals
     reach: dict[str, list[tuple[Point, sympy.Expr, str]]] = {}
     first: tuple[str, Point, str] | None = None
-    for mesh in meshes:
+    for mesh in drawing.meshes:
         ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
         for k in (0, 1):
             here, there = ends[1 - k], ends[k]
@@ -196,15 +195,15 @@ def _place_one(
             if all(any(radicals.reduce(a - b) != 0 for a, b in zip(option[0], o[0], strict=True)) for o in distinct):
                 distinct.append(option)
         if len(distinct) >= 2:
-            point = _triangle(distinct[0], distinct[1], radicals, train, problems)
+            point = _triangle(distinct[0], distinct[1], radicals, drawing.problems)
             if point is None:
                 return False
             positions[group] = point
-            used |= {distinct[0][2], distinct[1][2]}
+            drawing.used.update({distinct[0][2], distinct[1][2]})
             return True
         break
     positions[first[0]] = first[1]
-    used.add(first[2])
+    drawing.used.add(first[2])
     return True
 
 
@@ -212,7 +211,6 @@ def _triangle(
     first: tuple[Point, sympy.Expr, str],
     second: tuple[Point, sympy.Expr, str],
     radicals: RadicalTable,
-    train: Train,
     problems: list[Problem],
 ) -> Point | None:
     """The point at distance d_A from A and d_B from B, counter-clockwise of A -> B."""

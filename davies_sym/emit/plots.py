@@ -160,20 +160,25 @@ def shade_regions(axes: Sequence[Any], xs: np.ndarray, numbers: np.ndarray, desc
                 axis.axvline(xs[a], color="grey", linestyle="--", linewidth=1)
 
 
-def map_regions(
-    axis: Any,
-    gx: np.ndarray,
-    gy: np.ndarray,
-    numbers: np.ndarray,
-    eta: np.ndarray,
-    count: int,
-    conditions: Mapping[str, np.ndarray],
-    describe: Callable[[int], str],
-    blank: str,
-    legend_below: bool = False,
-) -> None:
+@dataclass(frozen=True)
+class RegionMap:
+    """A grid of two swept parameters (``gx``, ``gy``) with the number of the variant or
+    region that holds at each point (NaN: none; ``count`` in all, named by
+    ``describe``), the efficiency there and each condition's value."""
+
+    gx: np.ndarray
+    gy: np.ndarray
+    numbers: np.ndarray
+    eta: np.ndarray
+    count: int
+    conditions: Mapping[str, np.ndarray]
+    describe: Callable[[int], str]
+
+
+def map_regions(axis: Any, grid: RegionMap, blank: str, legend_below: bool = False) -> None:
     """Regions coloured by number (NaN blank, labelled ``blank``), efficiency contours in
     percent, each condition's zero curve in red, and a legend of the regions present."""
+    gx, gy, numbers, eta, count = grid.gx, grid.gy, grid.numbers, grid.eta, grid.count
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
 
@@ -212,12 +217,12 @@ def map_regions(
         ]
         contours = axis.contour(gx, gy, 100 * eta, levels=levels or 8, colors="black", linewidths=0.7)
         axis.clabel(contours, fmt="%.1f %%", fontsize=7)
-    for name, level in conditions.items():
+    for name, level in grid.conditions.items():
         if np.nanmin(level) < 0 < np.nanmax(level):
             curve = axis.contour(gx, gy, level, levels=[0], colors="crimson", linewidths=2)
             axis.clabel(curve, fmt={0.0: f"{name} = 0"}, fontsize=8)
     present = sorted({int(n) for n in numbers[np.isfinite(numbers)]})
-    handles = [Patch(color=colours[(n - 1) % len(colours)], label=describe(n)) for n in present]
+    handles = [Patch(color=colours[(n - 1) % len(colours)], label=grid.describe(n)) for n in present]
     handles.append(Patch(facecolor="white", edgecolor="grey", label=blank))
     if legend_below:
         axis.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncols=2)
@@ -291,17 +296,8 @@ def region_figure(
     levels = condition_levels(module, kwargs, gx.shape)
     figure = new_figure(7.0, 5.5)
     axis = figure.subplots()
-    map_regions(
-        axis,
-        gx,
-        gy,
-        numbers,
-        eta,
-        len(module.VARIANTS),
-        levels,
-        lambda n: _describe(module, n),
-        "self-locking or not admissible",
-    )
+    grid = RegionMap(gx, gy, numbers, eta, len(module.VARIANTS), levels, lambda n: _describe(module, n))
+    map_regions(axis, grid, "self-locking or not admissible")
     axis.set_xlabel(label(module, x.name), fontsize=9)
     axis.set_ylabel(label(module, y.name), fontsize=9)
     axis.set_title(

@@ -23,6 +23,7 @@ from davies_sym.efficiency.several_inputs import SeveralInputs
 from davies_sym.emit.plots import (
     POINTS_1D,
     POINTS_2D,
+    RegionMap,
     Sweep,
     condition_levels,
     efficiency_panel,
@@ -60,18 +61,8 @@ def several_region_figure(
     levels = condition_levels(module, kwargs, gx.shape)
     figure = new_figure(7.5, 7.5)
     axis = figure.subplots()
-    map_regions(
-        axis,
-        gx,
-        gy,
-        numbers,
-        eta,
-        len(module.REGIONS),
-        levels,
-        lambda n: _describe(module, n),
-        "not covered: a condition line, or losses larger than the load",
-        legend_below=True,
-    )
+    grid = RegionMap(gx, gy, numbers, eta, len(module.REGIONS), levels, lambda n: _describe(module, n))
+    map_regions(axis, grid, "not covered: a condition line, or losses larger than the load", legend_below=True)
     axis.set_xlabel(label(module, x.name), fontsize=9)
     axis.set_ylabel(label(module, y.name), fontsize=9)
     axis.set_title(

@@ -110,7 +110,7 @@ def design_values(
             continue
         out[symbol] = number
     if problems:
-        raise InputError(problems, train.file_lines)
+        raise InputError(problems, train.path)
     return out
 
 

@@ -11,7 +11,7 @@ proved to imply (`davies_sym.efficiency.empty_regions`).
 from __future__ import annotations
 
 import itertools
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import sympy
 
@@ -19,6 +19,7 @@ from davies_sym.algebra.radicals import Radical, restore
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_domain import admissible_facts
 from davies_sym.efficiency.parameter_ranges import Parameter
+from davies_sym.efficiency.power_flow_regions import SeveralInputs
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.losses.definitions import parameters_of, substituted
 from davies_sym.topology.coupling_kinds import toothed_meshes
@@ -40,6 +41,13 @@ def given_form(expr: sympy.Expr, train: Train, radicals: Sequence[Radical]) -> s
     """``expr`` in the parameters the user gives: the layout's square roots written as
     roots, every defined symbol replaced by its definition."""
     return substituted(restore(expr, radicals), train.definitions)
+
+
+def given_forms(derived: VariantSet | SeveralInputs) -> Callable[[sympy.Expr], sympy.Expr]:
+    """`given_form` for the formulas of ``derived`` (the variants of a train driven at
+    one port, or the regions of one driven at several)."""
+    train, radicals = derived.train, derived.analysis.network.layout.radicals
+    return lambda expr: given_form(expr, train, radicals)
 
 
 def parameter_table(variants: VariantSet) -> tuple[Parameter, ...]:

@@ -122,9 +122,10 @@ class VariantList:
     skipped: int = 0
     light: list[tuple[str, str, dict[str, int], LoadCase]] = field(default_factory=list)
     proofs: dict[tuple[int, ...], Proof | None] = field(default_factory=dict)
+    #: One stream for the checks, drawn in the order the variants are numbered.
+    rng: random.Random = field(init=False)
 
     def __post_init__(self) -> None:
-        # One stream for the checks, drawn in the order the variants are numbered.
         self.rng = random.Random(self.context.seed)
 
     @property

@@ -135,7 +135,7 @@ class VariantSet:
                         f"{self.train.ports.input}, {self.train.ports.output})",
                     )
                 ],
-                self.train.file_lines,
+                self.train.path,
             )
         return holding_variant(self.variants, self.conditions, port, values, self.train.path, self.excluded)
 
@@ -180,12 +180,10 @@ class VariantSet:
         definitions = [d for d in self.train.definitions if d.symbol not in given]
         missing = [str(s) for s in sorted_symbols(parameters_of(self._used, definitions)) if s not in given]
         if missing:
-            raise MissingValuesError(
-                [Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.file_lines
-            )
+            raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.path)
         outside = [why for p in self.parameter_table if (why := _range_problem(p, given)) is not None]
         if outside:
-            raise DesignError([Problem("--eval", why) for why in outside], self.train.file_lines)
+            raise DesignError([Problem("--eval", why) for why in outside], self.train.path)
         check_constraints(self.analysis.network.layout.constraints, given, self.train.path)
         ports = self.train.ports
         other = ports.output if port == ports.input else ports.input
@@ -223,7 +221,7 @@ def derive_variants(
     strangers = [p for p in inputs or () if p not in ports]
     if strangers:  # refused as --input refuses them
         why = f"{shortened(strangers[0])} is not a port (ports: {', '.join(ports)})"
-        raise InputError([Problem("--input", why)], train.file_lines)
+        raise InputError([Problem("--input", why)], train.path)
     if len(train.ports.inputs) > 1:
         # One efficiency per input port is this function's answer; several inputs have regions.
         raise InputError(

@@ -88,7 +88,7 @@ def balance_at(
     ports = (train.ports.input, train.ports.output)
     if input is not None and input not in ports:  # refused as --input refuses it
         raise InputError(
-            [Problem("--input", f"{shortened(input)} is not a port (ports: {', '.join(ports)})")], train.file_lines
+            [Problem("--input", f"{shortened(input)} is not a port (ports: {', '.join(ports)})")], train.path
         )
     given = design_values(train, values)
     if layout is None:
@@ -155,7 +155,7 @@ def _check_given(train: Train, given: Mapping[sympy.Symbol, sympy.Expr]) -> None
         needed |= g.radius.free_symbols
     missing = [str(s) for s in sorted_symbols(parameters_of(needed, train.definitions)) if s not in given]
     if missing:
-        raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.file_lines)
+        raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
 
 
 def _check_algebraic(values: Mapping[sympy.Symbol, sympy.Expr]) -> None:

@@ -128,12 +128,12 @@ class OneInputResult:
     def derivations(self, stem: str) -> list[tuple[str, str]]:
         """The LaTeX document of every state that derives and a module per state, or
         the train's document and module."""
+        if not self.file_train.states:
+            return [(f"{stem}.tex", self.latex()), (f"{stem}.py", self.module())]
         accepted = file_parameters(self.file_train)
-        if self.file_train.states:
-            return [(f"{stem}.tex", latex_states_document([vs for _, vs in self.sets]))] + [
-                (f"{stem}_{name}.py", python_module(vs, accepted)) for name, vs in self.sets
-            ]
-        return [(f"{stem}.tex", latex_document(self.chosen)), (f"{stem}.py", python_module(self.chosen, accepted))]
+        return [(f"{stem}.tex", latex_states_document([vs for _, vs in self.sets]))] + [
+            (f"{stem}_{name}.py", python_module(vs, accepted)) for name, vs in self.sets
+        ]
 
 
 def _speed_ratio(variants: VariantSet) -> str:

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import ast
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -38,7 +38,7 @@ from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.parameters import (
     admissible_relations,
     eliminated_symbols,
-    given_form,
+    given_forms,
     given_parameters,
     parameter_table,
 )
@@ -235,7 +235,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     """Source text of the module.  ``accepted``: the parameters of the whole file (every
     state's module takes them all and ignores those its formulas do not use)."""
     train = variants.train
-    public = _public(variants)
+    public = given_forms(variants)
     by_name = given_parameters(variants)
     symbols = list(by_name)
     dependent_of = {str(r.symbol): r for r in train.dependent or ()}
@@ -271,15 +271,9 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     return module_text(_runtime(), _module_doc(variants, ignored), constants, formulas, entries, train)
 
 
-def _public(variants: VariantSet) -> Callable[[sympy.Expr], sympy.Expr]:
-    """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-    train, radicals = variants.train, variants.analysis.network.layout.radicals
-    return lambda expr: given_form(expr, train, radicals)
-
-
 def _add_conditions(formulas: FormulaTables, variants: VariantSet, relations: Sequence[sympy.Expr]) -> None:
     """The turning conditions (Laus Tables 5 and 6) and the admissible relations."""
-    public = _public(variants)
+    public = given_forms(variants)
     for c in variants.conditions:
         formulas.add(
             "_CONDITIONS",
@@ -310,7 +304,7 @@ def _add_variant(
 ) -> None:
     """A variant's efficiency, its gradient, its losses (``fractions`` of the input
     power, by coupling) and its loaded forces."""
-    public = _public(variants)
+    public = given_forms(variants)
     doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
     eta = public(v.efficiency)
     formulas.add("_EFFICIENCY", v.name, v.name, doc, [eta])

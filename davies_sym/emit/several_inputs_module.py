@@ -23,14 +23,14 @@ from __future__ import annotations
 
 import ast
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from types import ModuleType
 
 import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_ranges import Parameter
-from davies_sym.efficiency.parameters import given_form
+from davies_sym.efficiency.parameters import given_forms
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit import several_inputs_runtime
 from davies_sym.emit.code_layout import docstring, keyword_function, literal
@@ -107,16 +107,10 @@ def several_inputs_module(si: SeveralInputs) -> str:
     return module_text(runtime, _module_doc(si), constants, formulas, entries, train)
 
 
-def _public(si: SeveralInputs) -> Callable[[sympy.Expr], sympy.Expr]:
-    """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-    train, radicals = si.train, si.analysis.network.layout.radicals
-    return lambda expr: given_form(expr, train, radicals)
-
-
 def _add_formulas(formulas: FormulaTables, si: SeveralInputs) -> tuple[set[str], set[str]]:
     """The speed conditions, the port speeds and each region's efficiency, torques and
     loaded forces; the arguments of the speeds, and of the regions' formulas."""
-    public, ports = _public(si), si.train.ports
+    public, ports = given_forms(si), si.train.ports
     for c in si.conditions:
         formulas.add(
             "_CONDITIONS",
@@ -165,7 +159,7 @@ def _add_formulas(formulas: FormulaTables, si: SeveralInputs) -> tuple[set[str],
 
 def _data(si: SeveralInputs, parameters: Sequence[Parameter]) -> dict[str, object]:
     """The module's constants: ports, parameters, speeds, conditions and regions."""
-    public, ports = _public(si), si.train.ports
+    public, ports = given_forms(si), si.train.ports
     return {
         "INPUTS": tuple(ports.inputs),
         "OUTPUT": ports.output,

@@ -39,13 +39,11 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     the axis classes of ``structure``; ``direction`` (x, y) is the placement direction
     of the planets."""
     problems: list[Problem] = []
-    radicals = RadicalTable(
-        facts=[m.centre_distance({g.name: g for g in train.gears}) for m in gear_meshes(train.couplings) if m.internal]
-    )
+    gears = {g.name: g for g in train.gears}
+    radicals = RadicalTable(facts=[m.centre_distance(gears) for m in gear_meshes(train.couplings) if m.internal])
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
-    gears = {g.name: g for g in train.gears}
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
     positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used))

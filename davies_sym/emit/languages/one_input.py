@@ -25,7 +25,7 @@ from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import (
     admissible_relations,
     eliminated_symbols,
-    given_form,
+    given_forms,
     given_parameters,
     parameter_table,
 )
@@ -77,11 +77,7 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     what the target language returns where there is no efficiency (``NaN``); ``state``:
     the operating state the variants are of, for the comments."""
     train = variants.train
-    radicals = variants.analysis.network.layout.radicals
-
-    def public(expr: sympy.Expr) -> sympy.Expr:
-        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return given_form(expr, train, radicals)
+    public = given_forms(variants)
 
     names = tuple(given_parameters(variants))
     table = parameter_table(variants)

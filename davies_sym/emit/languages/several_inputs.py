@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.parameters import given_form
+from davies_sym.efficiency.parameters import given_forms
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
 from davies_sym.emit.languages.one_input import range_checks
@@ -42,11 +42,7 @@ from davies_sym.losses.definitions import parameters_of
 def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> Program:
     """The program of ``si``; ``module`` and ``not_covered`` as for a one-input train."""
     train = si.train
-    radicals = si.analysis.network.layout.radicals
-
-    def public(expr: sympy.Expr) -> sympy.Expr:
-        """A formula in the parameters the user gives (radicals and defined symbols replaced)."""
-        return given_form(expr, train, radicals)
+    public = given_forms(si)
 
     # The parameters the Python module's efficiency takes (and checks the ranges of).
     used: set[sympy.Basic] = set()

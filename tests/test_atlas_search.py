@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import re
 import shlex
+from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
 from hand.markdown import blocks, commands
 from hostile.helpers import Result, run_main_in
+from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The docs' examples: a reduction of 10 to 15 (12.5 within 20 %), teeth 17 to 40.
@@ -103,3 +105,44 @@ def test_the_docs_six_link_example(tmp_path: Path) -> None:
     assert len(files) == len(listed) == 8
     for (_, _, ratio, efficiency), path in zip(listed, files, strict=True):
         assert _evaluated(path, tmp_path) == pytest.approx((ratio, efficiency), abs=6e-5)
+
+
+def test_the_docs_coaxial_planet_design_balances_as_the_oracle_says() -> None:
+    """docs/atlas.md lists atlas6_r10_d9 (carrier l0 holding planets l3 and l4 on one pin,
+    suns l1, l2 and ring l5 on the main axis; gear pairs 1-3, 2-4, 3-5, 4-5) with l1 held,
+    l5 in and l2 out. Its tooth numbers, read from the page, satisfy the coaxial
+    conditions of the pin (z1a + z3b = z2a + z4b, each ring gear z1a + 2 z3b and
+    z2a + 2 z4b), and the independent per-member torque and force balance
+    (tests/oracle/balance.py; module 1, meshes 0.98 external, 0.99 internal) gives the
+    listed speed ratio and efficiency."""
+    page = (ROOT / "docs" / "atlas.md").read_text(encoding="utf-8")
+    ((_, shown),) = [c for b in blocks(page, "console") for c in commands(b) if "--atlas 6" in c[0]]
+    (line,) = [
+        m
+        for m in map(LINE.fullmatch, shown.splitlines())
+        if m and m.group(2, 3, 4, 5) == ("atlas6_r10_d9", "1", "5", "2")
+    ]
+    z = {k: int(v) for k, v in (pair.split("=") for pair in line.group(6).split())}
+    assert z["z1a"] + z["z3b"] == z["z2a"] + z["z4b"]
+    assert (z["z5ar"], z["z5ar2"]) == (z["z1a"] + 2 * z["z3b"], z["z2a"] + 2 * z["z4b"])
+    link = {"G1a": "l1", "G2a": "l2", "G3b": "l3", "G4b": "l4", "G5ar": "l5", "G5ar2": "l5"}
+    gears = tuple(Gear(g, member, F(z["z" + g[1:]], 2), g.startswith("G5")) for g, member in link.items())
+    pin = (F(0), F(z["z1a"] + z["z3b"], 2))
+    members = (
+        *(Member(m) for m in ("housing", "l0", "l1", "l2", "l5")),
+        Member("l3", "l0", pin),
+        Member("l4", "l0", pin),
+    )
+    external, internal = F(98, 100), F(99, 100)
+    meshes = (
+        Mesh("M0", ("G1a", "G3b"), external),
+        Mesh("M1", ("G2a", "G4b"), external),
+        Mesh("M2", ("G5ar", "G3b"), internal),
+        Mesh("M3", ("G5ar2", "G4b"), internal),
+    )
+    spec = TrainSpec(
+        "atlas6_r10_d9", members, gears, meshes, "housing", {"B1": "l1", "B2": "l2", "B5": "l5"}, "B5", "B2"
+    )
+    result = solve(in_state(spec, State("h1_i5_o2", "B5", "B2", ("l1",))))
+    assert float(result.speed_ratio) == pytest.approx(float(line.group(7)), abs=5e-5)
+    assert float(result.efficiency) == pytest.approx(float(line.group(8)), abs=5e-6)

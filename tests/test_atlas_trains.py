@@ -8,17 +8,20 @@ import json
 import random
 import re
 from fractions import Fraction
+from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
 import sympy
 import yaml
 from hostile.helpers import Result, run_main_in
+from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 import davies_sym
 from davies_sym.atlas.entries import Entry, entry
 from davies_sym.atlas.enumeration import atlas, canonical_code
 from davies_sym.atlas.recognition import OutsideAtlas, train_graph
+from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import analyse
 from davies_sym.topology.states import train_in_state
@@ -140,16 +143,92 @@ def test_every_written_train_turns_as_willis_says(entries: dict[int, list[Entry]
     assert checked >= {4: 3, 5: 12, 6: 200}[links]
 
 
-def test_the_atlas_draws_all_but_one_six_link_train(entries: dict[int, list[Entry]]) -> None:
-    """80 of the 81 six-link trains are written (9 with a gear centred on a pin its link
-    holds, `about:`); the one left is a loop of planets neither a line nor 2-D placement
-    closes, and says so."""
-    drawn = [e for e in entries[6] if not e.not_drawable]
+@pytest.mark.parametrize("links", [4, 5, 6])
+def test_every_written_train_turns_about_the_axes_of_its_graph(entries: dict[int, list[Entry]], links: int) -> None:
+    """The train file draws its own displacement graph: the gears of the links that
+    turn about one axis of the graph are centred on one point of the layout, those of
+    different axes on different points (a file that left two coaxial planets on axes of
+    their own would draw another graph, with one geometric condition fewer)."""
+    checked = 0
+    for e in entries[links]:
+        train = davies_sym.loads(e.train_text())
+        layout = train_layout(train)
+        drawn = e.drawn
+        centres: dict[int, set[tuple[sympy.Expr, ...]]] = {}
+        for gear in drawn.gears:
+            point = tuple(sympy.expand(x) for x in layout.gear_centres[gear.name][:2])
+            centres.setdefault(gear.axis, set()).add(point)
+        assert all(len(points) == 1 for points in centres.values()), e.name
+        assert len({next(iter(points)) for points in centres.values()}) == len(centres), e.name
+        checked += sum(len(axis) - (axis != e.graph.axes[drawn.main_axis]) > 1 for axis in e.graph.axes)
+    assert checked >= {4: 0, 5: 1, 6: 18}[links]
+
+
+def test_the_atlas_draws_every_six_link_train(entries: dict[int, list[Entry]]) -> None:
+    """All 81 six-link trains are written (9 with a gear centred on a pin its link holds,
+    `about:`); the loop of four planets between two coaxial suns, whose quadrilateral of
+    axes keeps one free shape, with the distance of its idler planet's axis from the
+    main axis a parameter (`at: ed`) and the train file saying so."""
     assert len(entries[6]) == 81
-    assert len(drawn) == 80
-    assert sum("about:" in e.train_text() for e in drawn) >= 9
-    (left,) = [e for e in entries[6] if e.not_drawable]
-    assert left.not_drawable.startswith("neither a line nor 2-D placement draws it")
+    assert not [e.name for e in entries[6] if e.not_drawable]
+    assert sum("about:" in e.train_text() for e in entries[6]) >= 9
+    (loop,) = [e for e in entries[6] if e.free_axis is not None]
+    assert loop.code == "L6|0.1.2,0.3,0.4,0.5|1-3,2-4,3-5,4-5"
+    text = loop.train_text()
+    assert "at: ed}" in text and "the efficiency does not depend on it" in text
+    assert len(loop.choices) == 3
+
+
+def _loop_of_planets() -> TrainSpec:
+    """The oracle's description of atlas6_r10_d6 at a drawing with whole coordinates: the
+    suns l1, l2 at the origin, the planets on carrier l0 at b = (-16, 12), c = (35, 12)
+    and d = (0, 12); |Ob| = 20 = r1 + r3, |bd| = 16 = r3 + r5, |Oc| = 37 = r2 + r4,
+    |cd| = 35 = r4 + r5, with r = 7, 5, 13, 32, 3."""
+    radii = {"G1a": ("l1", 7), "G2a": ("l2", 5), "G3b": ("l3", 13), "G4c": ("l4", 32), "G5d": ("l5", 3)}
+    pairs = {"M0": ("G1a", "G3b"), "M1": ("G2a", "G4c"), "M2": ("G3b", "G5d"), "M3": ("G4c", "G5d")}
+    etas = {"M0": F(97, 100), "M1": F(49, 50), "M2": F(24, 25), "M3": F(99, 100)}
+    members = (
+        Member("housing"),
+        *(Member(f"l{k}") for k in range(3)),
+        Member("l3", "l0", (F(-16), F(12))),
+        Member("l4", "l0", (F(35), F(12))),
+        Member("l5", "l0", (F(0), F(12))),
+    )
+    return TrainSpec(
+        "loop of planets",
+        members,
+        tuple(Gear(name, link, F(r)) for name, (link, r) in radii.items()),
+        tuple(Mesh(name, gears, etas[name]) for name, gears in pairs.items()),
+        "housing",
+        {f"B{k}": f"l{k}" for k in range(3)},
+        "B1",
+        "B2",
+    )
+
+
+def test_the_loop_of_planets_balances_as_the_oracle_says(entries: dict[int, list[Entry]]) -> None:
+    """The loop of four planets (atlas6_r10_d6), every state and both directions: the
+    efficiency derived from the written file (free distance ed) equals the independent
+    per-member torque and force balance (tests/oracle/balance.py) at the drawing above, and
+    does not change with ed, on which the formulas do not depend."""
+    (loop,) = [e for e in entries[6] if e.free_axis is not None]
+    train = davies_sym.loads(loop.train_text())
+    spec = _loop_of_planets()
+    sizes = {"r1a": 7, "r2a": 5, "r3b": 13, "r4c": 32, "r5d": 3}
+    etas = {f"eta_{m.name}": m.eta for m in spec.meshes}
+    checked = 0
+    for state in train.states:
+        variants = davies_sym.derive(train_in_state(train, state))
+        assert "ed" not in {str(p) for p in variants.parameters}
+        brake = tuple(state.brake)
+        ports = (str(state.input), str(state.output))
+        for port_in, port_out in (ports, ports[::-1]):
+            expected = solve(in_state(spec, State(state.name, port_in, port_out, brake))).efficiency
+            for ed in (12, 15):
+                values = sizes | etas | {"ed": ed}
+                assert variants.evaluate(values, port_in) == expected, (state.name, port_in, ed)
+            checked += 1
+    assert checked == 6
 
 
 def test_a_gear_about_another_links_axis_is_read_and_checked(tmp_path) -> None:
@@ -168,8 +247,8 @@ def test_a_gear_about_another_links_axis_is_read_and_checked(tmp_path) -> None:
 
 def test_derive_atlas_counts_and_json(tmp_path, entries: dict[int, list[Entry]]) -> None:
     """Yang & Ding (2019): 27 rotation graphs and 81 displacement graphs of 6 links; the
-    JSON of every graph (here of 5 links), and of the 6-link entries the 80 train files
-    and the 6 with a use in which every mesh carries a tooth force (docs/atlas.md)."""
+    JSON of every graph (here of 5 links), and of the 6-link entries the 81 train files
+    and the 8 with a use in which every mesh carries a tooth force (docs/atlas.md)."""
     result = run_derive(["atlas", "--links", "6", "--count", "--json"], cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     document = json.loads(result.stdout)
@@ -182,8 +261,8 @@ def test_derive_atlas_counts_and_json(tmp_path, entries: dict[int, list[Entry]])
     fields = {"code", "rotation_code", "levels", "gears", "coaxial", "frame", "held", "choices", "train_file"}
     assert all(fields <= set(g) for g in graphs)
     assert all(g["choices"] for g in graphs if g["train_file"])
-    assert sum(not e.not_drawable for e in entries[6]) == 80
-    assert sum(bool(e.loaded) for e in entries[6]) == 6
+    assert sum(not e.not_drawable for e in entries[6]) == 81
+    assert sum(bool(e.loaded) for e in entries[6]) == 8
 
 
 def test_the_four_and_five_link_files_derive(tmp_path) -> None:
@@ -204,7 +283,7 @@ def test_every_six_link_file_derives(entries: dict[int, list[Entry]]) -> None:
     directions of the power); and its first state tends to efficiency 1 as the meshes
     lose nothing (every ordinary efficiency 1, at a point of positive radii)."""
     drawn = [e for e in entries[6] if not e.not_drawable]
-    assert len(drawn) == 80
+    assert len(drawn) == 81
     chooser = random.Random(6)
     for e in drawn:
         train = davies_sym.loads(e.train_text())

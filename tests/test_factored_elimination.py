@@ -13,10 +13,11 @@ import random
 import pytest
 import sympy
 
-from davies_sym.algebra.factored import factored_gauss_jordan
+from davies_sym.algebra.factored import factored_gauss_jordan, radical_elimination
 from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.linalg import gauss_jordan
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.algebra.radicals import Radical, radicals_form_a_field
 from davies_sym.errors import DerivationError
 
 SYMBOLS = sympy.symbols("a b c d e", positive=True)
@@ -214,3 +215,78 @@ def test_simultaneous_substitution_equals_sympy_substitution(seed: int) -> None:
     assert got.num == plain.num and got.den == plain.den
     if not plain.is_zero():
         assert got.factorisation == (factor(plain.num), factor(plain.den))
+
+
+RADICANDS = {"s": SYMBOLS[0] + SYMBOLS[1], "t": SYMBOLS[2] * SYMBOLS[3] + 1}
+
+
+def _radical_system(seed: int):
+    """A random sparse system whose entries hold the square root s^2 = a + b, and for
+    seeds 1, 4, 7, 10 also t^2 = c d + 1 (products of small polynomials in a, ..., e, s,
+    t; small, as the solution of a system with several roots in its pivots is large in
+    lowest terms whichever way it is eliminated)."""
+    rng = random.Random(1000 + seed)
+    names = ("s", "t") if seed in (1, 4, 7, 10) else ("s",)
+    roots = [Radical(sympy.Symbol(name, positive=True), RADICANDS[name]) for name in names]
+    ring = PolynomialRing(SYMBOLS, roots)
+    gens = [ring.gen(r.symbol) for r in roots]
+    letters = [ring.gen(x) for x in SYMBOLS]
+    n = rng.randint(3, 6)
+    rows = []
+    for _ in range(n - 1):
+        row = {}
+        for c in rng.sample(range(n), rng.randint(2, min(4, n))):
+            value = ring.one * rng.choice([-1, 1, 2])
+            for _ in range(rng.randint(0, 2)):
+                value = value * (rng.choice(letters) + rng.choice(letters) * rng.choice([-1, 1, 3]))
+            for g in gens:
+                if rng.random() < 0.4:
+                    value = value * (g + rng.choice([-1, 1, 2]))
+            row[c] = value
+        rows.append(row)
+    return ring, rows, n
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_elimination_over_radicals_as_free_symbols_agrees_with_the_reduced_one(seed: int) -> None:
+    """Where `radical_elimination` answers, it has the rank of the elimination modulo the
+    relations at every step, and each of its null-space vectors (read back modulo
+    s^2 = m) satisfies every equation modulo the relations: the same null space. Where
+    it does not answer, a pivot vanishes modulo the relations."""
+    ring, rows, n = _radical_system(seed)
+    reduced = gauss_jordan([dict(r) for r in rows], n, prefer_free=[0], reduce=ring.reduce)
+    free = radical_elimination(ring, [dict(r) for r in rows], n, prefer_free=[0])
+    if free is None:
+        return
+    assert free.rank == reduced.rank
+    solution = free.solution(ring)
+    zero = RationalFunction.polynomial(ring, ring.zero)
+    for j in free.free:
+        vector = {c: solution[c].get(j, zero) for c in range(n)}
+        for row in rows:
+            total = zero
+            for c, entry in row.items():
+                total = total + RationalFunction.polynomial(ring, entry) * vector[c]
+            assert total.is_zero(), (j, row)
+
+
+def test_a_pivot_that_vanishes_modulo_its_radical_refuses_the_free_symbols() -> None:
+    """Rows (s, 1) and (a, s) with s^2 = a are dependent: s (s, 1) = (a, s). Taken for a
+    free symbol, s leaves the pivot s^2 - a, zero modulo the relation: no answer."""
+    a = SYMBOLS[0]
+    root = Radical(sympy.Symbol("s", positive=True), a)
+    ring = PolynomialRing([a], [root])
+    s, x = ring.gen(root.symbol), ring.gen(a)
+    assert ring.reduce(s * s - x).is_zero()
+    rows = [{0: s, 1: ring.one}, {0: x, 1: s}]
+    assert gauss_jordan([dict(r) for r in rows], 2, reduce=ring.reduce).rank == 1
+    assert radical_elimination(ring, rows, 2) is None
+
+
+def test_radicals_form_a_field_unless_a_product_is_a_square() -> None:
+    a, b, c = SYMBOLS[:3]
+    root = [Radical(sympy.Symbol(f"s{k}", positive=True), m) for k, m in enumerate((a * b, b * c, a * c, a + b))]
+    assert radicals_form_a_field(root[:2])
+    assert radicals_form_a_field([root[0], root[3]])
+    assert not radicals_form_a_field(root[:3])  # (a b)(b c)(a c) = (a b c)^2
+    assert not radicals_form_a_field([Radical(sympy.Symbol("s", positive=True), 4 * a**2)])

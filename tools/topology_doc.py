@@ -64,7 +64,9 @@ and the screws, and derives the efficiency.
 ## Layout of planar trains
 
 All gear axes are parallel to z and lie in the plane x = 0 (Laus Figs. 5 and 7). Gears
-on one link share its axis; a revolute between two geared links makes them coaxial.
+on one link share its axis; a revolute between two geared links makes them coaxial, and
+one whose `axis` names a third link turns its held link about that link's axis (an
+output shaft coaxial with the input, each in a bearing of the housing).
 The axis of the reference link is at y = 0, and a bearing's `at` puts its axis at that
 y; when the reference carries no gear and no `at` places a geared axis, the axis of the
 first geared link (by name) is at y = 0: the ports never move an axis. An external mesh

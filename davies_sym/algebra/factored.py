@@ -22,6 +22,7 @@ from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.linalg import Solution, eliminate_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.products import SMALL_SUM, Product, common, divide, multiply, product_of
+from davies_sym.algebra.radicals import radicals_form_a_field
 
 
 def difference(t: Product, u: Product, one: fmpz_mpoly) -> Product | None:
@@ -36,8 +37,9 @@ def difference(t: Product, u: Product, one: fmpz_mpoly) -> Product | None:
 Row = dict[int, Product]
 
 
-def _content(row: Row) -> Row:
-    """``row`` divided by the factors and content all its entries share."""
+def _content(row: Row, divided: list[fmpz_mpoly] | None = None) -> Row:
+    """``row`` divided by the factors and content all its entries share (the factors
+    collected in ``divided``: the division holds where none of them vanishes)."""
     entries = iter(row.values())
     shared = next(entries)
     shared = Product(abs(shared.content), shared.factors)
@@ -47,10 +49,12 @@ def _content(row: Row) -> Row:
         shared = common(shared, value)
     if shared.content == 1 and not shared.factors:
         return row
+    if divided is not None:
+        divided.extend(f for f, _ in shared.factors)
     return {c: divide(v, shared) for c, v in row.items()}
 
 
-def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly) -> Row:
+def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly, divided: list[fmpz_mpoly] | None = None) -> Row:
     g = common(pivot_row[col], target[col])
     p, a = divide(pivot_row[col], g), divide(target[col], g)
     out: Row = {}
@@ -67,7 +71,7 @@ def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly) -> Row:
             value = difference(t, u, one)  # type: ignore[arg-type]
         if value is not None:
             out[c] = value
-    return _content(out) if out else out
+    return _content(out, divided) if out else out
 
 
 def _irreducible(p: Product) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
@@ -89,23 +93,35 @@ def quotient(ring: PolynomialRing, num: Product, den: Product) -> RationalFuncti
 
 @dataclass(frozen=True)
 class FactoredElimination:
-    """Reduced row echelon form with factored entries: ``pivots[col]`` solves for ``col``."""
+    """Reduced row echelon form with factored entries: ``pivots[col]`` solves for ``col``.
+    ``over_radicals``: the square roots were eliminated as free symbols, so each entry
+    of the solution is read back reduced by their relations (`radical_elimination`)."""
 
     ncols: int
     pivots: Mapping[int, Row]
+    over_radicals: bool = False
 
     @property
     def free(self) -> tuple[int, ...]:
         return tuple(c for c in range(self.ncols) if c not in self.pivots)
 
+    @property
+    def rank(self) -> int:
+        return len(self.pivots)
+
     def solution(self, ring: PolynomialRing) -> Solution:
         """The columns in the free ones, ``x_c = -entry / pivot``, each formed when read."""
+
+        def read(num: Product, den: Product) -> RationalFunction:
+            if self.over_radicals:
+                return RationalFunction.make(ring, num.expand_in(ring.one), den.expand_in(ring.one))
+            return quotient(ring, num, den)
 
         def column(col: int) -> dict[int, RationalFunction]:
             row = self.pivots.get(col)
             if row is None:
                 return {col: RationalFunction.polynomial(ring, ring.one)}
-            return {j: quotient(ring, Product(-v.content, v.factors), row[col]) for j, v in row.items() if j != col}
+            return {j: read(Product(-v.content, v.factors), row[col]) for j, v in row.items() if j != col}
 
         return LazyMapping(range(self.ncols), column)
 
@@ -116,16 +132,40 @@ def factored_gauss_jordan(
     one: fmpz_mpoly,
     prefer_free: Iterable[int] = (),
     progress: Callable[[int, int], None] | None = None,
+    divided: list[fmpz_mpoly] | None = None,
 ) -> FactoredElimination:
     """Fraction-free Gauss-Jordan elimination as `davies_sym.algebra.linalg.gauss_jordan`
     (the same pivot order: constants first, Markowitz, ``prefer_free`` last), on
-    factored entries."""
-    work = [_content({c: product_of(v) for c, v in r.items()}) for r in rows if r]
+    factored entries; ``divided`` collects the factors rows were divided by."""
+    work = [_content({c: product_of(v) for c, v in r.items()}, divided) for r in rows if r]
     pivots = eliminate_rows(
         work,
         prefer_free,
         lambda v: (not v.is_constant(), v.size),
-        lambda row, pivot, col: _eliminate(row, pivot, col, one),
+        lambda row, pivot, col: _eliminate(row, pivot, col, one, divided),
         progress,
     )
     return FactoredElimination(ncols, pivots)
+
+
+def radical_elimination(
+    ring: PolynomialRing,
+    rows: Iterable[dict[int, fmpz_mpoly]],
+    ncols: int,
+    prefer_free: Iterable[int] = (),
+) -> FactoredElimination | None:
+    """The factored elimination with the ring's square roots taken for free symbols:
+    entries stay products, where the elimination modulo ``s^2 = m`` expands every
+    product and swells. Sound where the radicals generate a field
+    (`radicals_form_a_field`) and nothing it divides by (a pivot, a factor shared by a
+    row) vanishes modulo their relations: every step is then a step of the elimination
+    over that field, with the same rank. None where one of these fails."""
+    if not radicals_form_a_field(ring.radicals):
+        return None
+    reduced = [{c: v for c, v in ((c, ring.reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
+    divided: list[fmpz_mpoly] = []
+    elimination = factored_gauss_jordan(reduced, ncols, ring.one, prefer_free, divided=divided)
+    divided += [f for col, row in elimination.pivots.items() for f, _ in row[col].factors]
+    if any(ring.reduce(f).is_zero() for f in divided):
+        return None
+    return FactoredElimination(ncols, elimination.pivots, over_radicals=True)

@@ -108,25 +108,36 @@ class Elimination:
         return LazyMapping(range(self.ncols), column)
 
 
+class WorkExceeded(Exception):
+    """The elimination formed more terms than its budget allowed."""
+
+
 def gauss_jordan(
     rows: Iterable[Row],
     ncols: int,
     prefer_free: Iterable[int] = (),
     progress: Callable[[int, int], None] | None = None,
     reduce: Reduce | None = None,
+    budget: int | None = None,
 ) -> Elimination:
     """Fraction-free Gauss-Jordan elimination of sparse polynomial ``rows``; ``reduce``
-    (the ring's radical relations) keeps entries canonical, so zero tests are exact."""
+    (the ring's radical relations) keeps entries canonical, so zero tests are exact.
+    `WorkExceeded` once the rows it forms hold more than ``budget`` terms in all (work
+    bounded by its size, the same on every machine)."""
     if reduce is not None:
         rows = [{c: v for c, v in ((c, reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
     work = [_remove_content(dict(r)) for r in rows if r]
-    pivots = eliminate_rows(
-        work,
-        prefer_free,
-        lambda v: (not v.is_constant(), len(v)),
-        lambda row, pivot, col: _eliminate(row, pivot, col, reduce),
-        progress,
-    )
+    formed = [0]
+
+    def eliminate(row: Row, pivot: Row, col: int) -> Row:
+        out = _eliminate(row, pivot, col, reduce)
+        if budget is not None:
+            formed[0] += sum(len(v) for v in out.values())
+            if formed[0] > budget:
+                raise WorkExceeded(f"more than {budget} terms formed")
+        return out
+
+    pivots = eliminate_rows(work, prefer_free, lambda v: (not v.is_constant(), len(v)), eliminate, progress)
     return Elimination(ncols, pivots)
 
 

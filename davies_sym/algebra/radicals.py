@@ -11,8 +11,9 @@ denominators, so zero tests stay exact and results that are rational in the radi
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from itertools import combinations
 
 import sympy
 
@@ -21,7 +22,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.square_root_symbol import Radical
 
-__all__ = ["Radical", "RadicalError", "RadicalTable", "has_square_root", "restore"]
+__all__ = ["Radical", "RadicalError", "RadicalTable", "has_square_root", "radicals_form_a_field", "restore"]
 
 
 class RadicalError(ValueError):
@@ -114,3 +115,28 @@ def _is_half_power(expr: object) -> bool:
 def has_square_root(expr: object) -> bool:
     """Whether a sympy expression contains a square root (any power k/2)."""
     return isinstance(expr, sympy.Basic) and any(_is_half_power(p) for p in sympy.preorder_traversal(expr))
+
+
+def radicals_form_a_field(radicals: Sequence[Radical], most: int = 6) -> bool:
+    """Whether adjoining the square roots to the rational functions gives a field of
+    degree 2^k: no product of some of the radicands is a square (each a square-free
+    polynomial, so a product is a square only where every irreducible factor appears an
+    even number of times). False beyond ``most`` radicals, where it is not checked."""
+    if len(radicals) > most:
+        return False
+    odd: list[frozenset[sympy.Expr]] = []
+    for r in radicals:
+        content, factors = sympy.factor_list(sympy.expand(r.radicand))
+        parts = {sympy.Integer(p) for p, e in sympy.factorint(abs(content)).items() if e % 2}
+        parts |= {sympy.expand(f) for f, e in factors if e % 2}
+        if content < 0:
+            parts.add(sympy.Integer(-1))
+        odd.append(frozenset(parts))
+    for size in range(1, len(odd) + 1):
+        for subset in combinations(odd, size):
+            parity: set[sympy.Expr] = set()
+            for chosen in subset:
+                parity.symmetric_difference_update(chosen)
+            if not parity:
+                return False
+    return True

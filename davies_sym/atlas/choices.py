@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from itertools import combinations
 
 from davies_sym.atlas.realisation import Realisation
-from davies_sym.atlas.train_file import Choice, train_document, train_text
+from davies_sym.atlas.train_file import Choice, distance_symbol, train_document, train_text
 from davies_sym.errors import DaviesError, GeometryError
 from davies_sym.geometry import train_layout
 from davies_sym.network.analysis import Analysis, analyse
@@ -45,10 +45,34 @@ class Admissible:
     loaded: tuple[Choice, ...] = ()
     #: Why there is no choice when the layout cannot be drawn.
     reason: str | None = None
+    #: The axis whose distance from the main axis is a free parameter, or None.
+    free_axis: int | None = None
 
 
-def _written(drawn: Realisation, candidates: tuple[Choice, ...], planar: bool) -> Train:
-    return loads(train_text(train_document(drawn, "choices", candidates, "atlas", planar=planar), ""))
+def _written(drawn: Realisation, candidates: tuple[Choice, ...], planar: bool, free_axis: int | None = None) -> Train:
+    document = train_document(drawn, "choices", candidates, "atlas", planar=planar, free_axis=free_axis)
+    return loads(train_text(document, ""))
+
+
+def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> tuple[int, Train] | None:
+    """The first planet axis (in the order of the labelling) whose distance from the main
+    axis, left free, lets the 2-D placement close every loop of meshes, with the train so
+    written; None when none does. A loop of four planet axes and the main one (two planets
+    each meshing a coaxial gear and both meshing a third planet) keeps one free shape: the
+    distance of the third planet's axis, on which the efficiency does not depend (the
+    tangential tooth forces balance each planet whatever the angles, Laus eq. (2))."""
+    for axis in range(len(drawn.graph.axes)):
+        if axis == drawn.main_axis:
+            continue
+        train = _written(drawn, candidates, True, axis)
+        try:
+            layout = train_layout(train)
+        except GeometryError:
+            continue
+        free = distance_symbol(drawn, axis)
+        if not any(free in map(str, c.expression.free_symbols) for c in layout.constraints):
+            return axis, train
+    return None
 
 
 def admissible_choices(drawn: Realisation) -> Admissible:
@@ -58,7 +82,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
     candidates = every_choice(drawn)
     if not candidates:
         return Admissible((), False)
-    planar = False
+    planar, free_axis = False, None
     train = _written(drawn, candidates, planar)
     try:
         train_layout(train)
@@ -68,7 +92,11 @@ def admissible_choices(drawn: Realisation) -> Admissible:
         try:
             train_layout(train)
         except GeometryError as exc:
-            return Admissible((), planar, (), f"neither a line nor 2-D placement draws it ({exc.problems[0].message})")
+            free = _free_drawing(drawn, candidates)
+            if free is None:
+                reason = f"neither a line nor 2-D placement draws it ({exc.problems[0].message})"
+                return Admissible((), planar, (), reason)
+            free_axis, train = free
     kept, loaded = [], []
     for choice, state in zip(candidates, train.states, strict=True):
         try:
@@ -80,7 +108,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
                     loaded.append(choice)
         except (DaviesError, ZeroDivisionError):
             continue
-    return Admissible(tuple(kept), planar, tuple(loaded))
+    return Admissible(tuple(kept), planar, tuple(loaded), free_axis=free_axis)
 
 
 def _every_mesh_loaded(analysis: Analysis) -> bool:

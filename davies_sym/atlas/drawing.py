@@ -10,6 +10,7 @@ import random
 import networkx as nx
 import sympy
 
+from davies_sym.algebra.radicals import restore
 from davies_sym.atlas.entries import Entry
 from davies_sym.atlas.train_file import link_name
 from davies_sym.emit.plots import figure_bytes, new_figure
@@ -49,43 +50,44 @@ def graph_svg(entry: Entry) -> str:
     return figure_bytes(figure, ".svg").decode("utf-8")
 
 
-def sample_radii(symbols: list[sympy.Symbol], radii: list[sympy.Expr]) -> dict[sympy.Symbol, int] | None:
-    """Whole radii for the free symbols that make every radius positive (seeded tries,
-    the same from run to run), or None when none of them does."""
+def sample_radii(symbols: list[sympy.Symbol], positive: list[sympy.Expr]) -> dict[sympy.Symbol, int] | None:
+    """Whole values up to 30 for the free symbols (radii, and a free axis distance) that
+    make every expression of ``positive`` positive (the radii, the radicands of the 2-D
+    placement's triangles): seeded tries, the same from run to run; None when none does."""
     chooser = random.Random(0)
     for _ in range(400):
         values = {s: chooser.randint(6, 30) for s in symbols}
-        if all(sympy.sympify(r).subs(values) > 0 for r in radii):
+        if all(sympy.sympify(r).subs(values) > 0 for r in positive):
             return values
     return None
 
 
 def layout_svg(entry: Entry) -> str:
-    """The train seen along its axes at whole sample radii: each gear a circle about its
-    axis, in its link's colour (a carrier has no circle; its axes are the planets')."""
+    """The train seen along its axes at whole sample sizes: each gear a circle about its
+    axis, in its link's colour (a carrier has no circle; its axes are the planets'); a
+    train drawn in 2-D shows its planets off the centre line."""
     train = resolved_train(loads(entry.train_text()))
     layout = train_layout(train)
     radii = [g.radius for g in train.gears if g.radius is not None]
-    free = sorted(set().union(*(sympy.sympify(r).free_symbols for r in radii)), key=str)
-    values = sample_radii(free, radii)
+    positive = radii + [r.radicand for r in layout.radicals]
+    free = sorted(set().union(*(sympy.sympify(r).free_symbols for r in positive)), key=str)
+    values = sample_radii(free, positive)
     figure = new_figure(5.0, 5.0)
     axis = figure.subplots()
     axis.set_aspect("equal")
     axis.set_axis_off()
     if values is None:
-        axis.text(0.5, 0.5, "no whole radii up to 30 make every radius positive", ha="center", transform=axis.transAxes)
+        axis.text(0.5, 0.5, "no whole sizes up to 30 draw the train", ha="center", transform=axis.transAxes)
         return figure_bytes(figure, ".svg").decode("utf-8")
     reach = 1.0
     links = list(train.link_names)
     for g in train.gears:
-        centre = layout.gear_centres[g.name]
-        y = float(sympy.sympify(centre[1]).subs(values))
+        x, y = (float(restore(sympy.sympify(c), layout.radicals).subs(values)) for c in layout.gear_centres[g.name][:2])
         radius = float(sympy.sympify(g.radius).subs(values))
         colour = COLOURS[links.index(g.link) % len(COLOURS)]
-        circle = _circle(0.0, y, radius)
-        axis.plot(*circle, color=colour, linewidth=2.4 if g.internal else 1.6)
-        axis.text(0.0, y + radius, g.name, ha="center", va="bottom", fontsize=7, color=colour)
-        reach = max(reach, abs(y) + radius)
+        axis.plot(*_circle(x, y, radius), color=colour, linewidth=2.4 if g.internal else 1.6)
+        axis.text(x, y + radius, g.name, ha="center", va="bottom", fontsize=7, color=colour)
+        reach = max(reach, math.hypot(x, y) + radius)
     axis.set_xlim(-1.1 * reach, 1.1 * reach)
     axis.set_ylim(-1.1 * reach, 1.1 * reach)
     shown = ", ".join(f"{s}={v}" for s, v in values.items())

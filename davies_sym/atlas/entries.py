@@ -9,7 +9,7 @@ from typing import Any
 from davies_sym.atlas.choices import admissible_choices
 from davies_sym.atlas.graphs import TrainGraph
 from davies_sym.atlas.realisation import Realisation, main_axis, realisations
-from davies_sym.atlas.train_file import Choice, link_name, train_document, train_text
+from davies_sym.atlas.train_file import Choice, distance_symbol, link_name, train_document, train_text
 
 #: Where the counts are published (the docs compare them with the atlas's).
 PUBLISHED = "Yang & Ding, J. Mech. Des. 141(4) 043301 (2019)"
@@ -37,6 +37,9 @@ class Entry:
     drawing: Realisation | None = None
     #: The choices in which every mesh carries a tooth force (no gear idle).
     loaded: tuple[Choice, ...] = ()
+    #: The axis whose distance from the main axis the meshes leave free (a parameter of
+    #: the train file the efficiency does not depend on), or None.
+    free_axis: int | None = None
 
     @property
     def name(self) -> str:
@@ -97,10 +100,18 @@ class Entry:
                 else f"Written by derive atlas: symbolic radii; link l{drawn.frame} is the frame;\n"
             )
             + "the ports are those of the first state. Suns, rings and planet gears as in docs/atlas.md."
+            + (
+                ""
+                if self.free_axis is None
+                else f"\nThe meshes leave the distance {distance_symbol(drawn, self.free_axis)} of axis "
+                f"{drawn.axis_name(self.free_axis)} from the main axis free: any value that closes the\n"
+                "triangles of its planets draws the train; the efficiency does not depend on it."
+            )
         )
         coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
         source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
-        return train_text(train_document(drawn, title, self.choices, source, planar=self.planar), comment)
+        document = train_document(drawn, title, self.choices, source, planar=self.planar, free_axis=self.free_axis)
+        return train_text(document, comment)
 
 
 def entry(links: int, rotation: int, index: int, code: str, rotation_code: str, graph: TrainGraph) -> Entry:
@@ -123,6 +134,7 @@ def entry(links: int, rotation: int, index: int, code: str, rotation_code: str, 
                 found.planar,
                 drawn,
                 found.loaded,
+                found.free_axis,
             )
     reason = next((r for r in reasons if r), "no held member leaves two others turning at a ratio set by the gears")
     return Entry(links, rotation, index, code, rotation_code, graph, (), reason)

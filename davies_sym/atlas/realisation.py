@@ -13,9 +13,10 @@ classical realisation of the literature's sketches):
 - a planet's first mesh with a central gear is with a sun, its later ones with rings;
   the sun and the first ring share one planet gear (the simple planetary's S-P-R), each
   further ring meshes a planet gear of its own (the Wolfrom train's stepped planet); a
-  planet-planet mesh is external and uses the planet's first gear. No planet gear
-  meshes two suns or two rings, whose equal centre distances would force equal radii
-  and a degenerate train.
+  planet-planet mesh is external and uses the planet's first gear. No gear meshes two
+  gears on one axis alike (two suns, two rings, two planets on one pin, or a central
+  gear two planets on one pin), whose equal centre distances would force equal radii
+  and lock two links together: the link gets a gear for each.
 """
 
 from __future__ import annotations
@@ -101,31 +102,44 @@ class Realisation:
 
     @cached_property
     def _gears(self) -> tuple[tuple[GearSpec, ...], tuple[MeshSpec, ...]]:
-        central: dict[tuple[int, int, bool], str] = {}
+        central: dict[tuple[int, int, bool], list[str]] = defaultdict(list)
         planet_gears: dict[tuple[int, int], list[dict[str, int]]] = defaultdict(list)
         specs: dict[str, GearSpec] = {}
         meshes: list[MeshSpec] = []
+        # The axes of the gears each gear meshes, and whether the mesh is internal: a gear
+        # meshing two gears on one axis alike (both external, or both internal) would force
+        # their radii equal and lock their links together (a train of fewer links).
+        partners: dict[str, set[tuple[int, bool]]] = defaultdict(set)
 
-        def gear(link: int, axis: int, internal: bool, suffix: str) -> str:
+        def gear(link: int, axis: int, internal: bool, suffix: str, partner: tuple[int, bool]) -> str:
             name = f"G{link}{self.axis_name(axis)}{suffix}"
             specs.setdefault(name, GearSpec(name, link, axis, internal))
+            partners[name].add(partner)
             return name
 
-        def central_gear(link: int, axis: int, internal: bool) -> str:
-            key = (link, axis, internal)
-            if key not in central:
-                central[key] = gear(link, axis, internal, "r" if internal else "")
-            return central[key]
+        def central_gear(link: int, axis: int, internal: bool, partner: tuple[int, bool]) -> str:
+            # One central gear per link and kind, another where it meshes a gear on the
+            # partner's axis alike already (two planets on one pin).
+            suffixes = central[(link, axis, internal)]
+            for suffix in suffixes:
+                if partner not in partners[f"G{link}{self.axis_name(axis)}{suffix}"]:
+                    return gear(link, axis, internal, suffix, partner)
+            suffixes.append(("r" if internal else "") + (str(len(suffixes) + 1) if suffixes else ""))
+            return gear(link, axis, internal, suffixes[-1], partner)
 
-        def planet_gear(link: int, axis: int, role: str) -> str:
-            # The first gear of the planet without a mesh of this role takes it.
+        def planet_gear(link: int, axis: int, role: str, partner: tuple[int, bool]) -> str:
+            # The first gear of the planet without a mesh of this role (nor one with a gear on
+            # the partner's axis) takes it.
             steps = planet_gears[(link, axis)]
             for index, used in enumerate(steps):
+                suffix = "" if index == 0 else str(index + 1)
+                if partner in partners[f"G{link}{self.axis_name(axis)}{suffix}"]:
+                    continue
                 if used.get(role, 0) == 0 or role == "planet":
                     used[role] = used.get(role, 0) + 1
-                    return gear(link, axis, False, "" if index == 0 else str(index + 1))
+                    return gear(link, axis, False, suffix, partner)
             steps.append({role: 1})
-            return gear(link, axis, False, "" if len(steps) == 1 else str(len(steps)))
+            return gear(link, axis, False, "" if len(steps) == 1 else str(len(steps)), partner)
 
         suns_of: dict[tuple[int, int], int] = defaultdict(int)
         for pair in self.graph.gear_pairs:
@@ -142,16 +156,16 @@ class Realisation:
                 meshes.append(
                     MeshSpec(
                         pair,
-                        central_gear(hub, hub_axis, ring),
-                        planet_gear(planet, planet_axis, "ring" if ring else "sun"),
+                        central_gear(hub, hub_axis, ring, (planet_axis, ring)),
+                        planet_gear(planet, planet_axis, "ring" if ring else "sun", (hub_axis, ring)),
                     )
                 )
             else:
                 meshes.append(
                     MeshSpec(
                         pair,
-                        planet_gear(pair.first, pair.first_axis, "planet"),
-                        planet_gear(pair.second, pair.second_axis, "planet"),
+                        planet_gear(pair.first, pair.first_axis, "planet", (pair.second_axis, False)),
+                        planet_gear(pair.second, pair.second_axis, "planet", (pair.first_axis, False)),
                     )
                 )
         ordered = tuple(sorted(specs.values(), key=lambda g: (g.link, g.axis, g.name)))

@@ -79,7 +79,8 @@ def search_text(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> s
     """The train file of ``e`` with tooth numbers, ``choices`` as its states and the free
     tooth numbers (those the geometry does not fix) listed in ``independent:``."""
     title = f"{e.name} (tooth numbers to choose)"
-    document = train_document(e.drawn, title, choices, f"derive search --atlas: {e.name}", meshes, e.planar)
+    source = f"derive search --atlas: {e.name}"
+    document = train_document(e.drawn, title, choices, source, meshes, e.planar, e.free_axis)
     train = loads(train_text(document, title))
     fixed = {str(r.symbol) for r in resolved_train(train).dependent or ()}
     document["independent"] = sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)

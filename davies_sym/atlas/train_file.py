@@ -67,20 +67,36 @@ def _description(drawn: Realisation, link: int) -> str:
     return words
 
 
-def _axis_bearings(drawn: Realisation) -> dict[str, dict[str, Any]]:
+def distance_symbol(drawn: Realisation, axis: int) -> str:
+    """The distance of ``axis`` from the main axis where the drawing leaves it free: e
+    (eccentricity) and the axis letter."""
+    return "e" + drawn.axis_name(axis)
+
+
+def _axis_bearings(drawn: Realisation, free_axis: int | None) -> dict[str, dict[str, Any]]:
     """The bearings of every axis but the main one: the first link about it turns in a
     bearing of the axis's holder (on its own axis), every other one in a bearing of that
     first link on the first link's axis (`axis:`), so the layout reads which links are
-    coaxial from the file and never has to guess it from the meshes."""
+    coaxial from the file and never has to guess it from the meshes. On an axis the frame
+    holds every link turns in a bearing of the frame (their ports), the others on the
+    first one's axis (`axis:` a third link). The first bearing of ``free_axis`` places it
+    at its symbolic distance from the main axis (`at:`)."""
     bearings: dict[str, dict[str, Any]] = {}
     for axis, links in enumerate(drawn.graph.axes):
         if axis == drawn.main_axis:
             continue
         holder = drawn.holder[axis]
         name = drawn.axis_name(axis)
-        for x in links:
-            if x != holder:
-                bearings[f"J{name}{x}"] = {"type": "revolute", "links": [link_name(holder), link_name(x)]}
+        turning = [x for x in links if x != holder]
+        for x in turning:
+            bearing: dict[str, Any] = {"type": "revolute", "links": [link_name(holder), link_name(x)]}
+            if x != turning[0]:
+                if holder != drawn.frame:
+                    bearing["links"] = [link_name(turning[0]), link_name(x)]
+                bearing["axis"] = link_name(turning[0])
+            if axis == free_axis and x == turning[0]:
+                bearing["at"] = distance_symbol(drawn, axis)
+            bearings[f"J{name}{x}"] = bearing
     return bearings
 
 
@@ -115,8 +131,11 @@ def train_document(
     source: str,
     toothed: ToothedForm | None = None,
     planar: bool = False,
+    free_axis: int | None = None,
 ) -> dict[str, Any]:
-    """The train file as a mapping (YAML-ready), in the order a person reads it."""
+    """The train file as a mapping (YAML-ready), in the order a person reads it; drawn in
+    2-D when ``planar``, with the distance of ``free_axis`` from the main axis a symbol
+    (`distance_symbol`) when the meshes leave it free."""
     if not choices:
         raise ValueError("a train file needs at least one admissible choice")
     graph = drawn.graph
@@ -135,7 +154,7 @@ def train_document(
         for x in graph.axes[drawn.main_axis]
         if link_name(x) != reference
     }
-    couplings |= _axis_bearings(drawn)
+    couplings |= _axis_bearings(drawn, free_axis)
     for index, m in enumerate(drawn.meshes):
         mesh: dict[str, Any] = {"type": "mesh", "gears": [m.first, m.second]}
         if toothed is not None:

@@ -78,13 +78,15 @@ def axis_structure(train: Train) -> AxisStructure:
             holder = a if child == b else b
             if c.axis == holder:  # the bearing is on the holder's axis: the two turn about one axis
                 coaxial.union(child, holder)
+            elif c.axis is not None and c.axis not in c.links:  # on a third link's axis
+                coaxial.union(child, c.axis)
             bearing_on[c.name] = child
         elif c.axis is not None:
             bearing_on[c.name] = c.axis
         else:  # a second bearing between two held links: they turn about one axis
             coaxial.union(a, b)
             bearing_on[c.name] = a
-    frames = _mesh_frames(train, meshes, parent, depth, coaxial)
+    frames = _mesh_frames(train, meshes, _axis_holders(parent, coaxial), depth, coaxial)
     axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
     bearing_axis = {name: axis[link] for name, link in bearing_on.items()}
     return AxisStructure(
@@ -95,6 +97,18 @@ def axis_structure(train: Train) -> AxisStructure:
         meshes=frames,
         root=_root(train, axis, bearing_axis),
     )
+
+
+def _axis_holders(parent: Mapping[str, str], coaxial: LinkGroups) -> dict[str, str]:
+    """The link that holds each link's axis: its parent in the bearing tree, or, for a
+    link held on its parent's own axis (a planet turning on a coaxial planet), the holder
+    of that parent's axis, so that the carrier of both is found for its meshes."""
+    holders: dict[str, str] = {}
+    for link, holder in parent.items():
+        while coaxial.find(holder) == coaxial.find(link) and holder in parent:
+            holder = parent[holder]
+        holders[link] = holder
+    return holders
 
 
 def _bearing_tree(train: Train, revolutes: Sequence[Revolute]) -> tuple[dict[str, str], dict[str, int], dict[str, str]]:

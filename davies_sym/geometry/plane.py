@@ -40,13 +40,17 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     of the planets."""
     problems: list[Problem] = []
     gears = {g.name: g for g in train.gears}
-    radicals = RadicalTable(facts=[m.centre_distance(gears) for m in gear_meshes(train.couplings) if m.internal])
+    # Known positive: the centre distance of an internal pair, and a radius the geometry
+    # writes in others (a coaxial planet's r4 = r3 + r5 - r6).
+    known = [m.centre_distance(gears) for m in gear_meshes(train.couplings) if m.internal]
+    known += [g.radius for g in train.gears if g.radius is not None and not g.radius.is_Symbol]
+    radicals = RadicalTable(facts=known)
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
-    positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used))
+    positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used, set()))
     if problems:
         raise GeometryError(problems, train.file_lines)
     oracle = SignOracle()
@@ -116,7 +120,8 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
 class _Drawing:
     """What placing the axis classes of a 2-D drawing reads (the axis structure, the
     meshes in name order, the gears, the placement direction, the square roots so far)
-    and collects (``problems``; ``used``: the meshes that placed a class)."""
+    and collects (``problems``; ``used``: the meshes that placed a class; ``bases``: the
+    ordered pairs of centres a triangle has closed on)."""
 
     structure: AxisStructure
     meshes: Sequence[GearMesh]
@@ -125,16 +130,19 @@ class _Drawing:
     radicals: RadicalTable
     problems: list[Problem]
     used: set[str]
+    bases: set[tuple[Point, Point]]
 
 
 def _place_classes(train: Train, drawing: _Drawing) -> dict[str, Point]:
     """The centre of every axis class: the main axis at the origin and the classes whose
     bearing gives `at` along the placement direction, then outward one class at a time
     (meshes in name order): a class meshing two placed classes with distinct centres
-    closes a triangle, any other goes along the placement direction (a planet outward of
-    the gear on its carrier's axis, the pinion of an internal pair outward of its
-    annulus); a class nothing reaches is on the main axis when no gear turns about it.
-    ``used`` collects the meshes that placed a class (the others close loops)."""
+    closes a triangle (counter-clockwise of the first mesh's centre to the second's; the
+    other side for a second class on the same two centres), any other goes along the
+    placement direction (a planet outward of the gear on its carrier's axis, the pinion
+    of an internal pair outward of its annulus); a class nothing reaches is on the main
+    axis when no gear turns about it. ``used`` collects the meshes that placed a class
+    (the others close loops)."""
     structure, unit = drawing.structure, drawing.unit
     zero = (sympy.Integer(0), sympy.Integer(0))
     positions: dict[str, Point] = {structure.root: zero}
@@ -193,7 +201,13 @@ def _place_one(drawing: _Drawing, positions: dict[str, Point]) -> bool:
             if all(any(radicals.reduce(a - b) != 0 for a, b in zip(option[0], o[0], strict=True)) for o in distinct):
                 distinct.append(option)
         if len(distinct) >= 2:
-            point = _triangle(distinct[0], distinct[1], radicals, drawing.problems)
+            base, other = distinct[0], distinct[1]
+            if (base[0], other[0]) in drawing.bases:
+                # A second planet meshing the same two gears goes on the other side of
+                # their line of centres: the four axes form a convex quadrilateral.
+                base, other = other, base
+            drawing.bases.add((base[0], other[0]))
+            point = _triangle(base, other, radicals, drawing.problems)
             if point is None:
                 return False
             positions[group] = point

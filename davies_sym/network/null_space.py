@@ -24,9 +24,9 @@ from dataclasses import dataclass
 
 import sympy
 
-from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan
+from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan, radical_elimination
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Elimination, Row, Solution, gauss_jordan, polynomial_rows
+from davies_sym.algebra.linalg import Elimination, Row, Solution, WorkExceeded, gauss_jordan, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.network.matrices import ActionVariable, Network
 
@@ -137,14 +137,29 @@ class TurnedElimination:
 Solved = Elimination | FactoredElimination | TurnedElimination
 
 
+#: Terms the elimination modulo the radical relations may form before the factored one,
+#: the square roots taken for free symbols, is tried instead: work bounded by size.
+RADICAL_WORK = 300_000
+
+
 def eliminate(
     ring: PolynomialRing, rows: list[Row], ncols: int, prefer: list[int]
 ) -> Elimination | FactoredElimination:
-    """Stages in series multiply: factored entries keep them apart (not with radicals,
-    whose relations the factors would not respect)."""
-    if ring.radicals:
-        return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce)
-    return factored_gauss_jordan(rows, ncols, ring.one, prefer_free=prefer)
+    """Stages in series multiply: factored entries keep them apart. With radicals the
+    elimination reduces every entry modulo their relations; where its entries swell past
+    `RADICAL_WORK` terms (planet triangles of several square roots), the factored
+    elimination over the roots as free symbols takes over when it is sound there
+    (`radical_elimination`), else the reduced elimination runs to its end."""
+    if not ring.radicals:
+        return factored_gauss_jordan(rows, ncols, ring.one, prefer_free=prefer)
+    try:
+        return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=RADICAL_WORK)
+    except WorkExceeded:
+        pass
+    factored = radical_elimination(ring, rows, ncols, prefer)
+    if factored is not None:
+        return factored
+    return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce)
 
 
 def null_space(

@@ -74,6 +74,12 @@ class Coupling:
         direction, screws, ordinary efficiencies."""
         return ()
 
+    @property
+    def named_links(self) -> tuple[tuple[str, str], ...]:
+        """The links its entry names besides ``links``, with the key that names each
+        (checked against the train's links on load)."""
+        return ()
+
     #: What the reports call it: ``mesh`` for a coupling of two gears.
     noun: ClassVar[str] = "coupling"
     #: Whether the reports give its point of the layout (a bearing's, a mesh's pitch point).

@@ -165,6 +165,9 @@ def _read_couplings(value: Any, reader: EntryReader, links: set[str], gears: Map
             # A mesh's links are its gears' links, whose entries report an unknown one.
             if link not in links and coupling.gears is None:
                 reader.unknown(f"{path}.links[{i}]", "link", link)
+        for key, link in coupling.named_links:
+            if link not in links:
+                reader.unknown(f"{path}.{key}", "link", link)
         couplings[name] = coupling
     if table and not couplings:
         reader.unreadable.add("coupling")  # not one coupling could be read: the table's problems say it all

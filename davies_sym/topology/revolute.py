@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from davies_sym.algebra.screws import NamedScrew, rotation_magnitude_name, rotation_twist
-from davies_sym.errors import shortened
 from davies_sym.topology.couplings import Coupling, read_links
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.kind_screws import CouplingScrews, Placement, point_constraints
@@ -46,7 +45,9 @@ class Revolute(Coupling):
             "link",
             False,
             "The link whose gear axis this bearing is on, when both links carry gears but are not "
-            "coaxial (a planet pin in a carrier that also has teeth). Default: the two links are coaxial.",
+            "coaxial (a planet pin in a carrier that also has teeth). A third link: the held link turns "
+            "about that link's axis (two shafts on one axis, each in a bearing of the frame). Default: "
+            "the two links are coaxial.",
         ),
     )
 
@@ -58,10 +59,11 @@ class Revolute(Coupling):
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
         friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, bearing=True)
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
-        if links is not None and axis is not None and axis not in links:
-            reader.problem(f"{path}.axis", f"{shortened(axis)} is not one of the coupling's links {list(links)}")
-            axis = None
         return None if links is None else cls(name, links, friction, at, axis)
+
+    @property
+    def named_links(self) -> tuple[tuple[str, str], ...]:
+        return () if self.axis is None or self.axis in self.links else (("axis", self.axis),)
 
     @property
     def written_quantities(self) -> tuple[sympy.Expr, ...]:

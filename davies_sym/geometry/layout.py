@@ -109,11 +109,20 @@ def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> li
     gives r4 -> r2 + r3 - r1, r1 -> r2 + r3 - r4, ..."""
     out = []
     for c in constraints:
-        expr = c.expression
+        expr = polynomial_part(c.expression)
         for s in sorted_symbols(expr.free_symbols):
             if sympy.degree(expr, s) == 1:
                 out.append({s: solve_linear(expr, s)})
     return out
+
+
+def polynomial_part(expr: sympy.Expr) -> sympy.Expr:
+    """The numerator of ``expr`` over one denominator, expanded: the same equation ``= 0``
+    where the denominator is non-zero.  A dependent module makes radii quotients
+    (m2 -> m1 (z1 + z2) / (z4 - z3)), and a polynomial is what degree and solving need."""
+    if all(not (p.is_Pow and p.exp.is_negative) for p in sympy.preorder_traversal(expr)):
+        return expr
+    return sympy.expand(sympy.numer(sympy.together(expr)))
 
 
 def solve_linear(expr: sympy.Expr, symbol: sympy.Symbol) -> sympy.Expr:
@@ -167,7 +176,7 @@ class Closures:
         """``offset = distance`` holds, is impossible (a problem naming the ``loop`` of
         couplings that closes here), or is a constraint on the radii."""
         difference = sympy.expand(offset - distance)
-        if difference == 0:
+        if polynomial_part(difference) == 0:
             return
         if difference.is_number or self.oracle.sign(difference) in (1, -1):
             through = f"the loop of couplings {', '.join(loop)} cannot close: " if len(loop) > 1 else ""

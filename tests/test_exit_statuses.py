@@ -194,3 +194,46 @@ def test_dependent_motion_screws_are_located_bad_input(tmp_path):
     result = run_main([str(source), "--quiet"])
     assert result.returncode == 2, result.describe()
     assert f"{source}:8: couplings.C.motions: its unit motion screws are not independent" in result.stderr
+
+
+def _planted(monkeypatch: pytest.MonkeyPatch) -> None:
+    """An exception no stage turns into a refusal, planted where every derivation passes."""
+    from davies_sym.network import analysis
+
+    def fault(*args: object, **kwargs: object) -> None:
+        raise ZeroDivisionError("planted fault")
+
+    monkeypatch.setattr(analysis, "constraint_substitutions", fault)
+
+
+@pytest.mark.parametrize("json_answer", [False, True], ids=["text", "json"])
+def test_status_4_an_exception_past_the_stages_is_an_internal_error(
+    monkeypatch: pytest.MonkeyPatch, json_answer: bool
+) -> None:
+    """docs/errors.md: a fault of the package is exit 4 with the file, the step that was
+    running (the state too) and where in the package it happened; never a traceback."""
+    _planted(monkeypatch)
+    result = run_main([catalog_path("simpson"), "--state", "second", "--quiet", *(["--json"] if json_answer else [])])
+    assert result.returncode == 4, result.describe()
+    assert "Traceback" not in result.stderr
+    (line,) = result.stderr.splitlines()
+    assert line.startswith(f"internal error: {catalog_path('simpson')}: state second, building the coupling network: ")
+    assert "ZeroDivisionError: planted fault (in davies_sym/network/analysis.py:" in line
+    assert "please report it" in line
+    if json_answer:
+        answer = json.loads(result.stdout)
+        assert answer == {"status": "internal error", "exit_status": 4, "reason": line}
+
+
+def test_status_4_in_a_subcommand(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The subcommands answer a fault of the package alike (here `derive search`)."""
+    from davies_sym.synthesis import command
+
+    def fault(argv: object) -> int:
+        raise KeyError("planted fault")
+
+    monkeypatch.setattr(command, "run", fault)
+    result = run_main(["search", catalog_path("planetary_simple"), "--target", "4"])
+    assert result.returncode == 4, result.describe()
+    assert "Traceback" not in result.stderr
+    assert result.stderr.startswith("internal error: derive search: running search "), result.describe()

@@ -82,9 +82,10 @@ def test_a_bad_file_is_reported_and_the_others_are_written(tmp_path: Path) -> No
     _same_as_committed(out, ["simple_pair", "tuplin"])
 
 
-def test_a_task_that_raises_is_reported_with_status_1(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_task_that_raises_is_an_internal_error_with_status_4(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """An error past the refusals (here planted in the module writer for one train) does
-    not stop the run: the other files are written and the status says a task failed."""
+    not stop the run: the other files are written, the failed one is reported as an internal
+    error naming the file and the place in the package, and the status is 4 (docs/errors.md)."""
     from davies_sym.cli import many_files
 
     real = many_files.write_derivations
@@ -97,8 +98,10 @@ def test_a_task_that_raises_is_reported_with_status_1(tmp_path: Path, monkeypatc
     monkeypatch.setattr(many_files, "write_derivations", planted)
     files = [CATALOG / "simple_pair.yaml", CATALOG / "tuplin.yaml", CATALOG / "wolfrom.yaml"]
     result = run_main([*files, "--out", tmp_path, "--quiet"], timeout=300)
-    assert result.returncode == 1, result.describe()
-    assert "tuplin.yaml: failed: RuntimeError: planted failure" in result.stderr, result.describe()
+    assert result.returncode == 4, result.describe()
+    assert "internal error: " in result.stderr and "tuplin.yaml: deriving it: RuntimeError: planted failure" in (
+        result.stderr
+    ), result.describe()
     assert "Traceback" not in result.stderr
     _same_as_committed(tmp_path, ["simple_pair", "wolfrom"])
 

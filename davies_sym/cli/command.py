@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from davies_sym.cli.completion import completion_script
-from davies_sym.cli.messages import message, status_json
+from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message, named_by_option, status_json
 from davies_sym.cli.parser import parser
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
@@ -171,9 +171,11 @@ class _GuardedOutput(io.TextIOBase):
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """The ``derive`` command; returns the exit status (0 a result, 2 bad input)."""
+    """The ``derive`` command; returns the exit status (0 a result, 2 bad input, 3 not
+    covered, 4 an internal error: an exception no stage turned into a refusal)."""
     real = sys.stdout
     sys.stdout = _GuardedOutput(real)
+    argv = list(sys.argv[1:] if argv is None else argv)
     try:
         status = _main(argv)
         sys.stdout.flush()  # buffered text meets a full device only here
@@ -195,12 +197,18 @@ def main(argv: Sequence[str] | None = None) -> int:
             with contextlib.suppress(OSError, ValueError, io.UnsupportedOperation):
                 os.dup2(os.open(os.devnull, os.O_WRONLY), real.fileno())
         return 0
+    except KeyboardInterrupt:
+        print("derive: interrupted; nothing was written", file=sys.stderr)
+        return 130
+    except Exception as exc:  # a fault of davies_sym: reported, never a traceback
+        command = f"derive {argv[0]}" if argv[:1] in (["calibrate"], ["atlas"], ["search"]) else "derive"
+        print(internal_error(exc, command, f"running {' '.join(argv)[:200]}"), file=sys.stderr)
+        return INTERNAL_ERROR
     finally:
         sys.stdout = real
 
 
-def _main(argv: Sequence[str] | None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
+def _main(argv: list[str]) -> int:
     if argv[:1] == ["calibrate"]:
         from davies_sym.calibration.command import run as calibration_command
 
@@ -244,7 +252,10 @@ def _main(argv: Sequence[str] | None) -> int:
         return 0
     args.files = files
 
+    steps: list[str] = []  # the last step reported: where an internal error happened
+
     def progress(text: str) -> None:
+        steps[:] = [text]
         if not args.quiet:
             print(f"derive: {text}", file=sys.stderr, flush=True)
 
@@ -266,7 +277,8 @@ def _main(argv: Sequence[str] | None) -> int:
         print(status_json("not covered", reason) if args.json else reason)
         return 3
     except DaviesError as exc:
-        reason = message(exc, args.files[0])
+        given_by = "--eval" if args.eval is not None else "--at" if args.at else None
+        reason = message(named_by_option(exc, given_by), args.files[0])
         print(reason, file=sys.stderr)
         if args.json:
             print(status_json("bad input", reason))
@@ -276,3 +288,12 @@ def _main(argv: Sequence[str] | None) -> int:
     except OSError as exc:  # the system refused something the checks above did not foresee
         print(f"derive: {args.files[0]}: {exc.strerror or exc} ({shortened(str(exc.filename))})", file=sys.stderr)
         return 2
+    except _StdoutFailed:
+        raise
+    except Exception as exc:  # a fault of davies_sym: the file and what was being derived
+        state = f"state {args.state}, " if args.state else ""
+        reason = internal_error(exc, args.files[0], f"{state}{steps[0] if steps else 'reading the file'}")
+        print(reason, file=sys.stderr)
+        if args.json:
+            print(status_json("internal error", reason))
+        return INTERNAL_ERROR

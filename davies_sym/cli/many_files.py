@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from davies_sym.cli.file_outputs import file_outputs
 from davies_sym.cli.machine_input import machine_derivations
-from davies_sym.cli.messages import message
+from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message
 from davies_sym.cli.one_input import write_derivations
 from davies_sym.cli.parser import parser
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
@@ -102,8 +102,8 @@ def _document_alone(document: SourceDocument, task: Task, kind: str, progress: P
 
 def _crashed(path: str, exc: BaseException) -> Derived:
     """A task that raised past the refusals (a worker that died, an engine error): reported
-    with its cause, status 1, and the other files go on."""
-    return Derived(path, 1, (f"derive: {path}: failed: {type(exc).__name__}: {exc}",), ())
+    as an internal error with its cause, and the other files go on."""
+    return Derived(path, INTERNAL_ERROR, (internal_error(exc, path, "deriving it"),), ())
 
 
 def _in_this_process(tasks: Sequence[Task], progress: Progress) -> Iterator[Derived]:
@@ -227,7 +227,7 @@ def derive_into(
     """LaTeX document and formula module of every train file into ``directory`` (a train
     with states gets one document and a module per state), or only the ``document``
     named (a key of `DOCUMENTS`); the exit status is the worst of the files' (0 all derived, 2 a
-    file or state refused, 1 a task that failed)."""
+    file or state refused, 4 a task that failed: an internal error)."""
     os.makedirs(directory, exist_ok=True)
     tasks, refused = _tasks(directory, files, document)
     counter = _Counter(len(tasks), progress, quiet)
@@ -255,5 +255,5 @@ def derive_into(
             counter.finished(derived)
     finally:
         counter.close()
-    # A task that failed (1) outranks a refused input (2): it needs a look at the engine.
-    return next((s for s in (1, 2) if s in statuses), 0)
+    # A task that failed (an internal error) outranks a refused input (2): it needs a look at the engine.
+    return next((s for s in (INTERNAL_ERROR, 2) if s in statuses), 0)

@@ -64,8 +64,9 @@ class Result:
         )
 
 
-class Hang(Exception):
-    """The in-process run exceeded its watchdog."""
+class Hang(BaseException):
+    """The in-process run exceeded its watchdog (a BaseException, as KeyboardInterrupt:
+    ``derive`` reports every Exception as an internal error, and a hang is not one)."""
 
 
 def _on_alarm(signum: int, frame: Any) -> None:

@@ -327,7 +327,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
     {
         'name': 'rr',
-        'meaning': 'length in the pitch radius of gear PL (link pl)',
+        'meaning': 'pitch radius of internal gear R (link r)',
         'unit': 'length (one unit for all)',
         'low': 0.0,
         'high': float('inf'),

@@ -326,7 +326,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
     {
         'name': 'rr1',
-        'meaning': 'length in the pitch radius of gear P1 (link p1)',
+        'meaning': 'pitch radius of internal gear R1 (link r1)',
         'unit': 'length (one unit for all)',
         'low': 0.0,
         'high': float('inf'),

@@ -18,7 +18,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE
 from davies_sym.network.friction_laws import FrictionLaw
 from davies_sym.topology.coupling_kinds import as_skew_mesh, toothed_meshes
-from davies_sym.topology.model import Train
+from davies_sym.topology.model import Gear, Train
 
 
 @dataclass(frozen=True)
@@ -39,13 +39,45 @@ class Parameter:
         return f"{low}{self.low:g}, {high}"
 
 
-def _gear_meanings(train: Train) -> dict[sympy.Symbol, str]:
-    out: dict[sympy.Symbol, str] = {}
+#: The unit of every length of a train: radii, modules, journal radii.
+LENGTH = "length (one unit for all)"
+
+
+def _sizes(gear: Gear) -> tuple[tuple[sympy.Expr, str, str], ...]:
+    """What sizes ``gear`` as the file writes it: (quantity, what it is, unit)."""
+    module = () if gear.module is None else ((gear.module, "module", LENGTH),)
+    if gear.teeth is not None:
+        return ((sympy.sympify(gear.teeth), "number of teeth", "teeth"), *module)
+    return ((gear.written_radius, "pitch radius", LENGTH), *module)
+
+
+def _gears_text(gears: Sequence[Gear]) -> str:
+    """``gear S (link s)``, ``internal gear R (link r)``; several: ``gears S, P, R``."""
+    if len(gears) == 1:
+        g = gears[0]
+        return f"{'internal gear' if g.internal else 'gear'} {g.name} (link {g.link})"
+    return "gears " + ", ".join(g.name for g in gears)
+
+
+def _gear_meanings(train: Train) -> dict[sympy.Symbol, tuple[str, str]]:
+    """Meaning and unit of each symbol that sizes a gear, as the file writes it (a tooth
+    number, a module, a pitch radius, or a symbol in one), naming every gear it sizes; a
+    dependent parameter (solved from a geometric constraint) says so with its relation."""
+    roles: dict[sympy.Symbol, dict[tuple[str, str], list[Gear]]] = {}
     for g in train.gears:
-        kind = "internal gear" if g.internal else "gear"
-        for s in sorted_symbols(g.radius.free_symbols):
-            what = "pitch radius" if g.radius == s else "length in the pitch radius"
-            out.setdefault(s, f"{what} of {kind} {g.name} (link {g.link})")
+        for quantity, what, unit in _sizes(g):
+            for s in sorted_symbols(quantity.free_symbols):
+                role = (what if quantity == s else f"symbol in the {what}", unit)
+                gears = roles.setdefault(s, {}).setdefault(role, [])
+                if g not in gears:
+                    gears.append(g)
+    relations = {r.symbol: r for r in train.dependent or ()}
+    out: dict[sympy.Symbol, tuple[str, str]] = {}
+    for s, by_role in roles.items():
+        meaning = "; ".join(f"{what} of {_gears_text(gears)}" for (what, _), gears in by_role.items())
+        if s in relations:
+            meaning += f", given by the geometric constraint as {relations[s]}"
+        out[s] = (meaning, next(iter(by_role))[1])
     return out
 
 
@@ -111,8 +143,9 @@ def parameters_of_train(
     operating: Mapping[sympy.Symbol, Parameter],
 ) -> tuple[Parameter, ...]:
     """The rows of ``symbols`` (in their order): loss-model parameters, ordinary
-    efficiencies in (0, 1], lengths and friction coefficients, and the ``operating``
-    quantities (speeds and torques at the ports) as given."""
+    efficiencies in (0, 1], the gears' sizes (tooth numbers, modules, pitch radii),
+    friction coefficients, and the ``operating`` quantities (speeds and torques at the
+    ports) as given."""
     geometry, etas, law_meanings = _gear_meanings(train), _efficiency_meanings(train), _law_meanings(train, laws)
     defined, angles = _definition_meanings(train), _angle_meanings(train)
     out = []
@@ -127,7 +160,8 @@ def parameters_of_train(
         elif s in etas:
             out.append(Parameter(str(s), etas[s], "1", 0.0, 1.0))
         elif s in geometry:
-            out.append(Parameter(str(s), geometry[s], "length (one unit for all)", 0.0, math.inf))
+            meaning, unit = geometry[s]
+            out.append(Parameter(str(s), meaning, unit, 0.0, math.inf))
         elif s in law_meanings:
             meaning, unit = law_meanings[s]
             out.append(Parameter(str(s), meaning, unit, 0.0, math.inf, closed_low=True))

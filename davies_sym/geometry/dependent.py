@@ -51,7 +51,10 @@ def _resolved(train: Train) -> Train:
 
 def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
     values = {r.symbol: r.expression for r in relations}
-    gears = tuple(replace(g, radius=sympy.expand(g.radius.subs(values))) if values else g for g in train.gears)
+    gears = tuple(
+        replace(g, radius=sympy.expand(g.radius.subs(values)), written=g.written_radius) if values else g
+        for g in train.gears
+    )
     return replace(train, gears=gears, dependent=relations)
 
 

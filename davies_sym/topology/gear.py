@@ -3,7 +3,7 @@ and held by the model)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy
 
@@ -27,6 +27,15 @@ class Gear:
     #: The link whose axis the gear is centred on when it is not ``link``'s own (a gear
     #: fixed to a carrier about a pin it holds); None: the axis of ``link``.
     about: str | None = None
+    #: The pitch radius as the file writes it where the geometric constraints have put the
+    #: independent parameters in ``radius`` in place of a dependent one
+    #: (`davies_sym.geometry.dependent`); None: ``radius`` is as written.
+    written: sympy.Expr | None = field(default=None, compare=False)
+
+    @property
+    def written_radius(self) -> sympy.Expr:
+        """The pitch radius in the file's own symbols (``rp1``, not ``rr1/2 - rs/2``)."""
+        return self.radius if self.written is None else self.written
 
     @property
     def axis_link(self) -> str:

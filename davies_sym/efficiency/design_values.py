@@ -80,9 +80,10 @@ def design_values(
         symbol = names.get(key) if isinstance(key, str) else key if key in symbols else names.get(str(key))
         name = str(key)
         if symbol is None or symbol not in symbols:
-            problems.append(
-                Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(sorted(names))})")
-            )
+            # What to write instead: the train's own parameters (not the coefficients its
+            # efficiencies give, nor the operating torque and speed every train accepts).
+            givable = sorted(n for n, s in train.symbols.items() if s not in solved)
+            problems.append(Problem(option, f"unknown symbol {shortened(name)} (the train has: {', '.join(givable)})"))
             continue
         if symbol in solved:
             problems.append(Problem(option, solved[symbol]))

@@ -69,23 +69,8 @@ def axis_structure(train: Train) -> AxisStructure:
     revolutes = sorted(bearings(train.couplings), key=lambda c: c.name)
     meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     parent, depth, tree = _bearing_tree(train, revolutes)
-    coaxial = LinkGroups(sorted(train.link_names))
-    bearing_on: dict[str, str] = {}
-    for c in revolutes:
-        a, b = c.links
-        if c.name in tree:
-            child = tree[c.name]
-            holder = a if child == b else b
-            if c.axis == holder:  # the bearing is on the holder's axis: the two turn about one axis
-                coaxial.union(child, holder)
-            elif c.axis is not None and c.axis not in c.links:  # on a third link's axis
-                coaxial.union(child, c.axis)
-            bearing_on[c.name] = child
-        elif c.axis is not None:
-            bearing_on[c.name] = c.axis
-        else:  # a second bearing between two held links: they turn about one axis
-            coaxial.union(a, b)
-            bearing_on[c.name] = a
+    coaxial, bearing_on = _coaxial(train, revolutes, tree)
+    _check_meshes_apart(train, meshes, revolutes, tree, coaxial)
     frames = _mesh_frames(train, meshes, _axis_holders(parent, coaxial), depth, coaxial)
     axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
     bearing_axis = {name: axis[link] for name, link in bearing_on.items()}
@@ -168,26 +153,76 @@ def _options(train: Train, mesh: GearMesh, parent: Mapping[str, str], depth: Map
     return [(frame, equal) for _, _, frame, equal in sorted(options, key=lambda o: (o[0], o[1]))]
 
 
+def _coaxial(
+    train: Train, revolutes: Sequence[Revolute], tree: Mapping[str, str], without: str | None = None
+) -> tuple[LinkGroups, dict[str, str]]:
+    """The links that turn about one axis, and the link each bearing is on (``without``:
+    that bearing's `axis:` left out, to find which entry makes two links coaxial)."""
+    coaxial = LinkGroups(sorted(train.link_names))
+    bearing_on: dict[str, str] = {}
+    for c in revolutes:
+        a, b = c.links
+        axis = None if c.name == without else c.axis
+        if c.name in tree:
+            child = tree[c.name]
+            holder = a if child == b else b
+            if axis == holder:  # the bearing is on the holder's axis: the two turn about one axis
+                coaxial.union(child, holder)
+            elif axis is not None and axis not in c.links:  # on a third link's axis
+                coaxial.union(child, axis)
+            bearing_on[c.name] = child
+        elif axis is not None:
+            bearing_on[c.name] = axis
+        else:  # a second bearing between two held links: they turn about one axis
+            coaxial.union(a, b)
+            bearing_on[c.name] = a
+    return coaxial, bearing_on
+
+
+def _check_meshes_apart(
+    train: Train,
+    meshes: Sequence[GearMesh],
+    revolutes: Sequence[Revolute],
+    tree: Mapping[str, str],
+    coaxial: LinkGroups,
+) -> None:
+    """No mesh joins two links that turn about one axis; the problem is filed at the
+    bearing whose `axis:` makes them coaxial where one does, else at the mesh."""
+    for mesh in meshes:
+        a, b = axis_links(train, mesh)
+        if coaxial.find(a) != coaxial.find(b):
+            continue
+        cause = next(
+            (
+                c
+                for c in revolutes
+                if c.axis is not None
+                and (groups := _coaxial(train, revolutes, tree, c.name)[0]).find(a) != groups.find(b)
+            ),
+            None,
+        )
+        if cause is None:
+            problem = Problem(
+                f"couplings.{mesh.name}",
+                f"links {a!r} and {b!r} turn about one axis (their bearings make them coaxial), so their gears "
+                "cannot mesh; name the planet of a pin with `axis:` on its revolute",
+            )
+        else:
+            problem = Problem(
+                f"couplings.{cause.name}.axis",
+                f"`axis: {cause.axis}` puts links {a!r} and {b!r} on one axis, so their mesh {mesh.name!r} cannot "
+                f"turn; `axis:` names the link whose axis the bearing is on: write "
+                f"`axis: {tree.get(cause.name, cause.links[1])}` for a planet on its pin, or leave `axis:` out",
+            )
+        raise GeometryError([problem], train.file_lines)
+
+
 def _mesh_frames(
     train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, str], depth: Mapping[str, int], coaxial: LinkGroups
 ) -> dict[str, MeshFrame]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
     joins two coaxial links."""
     ends = {m.name: axis_links(train, m) for m in meshes}
-    for mesh in meshes:
-        a, b = ends[mesh.name]
-        if coaxial.find(a) == coaxial.find(b):
-            raise GeometryError(
-                [
-                    Problem(
-                        f"couplings.{mesh.name}",
-                        f"links {a!r} and {b!r} turn about one axis "
-                        "(their bearings make them coaxial), so their gears cannot mesh; name the planet of a pin with "
-                        "`axis:` on its revolute",
-                    )
-                ],
-                train.file_lines,
-            )
     choices = [_options(train, m, parent, depth) for m in meshes]
     for assignment in _assignments(choices):
         groups = LinkGroups(sorted(train.link_names))

@@ -7,6 +7,7 @@ from collections.abc import Sequence
 
 from davies_sym.errors import Problem
 from davies_sym.network.matrices import Network
+from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Train
 
 
@@ -25,7 +26,10 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
         ]
     if input_index not in free:
         problems.append(
-            Problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked")
+            Problem(
+                "ports.input",
+                f"the input coupling {train.ports.input!r} cannot move: the train is locked{_ring_hint(train)}",
+            )
         )
     if train.degrees_of_freedom is not None and dof != train.degrees_of_freedom:
         problems.append(
@@ -47,3 +51,27 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
             text = "the train has no degree of freedom"
         problems.append(Problem("ports", text))
     return problems
+
+
+def _ring_hint(train: Train) -> str:
+    """A locked train whose gear meshes two external gears on two other links: a ring gear
+    written without ``internal: true`` (the planet then rolls between two equal external
+    gears on one axis, which locks the set) is the usual cause."""
+    gears = {g.name: g for g in train.gears}
+    partners: dict[str, list[str]] = {}
+    for mesh in gear_meshes(train.couplings):
+        if not all(name in gears for name in mesh.mesh_gears):
+            continue
+        a, b = (gears[name] for name in mesh.mesh_gears)
+        if not (a.internal or b.internal) and a.link != b.link:
+            partners.setdefault(a.name, []).append(b.name)
+            partners.setdefault(b.name, []).append(a.name)
+    for gear, others in partners.items():
+        links = {gears[o].link for o in others}
+        if len(others) >= 2 and len(links) >= 2:
+            shown = " and ".join(repr(o) for o in others[:2])
+            return (
+                f"; gear {gear!r} meshes {shown}, both external: if one is a ring gear (an annulus), "
+                "write `internal: true` on it"
+            )
+    return ""

@@ -124,16 +124,11 @@ def state_formulas(
     derived = _derived(problem, jobs, scheduler, say)
     others = sorted({o for d in derived for o in d.others})
     if others:
-        raise InputError(
-            [
-                Problem(
-                    "TRAIN",
-                    f"the efficiency needs {', '.join(others)} besides the tooth numbers: "
-                    "write them as numbers in the file",
-                )
-            ],
-            problem.train.path,
+        why = (
+            f"the efficiency needs {', '.join(others)} besides the tooth numbers: write them as numbers in the file "
+            "(a mesh's `efficiency: 0.98`)"
         )
+        raise InputError([problem.train.symbol_problem(others[0], why)], problem.train.path)
     substitution = dict(problem.dependent)
     out = []
     for target, d in zip(problem.targets, derived, strict=True):

@@ -157,24 +157,26 @@ def search_problem(
         raise _refused("--min-teeth", f"a gear has at least one tooth, got {min_teeth}", train)
     symbols = tooth_symbols(train)
     if not symbols:
-        raise _refused("TRAIN", "no gear has a symbolic tooth number (write teeth: zs with a module:)", train)
-    chosen = set(train.independent or ())
+        why = "no gear has a symbolic tooth number (write `teeth: zs` with a `module:`)"
+        raise InputError([train.problem("gears", why)], train.path)
+    relations = {r.symbol: r.expression for r in resolved_train(train).dependent or ()}
+    # Without `independent:` the free tooth numbers are those the geometry leaves free.
+    chosen = {str(s) for s in symbols if s not in relations} if train.independent is None else set(train.independent)
     free = tuple(s for s in sorted(symbols, key=str) if str(s) in chosen)
     if not free:
         names = ", ".join(sorted(map(str, symbols)))
-        raise _refused("TRAIN", f"independent: names none of the tooth numbers ({names}): list the free ones", train)
-    relations = {r.symbol: r.expression for r in resolved_train(train).dependent or ()}
+        raise InputError(
+            [train.problem("independent", f"names none of the tooth numbers ({names}): list the free ones")],
+            train.path,
+        )
     dependent = []
     for s in sorted(symbols, key=str):
         if s in free:
             continue
         expression = relations.get(s)
         if expression is None or not expression.free_symbols <= set(free):
-            raise _refused(
-                "TRAIN",
-                f"the tooth number {s} is neither free (independent:) nor fixed by the geometry from the free ones",
-                train,
-            )
+            why = f"the tooth number {s} is neither free (independent:) nor fixed by the geometry from the free ones"
+            raise InputError([train.symbol_problem(str(s), why)], train.path)
         dependent.append((s, sympy.sympify(expression)))
     return SearchProblem(
         train,

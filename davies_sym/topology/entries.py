@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import difflib
+import json
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import replace
@@ -72,7 +74,7 @@ class EntryReader:
                 f"that defines every {kind} the file names",
             )
             return
-        text = message or f"unknown {kind} {shortened(name)}"
+        text = message or f"unknown {kind} {shortened(name)}{self._known(kind, name)}"
         first = self._unknown.get((kind, name))
         if first is None:
             self._unknown[(kind, name)] = (len(self.problems), text, [])
@@ -84,16 +86,31 @@ class EntryReader:
         shown = ", ".join(also[:3]) + (f" and {len(also) - 3} more" if len(also) > 3 else "")
         self.problems[index] = replace(self.problems[index], message=f"{text} (also in {shown})")
 
+    def _known(self, kind: str, name: str) -> str:
+        """What to write instead of an unknown name: the closest defined ones, or all of
+        them (the table of ``kind`` as the file writes it: a mapping or a list of names)."""
+        table = self.document.data.get(f"{kind}s") if isinstance(self.document.data, Mapping) else None
+        names = [str(n) for n in (table if isinstance(table, (Mapping, list)) else ()) if not isinstance(n, Mapping)]
+        if not names:
+            return ""
+        close = difflib.get_close_matches(str(name), names, n=3, cutoff=0.5)
+        shown = ", ".join(repr(n) for n in names[:12]) + (" ..." if len(names) > 12 else "")
+        hint = f"did you mean {' or '.join(repr(n) for n in close)}? " if close else ""
+        return f" ({hint}the {kind}s are {shown})"
+
     def check_keys(self, entry: Mapping[str, Any], path: str, fields: Iterable[Field]) -> None:
         """Report unknown and missing keys of ``entry`` against ``fields``."""
         fields = tuple(fields)
         known = {f.key for f in fields}
-        for key in entry:
+        previous: tuple[str, Any] | None = None
+        for key, value in entry.items():
             if key not in known:
                 # A top-level key is its own entry (``gear_ratio``, at its own line).
                 self.problem(
-                    f"{path}.{key}" if path else key, f"unknown key {key!r} (known: {', '.join(sorted(known))})"
+                    f"{path}.{key}" if path else key,
+                    f"unknown key {key!r} (known: {', '.join(sorted(known))})" + _split_by_comma(key, value, previous),
                 )
+            previous = (key, value)
         for f in fields:
             if f.required and f.key not in entry:
                 self.problem(path or f.key, f"missing required key {f.key!r}: add `{f.key}:` ({f.kind})")
@@ -171,3 +188,13 @@ def describe(value: Any) -> str:
         return shortened(value, 40)
     text = repr(value)
     return text if len(text) <= 40 else f"{text[:18]} ... {text[-17:]} ({len(text)} characters)"
+
+
+def _split_by_comma(key: Any, value: Any, previous: tuple[str, Any] | None) -> str:
+    """The hint for an unknown key that is the rest of the text before it: in ``{description:
+    front carrier, rear annulus}`` YAML ends the text at the comma and reads ``rear annulus``
+    as a key without a value."""
+    if value is not None or previous is None or not isinstance(previous[1], str):
+        return ""
+    whole = json.dumps(f"{previous[1]}, {key}", ensure_ascii=False)
+    return f"; a comma ends a value inside {{...}}: quote it, {previous[0]}: {whole}"

@@ -11,6 +11,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from enum import Enum
 
+#: The entry of a problem with the values an evaluation is given (the API's ``values``
+#: argument; the command line files it under the option that gave them, ``--eval``): not
+#: an entry of the file, so it has no line.
+VALUES = "values"
+
 
 @dataclass(frozen=True)
 class Problem:
@@ -46,8 +51,8 @@ class FileLines:
     def locate(self, problem: Problem) -> Problem:
         """``problem`` at the entry the file writes, with that entry's line (the nearest
         enclosing entry that has one); a problem already given a line, or with an option
-        of the command (``--eval``), is kept."""
-        if problem.line is not None or problem.entry.startswith("--"):
+        of the command (``--eval``) or with the given values (`VALUES`), is kept."""
+        if problem.line is not None or problem.entry.startswith("--") or problem.entry == VALUES:
             return problem
         entry = problem.entry
         for name in sorted(self.renamed, key=len, reverse=True):

@@ -7,11 +7,14 @@ from fractions import Fraction
 
 import pytest
 import sympy
+from hostile.helpers import run_main
 
 import davies_sym
 from davies_sym.errors import InputError
 
 from conftest import catalog_path
+
+R = sympy.Rational
 
 
 @pytest.fixture(scope="module")
@@ -98,3 +101,53 @@ def test_latex_prose_has_no_program_syntax(tuplin: davies_sym.VariantSet) -> Non
     assert "**" not in text and "<=" not in text
     if any(v.locking_expression is not None for v in tuplin.variants):
         assert r"$\le 0$" in text
+
+
+def test_a_train_with_states_is_derived_in_a_state_named_as_the_cli_names_it() -> None:
+    """`derive(train, state=NAME)`, `analyse(train, state=NAME)` and `train_in_state(train,
+    NAME)` take the state by name; without one, a train with states is refused with their
+    names (it has several degrees of freedom until a state's brakes hold them).  Simpson
+    first gear by the textbook: speed ratio (R1 + R2 + S) / R1, second 1 + S / R1."""
+    train = davies_sym.load(catalog_path("simpson"))
+    with pytest.raises(InputError, match=r"states: the train has operating states \(first, second, third, reverse\)"):
+        davies_sym.derive(train)
+    with pytest.raises(InputError, match=r"state: unknown state 'fourth' \(states: first, second, third, reverse\)"):
+        davies_sym.derive(train, state="fourth")
+    assert (
+        davies_sym.train_in_state(train, "first").ports == davies_sym.train_in_state(train, train.state("first")).ports
+    )
+    values = {"rs": 30, "rr1": 70, "rr2": 80}
+    first = davies_sym.derive(train, state="first")
+    assert first.design_point({**values, "eta_C": 1, "eta_D": 1, "eta_E": 1, "eta_F": 1}, "A").speed_ratio == R(180, 70)
+    ratio = davies_sym.analyse(train, state="second").speed_ratio().to_expr()
+    assert ratio.subs({train.symbols[k]: v for k, v in values.items()}) == R(100, 70)
+    pair = davies_sym.load(catalog_path("simple_pair"))
+    with pytest.raises(InputError, match="the train has no states"):
+        davies_sym.derive(pair, state="first")
+
+
+def test_refusals_of_the_api_name_its_values_not_an_option() -> None:
+    """The API's refusals speak of its `values`; the command line files the same reasons
+    under --eval.  The list of names to give holds the train's parameters only (not the
+    input torque and speed every train accepts, nor the coefficients its efficiencies give)."""
+    variants = davies_sym.derive(davies_sym.load(catalog_path("simple_pair")))
+    with pytest.raises(InputError) as missing:
+        variants.evaluate({"r1": 20}, "A")
+    assert ": values: missing values for " in str(missing.value) and "--eval" not in str(missing.value)
+    with pytest.raises(InputError) as unknown:
+        variants.evaluate({"r1": 20, "r2": 50, "eta_C": "0.98", "foo": 1}, "A")
+    said = str(unknown.value)
+    assert ": values: unknown symbol 'foo' (the train has: eta_C, r1, r2)" in said, said
+    result = run_main([catalog_path("simple_pair"), "--eval", "r1=20", "--quiet"])
+    assert result.returncode == 2 and ": --eval: missing values for eta_C, r2" in result.stderr, result.describe()
+
+
+def test_a_variant_set_prints_as_one_line_per_variant(tuplin: davies_sym.VariantSet) -> None:
+    """`print(variants)` shows what a reader looks for (ports, where, the formula), not the
+    whole record with its exact algebra."""
+    shown = repr(tuplin)
+    lines = shown.splitlines()
+    assert len(lines) == 1 + len(tuplin.variants) and len(shown) < 400 * len(lines)
+    for line, v in zip(lines[1:], tuplin.variants, strict=True):
+        assert line.strip().startswith(f"<Variant ({v.number}): input {v.input}, output {v.output}, where ")
+        assert str(v.efficiency) in line

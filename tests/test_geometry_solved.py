@@ -270,3 +270,69 @@ def test_independent_must_leave_something_to_solve() -> None:
     text = Path(catalog_path("tuplin")).read_text() + "independent: [r1, r2, r3, r4]\n"
     with pytest.raises(davies_sym.GeometryError, match="leaves no parameter to solve for"):
         davies_sym.derive(davies_sym.loads(text, "tuplin.yaml"))
+
+
+STEPPED_TWO_MODULES = """\
+name: stepped planetary, two modules
+{independent}
+links:
+  0: {{description: housing and ring}}
+  s: {{description: sun}}
+  p: {{description: stepped planet}}
+  c: {{description: carrier}}
+reference: 0
+gears:
+  S: {{link: s, teeth: z1, module: m1}}
+  P1: {{link: p, teeth: z2, module: m1}}
+  P2: {{link: p, teeth: z3, module: m2}}
+  R: {{link: 0, teeth: z4, module: m2, internal: true}}
+couplings:
+  A: {{type: revolute, links: [0, s]}}
+  B: {{type: revolute, links: [0, c]}}
+  D: {{type: revolute, links: [c, p]}}
+  C: {{type: mesh, gears: [S, P1], efficiency: eta_1}}
+  E: {{type: mesh, gears: [P2, R], efficiency: eta_2}}
+ports: {{input: A, output: B}}
+"""
+
+
+@pytest.mark.parametrize(
+    "independent",
+    ["", "independent: [z1, z2, z3, z4, m1]", "independent: [z1, z2, z3, z4, m2]", "independent: [z1, z2, z3, m1, m2]"],
+    ids=["default", "m2-dependent", "m1-dependent", "z4-dependent"],
+)
+def test_a_stepped_planetary_with_two_symbolic_modules(tmp_path: Path, independent: str) -> None:
+    """Sun z1 and planet z2 in module m1, the planet's second gear z3 and the ring z4 in
+    module m2, the ring held: whichever symbol the coaxial condition m1 (z1 + z2) = m2 (z4 - z3)
+    gives (a module made the dependent one used to end in a sympy PolynomialError), the
+    train derives.  By hand (Willis, carrier frame): k = z2 z4 / (z1 z3), speed ratio 1 + k,
+    efficiency sun -> carrier (1 + eta_1 eta_2 k) / (1 + k); at m1 = 2, z1 = 20, z2 = 30,
+    m2 = 5/2, z3 = 16, z4 = 56 (50 = 50 on both sides) with eta = 0.98, 0.97."""
+    path = tmp_path / "stepped.yaml"
+    path.write_text(STEPPED_TWO_MODULES.format(independent=independent))
+    variants = davies_sym.derive(davies_sym.load(str(path)))
+    design = {"m1": 2, "z1": 20, "z2": 30, "m2": R(5, 2), "z3": 16, "z4": 56, "eta_1": R(98, 100), "eta_2": R(97, 100)}
+    given = {k: v for k, v in design.items() if k not in {str(r.symbol) for r in variants.train.dependent or ()}}
+    k = R(30 * 56, 20 * 16)
+    assert variants.evaluate(given, "A") == (1 + R(98 * 97, 10000) * k) / (1 + k)
+    point = variants.design_point(given, "A")
+    assert point.speed_ratio == 1 + k
+    # No identity is printed as a constraint: the text names the one coaxial condition.
+    out = tmp_path / "out.txt"
+    assert main([str(path), "--quiet", "-o", str(out)]) == 0
+    assert out.read_text().count("geometric constraint:") == 1
+
+
+def test_a_file_with_states_prints_its_geometric_constraints(tmp_path: Path) -> None:
+    """The states share the file's geometry, so its text and JSON give the constraints once,
+    for all: in the Simpson set each planet spans sun to ring, r_p = (r_ring - r_sun) / 2."""
+    text = tmp_path / "simpson.txt"
+    assert main([catalog_path("simpson"), "--quiet", "-o", str(text)]) == 0
+    lines = text.read_text().splitlines()
+    assert "  geometric constraint: rp1 + rs = -rp1 + rr1, so rp1 = rr1/2 - rs/2" in lines[1:3]
+    assert "  geometric constraint: rp2 + rs = -rp2 + rr2, so rp2 = rr2/2 - rs/2" in lines[1:3]
+    document = tmp_path / "simpson.json"
+    assert main([catalog_path("simpson"), "--quiet", "--json", "-o", str(document)]) == 0
+    data = yaml.safe_load(document.read_text())
+    assert data["dependent_parameters"] == {"rp1": "rr1/2 - rs/2", "rp2": "rr2/2 - rs/2"}
+    assert len(data["geometric_constraints"]) == 2

@@ -19,6 +19,8 @@ import pytest
 import sympy
 from hostile.helpers import assert_refused, run_main
 
+import davies_sym
+
 from conftest import ROOT, catalog_path
 
 DERIVATIONS = os.path.join(ROOT, "derivations")
@@ -158,3 +160,76 @@ def davies_sym_load(name: str) -> object:
     import davies_sym
 
     return davies_sym.load(catalog_path(name))
+
+
+SIMPSON_TEETH = """\
+name: Simpson set in teeth
+links: [0, s, rf, pf, o, pr, cr]
+reference: 0
+independent: [zs, zrf, zrr]
+gears:
+  S: {link: s, teeth: zs, module: 2}
+  Pf: {link: pf, teeth: zpf, module: 2}
+  Rf: {link: rf, teeth: zrf, module: 2, internal: true}
+  Pr: {link: pr, teeth: zpr, module: 2}
+  Rr: {link: o, teeth: zrr, module: 2, internal: true}
+couplings:
+  A: {type: revolute, links: [0, rf]}
+  B: {type: revolute, links: [0, o]}
+  G: {type: revolute, links: [0, s]}
+  K: {type: revolute, links: [0, cr]}
+  fs: {type: mesh, gears: [S, Pf]}
+  fr: {type: mesh, gears: [Rf, Pf]}
+  rs: {type: mesh, gears: [S, Pr]}
+  rr: {type: mesh, gears: [Rr, Pr]}
+  H: {type: revolute, links: [pf, o]}
+  J: {type: revolute, links: [pr, cr]}
+ports: {input: A, output: B}
+states:
+  low: {input: A, output: B, brake: [cr]}
+  second: {input: A, output: B, brake: [s]}
+"""
+
+
+def test_a_parameter_of_some_states_is_derived_in_those(tmp_path: Path) -> None:
+    """In second gear the rear set turns as one block with no load, so its meshes' efficiencies
+    are no parameter there: --sensitivity eta_rr answers for the state that takes it, and a
+    name no state takes is refused with what each state takes.  Low gear by hand (Simpson,
+    rear carrier held, input front ring): eta = (E zrr + eta_fr eta_fs zs + zrf) / (zrf + zrr + zs)
+    with E = eta_fr eta_fs eta_rr eta_rs, so d eta / d eta_rr = eta_fr eta_fs eta_rs zrr / (zrf + zrr + zs)."""
+    path = tmp_path / "simpson.yaml"
+    path.write_text(SIMPSON_TEETH)
+    result = run_main([path, "--sensitivity", "eta_rr", "--quiet"])
+    assert result.returncode == 0, result.describe()
+    assert "Simpson set in teeth, low: partial derivatives" in result.stdout and ", second:" not in result.stdout
+    (first,) = [line for line in result.stdout.splitlines() if line.strip().startswith("(1)")]
+    form = sympy.sympify(first.split("=", 1)[1])
+    e = {n: sympy.Symbol(n) for n in ("eta_fr", "eta_fs", "eta_rs", "zrf", "zrr", "zs")}
+    assert sympy.expand(form * (e["zrf"] + e["zrr"] + e["zs"])) == e["eta_fr"] * e["eta_fs"] * e["eta_rs"] * e["zrr"]
+    refused = run_main([path, "--sensitivity", "eta_xx", "--quiet"])
+    assert refused.returncode == 2
+    assert "'eta_xx' is not a parameter of the formulas in any state (state low: eta_fr," in refused.stderr
+    assert "; state second: eta_fr, eta_fs, zrf, zs)" in refused.stderr, refused.describe()
+
+
+def test_a_printed_derivative_keeps_no_terms_that_cancel(tmp_path: Path) -> None:
+    """Each factor of a printed derivative's numerator has as many terms written as it has
+    once expanded (sympy's own derivative of a quotient left ``a + b*(-c - d) + ...`` with
+    terms that cancel), and the form is the derivative of the variant's formula."""
+    path = tmp_path / "simpson.yaml"
+    path.write_text(SIMPSON_TEETH)
+    result = run_main([path, "--sensitivity", "eta_rr", "--quiet"])
+    variants = davies_sym.derive(davies_sym.load(str(path)), state="low")
+    point = {"eta_fr": sympy.Rational(97, 100), "eta_fs": sympy.Rational(96, 100), "eta_rr": sympy.Rational(95, 100)}
+    point |= {"eta_rs": sympy.Rational(94, 100), "zrf": 70, "zrr": 74, "zs": 30}
+    lines = result.stdout.splitlines()[1:]
+    assert len(lines) == len(variants.variants) == 2
+    for line, variant in zip(lines, variants.variants, strict=True):
+        form = sympy.sympify(line.split("=", 1)[1])
+        by_name = {str(s): s for s in variant.efficiency.free_symbols}
+        want = sympy.diff(variant.efficiency, by_name["eta_rr"]).subs({by_name[k]: v for k, v in point.items()})
+        assert form.subs({sympy.Symbol(k): v for k, v in point.items()}) == want, line
+        numerator, _ = sympy.fraction(form)
+        for factor in sympy.Mul.make_args(numerator):
+            base = factor.base if factor.is_Pow else factor
+            assert len(sympy.Add.make_args(base)) == len(sympy.Add.make_args(sympy.expand(base))), (line, factor)

@@ -26,7 +26,7 @@ from davies_sym.cli.messages import message
 from davies_sym.cli.result_outputs import result_outputs
 from davies_sym.efficiency.design_values import solved_coefficients
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
-from davies_sym.efficiency.parameters import formula_symbols
+from davies_sym.efficiency.parameters import formula_symbols, given_parameters
 from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.derived_result import OneInputResult
 from davies_sym.emit.evaluation import Evaluation, evaluate
@@ -93,6 +93,19 @@ def derive_sets(
         failures.clear()
         raise first
     return _published_complete(train, out)
+
+
+def _taking(sets: list[tuple[str, VariantSet]], name: str, train: Train) -> list[tuple[str, VariantSet]]:
+    """The states whose formulas take the parameter ``name`` (a mesh that carries no power
+    in a state has no efficiency there); none: refused, naming what each state takes."""
+    if len(sets) == 1:
+        return sets  # refused, if at all, with the parameters the one derivation takes
+    taking = [(state, vs) for state, vs in sets if name in given_parameters(vs)]
+    if not taking:
+        takes = "; ".join(f"state {state}: {', '.join(sorted(given_parameters(vs)))}" for state, vs in sets)
+        why = f"{name!r} is not a parameter of the formulas in any state ({takes})"
+        raise InputError([Problem("--sensitivity", why)], train.path)
+    return taking
 
 
 def _in_state(error: DaviesError, state: str) -> DaviesError:
@@ -187,7 +200,7 @@ def one_input_outputs(
         if args.eval is not None or args.python or args.emit or args.json:
             raise InputError([Problem("--sensitivity", "alone, or with --latex and -o FILE")], train.path)
         writer = sensitivity_latex if args.latex else sensitivity_text
-        return [(args.out, "".join(writer(vs, args.sensitivity) for _, vs in sets))]
+        return [(args.out, "".join(writer(vs, args.sensitivity) for _, vs in _taking(sets, args.sensitivity, train)))]
     result = OneInputResult(train, tuple(sets), args.state, progress)
 
     def answer() -> Evaluation:

@@ -58,7 +58,7 @@ def check_constraints(constraints: Iterable[GeometricConstraint], values: Values
             raise DesignError(
                 [
                     Problem(
-                        "--eval", f"the values break the geometric constraint {c} (difference {sympy.expand(residual)})"
+                        "values", f"the values break the geometric constraint {c} (difference {sympy.expand(residual)})"
                     )
                 ],
                 path,

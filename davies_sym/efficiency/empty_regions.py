@@ -93,7 +93,7 @@ def check_facts(facts: Sequence[Requirement], values: Mapping[sympy.Symbol, symp
         raise DesignError(
             [
                 Problem(
-                    "--eval",
+                    "values",
                     f"the values break {'; '.join(broken)}: no admissible design has them "
                     "(every pitch radius and every fact of the layout is positive)",
                 )

@@ -199,22 +199,22 @@ class SeveralInputs:
         boundary, and a design whose losses exceed the power put in
         (Mantriota and Pennestri 2003, eq. (6) outside (0, 1])."""
         train = self.train
-        given = design_values(train, values, "--eval", (*self.speeds, LOAD_TORQUE))
+        given = design_values(train, values, "values", (*self.speeds, LOAD_TORQUE))
         by_name = {str(s): v for s, v in given.items()}
         table = self.parameter_table(sorted_symbols(given))
         outside = [why for p in table if (why := range_problem(p, by_name[p.name])) is not None]
         if outside:
-            raise DesignError([Problem("--eval", why) for why in outside], train.path)
+            raise DesignError([Problem("values", why) for why in outside], train.path)
         point = completed(given, train.definitions)
         try:
             region = self.region_at(point)
         except DerivationError as exc:
-            raise InputError([Problem("--eval", str(exc))], train.path) from None
+            raise InputError([Problem("values", str(exc))], train.path) from None
         eta = sympy.sympify(region.efficiency.subs(point))
         torques = {p: sympy.sympify(t.to_expr().subs(point)) for p, t in region.torques.items()}
         missing = sorted({str(s) for e in (eta, *torques.values()) for s in e.free_symbols})
         if missing:
-            raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
+            raise MissingValuesError([Problem("values", f"missing values for {', '.join(missing)}")], train.path)
         if _sign(eta, "the efficiency") <= 0 or _sign(eta - 1, "the efficiency less 1") > 0:
             raise NotCoveredError(
                 f"region ({region.number}) gives the efficiency {sympy.N(eta, 6)}, outside (0, 1]: "

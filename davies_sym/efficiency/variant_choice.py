@@ -41,7 +41,7 @@ def value_at(rf: RationalFunction, values: Values) -> sympy.Expr:
 def _number(expr: sympy.Expr, what: str, path: str | None) -> sympy.Expr:
     if not expr.is_number:
         missing = sorted(map(str, expr.free_symbols))
-        raise MissingValuesError([Problem("--eval", f"{what} needs values for {', '.join(missing)}")], path)
+        raise MissingValuesError([Problem("values", f"{what} needs values for {', '.join(missing)}")], path)
     return expr
 
 
@@ -114,7 +114,7 @@ def holding_variant(
         raise DesignError(
             [
                 Problem(
-                    "--eval",
+                    "values",
                     f"these values lie in the region of variant ({never[0].number}), which no admissible "
                     f"design reaches: {never[0].reason}; check the values",
                 )

@@ -70,6 +70,13 @@ class Variant:
         joined = r",\ ".join(where)
         return rf"$$\eta_{{({self.number})}} = {latex(self.efficiency)} \qquad ({joined})$$"
 
+    def __repr__(self) -> str:
+        where = ", ".join(f"{c} {'>' if s > 0 else '<'} 0" for c, s in self.signs.items()) or "always"
+        if self.reversed_forces:
+            where += f" (the losses reverse {', '.join(sorted(self.reversed_forces))})"
+        ports = f"input {self.input}, output {self.output}"
+        return f"<Variant ({self.number}): {ports}, where {where}: eta = {self.efficiency}>"
+
     def _repr_latex_(self) -> str:
         """The equation for a notebook, conditions by name (the variant set shows their
         expressions)."""

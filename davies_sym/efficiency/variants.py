@@ -49,7 +49,8 @@ from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.friction_laws import CoulombSigns
-from davies_sym.topology.model import Train
+from davies_sym.topology.model import State, Train
+from davies_sym.topology.states import train_to_derive
 
 Progress = Callable[[str], None]
 
@@ -79,6 +80,12 @@ class VariantSet:
     def listed(self) -> list[Variant | ExcludedVariant]:
         """Every variant and every excluded combination, by number (the table's order)."""
         return sorted([*self.variants, *self.excluded], key=lambda v: v.number)
+
+    def __repr__(self) -> str:
+        """One line per variant (the whole record, with its exact algebra, is no read)."""
+        lines = [f"<VariantSet of {self.train.name!r}: {len(self.variants)} variant(s)"]
+        lines += [f"  {v!r}" for v in self.variants]
+        return "\n".join(lines) + ">"
 
     def _repr_latex_(self) -> str:
         """Every variant's formula and where it holds, for a notebook."""
@@ -180,10 +187,10 @@ class VariantSet:
         definitions = [d for d in self.train.definitions if d.symbol not in given]
         missing = [str(s) for s in sorted_symbols(parameters_of(self._used, definitions)) if s not in given]
         if missing:
-            raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], self.train.path)
+            raise MissingValuesError([Problem("values", f"missing values for {', '.join(missing)}")], self.train.path)
         outside = [why for p in self.parameter_table if (why := _range_problem(p, given)) is not None]
         if outside:
-            raise DesignError([Problem("--eval", why) for why in outside], self.train.path)
+            raise DesignError([Problem("values", why) for why in outside], self.train.path)
         check_constraints(self.analysis.network.layout.constraints, given, self.train.path)
         ports = self.train.ports
         other = ports.output if port == ports.input else ports.input
@@ -212,10 +219,13 @@ def derive_variants(
     seed: int = 0,
     layout: Layout | None = None,
     inputs: Sequence[str] | None = None,
+    state: State | str | None = None,
 ) -> VariantSet:
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
     (``layout``: a geometry other than the one derived from the train; ``inputs``: only
-    the variants with these input ports, e.g. for one evaluation)."""
+    the variants with these input ports, e.g. for one evaluation; ``state``: the operating
+    state, by name or as one of ``train.states``, that a train with states is derived in)."""
+    train = train_to_derive(train, state)
     say = progress or (lambda message: None)
     ports = (train.ports.input, train.ports.output)
     strangers = [p for p in inputs or () if p not in ports]

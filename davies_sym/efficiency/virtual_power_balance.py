@@ -155,7 +155,7 @@ def _check_given(train: Train, given: Mapping[sympy.Symbol, sympy.Expr]) -> None
         needed |= g.radius.free_symbols
     missing = [str(s) for s in sorted_symbols(parameters_of(needed, train.definitions)) if s not in given]
     if missing:
-        raise MissingValuesError([Problem("--eval", f"missing values for {', '.join(missing)}")], train.path)
+        raise MissingValuesError([Problem("values", f"missing values for {', '.join(missing)}")], train.path)
 
 
 def _check_algebraic(values: Mapping[sympy.Symbol, sympy.Expr]) -> None:

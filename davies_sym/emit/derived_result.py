@@ -94,6 +94,8 @@ class OneInputResult:
                 return json.dumps(document, indent=2) + "\n"
             # The text prints a summary: the screws, magnitudes and LaTeX are not formed.
             return text_summary(summary_document(analysis)) + "\n" + variants_text(self.chosen) + "\n"
+        # The states share the file's geometry: its constraints hold in each.
+        relations = list(dict.fromkeys(r for _, vs in self.sets for r in vs.train.dependent or ()))
         if as_json:
             states = {name: _state_entry(vs) for name, vs in self.sets}
             document = {
@@ -101,10 +103,12 @@ class OneInputResult:
                 "name": train.name,
                 "source": train.source,
                 "file": train.path,
+                "geometric_constraints": [r.constraint for r in relations],
+                "dependent_parameters": {str(r.symbol): sympy.sstr(r.expression) for r in relations},
                 "states": states,
             }
             return json.dumps(document, indent=2) + "\n"
-        parts = [train.name]
+        parts = [train.name, *(f"  geometric constraint: {r.constraint}, so {r}" for r in relations)]
         for name, vs in self.sets:
             parts.append(
                 f"state {name}: {vs.train.name}; input {vs.train.ports.input}, output "

@@ -30,8 +30,19 @@ def sensitivity_forms(variants: VariantSet, name: str) -> list[tuple[int, str, s
         eta = given_form(v.efficiency, train, radicals)
         where = ", ".join(f"{c} {'>' if sign > 0 else '<'} 0" for c, sign in v.signs.items())
         ports = f"input {v.input}, output {v.output}" + (f", where {where}" if where else "")
-        out.append((v.number, ports, where, sympy.together(sympy.diff(eta, parameters[name]))))
+        out.append((v.number, ports, where, partial_derivative(eta, parameters[name])))
     return out
+
+
+def partial_derivative(eta: sympy.Expr, symbol: sympy.Symbol) -> sympy.Expr:
+    """d eta / d symbol of a quotient eta = N / D by the quotient rule, (N' D - N D') / D**2,
+    the numerator expanded so that terms that cancel are gone and its common factors
+    taken out (a derivative written as sympy differentiates keeps them)."""
+    numerator, denominator = sympy.fraction(sympy.together(eta))
+    top = sympy.factor_terms(
+        sympy.expand(sympy.diff(numerator, symbol) * denominator - numerator * sympy.diff(denominator, symbol))
+    )
+    return top / denominator**2
 
 
 def sensitivity_text(variants: VariantSet, name: str) -> str:

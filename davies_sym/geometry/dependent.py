@@ -134,7 +134,7 @@ def check_values(train: Train, values: Mapping[sympy.Symbol, sympy.Expr]) -> dic
         if difference != 0:
             problems.append(
                 Problem(
-                    "--eval",
+                    "values",
                     f"{symbol} = {value} breaks the relation {relation} (from the "
                     f"geometric constraint {relation.constraint}), which gives {implied}; the "
                     f"difference is {difference}",

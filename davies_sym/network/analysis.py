@@ -28,7 +28,8 @@ from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
-from davies_sym.topology.model import Train
+from davies_sym.topology.model import State, Train
+from davies_sym.topology.states import train_to_derive
 from davies_sym.topology.symbols import make_symbol
 
 Progress = Callable[[str], None]
@@ -433,10 +434,12 @@ def analyse(
     progress: Progress | None = None,
     extra_symbols: Sequence[sympy.Symbol] = (),
     layout: Layout | None = None,
+    state: State | str | None = None,
 ) -> Analysis:
-    """Run Davies' method on ``train`` (see `Analysis` for the options)."""
+    """Run Davies' method on ``train`` (see `Analysis` for the options; ``state``: the
+    operating state, by name or as one of ``train.states``, of a train with states)."""
     return Analysis(
-        train,
+        train_to_derive(train, state),
         tree=tree,
         action_tree=action_tree,
         coulomb_signs=coulomb_signs,

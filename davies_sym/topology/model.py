@@ -188,13 +188,14 @@ class Train:
     def link_names(self) -> tuple[str, ...]:
         return tuple(link.name for link in self.links)
 
-    def state(self, name: str) -> State:
-        """The operating state ``name``; an unknown one is refused as ``--state`` refuses it."""
+    def state(self, name: str, entry: str = "--state") -> State:
+        """The operating state ``name``; an unknown one is refused at ``entry`` (the option
+        or argument that named it) with the known names."""
         for st in self.states:
             if st.name == name:
                 return st
         known = ", ".join(st.name for st in self.states) or "none"
-        raise InputError([Problem("--state", f"unknown state {name!r} (states: {known})")], self.path)
+        raise InputError([Problem(entry, f"unknown state {name!r} (states: {known})")], self.path)
 
     def published_design(self, state: str | None = None) -> Mapping[str, str]:
         """Parameter values of the first published check of ``state`` (or of a check

@@ -13,7 +13,7 @@ from dataclasses import replace
 from types import MappingProxyType
 
 from davies_sym.caches import IdentityCache
-from davies_sym.errors import Problem, TopologyError
+from davies_sym.errors import InputError, Problem, TopologyError
 from davies_sym.topology.coupling_kinds import as_bearing, bearings
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.link_groups import LinkGroups
@@ -21,8 +21,11 @@ from davies_sym.topology.model import Link, Ports, State, Train
 from davies_sym.topology.schema import PORT_KEYS
 
 
-def train_in_state(train: Train, state: State) -> Train:
-    """``train`` with ``state``'s ports, brakes, clutches and free members applied."""
+def train_in_state(train: Train, state: State | str) -> Train:
+    """``train`` with ``state``'s ports, brakes, clutches and free members applied
+    (``state``: one of ``train.states`` or its name)."""
+    if isinstance(state, str):
+        state = train.state(state, "state")
     problems: list[Problem] = []
     joined = LinkGroups(train.link_names)
     for link in state.brake:
@@ -130,3 +133,29 @@ def _reduced(train: Train, free: set[str]) -> Train:
         couplings=tuple(c for c in train.couplings if not set(c.links) & free),
         states=(),
     )
+
+
+def train_to_derive(train: Train, state: State | str | None) -> Train:
+    """The train the API derives: ``train`` in ``state`` (an operating state or its name), or
+    ``train`` itself when it has no states; a train with states and none named is refused
+    with their names, as one derivation holds for one state."""
+    if state is not None:
+        if not train.states:
+            raise InputError(
+                [Problem("state", f"the train has no states; leave state out (got {state!r})")], train.path
+            )
+        return train_in_state(train, state)
+    if train.states:
+        names = ", ".join(st.name for st in train.states)
+        first = train.states[0].name
+        raise InputError(
+            [
+                Problem(
+                    "states",
+                    f"the train has operating states ({names}) and one derivation holds for one of them: "
+                    f"name it (davies_sym.derive(train, state={first!r}); derive FILE --state {first})",
+                )
+            ],
+            train.file_lines,
+        )
+    return train

@@ -64,10 +64,15 @@ def _array(value: ArrayLike, xp: Any = np) -> NDArray[np.float64]:
     array: NDArray[np.float64] = xp.asarray(float(value) if isinstance(value, (int, float, np.generic)) else value)
     if xp.isdtype(array.dtype, "real floating"):
         return array
-    info = getattr(xp, "__array_namespace_info__", None)
-    real = info().default_dtypes()["real floating"] if info is not None else xp.float64
-    converted: NDArray[np.float64] = xp.astype(array, real)
+    converted: NDArray[np.float64] = xp.astype(array, _default_type(xp, "real floating", xp.float64))
     return converted
+
+
+def _default_type(xp: Any, kind: str, otherwise: Any) -> Any:
+    """The library's own type of ``kind`` (``"integral"``: int32 in JAX without x64, where
+    asking for int64 warns and truncates), ``otherwise`` where it does not say."""
+    info = getattr(xp, "__array_namespace_info__", None)
+    return info().default_dtypes()[kind] if info is not None else otherwise
 
 
 def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
@@ -78,7 +83,11 @@ def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
 
 def _count(mask: Any, xp: Any = np) -> int:
     """How many elements of a boolean array are true."""
-    return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
+    return (
+        int(np.count_nonzero(mask))
+        if xp is np
+        else int(xp.sum(xp.astype(mask, _default_type(xp, "integral", xp.int64))))
+    )
 
 
 def _dtype(xp: Any, values: dict[str, Any]) -> Any:
@@ -98,9 +107,10 @@ def _call(entry: tuple[Callable[..., Any], tuple[str, ...]], values: dict[str, A
 
 def _region_any(xp: Any, conditions: _Functions, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
     """Bit k set where turning condition k is negative."""
-    code = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    integer = _default_type(xp, "integral", xp.int64)
+    code = xp.zeros(shape, dtype=integer, device=_device(values))
     for bit, entry in enumerate(conditions.values()):
-        code = code + xp.astype(_call(entry, values) < 0, xp.int64) * (2**bit)
+        code = code + xp.astype(_call(entry, values) < 0, integer) * (2**bit)
     return code
 
 
@@ -130,7 +140,7 @@ def _numbers_any(
     """The number of the variant (of ``mine``, those of the input port) that holds at each
     point, 0 where none does, as the NumPy path chooses it; and the region codes."""
     code = _region_any(xp, conditions, values, shape)
-    numbers = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    numbers = xp.zeros(shape, dtype=_default_type(xp, "integral", xp.int64), device=_device(values))
     agree = {v["name"]: _agree_any(xp, forces, v["name"], values) for v in mine}
     for v in mine:
         numbers = xp.where((code == v["region"]) & (numbers == 0) & agree[v["name"]], v["number"], numbers)

@@ -60,10 +60,15 @@ def _array(value: ArrayLike, xp: Any = np) -> NDArray[np.float64]:
     array: NDArray[np.float64] = xp.asarray(float(value) if isinstance(value, (int, float, np.generic)) else value)
     if xp.isdtype(array.dtype, "real floating"):
         return array
-    info = getattr(xp, "__array_namespace_info__", None)
-    real = info().default_dtypes()["real floating"] if info is not None else xp.float64
-    converted: NDArray[np.float64] = xp.astype(array, real)
+    converted: NDArray[np.float64] = xp.astype(array, _default_type(xp, "real floating", xp.float64))
     return converted
+
+
+def _default_type(xp: Any, kind: str, otherwise: Any) -> Any:
+    """The library's own type of ``kind`` (``"integral"``: int32 in JAX without x64, where
+    asking for int64 warns and truncates), ``otherwise`` where it does not say."""
+    info = getattr(xp, "__array_namespace_info__", None)
+    return info().default_dtypes()[kind] if info is not None else otherwise
 
 
 def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
@@ -74,7 +79,11 @@ def _truth(value: object, xp: Any = np) -> NDArray[np.bool_]:
 
 def _count(mask: Any, xp: Any = np) -> int:
     """How many elements of a boolean array are true."""
-    return int(np.count_nonzero(mask)) if xp is np else int(xp.sum(xp.astype(mask, xp.int64)))
+    return (
+        int(np.count_nonzero(mask))
+        if xp is np
+        else int(xp.sum(xp.astype(mask, _default_type(xp, "integral", xp.int64))))
+    )
 
 
 def _dtype(xp: Any, values: dict[str, Any]) -> Any:
@@ -94,9 +103,10 @@ def _call(entry: tuple[Callable[..., Any], tuple[str, ...]], values: dict[str, A
 
 def _region_any(xp: Any, conditions: _Functions, values: dict[str, Any], shape: tuple[int, ...]) -> Any:
     """Bit k set where turning condition k is negative."""
-    code = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    integer = _default_type(xp, "integral", xp.int64)
+    code = xp.zeros(shape, dtype=integer, device=_device(values))
     for bit, entry in enumerate(conditions.values()):
-        code = code + xp.astype(_call(entry, values) < 0, xp.int64) * (2**bit)
+        code = code + xp.astype(_call(entry, values) < 0, integer) * (2**bit)
     return code
 
 
@@ -126,7 +136,7 @@ def _numbers_any(
     """The number of the variant (of ``mine``, those of the input port) that holds at each
     point, 0 where none does, as the NumPy path chooses it; and the region codes."""
     code = _region_any(xp, conditions, values, shape)
-    numbers = xp.zeros(shape, dtype=xp.int64, device=_device(values))
+    numbers = xp.zeros(shape, dtype=_default_type(xp, "integral", xp.int64), device=_device(values))
     agree = {v["name"]: _agree_any(xp, forces, v["name"], values) for v in mine}
     for v in mine:
         numbers = xp.where((code == v["region"]) & (numbers == 0) & agree[v["name"]], v["number"], numbers)
@@ -1272,18 +1282,19 @@ def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
     """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
     shape = _shape_of(xp, values)
     device = _device(values)
-    code = xp.zeros(shape, dtype=xp.int64, device=device)
+    integer = _default_type(xp, "integral", xp.int64)
+    code = xp.zeros(shape, dtype=integer, device=device)
     boundary = xp.zeros(shape, dtype=xp.bool, device=device)
     for bit, (function, names) in enumerate(_CONDITIONS.values()):
         level = function(**{n: values[n] for n in names})
-        code = code + xp.astype(level < 0, xp.int64) * (2**bit)
+        code = code + xp.astype(level < 0, integer) * (2**bit)
         boundary = boundary | ~(level != 0)
-    numbers = xp.zeros(shape, dtype=xp.int64, device=device)
-    count = xp.zeros(shape, dtype=xp.int64, device=device)
+    numbers = xp.zeros(shape, dtype=integer, device=device)
+    count = xp.zeros(shape, dtype=integer, device=device)
     for region in REGIONS:
         mask = (code == region["code"]) & ~boundary & _agree_any(xp, _FORCES, region["name"], values)
         numbers = xp.where(mask, region["number"], numbers)
-        count = count + xp.astype(mask, xp.int64)
+        count = count + xp.astype(mask, integer)
     return xp.where(count > 1, -1, numbers), boundary
 
 

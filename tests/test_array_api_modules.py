@@ -175,6 +175,51 @@ def test_module_on_jax_arrays() -> None:
     assert result.returncode == 0 and result.stdout.strip() == "agree", result.stderr[-3000:]
 
 
+#: JAX as it comes (32-bit: no int64): the entry points ask for the library's own integer
+#: type, so a call says no word about dtypes; the variants are NumPy's wherever the two
+#: precisions agree on the conditions' signs (points inside the ranges, away from NaN).
+_JAX_32_CHECK = """
+import sys, warnings
+import numpy as np
+warnings.filterwarnings("error", message=".*dtype.*")
+import jax.numpy as jnp
+sys.path.insert(0, sys.argv[1])
+import test_array_api_modules as t
+module = t._module(sys.argv[2])
+points = t._points(module, 200, seed=5)
+for port in module.PORTS:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", module.DesignWarning)
+        want = module.efficiency(input=port, **points)
+        numbers = module.variant(input=port, **points)
+        given = {n: jnp.asarray(v, dtype=jnp.float32) for n, v in points.items()}
+        got = np.asarray(module.efficiency(input=port, **given))
+        got_numbers = np.asarray(module.variant(input=port, **given))
+    assert str(got_numbers.dtype) == "int32", got_numbers.dtype
+    sure = ~np.isnan(want) & ~np.isnan(got)
+    assert sure.sum() > 50, sure.sum()
+    assert (got_numbers[sure] == numbers[sure]).mean() > 0.95
+    assert np.allclose(got[sure], want[sure], rtol=1e-4)
+print("agree")
+"""
+
+
+@pytest.mark.parametrize("name", ["wolfrom", "planetary_simple"])
+def test_module_on_jax_32_bit_arrays_says_nothing_of_dtypes(name: str) -> None:
+    pytest.importorskip("jax")
+    tests = os.path.dirname(os.path.abspath(__file__))
+    env = {k: v for k, v in os.environ.items() if k != "JAX_ENABLE_X64"}
+    result = subprocess.run(
+        [sys.executable, "-c", _JAX_32_CHECK, tests, os.path.join(DERIVATIONS, f"{name}.py")],
+        capture_output=True,
+        text=True,
+        env={**env, "PYTHONPATH": os.pathsep.join([tests, os.environ.get("PYTHONPATH", "")])},
+        check=False,
+        timeout=600,
+    )
+    assert result.returncode == 0 and result.stdout.strip() == "agree", result.stderr[-3000:]
+
+
 def test_a_train_driven_at_several_ports_on_array_api_strict_arrays() -> None:
     """The SR20 differential's module (two input shafts, Mantriota and Pennestri): its
     efficiency, port torques, speeds and region numbers on array-api-strict arrays are

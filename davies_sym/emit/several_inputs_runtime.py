@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 from davies_sym.emit.array_api_runtime import (
     _agree_any,
     _count,
+    _default_type,
     _device,
     _dtype,
     _in_ranges_any,
@@ -97,18 +98,19 @@ def _choice_any(values: dict[str, Any], xp: Any) -> tuple[Any, Any]:
     """`_choice` on the arrays of another library than numpy, with where() on whole arrays."""
     shape = _shape_of(xp, values)
     device = _device(values)
-    code = xp.zeros(shape, dtype=xp.int64, device=device)
+    integer = _default_type(xp, "integral", xp.int64)
+    code = xp.zeros(shape, dtype=integer, device=device)
     boundary = xp.zeros(shape, dtype=xp.bool, device=device)
     for bit, (function, names) in enumerate(_CONDITIONS.values()):
         level = function(**{n: values[n] for n in names})
-        code = code + xp.astype(level < 0, xp.int64) * (2**bit)
+        code = code + xp.astype(level < 0, integer) * (2**bit)
         boundary = boundary | ~(level != 0)
-    numbers = xp.zeros(shape, dtype=xp.int64, device=device)
-    count = xp.zeros(shape, dtype=xp.int64, device=device)
+    numbers = xp.zeros(shape, dtype=integer, device=device)
+    count = xp.zeros(shape, dtype=integer, device=device)
     for region in REGIONS:
         mask = (code == region["code"]) & ~boundary & _agree_any(xp, _FORCES, region["name"], values)
         numbers = xp.where(mask, region["number"], numbers)
-        count = count + xp.astype(mask, xp.int64)
+        count = count + xp.astype(mask, integer)
     return xp.where(count > 1, -1, numbers), boundary
 
 

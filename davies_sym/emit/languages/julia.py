@@ -4,12 +4,13 @@ an integer (0: the declared input port, 1: the other)."""
 
 from __future__ import annotations
 
-from davies_sym.emit.languages.names import check_names, comment_lines
+from davies_sym.emit.languages.names import called_names, check_names, comment_lines
 from davies_sym.emit.languages.printers import julia_printer, printed_names
 from davies_sym.emit.languages.program import Kind, Program, Routine
 from davies_sym.emit.languages.target import Target, indented
 
-#: Julia's keywords, the constants and functions the printed code uses.
+#: Julia's keywords and the constants and types the printed code uses; the functions the
+#: printer may write (`FUNCTIONS`) are reserved where the file calls them.
 RESERVED = frozenset(
     {
         "baremodule",
@@ -64,7 +65,8 @@ RESERVED = frozenset(
         "Float64",
         "Bool",
     }
-) | printed_names(julia_printer())
+)
+FUNCTIONS = printed_names(julia_printer())
 
 
 def _routine(routine: Routine) -> list[str]:
@@ -82,7 +84,9 @@ def _routine(routine: Routine) -> list[str]:
 
 def write_julia(program: Program) -> str:
     """The Julia source of ``program``."""
-    check_names(program, "Julia", RESERVED, extra={program.module})
+    blocks = [_routine(routine) for routine in program.routines]
+    called = called_names((line for block in blocks for line in block), FUNCTIONS, "#")
+    check_names(program, "Julia", RESERVED | called, extra={program.module})
     port = (
         "The input port is an integer: "
         + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
@@ -93,8 +97,8 @@ def write_julia(program: Program) -> str:
     notes = ("", f'Julia: include("FILE.jl"); using .{program.module}; efficiency(...). ' + port)
     lines = [f"# {line}".rstrip() for line in comment_lines((*program.header, *notes))]
     lines += ["", f"module {program.module}", "", f"export {program.entry}"]
-    for routine in program.routines:
-        lines += ["", *_routine(routine)]
+    for block in blocks:
+        lines += ["", *block]
     lines += ["", f"end  # module {program.module}"]
     return "\n".join(lines) + "\n"
 

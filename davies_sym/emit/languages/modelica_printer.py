@@ -4,7 +4,9 @@ Modelica writes powers with ``^``, square roots and absolute values as ``sqrt`` 
 ``abs``, choices as ``if .. then .. elseif .. else ..`` expressions, ``and``, ``or``,
 ``not`` and ``<>``; integer division ``1/2`` is a Real there, as in the formulas.
 Modelica has no NaN: where the other languages return NaN the generated functions
-return the ``not_covered`` value (0, which no efficiency in (0, 1] takes).  Unary minus
+return the ``not_covered`` value (0, which no efficiency in (0, 1] takes).  Nor has it a
+built-in pi (``Modelica.Constants.pi`` is the Standard Library's, which the package does
+not load), so pi, e and the other number symbols are written as decimals.  Unary minus
 may only open an expression in Modelica, so a negative factor or exponent is
 parenthesised, and every boolean operand is parenthesised, since ``not`` binds less
 tightly than a relation there.
@@ -59,6 +61,12 @@ class ModelicaPrinter(StrPrinter):  # type: ignore[misc]  # sympy has no type in
 
     def _print_Float(self, expr: sympy.Float) -> str:
         return repr(float(expr))
+
+    def _print_NumberSymbol(self, expr: sympy.NumberSymbol) -> str:
+        return repr(float(expr))
+
+    _print_Pi = _print_Exp1 = _print_EulerGamma = _print_Catalan = _print_GoldenRatio = _print_NumberSymbol
+    _print_TribonacciConstant = _print_NumberSymbol
 
     def _print_NaN(self, expr: sympy.Basic) -> str:
         return str(self._settings["not_covered"])

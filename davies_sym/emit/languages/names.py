@@ -6,6 +6,7 @@ stay comments whatever they hold."""
 
 from __future__ import annotations
 
+import re
 import textwrap
 from collections.abc import Collection, Iterable
 
@@ -48,6 +49,18 @@ def check_names(
                 why = f"{language} names cannot start with '_'"
             if why:
                 raise RefusedName(kind, name, why, f"{language} code")
+
+
+_CALL = re.compile(r"\b([A-Za-z_][A-Za-z_0-9]*)\s*\.?\(")
+
+
+def called_names(lines: Iterable[str], functions: Collection[str], comment: str) -> frozenset[str]:
+    """Those of ``functions`` (the names a printer may write) that the code ``lines``
+    calls, comment lines (opening with ``comment``) left out: a parameter may take the
+    name of a function the file does not call (a helix angle ``beta``, a lead angle
+    ``gamma``), as it hides nothing there."""
+    code = (line for line in lines if not line.lstrip().startswith(comment))
+    return frozenset(name for line in code for name in _CALL.findall(line) if name in functions)
 
 
 def comment_text(line: str) -> str:

@@ -4,13 +4,14 @@ port is a number (0: the declared input port, 1: the other)."""
 
 from __future__ import annotations
 
-from davies_sym.emit.languages.names import check_names, comment_lines
+from davies_sym.emit.languages.names import called_names, check_names, comment_lines
 from davies_sym.emit.languages.printers import octave_printer, printed_names
 from davies_sym.emit.languages.program import Program, Routine
 from davies_sym.emit.languages.routines import fresh
 from davies_sym.emit.languages.target import Target, indented
 
-#: Octave's keywords, the constants and functions the printed code uses.
+#: Octave's keywords and the constants and variables the printed code uses; the functions
+#: the printer may write (`FUNCTIONS`) are reserved where the file calls them.
 RESERVED = frozenset(
     {
         "__FILE__",
@@ -71,7 +72,8 @@ RESERVED = frozenset(
         "varargin",
         "varargout",
     }
-) | printed_names(octave_printer())
+)
+FUNCTIONS = printed_names(octave_printer())
 
 
 def _routine(routine: Routine) -> list[str]:
@@ -90,7 +92,9 @@ def _routine(routine: Routine) -> list[str]:
 
 def write_octave(program: Program) -> str:
     """The Octave source of ``program``."""
-    check_names(program, "Octave", RESERVED, leading_underscore=False)
+    blocks = [_routine(routine) for routine in program.routines]
+    called = called_names((line for block in blocks for line in block), FUNCTIONS, "%")
+    check_names(program, "Octave", RESERVED | called, leading_underscore=False)
     port = (
         "The input port is a number: "
         + ", ".join(f"{k} for {p} as the input" for k, p in enumerate(program.ports))
@@ -101,8 +105,8 @@ def write_octave(program: Program) -> str:
     notes = ("", "Octave: source('FILE.m') defines the functions (scalar arguments). " + port)
     lines = [f"% {line}".rstrip() for line in comment_lines((*program.header, *notes))]
     lines += ["", "1;  % a script file: the functions below are defined when it is run"]
-    for routine in program.routines:
-        lines += ["", *_routine(routine)]
+    for block in blocks:
+        lines += ["", *block]
     return "\n".join(lines) + "\n"
 
 

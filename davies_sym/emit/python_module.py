@@ -163,7 +163,7 @@ def _module_doc(variants: VariantSet, ignored: Sequence[str]) -> str:
     eliminated = eliminated_symbols(variants)
     if eliminated:
         given = ", ".join(f"{k} = {sympy.sstr(v)}" for k, v in sorted(eliminated.items(), key=lambda kv: str(kv[0])))
-        parts += [f"The geometric constraints give {given}; the formulas use the other radii.", ""]
+        parts += [f"The geometric constraints give {given}; the formulas use the other parameters.", ""]
     if ignored:
         parts += [
             f"This state does not use {', '.join(ignored)}: the functions accept them (as every state of the "

@@ -163,7 +163,7 @@ def _header(
     eliminated = eliminated_symbols(variants)
     if eliminated:
         given = ", ".join(f"{k} = {sympy.sstr(v)}" for k, v in sorted(eliminated.items(), key=lambda kv: str(kv[0])))
-        lines.append(f"The geometric constraints give {given}; the formulas use the other radii.")
+        lines.append(f"The geometric constraints give {given}; the formulas use the other parameters.")
     lines += ["", "Parameters (every function takes those it uses, in this order):"]
     lines += parameter_lines(table, names)
     if relations:

@@ -336,3 +336,23 @@ def test_a_file_with_states_prints_its_geometric_constraints(tmp_path: Path) -> 
     data = yaml.safe_load(document.read_text())
     assert data["dependent_parameters"] == {"rp1": "rr1/2 - rs/2", "rp2": "rr2/2 - rs/2"}
     assert len(data["geometric_constraints"]) == 2
+
+
+def test_a_module_solved_from_the_constraint_leaves_its_tooth_number_free(tmp_path: Path) -> None:
+    """Tuplin's second annulus in teeth and a module, the module the dependent symbol:
+    m2 = 2 (r1 - r3 + 40) / z2 leaves z2 in no radius, only in the fact m2 > 0 (the sampled
+    regions once missed it: KeyError z2).  By hand (Willis, carrier frame, annulus 1 held):
+    w2 / wc = 1 - 40 r1 / (r2 r3) with r2 = r1 - r3 + 40; at r1 = 55, r3 = 35 (r2 = 60,
+    z2 = 30, m2 = 4) the speed ratio carrier over annulus 2 is -21."""
+    path = tmp_path / "tuplin.yaml"
+    path.write_text(
+        "name: Tuplin with a module\nlinks: [1, 2, 3/4, 5]\nreference: 1\ngears:\n"
+        "  1: {link: 1, radius: r1, internal: true}\n  2: {link: 2, teeth: z2, module: m2, internal: true}\n"
+        "  3: {link: 3/4, radius: r3}\n  4: {link: 3/4, radius: 40}\ncouplings:\n"
+        "  A: {type: revolute, links: [1, 5]}\n  B: {type: revolute, links: [1, 2]}\n"
+        "  C: {type: mesh, gears: [1, 3]}\n  D: {type: mesh, gears: [2, 4]}\n"
+        "  E: {type: revolute, links: [3/4, 5]}\nports: {input: A, output: B}\n"
+    )
+    variants = davies_sym.derive(davies_sym.load(str(path)))
+    point = variants.design_point({"r1": 55, "r3": 35, "z2": 30, "eta_C": 1, "eta_D": 1}, "A")
+    assert point.speed_ratio == -21 and point.efficiency == 1

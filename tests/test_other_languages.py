@@ -852,7 +852,7 @@ def test_emit_refuses_several_files_and_an_unknown_language(tmp_path: Path) -> N
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("language", "word"),
-    [("c", "double"), ("julia", "end"), ("octave", "end"), ("rust", "fn"), ("modelica", "algorithm")],
+    [("c", "double"), ("julia", "end"), ("octave", "end"), ("rust", "fn"), ("rust", "Some"), ("modelica", "algorithm")],
 )
 def test_a_keyword_symbol_is_refused_by_name(language: str, word: str, tmp_path: Path) -> None:
     text = (CATALOG / "planetary_simple.yaml").read_text().replace("rA", word)

@@ -76,14 +76,18 @@ def admissible_facts(train: Train, layout: Layout) -> list[tuple[sympy.Expr, str
 
 
 def geometry_symbols(train: Train) -> set[sympy.Symbol]:
-    """Symbols of pitch radii, modules and bearing positions."""
+    """Symbols of pitch radii, modules and bearing positions, and those a dependent one is
+    given in (a module solved from the constraints, m2 = 2 (r1 - r3 + 40) / z2, leaves z2 in
+    no radius but in the fact m2 > 0)."""
     out: set[sympy.Symbol] = set()
     for g in train.gears:
         out |= g.radius.free_symbols
     for c in bearings(train.couplings):
         if c.at is not None:
             out |= c.at.free_symbols
-    return out
+    for relation in train.dependent or ():
+        out |= relation.expression.free_symbols
+    return out - {relation.symbol for relation in train.dependent or ()}
 
 
 def efficiency_symbols(train: Train) -> list[sympy.Symbol]:

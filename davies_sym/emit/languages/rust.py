@@ -11,7 +11,8 @@ from davies_sym.emit.languages.target import Target, kind_names
 
 _KINDS = {Kind.REAL: "f64", Kind.BOOL: "bool", Kind.PORT: "i32"}
 
-#: Rust's keywords (strict, reserved and weak ones that matter) and the types used.
+#: Rust's keywords (strict, reserved and weak ones that matter), the types used and the
+#: prelude's enum variants.
 RESERVED = frozenset(
     {
         "as",
@@ -73,6 +74,11 @@ RESERVED = frozenset(
         "bool",
         "std",
         "core",
+        # The prelude's enum variants: a parameter of that name is a pattern that cannot bind.
+        "Some",
+        "None",
+        "Ok",
+        "Err",
     }
 ) | printed_names(rust_printer())
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
+from typing import Any
 
 
 def jobs(text: str) -> int:
@@ -14,3 +16,14 @@ def jobs(text: str) -> int:
     if not text.isdigit() or int(text) < 1:
         raise argparse.ArgumentTypeError(f"expected a number of processes (1, 2, ...) or auto, got {text!r}")
     return int(text)
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser that reads a value beginning with a minus sign and a digit as a
+    value, not an option: ``--target -22/25`` (a fraction), as it reads ``-0.88``.  No
+    option of the commands begins with a digit, so nothing is lost."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        # argparse before 3.13 takes only integers and decimals for negative numbers.
+        self._negative_number_matcher = re.compile(r"^-\.?\d")

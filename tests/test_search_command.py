@@ -5,6 +5,7 @@ the options that say where and how to work (exit status 2, the option named)."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -109,3 +110,20 @@ def test_a_tooth_geometry_efficiency_ranks_by_the_teeth_themselves() -> None:
         evaluated = run_main([path, "--quiet", "--eval", f"zs={teeth['zs']}", f"zr={teeth['zr']}"], timeout=600)
         assert evaluated.returncode == 0, evaluated.describe()
         assert float(evaluated.stdout.splitlines()[-1]) == pytest.approx(c["efficiency"], rel=1e-12)
+
+
+def test_a_negative_fraction_is_a_target_not_an_option(tmp_path: Path) -> None:
+    """`--target -22/25` reads as -0.88 does (argparse took it for an option).  An external
+    pair driven at the 50-tooth gear B, output the z1-tooth gear A: speed ratio (B over A)
+    -z1/50, which is -22/25 at z1 = 44 exactly."""
+    path = tmp_path / "pair.yaml"
+    path.write_text(
+        "name: external pair\nlinks: [0, a, b]\nreference: 0\nindependent: [z1]\ngears:\n"
+        "  G1: {link: a, teeth: z1, module: 2}\n  G2: {link: b, teeth: 50, module: 2}\ncouplings:\n"
+        "  A: {type: revolute, links: [0, a]}\n  B: {type: revolute, links: [0, b]}\n"
+        "  C: {type: mesh, gears: [G1, G2], efficiency: 0.98}\nports: {input: B, output: A}\n"
+    )
+    for target in ("-22/25", "-0.88"):
+        result = run_main(["search", path, "--target", target, "--tolerance", "0", "--teeth", "z1=40:50", "--quiet"])
+        assert result.returncode == 0, result.describe()
+        assert re.findall(r"z1=(\d+)", result.stdout) == ["44"], result.stdout

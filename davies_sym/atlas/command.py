@@ -15,7 +15,7 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
-from davies_sym.arguments import jobs
+from davies_sym.arguments import Parser, jobs
 from davies_sym.emit.atomic import write_atomic
 
 #: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
@@ -49,7 +49,7 @@ def folder_refused(command: str, folder: str | None) -> bool:
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="derive atlas",
         description="Enumerate the one-degree-of-freedom planetary gear trains of N links (rotation and "
         "displacement graphs, up to isomorphism) and write a train file for each.",

@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
-from davies_sym.arguments import jobs
+from davies_sym.arguments import Parser, jobs
 from davies_sym.atlas.command import MOST_LINKS, folder_refused, progress
 from davies_sym.emit.atomic import write_atomic
 
@@ -45,7 +45,7 @@ def _range(text: str) -> tuple[int, int]:
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="derive search --atlas",
         description="Search every planetary train of the atlas up to N links, every held member and both "
         "directions, for tooth numbers that give the target speed ratio; rank by exact efficiency.",

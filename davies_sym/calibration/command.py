@@ -18,6 +18,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from davies_sym.arguments import Parser
 from davies_sym.calibration.least_squares import Fit, fit
 from davies_sym.calibration.measurements import Measurements, read_measurements
 from davies_sym.calibration.report import fit_text, residual_figure
@@ -39,7 +40,7 @@ START_EFFICIENCY, START_COEFFICIENT = 0.95, 0.1
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="derive calibrate",
         description="Fit loss parameters of a train to "
         "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).",

@@ -7,7 +7,7 @@ from __future__ import annotations
 import argparse
 from importlib import metadata
 
-from davies_sym.arguments import jobs
+from davies_sym.arguments import Parser, jobs
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
 from davies_sym.emit.language_names import LANGUAGES
 
@@ -30,7 +30,7 @@ COMMANDS = (
 
 def parser() -> argparse.ArgumentParser:
     """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="derive",
         description="Derive the efficiency of a gear train (or machine) described in a YAML topology file,\n"
         "by Davies' method: every turning-condition variant in ordinary mesh efficiencies.",

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
+from davies_sym.arguments import Parser
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.topology.expressions import ExpressionError, parse_expression
@@ -25,7 +26,7 @@ TOP = 20
 
 
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
+    p = Parser(
         prog="derive search",
         description="Find the tooth numbers of a train (symbolic teeth, free ones listed in independent:) "
         "whose speed ratios hit the targets, and rank the feasible designs by their exact efficiency.",

@@ -356,3 +356,46 @@ def test_a_module_solved_from_the_constraint_leaves_its_tooth_number_free(tmp_pa
     variants = davies_sym.derive(davies_sym.load(str(path)))
     point = variants.design_point({"r1": 55, "r3": 35, "z2": 30, "eta_C": 1, "eta_D": 1}, "A")
     assert point.speed_ratio == -21 and point.efficiency == 1
+
+
+def test_modules_solved_from_the_constraints_in_any_symbol_names(tmp_path: Path) -> None:
+    """Two more trains whose dependent symbol is a module.  A stepped planet, sun (z1,
+    module 1) held, ring 80 teeth of module m2 = (z1 + a) / (80 - b) the output, carrier
+    the input: drawing designs once divided by zero on the pole b = 80.  By hand,
+    w_ring / w_carrier = 1 + b z1 / (80 a).  A Wolfrom set with the sun held, module L of sun,
+    planet and first ring solved from the second ring's loop (a relation over a quotient
+    once failed in sympy's degree): r1 = z1 + 2 z2 whatever L, and by hand
+    |w_r1 / w_r2| = 2 (z1 + z2) z2 jnp / ((z1 + 2 z2) (jnp z2 + i32 z1))."""
+    stepped = tmp_path / "stepped.yaml"
+    stepped.write_text(
+        "name: stepped\nlinks: [0, r, p, c]\nreference: 0\ngears:\n"
+        "  S: {link: 0, teeth: z1, module: 1}\n  P1: {link: p, teeth: a, module: 1}\n"
+        "  P2: {link: p, teeth: b, module: m2}\n  R: {link: r, teeth: 80, module: m2, internal: true}\n"
+        "couplings:\n  A: {type: revolute, links: [0, c]}\n  B: {type: revolute, links: [0, r]}\n"
+        "  D: {type: revolute, links: [c, p]}\n  SP: {type: mesh, gears: [S, P1]}\n  PR: {type: mesh, gears: [P2, R]}\n"
+        "ports: {input: A, output: B}\n"
+    )
+    variants = davies_sym.derive(davies_sym.load(str(stepped)))
+    point = variants.design_point({"z1": 30, "a": 20, "b": 30, "eta_SP": 1, "eta_PR": 1}, "A")
+    assert point.speed_ratio == 1 / (1 + R(30 * 30, 80 * 20)) and point.efficiency == 1
+    wolfrom = tmp_path / "wolfrom.yaml"
+    wolfrom.write_text(
+        "name: wolfrom\nlinks: [0, r1, r2, p, c]\nreference: 0\nindependent: [i32, z2, jnp, z1]\ngears:\n"
+        "  S: {link: 0, teeth: z1, module: L}\n  P1: {link: p, teeth: z2, module: L}\n"
+        "  R1: {link: r1, teeth: r1, module: L, internal: true}\n  P2: {link: p, teeth: i32, module: 1}\n"
+        "  R2: {link: r2, teeth: jnp, module: 1, internal: true}\ncouplings:\n"
+        "  H: {type: revolute, links: [c, p]}\n  K: {type: revolute, links: [c, 0]}\n"
+        "  SP: {type: mesh, gears: [S, P1]}\n  D: {type: mesh, gears: [R1, P1]}\n"
+        "  In: {type: revolute, links: [0, r1]}\n  E: {type: mesh, gears: [R2, P2]}\n"
+        "  Out: {type: revolute, links: [0, r2]}\nports: {input: In, output: Out}\n"
+    )
+    variants = davies_sym.derive(davies_sym.load(str(wolfrom)))
+    relations = {str(r.symbol): r.expression for r in variants.train.dependent or ()}
+    assert (
+        sympy.expand(relations["r1"] - sympy.Symbol("z1", positive=True) - 2 * sympy.Symbol("z2", positive=True)) == 0
+    )
+    z1, z2, i32, jnp = 18, 20, 22, 64
+    point = variants.design_point(
+        {"z1": z1, "z2": z2, "i32": i32, "jnp": jnp, **dict.fromkeys(("eta_SP", "eta_D", "eta_E"), 1)}
+    )
+    assert abs(point.speed_ratio) == R(2 * (z1 + z2) * z2 * jnp, (z1 + 2 * z2) * (jnp * z2 + i32 * z1))

@@ -194,7 +194,10 @@ class ParameterDomain:
         if any(point[s] <= 0 for s in self.eliminated):
             return False  # every geometric symbol is positive, eliminated ones too
         args = self._ring.points.args(point)
-        return all(e.evaluate(args) > 0 for e in self._positive)
+        try:
+            return all(e.evaluate(args) > 0 for e in self._positive)
+        except ZeroDivisionError:  # a fact undefined here (a dependent module's pole): no design
+            return False
 
     def value(self, expr: sympy.Expr, point: Point) -> sympy.Rational:
         """Exact value of a rational expression of the train's symbols at ``point``."""
@@ -222,8 +225,11 @@ class ParameterDomain:
             if verdict is False:
                 continue
             point: Point = {s: sympy.Rational(v, 100) for s, v in drawn.items()}
-            for symbol, expr in self.eliminated.items():
-                point[symbol] = self.value(expr, point)
+            try:
+                for symbol, expr in self.eliminated.items():
+                    point[symbol] = self.value(expr, point)
+            except ZeroDivisionError:  # on the pole of an eliminated symbol: no design
+                continue
             if verdict is None and not self._admissible(point):
                 continue
             for s in others:

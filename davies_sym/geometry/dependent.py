@@ -25,7 +25,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.caches import IdentityCache
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
-from davies_sym.geometry.layout import Layout, solve_linear
+from davies_sym.geometry.layout import Layout, polynomial_part, solve_linear
 from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Relation, Train
 
@@ -66,7 +66,8 @@ def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:
     problems: list[Problem] = []
     for c in layout.constraints:
         values = {r.symbol: r.expression for r in relations}
-        expr = without_positive_factors(sympy.expand(c.expression.subs(values)))
+        # A module solved before makes the radii quotients: solve on the numerator.
+        expr = without_positive_factors(polynomial_part(sympy.expand(c.expression.subs(values))))
         if expr == 0:
             continue  # implied by the constraints solved already
         candidates = [
@@ -86,14 +87,20 @@ def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:
             )
             continue
         symbol = min(candidates, key=lambda s: _rank(s, expr, c.coupling, preferred))
-        solution = solve_linear(expr, symbol)
-        relations = [
-            Relation(r.symbol, sympy.expand(r.expression.subs(symbol, solution)), r.constraint) for r in relations
-        ]
+        solution = _tidy(solve_linear(expr, symbol))
+        relations = [Relation(r.symbol, _tidy(r.expression.subs(symbol, solution)), r.constraint) for r in relations]
         relations.append(Relation(symbol, solution, str(c)))
     if problems:
         raise GeometryError(problems, train.file_lines)
     return tuple(relations)
+
+
+def _tidy(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` expanded; a quotient (a module solved before it) over one denominator first,
+    so that a relation holds no quotient of quotients."""
+    if polynomial_part(expr) is expr:
+        return sympy.expand(expr)
+    return sympy.expand(sympy.cancel(expr))
 
 
 def _preferred(train: Train, planet_second: frozenset[str]) -> dict[str, list[sympy.Symbol]]:

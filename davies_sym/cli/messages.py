@@ -7,7 +7,7 @@ import json
 import traceback
 from dataclasses import replace
 
-from davies_sym.errors import DaviesError, InputError
+from davies_sym.errors import VALUES, DaviesError, InputError
 
 #: The exit status of a fault of davies_sym itself: an exception that no stage turned into
 #: a refusal (docs/errors.md).  Never a verdict on the file: the same file may derive once fixed.
@@ -17,9 +17,9 @@ INTERNAL_ERROR = 4
 def named_by_option(exc: DaviesError, option: str | None) -> DaviesError:
     """``exc`` with the problems the engine files under ``values`` (the API's argument)
     filed under the command-line ``option`` that gave the values (``--eval``, ``--at``)."""
-    if option is None or not isinstance(exc, InputError) or all(p.entry != "values" for p in exc.problems):
+    if option is None or not isinstance(exc, InputError) or all(p.entry != VALUES for p in exc.problems):
         return exc
-    problems = [replace(p, entry=option) if p.entry == "values" else p for p in exc.problems]
+    problems = [replace(p, entry=option) if p.entry == VALUES else p for p in exc.problems]
     return type(exc)(problems, exc.source)
 
 

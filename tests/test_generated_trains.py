@@ -18,19 +18,12 @@ the independent oracle (tests/oracle/balance.py).
 The fast tier draws a handful of examples, the slow tier (``-m slow``) more; each with a
 fixed seed and no example database, so every run draws the same examples, as the
 derandomized ``davies`` profile does.  DAVIES_SYM_TRAIN_SEED=N draws with seed N
-instead (both tiers).  The stepped planet whose second module is the dependent symbol
-(a loop closed by a module, which sympy's ``degree`` once failed on) is an explicit
-example of the checks.
-
-Draws of other seeds meet failures the fixed seeds leave out today, each reproduced by a
-file of a few lines: a Tuplin train with one annulus by teeth and a module symbol and a
-numeric radius on the other planet gear (KeyError while solving the actions, exit 4); a
-stepped planet whose second module is a symbol and the ring's teeth a number, for some
-names of the tooth symbols (ZeroDivisionError, exit 4); a Wolfrom set with a module
-symbol on the sun, the first planet gear and the first ring, for some names of the
-meshes (PolynomialError in the dependent symbols, exit 4); Rust code with a parameter
-named ``Ok``, ``Err`` or ``Some`` (it does not compile); ``derive search --target
--5/2`` read as an option (``--target=-5/2`` works).
+instead (both tiers).  Explicit examples of the fast tier: the stepped planet whose
+second module is the dependent symbol (a loop closed by a module, which sympy's
+``degree`` once failed on), and the trains, written by hand, where drawn ones failed
+before (strategies.BY_HAND: a Tuplin train with one annulus by teeth and a module
+symbol, a stepped planet and a Wolfrom set with module symbols, each once exit 4; a
+symbol named ``Some``, whose Rust code once did not compile).
 """
 
 from __future__ import annotations
@@ -55,15 +48,14 @@ from hostile.helpers import Result, run_main
 from hypothesis import example, given, seed, settings
 from oracle.balance import OracleError, SelfLocking, solve
 from oracle.compare import LOCKING, OK, close, compare
-from oracle.strategies import FAMILIES, QUICK_FAMILIES, Drawn, stepped_two_modules, trains
+from oracle.strategies import BY_HAND, FAMILIES, QUICK_FAMILIES, Drawn, stepped_two_modules, trains
 
 import davies_sym
 
 #: DAVIES_SYM_TRAIN_SEED=N: draw with seed N (both tiers) instead of the fixed seeds.
 ENV_SEED = os.environ.get("DAVIES_SYM_TRAIN_SEED", "").strip()
 #: The fixed seeds of the two tiers: every run draws the same examples (no example
-#: database), as the derandomized ``davies`` profile does; seeds whose draws miss the
-#: failures known today (the module docstring).
+#: database), as the derandomized ``davies`` profile does.
 FAST_SEED = 20261128
 SLOW_SEED = 20261129
 CC = shutil.which("cc") or shutil.which("gcc")
@@ -246,9 +238,8 @@ def search_problems(drawn: Drawn) -> list[str]:
     bounds = [f"{t}={max(1, drawn.teeth[t] - 2)}:{drawn.teeth[t] + 2}" for t in free]
     problems = []
     with written(drawn) as path:
-        # a negative fraction alone would read as an option: --target=-5/2 (finding 03)
-        target_args = [f"--target={targets[0]}"] if len(targets) == 1 else ["--target", *targets]
-        args = ["search", path, *target_args, "--teeth", *bounds, "--tolerance", "0"]
+        # (a negative ratio alone, --target -5/2, once read as an option)
+        args = ["search", path, "--target", *targets, "--teeth", *bounds, "--tolerance", "0"]
         args += ["--min-teeth", "1", "--top", "100000", "--json", "--quiet"]
         result = derive(*args)
         call = "derive " + " ".join(map(str, args))
@@ -364,14 +355,23 @@ def check(problems: list[str], drawn: Drawn) -> None:
 
 # -- the tests ----------------------------------------------------------------------------------
 
+
+def by_hand(test: Callable[..., Any]) -> Callable[..., Any]:
+    """``test`` with every train of strategies.BY_HAND as an explicit example."""
+    for build in BY_HAND:
+        test = example(drawn=build())(test)
+    return test
+
+
 STEPPED = stepped_two_modules()
 STEPPED_Z4 = stepped_two_modules("[z1, z2, z3, m1, m2]")
 STEPPED_SEARCH = stepped_two_modules(numeric_efficiency=True)
 
 
 @fast(6)
-@given(trains(QUICK_FAMILIES))
-@example(STEPPED)
+@given(drawn=trains(QUICK_FAMILIES))
+@example(drawn=STEPPED)
+@by_hand
 def test_drawn_trains_keep_the_command_line_contract(drawn: Drawn) -> None:
     check(cli_problems(drawn), drawn)
 
@@ -383,9 +383,10 @@ def test_drawn_trains_keep_the_command_line_contract_many(drawn: Drawn) -> None:
 
 
 @fast(6)
-@given(trains(QUICK_FAMILIES))
-@example(STEPPED)
-@example(STEPPED_Z4)
+@given(drawn=trains(QUICK_FAMILIES))
+@example(drawn=STEPPED)
+@example(drawn=STEPPED_Z4)
+@by_hand
 def test_drawn_trains_agree_with_the_oracle(drawn: Drawn) -> None:
     check(oracle_problems(drawn), drawn)
 
@@ -413,6 +414,7 @@ def test_search_finds_the_drawn_design_many(drawn: Drawn) -> None:
 @fast(2)
 @given(drawn=trains(QUICK_FAMILIES))
 @example(drawn=STEPPED)
+@by_hand
 def test_emitted_code_of_drawn_trains_compiles(language: str, drawn: Drawn) -> None:
     check(emit_problems(drawn, language), drawn)
 
@@ -425,8 +427,9 @@ def test_emitted_code_of_drawn_trains_compiles_many(language: str, drawn: Drawn)
 
 
 @fast(3)
-@given(trains(QUICK_FAMILIES))
-@example(STEPPED)
+@given(drawn=trains(QUICK_FAMILIES))
+@example(drawn=STEPPED)
+@by_hand
 def test_python_module_of_drawn_trains(drawn: Drawn) -> None:
     check(python_problems(drawn), drawn)
 

@@ -1366,7 +1366,200 @@ def stepped_two_modules(independent: str = "[z1, z2, z3, z4, m1]", numeric_effic
     return Drawn(train, spelling, teeth, geometry, listed, dependent, searchable, ("stepped", "two modules"))
 
 
+def _by_hand(
+    name: str,
+    text: str,
+    members: list[TMember],
+    gears: list[TGear],
+    meshes: dict[str, tuple[str, str]],
+    ports: tuple[tuple[str, str, int], tuple[str, str, int]],
+    held: str,
+    values: dict[str, Fraction],
+) -> Drawn:
+    """A train written by hand: the held member in the housing, ``ports`` the input and the
+    output as (member, coupling of the file, +1 or -1 as its links are written [housing,
+    member] or reversed), every mesh of efficiency 49/50 (``eta_<mesh>``)."""
+    (inp, inp_coupling, inp_sign), (out, out_coupling, out_sign) = ports
+    train = RandomTrain(
+        name,
+        0,
+        members,
+        gears,
+        {mesh: (a, b, F(49, 50)) for mesh, (a, b) in meshes.items()},
+        {"A": inp, "B": out},
+        "A",
+        "B",
+        held=held,
+        description=name,
+    )
+    values = {**values, **{f"eta_{mesh}": F(49, 50) for mesh in meshes}}
+    spelling = Spelling(
+        name, text, values, {"A": inp_coupling, "B": out_coupling}, {"run": None}, {"A": inp_sign, "B": out_sign}
+    )
+    return Drawn(train, spelling, {}, {}, None, (), False, (name,))
+
+
+def _central(*names: str) -> list[TMember]:
+    return _coaxial(names)
+
+
+def tuplin_by_teeth_and_radii() -> Drawn:
+    """Tuplin's train with one annulus by teeth and a module symbol, the other sizes radii
+    (one a number): the actions once failed with a KeyError on the tooth symbol."""
+    text = """\
+name: Tuplin, one annulus by teeth and a module symbol, a planet gear by a number
+links: [1, 2, 3/4, 5]
+reference: 1
+gears:
+  1: {link: 1, radius: r1, internal: true}
+  2: {link: 2, teeth: z2, module: m2, internal: true}
+  3: {link: 3/4, radius: r3}
+  4: {link: 3/4, radius: 40}
+couplings:
+  A: {type: revolute, links: [1, 5]}
+  B: {type: revolute, links: [1, 2]}
+  C: {type: mesh, gears: [1, 3]}
+  D: {type: mesh, gears: [2, 4]}
+  E: {type: revolute, links: [3/4, 5]}
+ports: {input: A, output: B}
+"""
+    return _by_hand(
+        "tuplin_by_teeth_and_radii",
+        text,
+        [*_central("1", "2", "5"), TMember("3/4", "planet", "5", _y(F(20)))],
+        [
+            TGear("1", "1", F(55), True),
+            TGear("2", "2", F(60), True),
+            TGear("3", "3/4", F(35)),
+            TGear("4", "3/4", F(40)),
+        ],
+        {"C": ("1", "3"), "D": ("2", "4")},
+        (("5", "A", 1), ("2", "B", 1)),
+        "1",
+        {"r1": F(55), "r3": F(35), "z2": F(30), "m2": F(4)},
+    )
+
+
+def stepped_module_symbol_of_the_ring() -> Drawn:
+    """A stepped planet (the sun held, the carrier in, the ring out) whose second module
+    is a symbol and the ring's teeth a number, tooth symbols named ``a`` and ``b``: a
+    sampled design once met the pole of the dependent module (ZeroDivisionError)."""
+    text = """\
+name: stepped planet, the sun held, the second module a symbol
+links: [0, r, p, c]
+reference: 0
+gears:
+  S: {link: 0, teeth: z1, module: 1}
+  P1: {link: p, teeth: a, module: 1}
+  P2: {link: p, teeth: b, module: m2}
+  R: {link: r, teeth: 80, module: m2, internal: true}
+couplings:
+  A: {type: revolute, links: [0, c]}
+  B: {type: revolute, links: [0, r]}
+  D: {type: revolute, links: [c, p]}
+  SP: {type: mesh, gears: [S, P1]}
+  PR: {type: mesh, gears: [P2, R]}
+ports: {input: A, output: B}
+"""
+    # m2 (80 - b) = z1 + a: z1 = 24, a = 30, b = 20 give m2 = 9/10
+    return _by_hand(
+        "stepped_module_symbol_of_the_ring",
+        text,
+        [*_central("s", "r", "c"), TMember("p", "planet", "c", _y(F(27)))],
+        [TGear("S", "s", F(12)), TGear("P1", "p", F(15)), TGear("P2", "p", F(9)), TGear("R", "r", F(36), True)],
+        {"SP": ("S", "P1"), "PR": ("R", "P2")},
+        (("c", "A", 1), ("r", "B", 1)),
+        "s",
+        {"z1": F(24), "a": F(30), "b": F(20), "m2": F(9, 10)},
+    )
+
+
+def wolfrom_module_symbol() -> Drawn:
+    """A Wolfrom set (the sun held, ring 1 in, ring 2 out) with one module symbol on the
+    sun, the first planet gear and the first ring: with the sun's mesh named ``SP`` the
+    dependent symbols were once solved over a quotient (PolynomialError)."""
+    text = """\
+name: Wolfrom set, the sun held, a module symbol L on the sun, the first planet gear and ring
+links: [0, r1, r2, p, c]
+reference: 0
+gears:
+  S: {link: 0, teeth: z1, module: L}
+  P1: {link: p, teeth: z2, module: L}
+  R1: {link: r1, teeth: r1, module: L, internal: true}
+  P2: {link: p, teeth: i32, module: 1}
+  R2: {link: r2, teeth: jnp, module: 1, internal: true}
+couplings:
+  H: {type: revolute, links: [c, p]}
+  K: {type: revolute, links: [c, 0]}
+  SP: {type: mesh, gears: [S, P1]}
+  D: {type: mesh, gears: [R1, P1]}
+  In: {type: revolute, links: [r1, 0]}
+  E: {type: mesh, gears: [R2, P2]}
+  Out: {type: revolute, links: [0, r2]}
+ports: {input: In, output: Out}
+independent: [i32, z2, jnp, z1]
+"""
+    # L = 1: r1 = z1 + 2 z2 = 61, jnp = i32 + z1 + z2 = 69
+    return _by_hand(
+        "wolfrom_module_symbol",
+        text,
+        [*_central("s", "r1", "r2", "c"), TMember("p", "planet", "c", _y(F(47, 2)))],
+        [
+            TGear("S", "s", F(33, 2)),
+            TGear("P1", "p", F(7)),
+            TGear("R1", "r1", F(61, 2), True),
+            TGear("P2", "p", F(11)),
+            TGear("R2", "r2", F(69, 2), True),
+        ],
+        {"SP": ("S", "P1"), "D": ("R1", "P1"), "E": ("R2", "P2")},
+        (("r1", "In", -1), ("r2", "Out", 1)),
+        "s",
+        {"z1": F(33), "z2": F(14), "r1": F(61), "i32": F(22), "jnp": F(69), "L": F(1)},
+    )
+
+
+def planetary_named_after_rust() -> Drawn:
+    """A simple planetary whose sun radius is named ``Some`` (a variant of Rust's prelude,
+    which a parameter cannot shadow): its Rust code once did not compile."""
+    text = """\
+name: planetary, the sun radius named Some
+links: [0, s, p, c]
+reference: 0
+gears:
+  S: {link: s, radius: Some}
+  P: {link: p, radius: rp}
+  R: {link: 0, radius: rr, internal: true}
+couplings:
+  A: {type: revolute, links: [0, s]}
+  B: {type: revolute, links: [0, c]}
+  D: {type: revolute, links: [c, p]}
+  SP: {type: mesh, gears: [S, P]}
+  PR: {type: mesh, gears: [P, R]}
+ports: {input: A, output: B}
+"""
+    return _by_hand(
+        "planetary_named_after_rust",
+        text,
+        [*_central("s", "r", "c"), TMember("p", "planet", "c", _y(F(30)))],
+        [TGear("S", "s", F(20)), TGear("P", "p", F(10)), TGear("R", "r", F(40), True)],
+        {"SP": ("S", "P"), "PR": ("R", "P")},
+        (("s", "A", 1), ("c", "B", 1)),
+        "r",
+        {"Some": F(20), "rp": F(10), "rr": F(40)},
+    )
+
+
+#: Trains written by hand where drawn ones once failed (each an explicit example of the tests).
+BY_HAND = (
+    tuplin_by_teeth_and_radii,
+    stepped_module_symbol_of_the_ring,
+    wolfrom_module_symbol,
+    planetary_named_after_rust,
+)
+
+
 __all__ = [
+    "BY_HAND",
     "FAMILIES",
     "QUICK_FAMILIES",
     "Drawn",

@@ -127,3 +127,22 @@ def test_a_negative_fraction_is_a_target_not_an_option(tmp_path: Path) -> None:
         result = run_main(["search", path, "--target", target, "--tolerance", "0", "--teeth", "z1=40:50", "--quiet"])
         assert result.returncode == 0, result.describe()
         assert re.findall(r"z1=(\d+)", result.stdout) == ["44"], result.stdout
+
+
+def test_a_name_with_a_control_character_is_searched(tmp_path: Path) -> None:
+    """A train's name is the in-memory module's file name too, where a NUL was refused by
+    Python (ValueError: embedded null character); the search takes the name as derive does.
+    The README's planetary at ratio 1 + zr/zs = 4: zp = zs."""
+    path = tmp_path / "named.yaml"
+    path.write_text(
+        'name: "planetary \\x00 named"\nlinks: [0, s, p, c]\nreference: 0\nindependent: [zs, zp]\ngears:\n'
+        "  S: {link: s, teeth: zs, module: 2}\n  P: {link: p, teeth: zp, module: 2}\n"
+        "  R: {link: 0, teeth: zr, module: 2, internal: true}\ncouplings:\n"
+        "  A: {type: revolute, links: [0, s]}\n  B: {type: revolute, links: [0, c]}\n"
+        "  D: {type: revolute, links: [c, p]}\n"
+        "  SP: {type: mesh, gears: [S, P], efficiency: 0.98}\n  PR: {type: mesh, gears: [P, R], efficiency: 0.99}\n"
+        "ports: {input: A, output: B}\n"
+    )
+    result = run_main(["search", path, "--target", "4", "--tolerance", "0", "--teeth", "zs=20:22", "zp=18:24"])
+    assert result.returncode == 0, result.describe()
+    assert re.findall(r"zs=(\d+) zp=(\d+)", result.stdout) == [("20", "20"), ("21", "21"), ("22", "22")], result.stdout

@@ -269,7 +269,9 @@ def table(entries: Sequence[tuple[str, str, Sequence[str]]]) -> ast.Dict:
 def compiled_module(source: str, name: str) -> ModuleType:
     """A generated module's ``source`` compiled in memory (``name``: the train's)."""
     module = ModuleType("davies_sym_formulas")
-    exec(compile(source, f"<formulas of {name}>", "exec"), module.__dict__)
+    # The name as a file name for tracebacks: escaped, as a NUL in it is no file name.
+    label = name.encode("unicode_escape").decode("ascii")
+    exec(compile(source, f"<formulas of {label}>", "exec"), module.__dict__)
     return module
 
 

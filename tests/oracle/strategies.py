@@ -24,9 +24,10 @@ What `trains()` draws:
   name, descriptions) of any characters, entries and keys in any order, flow or
   block mappings, links as a list or a mapping, sizes as radius symbols, numbers or
   scaled symbols, or as teeth and module (each a symbol or a number), ordinary
-  efficiencies by default, as a symbol (possibly shared by meshes of equal efficiency),
-  a number or a list of two, the links of revolutes and the gears of meshes in either
-  order, optional ``at``, ``axis``, ``mesh``, ``internal: false``, ``reference``,
+  efficiencies (0.5 to 1, a lossless mesh included) by default, as a symbol (possibly
+  shared by meshes of equal efficiency), a number or a list of two, the links of
+  revolutes and the gears of meshes in either order, optional ``at``, ``axis``,
+  ``mesh``, ``internal: false``, ``reference``,
   ``format``, ``degrees_of_freedom``, comments and descriptions, and ``independent:``
   (left out, every size symbol but the dependent ones, or some of them; as a flow list,
   a block list or a single symbol written alone).
@@ -997,6 +998,7 @@ def _spelled(draw: st.DrawFn, sk: Skeleton, roles: Roles, search: bool) -> Drawn
             st.one_of(
                 st.integers(9000, 9999).map(lambda n: F(n, 10000)),
                 st.integers(50, 99).map(lambda n: F(n, 100)),
+                st.just(F(1)),
             )
         )
         how = "number" if search else draw(st.sampled_from(["default", "default", "symbol", "number", "pair"]))

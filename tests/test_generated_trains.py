@@ -386,7 +386,7 @@ def test_drawn_trains_keep_the_command_line_contract(drawn: Drawn) -> None:
     check(cli_problems(drawn), drawn)
 
 
-@slow(40)
+@slow(30)
 @given(trains(FAMILIES))
 def test_drawn_trains_keep_the_command_line_contract_many(drawn: Drawn) -> None:
     check(cli_problems(drawn, latex=True), drawn)
@@ -401,7 +401,7 @@ def test_drawn_trains_agree_with_the_oracle(drawn: Drawn) -> None:
     check(oracle_problems(drawn), drawn)
 
 
-@slow(60)
+@slow(40)
 @given(trains(FAMILIES))
 def test_drawn_trains_agree_with_the_oracle_many(drawn: Drawn) -> None:
     check(oracle_problems(drawn), drawn)
@@ -414,7 +414,7 @@ def test_search_finds_the_drawn_design(drawn: Drawn) -> None:
     check(search_problems(drawn), drawn)
 
 
-@slow(25)
+@slow(20)
 @given(trains(QUICK_FAMILIES, search=True).filter(lambda d: d.searchable))
 def test_search_finds_the_drawn_design_many(drawn: Drawn) -> None:
     check(search_problems(drawn), drawn)
@@ -430,7 +430,7 @@ def test_emitted_code_of_drawn_trains_compiles(language: str, drawn: Drawn) -> N
 
 
 @pytest.mark.parametrize("language", ["c", "rust"])
-@slow(25)
+@slow(15)
 @given(drawn=trains(FAMILIES))
 def test_emitted_code_of_drawn_trains_compiles_many(language: str, drawn: Drawn) -> None:
     check(emit_problems(drawn, language), drawn)
@@ -443,7 +443,7 @@ def test_python_module_of_drawn_trains(drawn: Drawn) -> None:
     check(python_problems(drawn), drawn)
 
 
-@slow(30)
+@slow(20)
 @given(trains(FAMILIES))
 def test_python_module_of_drawn_trains_many(drawn: Drawn) -> None:
     check(python_problems(drawn), drawn)

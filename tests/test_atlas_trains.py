@@ -18,7 +18,7 @@ from hostile.helpers import Result, run_main_in
 from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 import davies_sym
-from davies_sym.atlas.entries import Entry, entry
+from davies_sym.atlas.entries import Entry, entry, places
 from davies_sym.atlas.enumeration import atlas, canonical_code
 from davies_sym.atlas.recognition import OutsideAtlas, train_graph
 from davies_sym.geometry import train_layout
@@ -33,12 +33,7 @@ def run_derive(args: list[str], cwd: Path) -> Result:
 
 
 def _entries(links: int) -> list[Entry]:
-    found = atlas(links)
-    return [
-        entry(links, r + 1, d + 1, code, group.code, graph)
-        for r, group in enumerate(found.rotation_graphs)
-        for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
-    ]
+    return [entry(place) for place in places(links)]
 
 
 @pytest.fixture(scope="module")

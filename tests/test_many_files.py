@@ -164,6 +164,8 @@ def test_a_terminal_gets_a_progress_bar(tmp_path: Path, monkeypatch: pytest.Monk
     import sys
 
     from davies_sym.cli.many_files import derive_into
+    from davies_sym.fan_out import Workers
+    from davies_sym.progress import Display
 
     class Terminal(io.StringIO):
         def isatty(self) -> bool:
@@ -171,9 +173,8 @@ def test_a_terminal_gets_a_progress_bar(tmp_path: Path, monkeypatch: pytest.Monk
 
     screen = Terminal()
     monkeypatch.setattr(sys, "stderr", screen)
-    lines: list[str] = []
     files = [str(CATALOG / "simple_pair.yaml"), str(CATALOG / "wolfrom.yaml")]
-    assert derive_into(str(tmp_path), files, lines.append, jobs=2) == 0
+    assert derive_into(str(tmp_path), files, Display("derive"), Workers(jobs=2)) == 0
     assert "2/2" in screen.getvalue() and "file" in screen.getvalue(), screen.getvalue()
-    assert not [line for line in lines if "wrote the derivations" in line]
+    assert "wrote the derivations" not in screen.getvalue()
     _same_as_committed(tmp_path, ["simple_pair", "wolfrom"])

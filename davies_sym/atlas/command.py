@@ -11,12 +11,13 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Sequence
 from typing import Any
 
 from davies_sym.arguments import Parser, jobs
 from davies_sym.emit.atomic import write_atomic
+from davies_sym.fan_out import Counted, Workers, fan_out
+from davies_sym.progress import Display, Progress
 
 #: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
 FEWEST_LINKS, MOST_LINKS = 3, 8
@@ -28,16 +29,6 @@ def _links(text: str) -> int:
             f"expected a number of links from {FEWEST_LINKS} to {MOST_LINKS} (the frame counted), got {text!r}"
         )
     return int(text)
-
-
-def progress(command: str, quiet: bool) -> Callable[[str], None]:
-    """A line on standard error per step, unless ``quiet``."""
-
-    def say(text: str) -> None:
-        if not quiet:
-            print(f"{command}: {text}", file=sys.stderr, flush=True)
-
-    return say
 
 
 def folder_refused(command: str, folder: str | None) -> bool:
@@ -64,23 +55,14 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
-def _entries(links: int, jobs: int, say: Callable[[str], None]) -> Iterator[Any]:
+def _entries(links: int, workers: Workers, say: Progress) -> list[Any]:
     """Every entry of the atlas, in the order of the codes (workers read the motions)."""
-    from davies_sym.atlas.entries import entry
-    from davies_sym.atlas.enumeration import atlas
+    from davies_sym.atlas.entries import entry, places
 
-    found = atlas(links)
-    tasks = [
-        (links, r + 1, d + 1, code, group.code, graph)
-        for r, group in enumerate(found.rotation_graphs)
-        for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
-    ]
-    say(f"{len(found.rotation_graphs)} rotation graphs, {len(tasks)} displacement graphs; reading their motions")
-    if jobs == 1 or len(tasks) < 2:
-        yield from (entry(*task) for task in tasks)
-        return
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        yield from pool.map(entry, *zip(*tasks, strict=True), chunksize=4)
+    found = places(links)
+    rotations = len({p.rotation for p in found})
+    say(f"{rotations} rotation graphs, {len(found)} displacement graphs; reading their motions")
+    return list(fan_out(entry, found, workers, Counted(say, "graph")))
 
 
 def run(argv: Sequence[str]) -> int:
@@ -95,7 +77,7 @@ def run(argv: Sequence[str]) -> int:
     if folder_refused("derive atlas", args.out):
         return 2
 
-    say = progress("derive atlas", args.quiet)
+    say = Display("derive atlas", args.quiet)
 
     from davies_sym.atlas.entries import PUBLISHED, PUBLISHED_COUNTS
     from davies_sym.atlas.report import atlas_text, counts_text
@@ -111,7 +93,7 @@ def run(argv: Sequence[str]) -> int:
         else:
             sys.stdout.write(counts_text(args.links, counts, published))
         return 0
-    entries = list(_entries(args.links, args.jobs, say))
+    entries = _entries(args.links, Workers(args.jobs), say)
     rotation = len({e.rotation for e in entries})
     try:
         if args.out:
@@ -151,7 +133,7 @@ class EditedFile(Exception):
     """A file the atlas would write is there with other contents (someone edited it)."""
 
 
-def _write_files(entries: Sequence[Any], folder: str, draw: bool, say: Callable[[str], None]) -> None:
+def _write_files(entries: Sequence[Any], folder: str, draw: bool, say: Progress) -> None:
     """One train file per drawable entry (and its drawings), each written atomically; a
     file of the same name with other contents is never replaced (it may hold edits)."""
     outputs: list[tuple[str, str]] = []

@@ -3,7 +3,7 @@ choices, and its train file; written by worker processes and read back as plain 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 from davies_sym.atlas.choices import admissible_choices
@@ -17,10 +17,10 @@ PUBLISHED_COUNTS = {6: (27, 81), 7: (152, 647), 8: (1070, 6360), 9: (8654, 71837
 
 
 @dataclass(frozen=True)
-class Entry:
-    """A displacement graph of the atlas: its place (rotation graph ``rotation``, 1-based,
-    and its number ``index`` among that graph's displacement graphs), codes, the train
-    drawn from it and the admissible choices (None: the language cannot draw it)."""
+class GraphPlace:
+    """Where a displacement graph stands in the atlas of ``links`` links: rotation graph
+    ``rotation`` (1-based), number ``index`` among its displacement graphs, both codes;
+    the task a worker turns into an `Entry`."""
 
     links: int
     rotation: int
@@ -28,6 +28,13 @@ class Entry:
     code: str
     rotation_code: str
     graph: TrainGraph
+
+
+@dataclass(frozen=True)
+class Entry(GraphPlace):
+    """A displacement graph of the atlas at its place, the train drawn from it and the
+    admissible choices (None: the language cannot draw it)."""
+
     choices: tuple[Choice, ...]
     #: Why the topology language cannot write the train, or None.
     not_drawable: str | None
@@ -114,27 +121,34 @@ class Entry:
         return train_text(document, comment)
 
 
-def entry(links: int, rotation: int, index: int, code: str, rotation_code: str, graph: TrainGraph) -> Entry:
+def places(links: int) -> list[GraphPlace]:
+    """Every displacement graph of ``links`` links, in the order of the codes."""
+    from davies_sym.atlas.enumeration import atlas
+
+    return [
+        GraphPlace(links, r + 1, d + 1, code, group.code, graph)
+        for r, group in enumerate(atlas(links).rotation_graphs)
+        for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
+    ]
+
+
+def entry(place: GraphPlace) -> Entry:
     """The entry of one displacement graph: drawn the first way of `realisations` that
     leaves a choice (the choices read from the train's motions), or the reason none does."""
+    where: dict[str, Any] = {f.name: getattr(place, f.name) for f in fields(GraphPlace)}
     reasons = []
-    for drawn in realisations(graph):
+    for drawn in realisations(place.graph):
         found = admissible_choices(drawn)
         reasons.append(found.reason)
         if found.choices:
             return Entry(
-                links,
-                rotation,
-                index,
-                code,
-                rotation_code,
-                graph,
-                found.choices,
-                None,
-                found.planar,
-                drawn,
-                found.loaded,
-                found.free_axis,
+                **where,
+                choices=found.choices,
+                not_drawable=None,
+                planar=found.planar,
+                drawing=drawn,
+                loaded=found.loaded,
+                free_axis=found.free_axis,
             )
     reason = next((r for r in reasons if r), "no held member leaves two others turning at a ratio set by the gears")
-    return Entry(links, rotation, index, code, rotation_code, graph, (), reason)
+    return Entry(**where, choices=(), not_drawable=reason)

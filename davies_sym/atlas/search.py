@@ -8,17 +8,17 @@ alone, can reach the target within the bounds (`davies_sym.synthesis.search.rati
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
 import yaml
 
-from davies_sym.atlas.entries import Entry, entry
+from davies_sym.atlas.entries import Entry, GraphPlace, entry, places
 from davies_sym.atlas.train_file import Choice, ToothedForm, train_document, train_text
+from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.geometry.dependent import resolved_train
+from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.formulas import state_ratio
 from davies_sym.synthesis.problem import search_problem, tooth_symbols
 from davies_sym.synthesis.search import Candidate, ratio_feasible, run_search
@@ -117,46 +117,33 @@ def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
     return out
 
 
-def _designs_of(task: tuple[int, int, int, str, str, Any, AtlasQuestion]) -> list[AtlasDesign]:
-    *where, question = task
-    e = entry(*where)
-    return [] if e.not_drawable else _entry_designs(e, question)
+@dataclass(frozen=True)
+class SearchTask:
+    """One train of the atlas and the question asked of it: a worker's task."""
+
+    place: GraphPlace
+    question: AtlasQuestion
+
+
+def _designs_of(task: SearchTask) -> list[AtlasDesign]:
+    e = entry(task.place)
+    return [] if e.not_drawable else _entry_designs(e, task.question)
 
 
 def atlas_search(
-    most_links: int, question: AtlasQuestion, jobs: int = 1, say: Callable[[str], None] | None = None
+    most_links: int, question: AtlasQuestion, workers: Workers = IN_THIS_PROCESS, say: Progress = silent
 ) -> tuple[tuple[AtlasDesign, ...], int]:
     """Every feasible design of every atlas train of up to ``most_links`` links, best
     first (score, then ratio error, then size), and how many trains were searched."""
-    from davies_sym.atlas.enumeration import atlas
-
-    tasks = []
-    for links in range(4, most_links + 1):
-        found = atlas(links)
-        tasks += [
-            (links, r + 1, d + 1, code, group.code, graph, question)
-            for r, group in enumerate(found.rotation_graphs)
-            for d, (code, graph) in enumerate(zip(group.codes, group.graphs, strict=True))
-        ]
-    if say:
-        say(f"searching {len(tasks)} trains of 4 to {most_links} links")
-    designs: list[AtlasDesign] = []
-    for found_designs in _mapped(tasks, jobs):
-        designs += found_designs
+    tasks = [SearchTask(p, question) for links in range(4, most_links + 1) for p in places(links)]
+    say(f"searching {len(tasks)} trains of 4 to {most_links} links")
+    designs = [d for found in fan_out(_designs_of, tasks, workers, Counted(say, "train")) for d in found]
     # Among equals the train of fewer links comes first (an extra link that carries no
     # power leaves the efficiency as it is).
     designs.sort(
         key=lambda d: (-d.candidate.score, d.candidate.ratio_error, d.links, d.candidate.size, d.train, d.choice.name)
     )
     return tuple(designs), len(tasks)
-
-
-def _mapped(tasks: list[Any], jobs: int) -> Iterator[list[AtlasDesign]]:
-    if jobs == 1:
-        yield from map(_designs_of, tasks)
-        return
-    with ProcessPoolExecutor(max_workers=jobs) as pool:
-        yield from pool.map(_designs_of, tasks, chunksize=2)
 
 
 def design_file(design: AtlasDesign, rank: int) -> str:

@@ -17,8 +17,10 @@ from fractions import Fraction
 from typing import Any
 
 from davies_sym.arguments import Parser, jobs
-from davies_sym.atlas.command import MOST_LINKS, folder_refused, progress
+from davies_sym.atlas.command import MOST_LINKS, folder_refused
 from davies_sym.emit.atomic import write_atomic
+from davies_sym.fan_out import Workers
+from davies_sym.progress import Display
 
 #: Designs listed unless ``--top`` says otherwise.
 TOP = 10
@@ -87,9 +89,9 @@ def run(argv: Sequence[str]) -> int:
         return 2
     from davies_sym.atlas.search import AtlasQuestion, atlas_search, design_file
 
-    say = progress("derive search", args.quiet)
+    say = Display("derive search", args.quiet)
     question = AtlasQuestion(args.target, args.tolerance, args.teeth, args.planets, args.min_teeth)
-    designs, trains = atlas_search(args.atlas, question, args.jobs, say)
+    designs, trains = atlas_search(args.atlas, question, Workers(args.jobs), say)
     shown = designs[: args.top]
     if args.out:
         os.makedirs(args.out, exist_ok=True)

@@ -18,8 +18,8 @@ from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message, nam
 from davies_sym.cli.parser import parser
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
-
-Progress = Callable[[str], None]
+from davies_sym.fan_out import Workers
+from davies_sym.progress import Display, Progress
 
 
 def _check_target(target: str, option: str, inputs: Sequence[str]) -> None:
@@ -133,7 +133,7 @@ def _many_files(args: argparse.Namespace, progress: Progress) -> int:
 
     _folder_for_outputs(args.out, args.files[0])
     document = "json" if args.json else "tex" if args.latex else None
-    return derive_into(args.out, args.files, progress, args.quiet, args.jobs, args.scheduler, document)
+    return derive_into(args.out, args.files, progress, Workers(args.jobs, args.scheduler), document)
 
 
 class _StdoutFailed(Exception):
@@ -252,12 +252,7 @@ def _main(argv: list[str]) -> int:
         return 0
     args.files = files
 
-    steps: list[str] = []  # the last step reported: where an internal error happened
-
-    def progress(text: str) -> None:
-        steps[:] = [text]
-        if not args.quiet:
-            print(f"derive: {text}", file=sys.stderr, flush=True)
+    progress = Display("derive", args.quiet)  # its last step: where an internal error happened
 
     if len(args.files) > 1 or (args.out and os.path.isdir(args.out)):
         try:
@@ -292,7 +287,7 @@ def _main(argv: list[str]) -> int:
         raise
     except Exception as exc:  # a fault of davies_sym: the file and what was being derived
         state = f"state {args.state}, " if args.state else ""
-        reason = internal_error(exc, args.files[0], f"{state}{steps[0] if steps else 'reading the file'}")
+        reason = internal_error(exc, args.files[0], f"{state}{progress.last or 'reading the file'}")
         print(reason, file=sys.stderr)
         if args.json:
             print(status_json("internal error", reason))

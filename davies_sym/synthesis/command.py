@@ -10,15 +10,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 from collections.abc import Sequence
 from fractions import Fraction
-from typing import Any
 
-from davies_sym.arguments import Parser
+from davies_sym.arguments import Parser, jobs
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.fan_out import Workers
+from davies_sym.progress import Display
 from davies_sym.topology.expressions import ExpressionError, parse_expression
 
 #: Designs listed unless ``--top`` says otherwise.
@@ -59,23 +59,11 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--write-best", metavar="OUT.yaml", help="write the best design as a train file with numbers")
     where = p.add_mutually_exclusive_group()
     where.add_argument(
-        "--jobs", default="1", metavar="N", help="derive the states on N processes ('auto': one per core)"
+        "--jobs", type=jobs, default=1, metavar="N", help="derive the states on N processes ('auto': one per core)"
     )
     where.add_argument("--scheduler", metavar="ADDRESS", help="derive the states on the Dask cluster at ADDRESS")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
-
-
-def _jobs(text: str) -> int:
-    if text == "auto":
-        return os.cpu_count() or 1
-    try:
-        jobs = int(text)
-    except ValueError:
-        jobs = 0
-    if jobs < 1:
-        raise InputError([Problem("--jobs", f"expected a whole number of processes >= 1 or 'auto', got {text!r}")])
-    return jobs
 
 
 def _number(text: str, option: str) -> Fraction:
@@ -145,30 +133,12 @@ def run(argv: Sequence[str]) -> int:
     args = parser().parse_args(argv)
     from davies_sym.emit.plots import figure_bytes, figure_format
     from davies_sym.synthesis.best_design import best_design_text
-    from davies_sym.synthesis.formulas import DERIVED
     from davies_sym.synthesis.problem import search_problem
     from davies_sym.synthesis.report import pareto_figure, search_text
     from davies_sym.synthesis.search import run_search
     from davies_sym.topology.loader import load
 
-    bar: Any = None
-
-    def say(message: str) -> None:
-        """A line per step; on a terminal, a bar over the states being derived."""
-        nonlocal bar
-        if args.quiet:
-            return
-        if not sys.stderr.isatty():
-            print(f"derive search: {message}", file=sys.stderr)
-            return
-        if bar is None:
-            from tqdm import tqdm
-
-            bar = tqdm(total=len(args.target), unit="state", file=sys.stderr, leave=False)
-        if message.startswith(DERIVED):
-            bar.update(1)
-        bar.set_description_str(f"derive search: {message}")
-
+    say = Display("derive search", args.quiet)
     try:
         _check_outputs(args)
         if args.plot and figure_format(args.out) is None:
@@ -183,15 +153,11 @@ def run(argv: Sequence[str]) -> int:
             args.min_teeth,
             _weights(args.weights),
         )
-        result = run_search(problem, say, _jobs(args.jobs), args.scheduler)
+        result = run_search(problem, say, Workers(args.jobs, args.scheduler))
     except DaviesError as exc:
-        if bar is not None:
-            bar.close()
         text = exc.report() if isinstance(exc, InputError) else f"derive search: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)
         return 2
-    if bar is not None:
-        bar.close()
     document = {"status": "ok", "train": args.train, **result.document(args.top)}
     answer = json.dumps(document, indent=2) + "\n" if args.json else search_text(result, args.top)
     try:

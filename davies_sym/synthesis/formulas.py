@@ -3,16 +3,14 @@ function of the free tooth numbers, and the generated formula module whose vecto
 ``efficiency`` ranks the designs (the variant that holds picked element by element).
 
 Deriving the states is the search's longest step (seconds each for a multi-speed set):
-they are derived in this process, on ``jobs`` processes or on a Dask cluster; each worker
-hands back text (the module's source, the ratio), which this process compiles.
+they are fanned out (`davies_sym.fan_out`); each worker hands back text (the module's
+source, the ratio), which this process compiles.
 """
 
 from __future__ import annotations
 
 import inspect
 import os
-from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from types import ModuleType
 
@@ -23,16 +21,14 @@ from numpy.typing import NDArray
 from davies_sym.efficiency.variants import derive_variants
 from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
-from davies_sym.errors import InputError, MissingDependencyError, Problem
+from davies_sym.errors import InputError
+from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.network.analysis import analyse
+from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.problem import SearchProblem, Target
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
-
-Progress = Callable[[str], None]
-#: The first word of the message each derived state sends (a progress bar counts them).
-DERIVED = "derived"
 
 
 @dataclass(frozen=True)
@@ -47,16 +43,27 @@ class DerivedState:
     others: tuple[str, ...]
 
 
-def derive_state(train: Train | str, state: str | None, teeth: frozenset[str]) -> DerivedState:
-    """Derive ``train`` (or the train file at that path, for a worker) in ``state`` (Laus
-    Tables 5 and 6) and write its formula module."""
-    train = load(train) if isinstance(train, str) else train
-    chosen = next((s for s in train.states if s.name == state), None)
+@dataclass(frozen=True)
+class StateTask:
+    """One state to derive: the train, or the path of its file for a worker in another
+    process (a train object does not travel between processes), the state's name (None:
+    the train as written) and the tooth-number symbols (the others must be numbers)."""
+
+    train: Train | str
+    state: str | None
+    teeth: frozenset[str]
+
+
+def derive_state(task: StateTask) -> DerivedState:
+    """Derive the task's train in its state (Laus Tables 5 and 6) and write its formula
+    module."""
+    train = load(task.train) if isinstance(task.train, str) else task.train
+    chosen = next((s for s in train.states if s.name == task.state), None)
     in_state = train_in_state(train, chosen) if chosen is not None else train
     variants = derive_variants(in_state)
-    others = tuple(sorted(str(s) for s in variants.parameters if str(s) not in teeth))
+    others = tuple(sorted(str(s) for s in variants.parameters if str(s) not in task.teeth))
     ratio = sympy.srepr(variants.analysis.speed_ratio().to_expr())
-    return DerivedState(state, in_state.ports.input, ratio, python_module(variants) if not others else "", others)
+    return DerivedState(task.state, in_state.ports.input, ratio, python_module(variants) if not others else "", others)
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,51 +84,26 @@ class StateFormulas:
         return np.asarray(self.module.efficiency(input=self.port, errors="ignore", **given), dtype=float)
 
 
-def _derived(problem: SearchProblem, jobs: int, scheduler: str | None, say: Progress) -> list[DerivedState]:
+def _derived(problem: SearchProblem, workers: Workers, say: Progress) -> list[DerivedState]:
     teeth = frozenset(str(s) for s in (*problem.free, *(s for s, _ in problem.dependent)))
-    states = [t.state for t in problem.targets]
     train = problem.train
-    # A worker reads the file itself (a train object does not travel between processes).
+    # A worker reads the file itself; a train not read from a file is derived here.
     path = train.path if train.path and os.path.isfile(train.path) else None
-    if scheduler is not None and path is not None:
-        try:
-            from dask.distributed import Client
-        except ImportError:
-            raise MissingDependencyError(
-                "--scheduler needs dask.distributed (pip install 'davies_sym[dask]')"
-            ) from None
-        try:
-            client = Client(scheduler, timeout="10s")  # type: ignore[no-untyped-call]
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(
-                [Problem("--scheduler", f"cannot reach a Dask scheduler at {scheduler!r}: {exc}")]
-            ) from None
-        with client:
-            say(f"deriving {len(states)} state(s) on the cluster at {scheduler}")
-            submitted = [client.submit(derive_state, path, s, teeth, pure=False) for s in states]
-            return list(client.gather(submitted))  # type: ignore[no-untyped-call]
-    if jobs > 1 and len(states) > 1 and path is not None:
-        say(f"deriving {len(states)} states on {min(jobs, len(states))} processes")
-        with ProcessPoolExecutor(max_workers=min(jobs, len(states))) as pool:
-            futures = {pool.submit(derive_state, path, s, teeth): k for k, s in enumerate(states)}
-            done: dict[int, DerivedState] = {}
-            for future in as_completed(futures):
-                done[futures[future]] = future.result()
-                say(f"{DERIVED} state {done[futures[future]].state} ({len(done)} of {len(states)})")
-            return [done[k] for k in range(len(states))]
-    out = []
-    for k, s in enumerate(states):
-        out.append(derive_state(train, s, teeth))
-        say(f"{DERIVED} {'state ' + s if s else 'the train'} ({k + 1} of {len(states)})")
-    return out
+    if path is None or workers.here(len(problem.targets)):
+        tasks = [StateTask(train, t.state, teeth) for t in problem.targets]
+        workers = IN_THIS_PROCESS
+    else:
+        tasks = [StateTask(path, t.state, teeth) for t in problem.targets]
+    say(f"deriving {len(tasks)} state(s) {workers.describe(len(tasks))}")
+    counted = Counted(say, "state", lambda d: f"derived {'state ' + d.state if d.state else 'the train'}")
+    return list(fan_out(derive_state, tasks, workers, counted))
 
 
 def state_formulas(
-    problem: SearchProblem, progress: Progress | None = None, jobs: int = 1, scheduler: str | None = None
+    problem: SearchProblem, progress: Progress = silent, workers: Workers = IN_THIS_PROCESS
 ) -> tuple[StateFormulas, ...]:
-    """Derive every target's state once and compile its module."""
-    say = progress or (lambda message: None)
-    derived = _derived(problem, jobs, scheduler, say)
+    """Derive every target's state once (by ``workers``) and compile its module."""
+    derived = _derived(problem, workers, progress)
     others = sorted({o for d in derived for o in d.others})
     if others:
         why = (

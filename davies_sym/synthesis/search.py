@@ -14,12 +14,14 @@ import numpy as np
 import sympy
 from numpy.typing import NDArray
 
+from davies_sym.fan_out import IN_THIS_PROCESS, Workers
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
+from davies_sym.progress import Progress, silent
 from davies_sym.synthesis import rules
 from davies_sym.synthesis.enumeration import Window, enumerate_designs
 from davies_sym.synthesis.exact_values import ExactRational
-from davies_sym.synthesis.formulas import Progress, StateFormulas, state_formulas
+from davies_sym.synthesis.formulas import StateFormulas, state_formulas
 from davies_sym.synthesis.planet_sets import PlanetSet, planet_sets
 from davies_sym.synthesis.problem import SearchProblem
 
@@ -141,19 +143,18 @@ def _gear_columns(
 
 def run_search(
     problem: SearchProblem,
-    progress: Progress | None = None,
-    jobs: int = 1,
-    scheduler: str | None = None,
+    progress: Progress = silent,
+    workers: Workers = IN_THIS_PROCESS,
     best: int | None = None,
     feasible: tuple[NDArray[np.int64], dict[str, NDArray[np.int64]], int] | None = None,
 ) -> SearchResult:
     """Every feasible design of ``problem``, ranked (see the module's docstring); the states
-    derived on ``jobs`` processes or the Dask cluster at ``scheduler``.  With ``best``,
+    derived by ``workers``.  With ``best``,
     only the designs whose score reaches the ``best``-th highest (ties kept) are ranked,
     for a search over many trains that keeps a few designs of each; ``feasible``: what
     `ratio_feasible` gave for these ratios already."""
     start = time.perf_counter()
-    formulas = state_formulas(problem, progress, jobs, scheduler)
+    formulas = state_formulas(problem, progress, workers)
     whole_train = resolved_train(problem.train)
     sets = planet_sets(whole_train, train_layout(whole_train))
     free = problem.free

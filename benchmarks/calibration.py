@@ -12,8 +12,8 @@ import subprocess
 import sys
 import time
 
-from davies_sym.calibration.command import calibrate, derived_model
 from davies_sym.calibration.measurements import read_measurements
+from davies_sym.calibration.train_fit import calibrate, derived_model
 from davies_sym.topology.loader import load
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

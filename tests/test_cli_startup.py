@@ -68,11 +68,11 @@ def test_help_lists_every_other_command_and_each_answers_its_own_help() -> None:
     answers for each, exit 0."""
     from hostile.helpers import run_main
 
-    from davies_sym.cli.parser import COMMANDS
+    from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 
     shown = run_main(["--help"])
     assert shown.returncode == 0
-    for name, line in COMMANDS:
-        assert f"derive {name}" in shown.stdout and line in shown.stdout
-        own = run_main([name, "--help"])
-        assert own.returncode == 0 and f"usage: derive {name}" in own.stdout
+    for command in SUBCOMMANDS:
+        assert f"derive {command.name}" in shown.stdout and command.line in shown.stdout
+        own = run_main([command.name, "--help"])
+        assert own.returncode == 0 and f"usage: derive {command.name}" in own.stdout

@@ -227,13 +227,13 @@ def test_status_4_an_exception_past_the_stages_is_an_internal_error(
 
 def test_status_4_in_a_subcommand(monkeypatch: pytest.MonkeyPatch) -> None:
     """The subcommands answer a fault of the package alike (here `derive search`)."""
-    from davies_sym.synthesis import command
+    from davies_sym.cli import search_command
 
-    def fault(argv: object) -> int:
+    def fault(args: object, parser: object) -> int:
         raise KeyError("planted fault")
 
-    monkeypatch.setattr(command, "run", fault)
-    result = run_main(["search", catalog_path("planetary_simple"), "--target", "4"])
+    monkeypatch.setattr(search_command, "run", fault)
+    result = run_main(["search", catalog_path("planetary_simple"), "--target", "4", "--teeth", "zs=17:20"])
     assert result.returncode == 4, result.describe()
     assert "Traceback" not in result.stderr
     assert result.stderr.startswith("internal error: derive search: running search "), result.describe()

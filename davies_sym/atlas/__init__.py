@@ -16,5 +16,7 @@ each, and the search for tooth numbers over all of them (``derive search --atlas
 - `davies_sym.atlas.drawing`: SVG of a graph and of its train's layout
 - `davies_sym.atlas.report`: the atlas as text
 - `davies_sym.atlas.search`: the tooth-number search over every train of the atlas
-- `davies_sym.atlas.command`, `davies_sym.atlas.search_command`: the commands
+
+The commands that read these (``derive atlas``, ``derive search --atlas``) are in
+`davies_sym.cli`.
 """

@@ -3,8 +3,9 @@
 It owns reading the measurements (`.measurements`: a CSV file of finite numbers, every
 problem with its line and column), the least-squares fit with standard errors and the
 refusals of a fit the data cannot support (`.least_squares`, scipy), and the text and
-residual figure of a fit (`.report`).  It knows nothing about gear trains: the model
-is any function of the parameter values giving one residual per measured row.
+residual figure of a fit (`.report`).  The fit itself knows nothing about gear trains:
+the model is any function of the parameter values giving one residual per measured row;
+`.train_model` and `.train_fit` make that model of a derived train.
 """
 
 from davies_sym.calibration.least_squares import Fit, fit

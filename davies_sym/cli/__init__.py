@@ -1,8 +1,11 @@
-"""The command line, the last stage: it parses what the user typed (``parser``, which
-loads nothing heavy, so ``--help`` is immediate) and reads it (``arguments``), asks
-the stages before it for the derivation, and writes what was asked for, one train at a
-time (``one_input``, ``several_inputs``) or a catalog into a directory (``command``);
-``derive calibrate`` is the calibration stage's own command."""
+"""The command line, the last stage: it parses what the user typed (``parser`` for
+``derive``, ``subcommand_parsers`` for ``derive atlas``, ``calibrate`` and ``search``
+and the table that routes the first word to them; neither loads anything heavy, so
+``--help`` is immediate) and reads it (``arguments``), asks the stages before it for
+the derivation, and writes what was asked for: one train at a time (``one_input``,
+``several_inputs``), many files into a directory (``many_files``), and each other
+command in its module (``atlas_command``, ``atlas_search_command``,
+``calibrate_command``, ``search_command``)."""
 
 from davies_sym.cli.command import main
 from davies_sym.cli.parser import parser

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import importlib
 import io
 import os
 import sys
@@ -16,6 +17,7 @@ from typing import Any
 from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message, named_by_option, status_json
 from davies_sym.cli.parser import parser
+from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
 from davies_sym.fan_out import Workers
@@ -201,30 +203,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("derive: interrupted; nothing was written", file=sys.stderr)
         return 130
     except Exception as exc:  # a fault of davies_sym: reported, never a traceback
-        command = f"derive {argv[0]}" if argv[:1] in (["calibrate"], ["atlas"], ["search"]) else "derive"
+        command = f"derive {argv[0]}" if argv and argv[0] in {c.name for c in SUBCOMMANDS} else "derive"
         print(internal_error(exc, command, f"running {' '.join(argv)[:200]}"), file=sys.stderr)
         return INTERNAL_ERROR
     finally:
         sys.stdout = real
 
 
+def _subcommand(name: str, argv: list[str]) -> int:
+    """``derive NAME ARGS``: parsed by the command's parser, carried out by its module."""
+    command = next(c for c in SUBCOMMANDS if c.name == name)
+    own = command.parser()
+    args = own.parse_args(argv)
+    status: int = importlib.import_module(command.module).run(args, own)
+    return status
+
+
 def _main(argv: list[str]) -> int:
-    if argv[:1] == ["calibrate"]:
-        from davies_sym.calibration.command import run as calibration_command
-
-        return calibration_command(argv[1:])
-    if argv[:1] == ["atlas"]:
-        from davies_sym.atlas.command import run as atlas_command
-
-        return atlas_command(argv[1:])
-    if argv[:1] == ["search"] and any(a == "--atlas" or a.startswith("--atlas=") for a in argv):
-        from davies_sym.atlas.search_command import run as atlas_search_command
-
-        return atlas_search_command(argv[1:])
-    if argv[:1] == ["search"]:
-        from davies_sym.synthesis.command import run as search_command
-
-        return search_command(argv[1:])
+    if argv and argv[0] in {c.name for c in SUBCOMMANDS}:
+        return _subcommand(argv[0], argv[1:])
     args = parser().parse_args(argv)
     # The derivation's modules (sympy, flint, matplotlib) load only now: --help and
     # --version answer without them.
@@ -232,11 +229,7 @@ def _main(argv: list[str]) -> int:
 
     if args.completion:
         try:
-            from davies_sym.atlas.command import parser as atlas_parser
-            from davies_sym.calibration.command import parser as calibration_parser
-            from davies_sym.synthesis.command import parser as search_parser
-
-            commands = {"atlas": atlas_parser(), "calibrate": calibration_parser(), "search": search_parser()}
+            commands = {c.name: c.parser() for c in SUBCOMMANDS}
             sys.stdout.write(completion_script(parser(), args.completion, commands))
         except DaviesError as exc:
             print(f"derive: --completion: {exc}", file=sys.stderr)

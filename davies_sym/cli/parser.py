@@ -9,6 +9,7 @@ from importlib import metadata
 
 from davies_sym.arguments import Parser, jobs
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
+from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 from davies_sym.emit.language_names import LANGUAGES
 
 
@@ -20,14 +21,6 @@ def _version() -> str:
         return "(not installed)"
 
 
-#: The other commands of ``derive`` with a line each, as its help lists them.
-COMMANDS = (
-    ("atlas", "every 1-DOF planetary gear train of N links, with a train file for each"),
-    ("calibrate", "fit loss parameters to test-rig data (TRAIN.yaml DATA.csv, or --catalog NAME)"),
-    ("search", "tooth numbers for target speed ratios, ranked by exact efficiency"),
-)
-
-
 def parser() -> argparse.ArgumentParser:
     """The argument parser of ``derive`` (also read by the documentation's command-line page)."""
     p = Parser(
@@ -37,7 +30,7 @@ def parser() -> argparse.ArgumentParser:
         epilog="\n".join(
             [
                 "other commands (each has its own --help):",
-                *(f"  derive {name:<10} {line}" for name, line in COMMANDS),
+                *(f"  derive {c.name:<10} {c.line}" for c in SUBCOMMANDS),
             ]
         ),
         # The epilog's lines stay as written (one command a line).

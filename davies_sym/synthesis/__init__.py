@@ -10,5 +10,6 @@ closed-form efficiency (``derive search``).
 - `davies_sym.synthesis.ranking`: efficiency through the generated formulas, score, Pareto front
 - `davies_sym.synthesis.search`: the whole search -> `SearchResult`
 - `davies_sym.synthesis.best_design`: the chosen design as a train file with numbers
-- `davies_sym.synthesis.command`: the ``derive search`` command
+
+The ``derive search`` command that reads these is `davies_sym.cli.search_command`.
 """

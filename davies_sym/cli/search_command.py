@@ -1,6 +1,7 @@
 """``derive search TRAIN.yaml --target [STATE=]RATIO ... --tolerance REL --teeth NAME=LO:HI
 ...``: the tooth numbers that give the target speed ratios, feasible by every rule of
-`davies_sym.synthesis.rules`, ranked by the closed-form efficiency.
+`davies_sym.synthesis.rules`, ranked by the closed-form efficiency; with ``--atlas N``
+over every train of the atlas (`davies_sym.cli.atlas_search_command`).
 
 Bad input exits with status 2 and one message naming the option; a search that finds no
 feasible design answers so (status 0, ``feasible: 0``).
@@ -14,56 +15,13 @@ import sys
 from collections.abc import Sequence
 from fractions import Fraction
 
-from davies_sym.arguments import Parser, jobs
+from davies_sym.cli.atlas_search_command import atlas_search
+from davies_sym.cli.subcommand_parsers import TOP
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.fan_out import Workers
 from davies_sym.progress import Display
 from davies_sym.topology.expressions import ExpressionError, parse_expression
-
-#: Designs listed unless ``--top`` says otherwise.
-TOP = 20
-
-
-def parser() -> argparse.ArgumentParser:
-    p = Parser(
-        prog="derive search",
-        description="Find the tooth numbers of a train (symbolic teeth, free ones listed in independent:) "
-        "whose speed ratios hit the targets, and rank the feasible designs by their exact efficiency.",
-        epilog="Over every planetary train of the atlas instead of one file: derive search --atlas N "
-        "--target RATIO ... (derive search --atlas 6 --help).",
-    )
-    p.add_argument("train", metavar="TRAIN.yaml")
-    p.add_argument(
-        "--target",
-        nargs="+",
-        required=True,
-        metavar="[STATE=]RATIO",
-        help="speed ratio wanted (input over output speed), one per state",
-    )
-    p.add_argument(
-        "--tolerance", default="0.01", metavar="REL", help="relative deviation allowed from each target (default 0.01)"
-    )
-    p.add_argument("--teeth", nargs="+", required=True, metavar="NAME=LO:HI", help="bounds of every free tooth number")
-    p.add_argument(
-        "--planets", type=int, metavar="N", help="planets per set, equally spaced (assembly and tip clearance)"
-    )
-    p.add_argument("--min-teeth", type=int, default=17, metavar="Z", help="fewest teeth on any gear (default 17)")
-    p.add_argument(
-        "--weights", nargs="+", default=[], metavar="STATE=W", help="weight of each state in the score (default equal)"
-    )
-    p.add_argument("--top", type=int, default=TOP, metavar="K", help=f"designs listed (default {TOP})")
-    p.add_argument("--json", action="store_true", help="one JSON document")
-    p.add_argument("-o", "--out", metavar="FILE", help="write the answer (or, with --plot, the Pareto figure) to FILE")
-    p.add_argument("--plot", action="store_true", help="the Pareto fronts as a figure (needs -o FRONT.png)")
-    p.add_argument("--write-best", metavar="OUT.yaml", help="write the best design as a train file with numbers")
-    where = p.add_mutually_exclusive_group()
-    where.add_argument(
-        "--jobs", type=jobs, default=1, metavar="N", help="derive the states on N processes ('auto': one per core)"
-    )
-    where.add_argument("--scheduler", metavar="ADDRESS", help="derive the states on the Dask cluster at ADDRESS")
-    p.add_argument("--quiet", action="store_true", help="no progress messages")
-    return p
 
 
 def _number(text: str, option: str) -> Fraction:
@@ -128,9 +86,17 @@ def _check_outputs(args: argparse.Namespace) -> None:
         raise InputError(problems)
 
 
-def run(argv: Sequence[str]) -> int:
-    """The ``derive search`` command; returns the exit status (0, or 2 for bad input)."""
-    args = parser().parse_args(argv)
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    """The ``derive search`` command, its arguments parsed by ``parser``: over the atlas
+    with ``--atlas``, else over the train file; returns the exit status (0, or 2 for
+    bad input)."""
+    if args.atlas is not None:
+        return atlas_search(args, parser)
+    if args.train is None:
+        parser.error("give the train file TRAIN.yaml, or --atlas N to search the atlas")
+    if args.teeth is None:
+        parser.error("the following arguments are required: --teeth")
+    args.top = TOP if args.top is None else args.top
     from davies_sym.emit.plots import figure_bytes, figure_format
     from davies_sym.synthesis.best_design import best_design_text
     from davies_sym.synthesis.problem import search_problem

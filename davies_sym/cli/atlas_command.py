@@ -14,21 +14,9 @@ import sys
 from collections.abc import Sequence
 from typing import Any
 
-from davies_sym.arguments import Parser, jobs
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.fan_out import Counted, Workers, fan_out
 from davies_sym.progress import Display, Progress
-
-#: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
-FEWEST_LINKS, MOST_LINKS = 3, 8
-
-
-def _links(text: str) -> int:
-    if not text.isdigit() or not FEWEST_LINKS <= int(text) <= MOST_LINKS:
-        raise argparse.ArgumentTypeError(
-            f"expected a number of links from {FEWEST_LINKS} to {MOST_LINKS} (the frame counted), got {text!r}"
-        )
-    return int(text)
 
 
 def folder_refused(command: str, folder: str | None) -> bool:
@@ -37,22 +25,6 @@ def folder_refused(command: str, folder: str | None) -> bool:
         print(f"{command}: --out {folder}: a file of that name exists; name a folder", file=sys.stderr)
         return True
     return False
-
-
-def parser() -> argparse.ArgumentParser:
-    p = Parser(
-        prog="derive atlas",
-        description="Enumerate the one-degree-of-freedom planetary gear trains of N links (rotation and "
-        "displacement graphs, up to isomorphism) and write a train file for each.",
-    )
-    p.add_argument("--links", type=_links, required=True, metavar="N", help="number of links, the frame counted")
-    p.add_argument("--json", action="store_true", help="the atlas as JSON (counts, codes, levels, coaxial members)")
-    p.add_argument("--out", metavar="DIR", help="write one train file per displacement graph into DIR")
-    p.add_argument("--draw", action="store_true", help="with --out: an SVG of each graph and of its train's layout")
-    p.add_argument("--count", action="store_true", help="only the counts, beside the published ones (no train is read)")
-    p.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes (or auto)")
-    p.add_argument("--quiet", action="store_true", help="no progress on standard error")
-    return p
 
 
 def _entries(links: int, workers: Workers, say: Progress) -> list[Any]:
@@ -65,9 +37,9 @@ def _entries(links: int, workers: Workers, say: Progress) -> list[Any]:
     return list(fan_out(entry, found, workers, Counted(say, "graph")))
 
 
-def run(argv: Sequence[str]) -> int:
-    """The ``derive atlas`` command; returns the exit status (0, or 2 for bad input)."""
-    args = parser().parse_args(argv)
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    """The ``derive atlas`` command, its arguments parsed by ``parser``; returns the
+    exit status (0, or 2 for bad input)."""
     if args.draw and not args.out:
         print("derive atlas: --draw writes the drawings beside the train files: add --out DIR", file=sys.stderr)
         return 2

@@ -18,52 +18,19 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from davies_sym.arguments import Parser
-from davies_sym.calibration.least_squares import Fit, fit
-from davies_sym.calibration.measurements import Measurements, read_measurements
+from davies_sym.calibration.measurements import read_measurements
 from davies_sym.calibration.report import fit_text, residual_figure
-from davies_sym.calibration.train_model import TrainModel, check_loaded, columns_of, fittable_parameters
+from davies_sym.calibration.train_fit import calibrate, derived_model
+from davies_sym.calibration.train_model import check_loaded, columns_of
 from davies_sym.efficiency.design_values import design_values
-from davies_sym.efficiency.parameter_domain import efficiency_symbols
-from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
-from davies_sym.efficiency.variants import VariantSet, derive_variants
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.emit.plots import figure_format
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
+from davies_sym.progress import Display
 from davies_sym.topology.catalog_files import catalog_file
 from davies_sym.topology.expressions import assignments
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
-
-#: Start values where the file gives none: an ordinary efficiency, any other coefficient.
-START_EFFICIENCY, START_COEFFICIENT = 0.95, 0.1
-
-
-def parser() -> argparse.ArgumentParser:
-    p = Parser(
-        prog="derive calibrate",
-        description="Fit loss parameters of a train to "
-        "measured operating points (columns w_<PORT> in rpm, T_<PORT> in N m, eta).",
-    )
-    p.add_argument("train", metavar="TRAIN.yaml", nargs="?", help="the train (or --catalog NAME)")
-    p.add_argument("data", metavar="DATA.csv", nargs="?", help="the measurements (default: the file's calibrate: data)")
-    p.add_argument(
-        "--catalog",
-        metavar="NAME",
-        help="a catalog train in place of TRAIN.yaml, with its own data (derive calibrate --catalog sr20_differential)",
-    )
-    p.add_argument("--fit", nargs="+", metavar="NAME", help="parameters to fit (default: the file's calibrate: fit)")
-    p.add_argument(
-        "--predict",
-        nargs="+",
-        metavar="OTHER.csv",
-        help="predict the efficiency at every row of other files (rows in the order of the files)",
-    )
-    p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[], help="values of the parameters not fitted")
-    p.add_argument("--json", action="store_true", help="one JSON object")
-    p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (.png, .svg or .pdf)")
-    p.add_argument("--quiet", action="store_true", help="no progress messages")
-    return p
 
 
 def _refused_options(args: argparse.Namespace) -> str | None:
@@ -91,54 +58,6 @@ def _fixed(train: Train, pairs: Sequence[str]) -> dict[str, float]:
     entry point checks a design (`design_values`)."""
     given = assignments(pairs, "--at", train.path)
     return {str(symbol): float(value) for symbol, value in design_values(train, given, "--at", ()).items()}
-
-
-def _fitted(train: Train, derived: VariantSet | SeveralInputs, names: Sequence[str] | None) -> tuple[str, ...]:
-    if names is None:
-        if train.calibrate is None:
-            raise InputError(
-                [Problem("--fit", "name the parameters to fit (the file has no calibrate: fit)")], train.path
-            )
-        names = train.calibrate.fit
-    known = fittable_parameters(derived)
-    unknown = [n for n in names if n not in known]
-    if unknown:
-        raise InputError(
-            [
-                Problem(
-                    "--fit", f"{', '.join(unknown)} is not a parameter of the formulas (they take: {', '.join(known)})"
-                )
-            ],
-            train.path,
-        )
-    return tuple(names)
-
-
-def derived_model(train: Train) -> VariantSet | SeveralInputs:
-    """What the formulas of ``train`` are: its variants, or the regions of a train driven
-    on several shafts."""
-    return derive_several_inputs(train) if len(train.ports.inputs) > 1 else derive_variants(train)
-
-
-def calibrate(
-    derived: VariantSet | SeveralInputs,
-    data: Measurements,
-    names: Sequence[str] | None = None,
-    fixed: dict[str, float] | None = None,
-) -> tuple[TrainModel, Fit]:
-    """The fitted model of a derived train on ``data`` (the rows' ``eta``)."""
-    train = derived.train
-    fitted = _fitted(train, derived, names)
-    model = TrainModel(derived, fitted, fixed or {})
-    efficiencies = {str(s) for s in efficiency_symbols(train)}
-    given = train.calibrate.start if train.calibrate else {}
-    start = {n: given.get(n, START_EFFICIENCY if n in efficiencies else START_COEFFICIENT) for n in fitted}
-    upper = {n: 1.0 if n in efficiencies else np.inf for n in fitted}
-    lower = {n: 1e-9 if n in efficiencies else 0.0 for n in fitted}
-    measured = data.column("eta")
-    return model, fit(
-        lambda values: model.predict(data, values) - measured, fitted, start, lower, upper, source=data.path
-    )
 
 
 def _train_file(args: argparse.Namespace) -> str:
@@ -181,9 +100,9 @@ def _data_files(args: argparse.Namespace, train: Train) -> tuple[str, list[str]]
     return files[0], list(args.predict) if args.predict is not None else files[1:]
 
 
-def run(argv: Sequence[str]) -> int:
-    """The ``derive calibrate`` command; returns the exit status (0, or 2 for bad input)."""
-    args = parser().parse_args(argv)
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    """The ``derive calibrate`` command, its arguments parsed by ``parser``; returns the
+    exit status (0, or 2 for bad input)."""
     try:
         train_file = _train_file(args)
     except InputError as exc:
@@ -194,6 +113,7 @@ def run(argv: Sequence[str]) -> int:
         print(f"input error: {train_file}: {refusal}", file=sys.stderr)
         return 2
     suffix = (figure_format(args.out) if args.out else None) or ".png"
+    say = Display("derive calibrate", args.quiet)
     try:
         train = load(train_file)
         args.data, args.predict = _data_files(args, train)
@@ -201,6 +121,7 @@ def run(argv: Sequence[str]) -> int:
         if refusal is not None:
             raise InputError([Problem(refusal.partition(":")[0], refusal.partition(": ")[2])], train_file)
         fixed = _fixed(train, args.at)  # checked before the derivation
+        say(f"deriving the formulas of {train_file}")
         derived = derived_model(train)
         columns = columns_of(derived)
         data = read_measurements(args.data, [*columns, "eta"])
@@ -208,6 +129,7 @@ def run(argv: Sequence[str]) -> int:
         others = [read_measurements(path, columns, ["eta"]) for path in args.predict or ()]
         for other in others:
             check_loaded(derived, other)
+        say(f"fitting to the {len(data.lines)} rows of {data.path}")
         model, result = calibrate(derived, data, args.fit, fixed)
     except CalibrationError as exc:
         print(f"derive calibrate: {exc}", file=sys.stderr)

@@ -228,13 +228,7 @@ def _main(argv: list[str]) -> int:
     from davies_sym.cli.catalog import catalog_listing, chosen_files
 
     if args.completion:
-        try:
-            commands = {c.name: c.parser() for c in SUBCOMMANDS}
-            sys.stdout.write(completion_script(parser(), args.completion, commands))
-        except DaviesError as exc:
-            print(f"derive: --completion: {exc}", file=sys.stderr)
-            return 2
-        return 0
+        return _completion(args.completion)
     try:
         files = chosen_files(args)
     except InputError as exc:
@@ -257,6 +251,23 @@ def _main(argv: list[str]) -> int:
         option = "--scheduler" if args.scheduler else "--jobs"
         print(f"derive: {option} derives several files into a directory: add --out DIR", file=sys.stderr)
         return 2
+    return _one_file_refused_or_done(args, progress)
+
+
+def _completion(shell: str) -> int:
+    """``derive --completion SHELL``: the script completing every command's options."""
+    try:
+        commands = {c.name: c.parser() for c in SUBCOMMANDS}
+        sys.stdout.write(completion_script(parser(), shell, commands))
+    except DaviesError as exc:
+        print(f"derive: --completion: {exc}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def _one_file_refused_or_done(args: argparse.Namespace, progress: Display) -> int:
+    """``derive FILE ...``: its outputs, or the one line that says why not with its exit
+    status (2 bad input, 3 not covered, 4 an internal error)."""
     try:
         return _one_file(args, progress)
     except NotCoveredError as exc:

@@ -6,17 +6,16 @@ that the two ways give the same bytes."""
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
 
 from davies_sym.cli.machine_input import machine_outputs
 from davies_sym.cli.one_input import one_input_outputs
 from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_outputs
 from davies_sym.errors import InputError, Problem
 from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.progress import Progress
 from davies_sym.topology.loader import build_train
 from davies_sym.topology.yaml_source import SourceDocument
 
-Progress = Callable[[str], None]
 Outputs = list[tuple[str | None, str | bytes]]
 
 

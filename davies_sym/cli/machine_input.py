@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import argparse
 import json
-from collections.abc import Callable
 from typing import Any
 
 import sympy
@@ -19,10 +18,10 @@ from davies_sym.machines.cycle import CycleEfficiency, check_assembles, cycle_ef
 from davies_sym.machines.model import Machine
 from davies_sym.machines.numeric import NumericMachine, solve_position
 from davies_sym.machines.task import run_task
+from davies_sym.progress import Progress
 from davies_sym.topology.expressions import assignments
 
 Outputs = list[tuple[str | None, str | bytes]]
-Progress = Callable[[str], None]
 #: Options of gear trains that a machine does not take, and what to write instead.
 _TRAIN_ONLY = {
     "python": "--python",

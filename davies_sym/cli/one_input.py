@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
 
 import sympy
@@ -33,10 +33,9 @@ from davies_sym.emit.evaluation import Evaluation, evaluate
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.sensitivity import sensitivity_latex, sensitivity_text
 from davies_sym.errors import DaviesError, InputError, MissingValuesError, Problem
+from davies_sym.progress import Progress
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
-
-Progress = Callable[[str], None]
 
 
 def operating_symbols(variants: VariantSet) -> list[sympy.Symbol]:

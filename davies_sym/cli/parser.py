@@ -36,6 +36,17 @@ def parser() -> argparse.ArgumentParser:
         # The epilog's lines stay as written (one command a line).
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
+    _input_options(p)
+    _document_options(p)
+    _evaluation_options(p)
+    _figure_options(p)
+    _worker_options(p)
+    p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
+    return p
+
+
+def _input_options(p: argparse.ArgumentParser) -> None:
+    """What to derive: files, a catalog train, a state; the version."""
     # ``.complete``: what shtab offers for the argument in a completion script (--completion).
     files = p.add_argument(
         "files", nargs="*", metavar="FILE", help="topology file (YAML); several files need --out DIR"
@@ -51,6 +62,16 @@ def parser() -> argparse.ArgumentParser:
     )
     catalog.complete = catalog_completion()  # type: ignore[attr-defined]
     p.add_argument("--version", action="version", version=f"%(prog)s (davies_sym) {_version()}")
+    p.add_argument(
+        "--state",
+        metavar="NAME",
+        help="operating state of a multi-speed set (default: every state; "
+        "--eval, --python, --emit and --plot need one)",
+    )
+
+
+def _document_options(p: argparse.ArgumentParser) -> None:
+    """What is written: the documents, the formula module, code in other languages."""
     form = p.add_mutually_exclusive_group()
     form.add_argument("--json", action="store_true", help="print the JSON document")
     form.add_argument(
@@ -90,6 +111,10 @@ def parser() -> argparse.ArgumentParser:
         help=f"print a completion script for SHELL ({', '.join(SHELLS)}), e.g. "
         "derive --completion bash > ~/.local/share/bash-completion/completions/derive",
     )
+
+
+def _evaluation_options(p: argparse.ArgumentParser) -> None:
+    """Numbers from the formulas: values, sensitivities, the ports they are taken at."""
     p.add_argument(
         "--eval",
         nargs="*",
@@ -107,12 +132,10 @@ def parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--input", metavar="PORT", help="input port for --eval (default: the declared input)")
     p.add_argument("--output", metavar="PORT", help="output port for --eval (the other port)")
-    p.add_argument(
-        "--state",
-        metavar="NAME",
-        help="operating state of a multi-speed set (default: every state; "
-        "--eval, --python, --emit and --plot need one)",
-    )
+
+
+def _figure_options(p: argparse.ArgumentParser) -> None:
+    """Figures over one or two parameters, and a machine's task."""
     p.add_argument(
         "--plot",
         nargs="?",
@@ -141,6 +164,10 @@ def parser() -> argparse.ArgumentParser:
         default=[],
         help="with --plot: values of the other parameters (default: the first published check of the file)",
     )
+
+
+def _worker_options(p: argparse.ArgumentParser) -> None:
+    """Where many files are derived (`davies_sym.fan_out`)."""
     p.add_argument(
         "--jobs",
         type=jobs,
@@ -155,5 +182,3 @@ def parser() -> argparse.ArgumentParser:
         help="with --out DIR: derive the files on the Dask cluster whose scheduler listens at ADDRESS "
         "(e.g. tcp://10.0.0.5:8786; needs pip install 'davies_sym[dask]')",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress messages on standard error")
-    return p

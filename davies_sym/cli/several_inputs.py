@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import argparse
 import json
-from collections.abc import Callable
 
 from davies_sym.cli.arguments import (
     check_emit,
@@ -31,10 +30,9 @@ from davies_sym.emit.several_inputs_plots import (
 from davies_sym.emit.several_inputs_report import SeveralEvaluation, evaluate_several
 from davies_sym.errors import InputError, MissingValuesError, Problem
 from davies_sym.network.analysis import Analysis
+from davies_sym.progress import Progress
 from davies_sym.topology.expressions import assignments
 from davies_sym.topology.model import Train
-
-Progress = Callable[[str], None]
 
 
 def several_degrees_of_freedom(train: Train) -> bool:

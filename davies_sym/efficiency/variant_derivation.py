@@ -7,7 +7,7 @@ the losses reach at light load."""
 from __future__ import annotations
 
 import random
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import partial
 
@@ -25,9 +25,9 @@ from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.friction_laws import CoulombSigns
+from davies_sym.progress import Progress
 from davies_sym.topology.model import Train
 
-Progress = Callable[[str], None]
 #: (declared input, bearings whose reactions are reversed) -> its derivation.
 SideKey = tuple[bool, frozenset[str]]
 Proof = tuple[tuple[Requirement, ...], tuple[Requirement, ...]]

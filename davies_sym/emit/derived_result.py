@@ -10,7 +10,6 @@ for once and written by the module of its kind."""
 from __future__ import annotations
 
 import json
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Protocol
 
@@ -31,9 +30,8 @@ from davies_sym.emit.several_inputs_module import several_inputs_module
 from davies_sym.emit.several_inputs_report import several_inputs_document, several_inputs_text
 from davies_sym.emit.variant_report import variants_document, variants_text
 from davies_sym.network.analysis import Analysis
+from davies_sym.progress import Progress
 from davies_sym.topology.model import Train
-
-Progress = Callable[[str], None]
 
 
 def _quiet(message: str) -> None:

@@ -68,7 +68,7 @@ def test_the_command_prints_what_the_result_gives(make, tmp_path: Path) -> None:
 
 
 def test_a_state_is_named_in_the_program_and_the_derivations_hold_every_state() -> None:
-    from davies_sym.cli.one_input import derive_sets
+    from davies_sym.cli.one_input_outputs import derive_sets
 
     train = load(str(ROOT / "catalog" / "simpson.yaml"))
     sets = tuple(derive_sets(train, None, lambda _: None, []))

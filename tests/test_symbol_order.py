@@ -49,7 +49,7 @@ _DOCUMENT = """
 import json, sys
 import davies_sym
 from davies_sym.efficiency.variants import derive_variants
-from davies_sym.emit.report import train_document
+from davies_sym.emit.json_document import train_document
 from davies_sym.emit.variant_report import variants_document
 v = derive_variants(davies_sym.load(sys.argv[1]))
 print(json.dumps([train_document(v.analysis), variants_document(v)], default=str))

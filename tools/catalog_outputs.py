@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 from davies_sym.cli import main
-from davies_sym.cli.one_input import derive_sets
+from davies_sym.cli.one_input_outputs import derive_sets
 from davies_sym.efficiency.several_inputs import derive_several_inputs
 from davies_sym.emit.derived_result import DerivedResult, OneInputResult, SeveralInputResult
 from davies_sym.emit.languages import LANGUAGES, emit_code

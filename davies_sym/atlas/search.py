@@ -3,7 +3,7 @@ member and both directions between two others, ranked by the closed-form efficie
 
 Each train is written with tooth numbers (module 1) and fixed ordinary mesh
 efficiencies; a state's efficiency is derived only when its speed ratio, from the motions
-alone, can reach the target within the bounds (`davies_sym.synthesis.search.ratio_feasible`).
+alone, can reach the target within the bounds (`davies_sym.synthesis.tooth_search.ratio_feasible`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from davies_sym.geometry.dependent import resolved_train
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.formulas import state_ratio
 from davies_sym.synthesis.problem import search_problem, tooth_symbols
-from davies_sym.synthesis.search import Candidate, ratio_feasible, run_search
+from davies_sym.synthesis.tooth_search import Candidate, ratio_feasible, run_search
 from davies_sym.topology.loader import loads
 
 #: Ordinary efficiencies of the meshes (an external spur mesh loses about 2 %, an

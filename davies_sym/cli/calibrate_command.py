@@ -18,8 +18,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from davies_sym.calibration.fit_report import fit_text, residual_figure
 from davies_sym.calibration.measurements import read_measurements
-from davies_sym.calibration.report import fit_text, residual_figure
 from davies_sym.calibration.train_fit import calibrate, derived_model
 from davies_sym.calibration.train_model import check_loaded, columns_of
 from davies_sym.efficiency.design_values import design_values

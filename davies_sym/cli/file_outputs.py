@@ -8,8 +8,8 @@ from __future__ import annotations
 import argparse
 
 from davies_sym.cli.machine_input import machine_outputs
-from davies_sym.cli.one_input import one_input_outputs
-from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_outputs
+from davies_sym.cli.one_input_outputs import one_input_outputs
+from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, several_outputs
 from davies_sym.errors import InputError, Problem
 from davies_sym.machines.loader import build_machine, is_machine
 from davies_sym.progress import Progress

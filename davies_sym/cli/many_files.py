@@ -16,9 +16,9 @@ from functools import partial
 from davies_sym.cli.file_outputs import file_outputs
 from davies_sym.cli.machine_input import machine_derivations
 from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message
-from davies_sym.cli.one_input import write_derivations
+from davies_sym.cli.one_input_outputs import write_derivations
 from davies_sym.cli.parser import parser
-from davies_sym.cli.several_inputs import several_degrees_of_freedom, several_derivations
+from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, several_derivations
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, TopologyError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out

@@ -3,7 +3,7 @@ another language (``--emit``), the formula module (``--python``), the document (
 JSON or LaTeX) and the answer of ``--eval``, all computed before anything is written.
 A train driven at one port and one driven at several give them the same way; what is
 theirs alone (the figures, the operating states, how ``--eval`` reads its values) stays
-in `davies_sym.cli.one_input` and `davies_sym.cli.several_inputs`."""
+in `davies_sym.cli.one_input_outputs` and `davies_sym.cli.several_input_outputs`."""
 
 from __future__ import annotations
 

@@ -100,8 +100,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     from davies_sym.emit.plots import figure_bytes, figure_format
     from davies_sym.synthesis.best_design import best_design_text
     from davies_sym.synthesis.problem import search_problem
-    from davies_sym.synthesis.report import pareto_figure, search_text
-    from davies_sym.synthesis.search import run_search
+    from davies_sym.synthesis.search_report import pareto_figure, search_text
+    from davies_sym.synthesis.tooth_search import run_search
     from davies_sym.topology.loader import load
 
     say = Display("derive search", args.quiet)

@@ -1,6 +1,6 @@
 """Output stage: what the user reads and imports, written from the results of the stages before.
 
-Text reports (`.report`, `.variant_report`), JSON documents, LaTeX
+Text reports (`.variant_report`), JSON documents (`.json_document`), LaTeX
 (`.latex`), generated formula modules for design code (`.python_module`), the same
 formulas in C, Julia, Octave, Rust and Modelica (`.languages`),
 figures (`.plots`, `.graph_drawing`), the ``--eval`` answer (`.evaluation`)

@@ -19,7 +19,7 @@ from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis import rules
-from davies_sym.synthesis.enumeration import Window, enumerate_designs
+from davies_sym.synthesis.design_enumeration import Window, enumerate_designs
 from davies_sym.synthesis.exact_values import ExactRational
 from davies_sym.synthesis.formulas import StateFormulas, state_formulas
 from davies_sym.synthesis.planet_sets import PlanetSet, planet_sets

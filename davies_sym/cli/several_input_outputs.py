@@ -20,8 +20,8 @@ from davies_sym.cli.result_outputs import result_outputs
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.several_inputs import SeveralInputs, derive_several_inputs
 from davies_sym.emit.derived_result import SeveralInputResult
+from davies_sym.emit.json_document import kinematics_document, kinematics_text
 from davies_sym.emit.plots import figure_bytes
-from davies_sym.emit.report import kinematics_document, kinematics_text
 from davies_sym.emit.several_inputs_module import several_inputs_formulas
 from davies_sym.emit.several_inputs_plots import (
     several_efficiency_figure,

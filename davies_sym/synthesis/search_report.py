@@ -7,7 +7,7 @@ from collections.abc import Callable
 from typing import Any
 
 from davies_sym.emit.plots import new_figure
-from davies_sym.synthesis.search import Candidate, SearchResult
+from davies_sym.synthesis.tooth_search import Candidate, SearchResult
 
 
 def _cell(values: dict[str | None, Any], digits: int) -> str:

@@ -104,39 +104,14 @@ def fit(
     ``start`` gives every parameter's start value; ``lower`` and ``upper`` bound any of
     them (then the method is "trf" with bounds).  ``source`` (e.g. the measurements file)
     begins every refusal message.  ``max_evaluations`` caps scipy's function evaluations.
+    (Seven parameters, as scipy's own ``least_squares`` takes them: the bounds and the
+    cap are separate choices of the caller.)
     """
     prefix = f"{source}: " if source else ""
     names = tuple(names)
     x0, low, high = _arguments(names, start, lower or {}, upper or {}, max_evaluations, prefix)
-    count = [0]
-
-    def model(x: FloatArray) -> FloatArray:
-        point = dict(zip(names, (float(v) for v in x), strict=True))
-        count[0] += 1
-        r = np.asarray(residuals(point), dtype=np.float64)
-        if r.ndim != 1:
-            raise CalibrationError(
-                f"{prefix}the residuals must be one number per row, got shape {r.shape}", FitFailure.ARGUMENTS
-            )
-        bad = np.flatnonzero(~np.isfinite(r))
-        if bad.size:
-            raise _NotFinite(point, int(bad[0]), float(r[bad[0]]))
-        return r
-
-    try:
-        rows = model(x0).size
-    except _NotFinite as exc:
-        raise CalibrationError(
-            f"{prefix}the residual of row {exc.row + 1} is {exc.value} at the start values "
-            f"({_values(exc.point)}): the model is not defined there",
-            FitFailure.NON_FINITE,
-        ) from None
-    if rows < len(names):
-        raise CalibrationError(
-            f"{prefix}{rows} row{'s' if rows != 1 else ''} cannot determine {len(names)} "
-            f"parameters ({', '.join(names)}): give at least {len(names)} rows",
-            FitFailure.ROWS,
-        )
+    model = _FiniteModel(residuals, names, prefix)
+    rows = _rows(model, x0, names, prefix)
     bounded = bool(np.isfinite(low).any() or np.isfinite(high).any())
     try:
         result = least_squares(
@@ -158,6 +133,53 @@ def fit(
             f"at {_values(exc.point)}{hint}",
             FitFailure.NON_FINITE,
         ) from None
+    return _fitted(result, names, rows, model.count, prefix)
+
+
+class _FiniteModel:
+    """The residuals as scipy calls them (an array of values in the order of ``names``),
+    counted, each checked to be one finite number per row."""
+
+    def __init__(self, residuals: Residuals, names: tuple[str, ...], prefix: str) -> None:
+        self.residuals, self.names, self.prefix, self.count = residuals, names, prefix, 0
+
+    def __call__(self, x: FloatArray) -> FloatArray:
+        point = dict(zip(self.names, (float(v) for v in x), strict=True))
+        self.count += 1
+        r = np.asarray(self.residuals(point), dtype=np.float64)
+        if r.ndim != 1:
+            raise CalibrationError(
+                f"{self.prefix}the residuals must be one number per row, got shape {r.shape}", FitFailure.ARGUMENTS
+            )
+        bad = np.flatnonzero(~np.isfinite(r))
+        if bad.size:
+            raise _NotFinite(point, int(bad[0]), float(r[bad[0]]))
+        return r
+
+
+def _rows(model: _FiniteModel, x0: FloatArray, names: tuple[str, ...], prefix: str) -> int:
+    """The number of rows, from the residuals at the start values, refused where they
+    are not finite or fewer than the parameters."""
+    try:
+        rows = int(model(x0).size)
+    except _NotFinite as exc:
+        raise CalibrationError(
+            f"{prefix}the residual of row {exc.row + 1} is {exc.value} at the start values "
+            f"({_values(exc.point)}): the model is not defined there",
+            FitFailure.NON_FINITE,
+        ) from None
+    if rows < len(names):
+        raise CalibrationError(
+            f"{prefix}{rows} row{'s' if rows != 1 else ''} cannot determine {len(names)} "
+            f"parameters ({', '.join(names)}): give at least {len(names)} rows",
+            FitFailure.ROWS,
+        )
+    return rows
+
+
+def _fitted(result: Any, names: tuple[str, ...], rows: int, count: int, prefix: str) -> Fit:
+    """The `Fit` of scipy's ``result``, refused where the parameters are not determined
+    or the fit did not converge; standard errors from the covariance."""
     values = tuple(float(v) for v in result.x)
     reached = dict(zip(names, values, strict=True))
     jacobian = np.asarray(result.jac, dtype=np.float64)
@@ -173,30 +195,16 @@ def fit(
     covariance, note = _covariance(jacobian, r, len(names))
     at_bound = [n for n, active in zip(names, result.active_mask, strict=True) if active]
     if at_bound:
-        note = " ".join(
-            filter(
-                None,
-                [
-                    note,
-                    f"{', '.join(at_bound)} at {'its' if len(at_bound) == 1 else 'their'} "
-                    "bound: the standard errors assume an interior solution.",
-                ],
-            )
+        bound = (
+            f"{', '.join(at_bound)} at {'its' if len(at_bound) == 1 else 'their'} "
+            "bound: the standard errors assume an interior solution."
         )
+        note = " ".join(filter(None, [note, bound]))
     errors = tuple(float(math.sqrt(v)) if v >= 0 else math.nan for v in np.diag(covariance))
+    rms = float(np.sqrt(np.mean(r * r)))
+    message = str(result.message)
     return Fit(
-        names,
-        values,
-        errors,
-        r,
-        float(np.sqrt(np.mean(r * r))),
-        rows,
-        int(result.nfev),
-        bool(result.success),
-        str(result.message),
-        covariance,
-        count[0],
-        note,
+        names, values, errors, r, rms, rows, int(result.nfev), bool(result.success), message, covariance, count, note
     )
 
 

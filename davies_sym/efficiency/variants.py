@@ -224,43 +224,18 @@ def derive_variants(
     """Derive every variant of ``train``'s efficiency in ordinary efficiencies
     (``layout``: a geometry other than the one derived from the train; ``inputs``: only
     the variants with these input ports, e.g. for one evaluation; ``state``: the operating
-    state, by name or as one of ``train.states``, that a train with states is derived in)."""
+    state, by name or as one of ``train.states``, that a train with states is derived in).
+    The steps are those of Laus section 3.1 in order (motions, virtual power through the
+    meshes, turning conditions, one variant per region), kept in one function to be read
+    as the method; its seven parameters are the public API's keywords."""
     train = train_to_derive(train, state)
     say = progress or (lambda message: None)
-    ports = (train.ports.input, train.ports.output)
-    strangers = [p for p in inputs or () if p not in ports]
-    if strangers:  # refused as --input refuses them
-        why = f"{shortened(strangers[0])} is not a port (ports: {', '.join(ports)})"
-        raise InputError([Problem("--input", why)], train.path)
-    if len(train.ports.inputs) > 1:
-        # One efficiency per input port is this function's answer; several inputs have regions.
-        raise InputError(
-            [
-                Problem(
-                    "ports",
-                    f"the train is driven at {', '.join(train.ports.inputs)}: its efficiency depends on "
-                    "the power-flow region; derive it with davies_sym.derive_several_inputs(train), as the "
-                    "derive command does",
-                )
-            ],
-            train.file_lines,
-        )
+    _check_ports(train, inputs)
     check_mesh_friction(train)
     if layout is None:
         train = resolved_train(train)
     etas = efficiency_symbols(train)
-    taken = sorted(str(s) for s in OPERATING_SYMBOLS if str(s) in train.symbols)
-    if taken:
-        raise InputError(
-            [
-                Problem(
-                    "",
-                    f"{', '.join(taken)} name the input torque and speed of the formulas; "
-                    "rename the symbol in the file",
-                )
-            ],
-            train.file_lines,
-        )
+    _check_reserved(train)
     extra = (*etas, *OPERATING_SYMBOLS)
     analysis = Analysis(
         train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=list(extra), layout=layout
@@ -305,6 +280,30 @@ def derive_variants(
         tuple(found.excluded),
         context.facts,
     )
+
+
+def _check_ports(train: Train, inputs: Sequence[str] | None) -> None:
+    """Refuse input ports that are not ports (as ``--input`` refuses them) and a train
+    driven at several ports (its efficiency has power-flow regions, not variants)."""
+    ports = (train.ports.input, train.ports.output)
+    strangers = [p for p in inputs or () if p not in ports]
+    if strangers:
+        why = f"{shortened(strangers[0])} is not a port (ports: {', '.join(ports)})"
+        raise InputError([Problem("--input", why)], train.path)
+    if len(train.ports.inputs) > 1:
+        why = (
+            f"the train is driven at {', '.join(train.ports.inputs)}: its efficiency depends on the power-flow "
+            "region; derive it with davies_sym.derive_several_inputs(train), as the derive command does"
+        )
+        raise InputError([Problem("ports", why)], train.file_lines)
+
+
+def _check_reserved(train: Train) -> None:
+    """Refuse a file symbol named like the formulas' input torque or speed."""
+    taken = sorted(str(s) for s in OPERATING_SYMBOLS if str(s) in train.symbols)
+    if taken:
+        why = f"{', '.join(taken)} name the input torque and speed of the formulas; rename the symbol in the file"
+        raise InputError([Problem("", why)], train.file_lines)
 
 
 def _other_symbols(

@@ -107,20 +107,7 @@ def build_machine(doc: SourceDocument) -> Machine:
     """Validate the document of a machine file; raises `TopologyError` with every problem."""
     r = _Reader(doc)
     data = r.mapping("", doc.data)
-    train_only = sorted(k for k in ("gears", "states", "degrees_of_freedom", "independent") if k in data)
-    if train_only:
-        # One mistake, said once: a gear train file with a machine: key.
-        r.problem(
-            "machine",
-            f"machine: makes this a machine file (Laus ch. 4), but it has {', '.join(train_only)} of a gear "
-            "train: take machine: out for a gear train, or write the machine's vectors and couplings",
-        )
-        raise TopologyError(r.problems, doc.name)
-    for key in data:
-        if key not in _TOP:
-            r.problem(key, f"unknown entry {key!r} (a machine file has {', '.join(sorted(_TOP))})")
-    if data.get("format", 1) != 1:
-        r.problem("format", "only format 1 is known; write format: 1")
+    _check_top_entries(r, data, doc.name)
     r.declare_positive(r.names("positive", data.get("positive", [])))
     links = r.names("links", data.get("links"))
     r.said(entry_checks.repeated(links, "links"))
@@ -130,23 +117,9 @@ def build_machine(doc: SourceDocument) -> Machine:
     position_names = r.names("position", data.get("position", []))
     r.said(entry_checks.repeated(position_names, "position"))
     position = tuple(dict.fromkeys(r.symbol(n) for n in position_names))
-    values: dict[sympy.Symbol, sympy.Expr] = {}
-    for name, written in r.mapping("values", data.get("values")).items():
-        value = r.scalar(f"values.{name}", written)
-        if value is not None:
-            values[r.symbol(name)] = value
-    for name, written in r.mapping("vectors", data.get("vectors")).items():
-        if name in AXES:
-            r.problem(f"vectors.{name}", f"{name!r} is the coordinate axis; name the vector otherwise")
-            continue
-        vec = r.vector(f"vectors.{name}", written)
-        if vec is not None:
-            r.vectors[name] = vec
-    unknowns: dict[sympy.Symbol, sympy.Expr] = {}
-    for name, written in r.mapping("unknowns", data.get("unknowns")).items():
-        guess = r.scalar(f"unknowns.{name}", written)
-        if guess is not None:
-            unknowns[r.symbol(name)] = guess
+    values = _scalars(r, "values", data)
+    _read_vectors(r, data)
+    unknowns = _scalars(r, "unknowns", data)
     closure = _closure(r, data.get("closure"), unknowns)
     limits = _limits(r, data.get("limits"))
     couplings = tuple(
@@ -162,32 +135,10 @@ def build_machine(doc: SourceDocument) -> Machine:
     chosen = str(data.get("input", port_names[0] if port_names else ""))
     if port_names and chosen not in port_names:
         r.problem("input", f"the input {chosen!r} is not a port; write one of {', '.join(port_names)}")
-    tasks = {
-        name: t
-        for name, written in r.mapping("tasks", data.get("tasks")).items()
-        if (t := _task(r, name, written, ports))
-    }
+    tasks = {n: t for n, written in r.mapping("tasks", data.get("tasks")).items() if (t := _task(r, n, written, ports))}
     cycle = _cycle(r, data.get("cycle"), port_names) if "cycle" in data else None
     expected = tuple(e for i, written in enumerate(data.get("expected") or []) if (e := _expected(r, i, written)))
-    coefficients = {s for c in couplings if c.friction is not None for s in c.friction.mu.free_symbols}
-    r.said(entry_checks.value_problems(values, coefficients))
-    kinds = {c.name: c.kind for c in couplings}
-    for task in tasks.values():
-        r.said(entry_checks.task_problems(task, position, values, kinds))
-    written = {s for v in r.vectors.values() for x in v for s in x.free_symbols}
-    written |= {s for c in couplings for x in c.at for s in x.free_symbols}
-    unused = [s.name for s in position if s not in written]
-    if couplings and unused:
-        r.problem("position", f"{', '.join(unused)} moves nothing: no vector or coupling is written in it")
-    if cycle is not None:
-        r.said(entry_checks.cycle_problems(cycle, position, values))
-    for i, check in enumerate(expected):
-        r.said(entry_checks.expected_problems(check, i, tasks))
-    if not couplings and not r.problems:
-        r.problem("couplings", "a machine needs couplings")
-    if r.problems:
-        raise TopologyError(r.problems, doc.name)
-    return Machine(
+    machine = Machine(
         name=str(data.get("machine")),
         source=str(data.get("source", "")),
         links=tuple(links),
@@ -206,6 +157,71 @@ def build_machine(doc: SourceDocument) -> Machine:
         limits=limits,
         path=doc.name,
     )
+    _check_together(r, machine)
+    if r.problems:
+        raise TopologyError(r.problems, doc.name)
+    return machine
+
+
+def _check_top_entries(r: _Reader, data: dict[str, Any], path: str | None) -> None:
+    """The file's top-level entries: a gear train's entries refused at once (one mistake,
+    said once), unknown entries and formats noted."""
+    train_only = sorted(k for k in ("gears", "states", "degrees_of_freedom", "independent") if k in data)
+    if train_only:
+        r.problem(
+            "machine",
+            f"machine: makes this a machine file (Laus ch. 4), but it has {', '.join(train_only)} of a gear "
+            "train: take machine: out for a gear train, or write the machine's vectors and couplings",
+        )
+        raise TopologyError(r.problems, path)
+    for key in data:
+        if key not in _TOP:
+            r.problem(key, f"unknown entry {key!r} (a machine file has {', '.join(sorted(_TOP))})")
+    if data.get("format", 1) != 1:
+        r.problem("format", "only format 1 is known; write format: 1")
+
+
+def _scalars(r: _Reader, entry: str, data: dict[str, Any]) -> dict[sympy.Symbol, sympy.Expr]:
+    """``values:`` or ``unknowns:`` (a guess each): scalars by symbol."""
+    out: dict[sympy.Symbol, sympy.Expr] = {}
+    for name, written in r.mapping(entry, data.get(entry)).items():
+        value = r.scalar(f"{entry}.{name}", written)
+        if value is not None:
+            out[r.symbol(name)] = value
+    return out
+
+
+def _read_vectors(r: _Reader, data: dict[str, Any]) -> None:
+    """``vectors:`` into the reader (couplings and closure equations name them)."""
+    for name, written in r.mapping("vectors", data.get("vectors")).items():
+        if name in AXES:
+            r.problem(f"vectors.{name}", f"{name!r} is the coordinate axis; name the vector otherwise")
+            continue
+        vec = r.vector(f"vectors.{name}", written)
+        if vec is not None:
+            r.vectors[name] = vec
+
+
+def _check_together(r: _Reader, m: Machine) -> None:
+    """What the entries must agree on: values against friction coefficients, tasks
+    against the position and couplings, a position that moves something, the cycle
+    and the published checks."""
+    coefficients = {s for c in m.couplings if c.friction is not None for s in c.friction.mu.free_symbols}
+    r.said(entry_checks.value_problems(m.values, coefficients))
+    kinds = {c.name: c.kind for c in m.couplings}
+    for task in m.tasks.values():
+        r.said(entry_checks.task_problems(task, m.position, m.values, kinds))
+    written = {s for v in r.vectors.values() for x in v for s in x.free_symbols}
+    written |= {s for c in m.couplings for x in c.at for s in x.free_symbols}
+    unused = [s.name for s in m.position if s not in written]
+    if m.couplings and unused:
+        r.problem("position", f"{', '.join(unused)} moves nothing: no vector or coupling is written in it")
+    if m.cycle is not None:
+        r.said(entry_checks.cycle_problems(m.cycle, m.position, m.values))
+    for i, check in enumerate(m.expected):
+        r.said(entry_checks.expected_problems(check, i, m.tasks))
+    if not m.couplings and not r.problems:
+        r.problem("couplings", "a machine needs couplings")
 
 
 def _closure(r: _Reader, written: object, unknowns: dict[sympy.Symbol, sympy.Expr]) -> tuple[sympy.Expr, ...]:

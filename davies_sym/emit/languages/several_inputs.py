@@ -14,12 +14,13 @@ where the efficiency is outside (0, 1].
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import given_forms
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
@@ -41,10 +42,33 @@ from davies_sym.losses.definitions import parameters_of
 
 def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> Program:
     """The program of ``si``; ``module`` and ``not_covered`` as for a one-input train."""
-    train = si.train
     public = given_forms(si)
+    names = _parameter_names(si, public)
+    table = si.parameter_table([_known_symbols(si)[n] for n in names])
+    conditions = {
+        c.name: formula_routine(
+            f"condition_{c.name}",
+            f"speed condition {c.name} = {sympy.sstr(c.form)} ({'; '.join(c.decides)})",
+            public(c.form),
+            names,
+        )
+        for c in si.conditions
+    }
+    regions, forces = _region_routines(si, public, names)
+    in_ranges = checks_routine(
+        "in_ranges", "whether every parameter is in its range", range_checks(table, names), names
+    )
+    routines = [*conditions.values(), *regions.values(), *forces.values(), in_ranges]
+    choice = _choice_steps(si, names, conditions, regions, forces, in_ranges)
+    routines += [_choice(choice, names, not_covered), _reason(choice, names)]
+    _check_routine_names(routines, names)
+    lines = _header_lines(si, table, names, routines, not_covered)
+    return Program(module, tuple(lines), tuple(routines), "efficiency", names, ())
 
-    # The parameters the Python module's efficiency takes (and checks the ranges of).
+
+def _parameter_names(si: SeveralInputs, public: Callable[[sympy.Expr], sympy.Expr]) -> tuple[str, ...]:
+    """The parameters the Python module's efficiency takes (and checks the ranges of),
+    in its order."""
     used: set[sympy.Basic] = set()
     for c in si.conditions:
         used |= public(c.form).free_symbols
@@ -52,32 +76,31 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         used |= public(v.to_expr()).free_symbols
     for r in si.regions:
         used |= public(r.efficiency).free_symbols
-        for p in train.ports.every:
+        for p in si.train.ports.every:
             used |= public(r.torques[p].to_expr()).free_symbols
         for f, assumed in r.loaded_forces.values():
             used |= public(f.to_expr() * assumed).free_symbols
-    symbols = sorted_symbols({sympy.Symbol(str(s)) for s in used})
-    names = tuple(str(s) for s in symbols)
-    known = {
-        str(s): s
-        for s in (
-            *si.speeds,
-            LOAD_TORQUE,
-            *train.symbols.values(),
-            *parameters_of(set(train.symbols.values()), train.definitions),
-        )
-    }
-    table = si.parameter_table([known[n] for n in names])
-    routines: list[Routine] = []
-    conditions: dict[str, Routine] = {}
-    for c in si.conditions:
-        conditions[c.name] = formula_routine(
-            f"condition_{c.name}",
-            f"speed condition {c.name} = {sympy.sstr(c.form)} ({'; '.join(c.decides)})",
-            public(c.form),
-            names,
-        )
-    routines += conditions.values()
+    return tuple(str(s) for s in sorted_symbols({sympy.Symbol(str(s)) for s in used}))
+
+
+def _known_symbols(si: SeveralInputs) -> dict[str, sympy.Symbol]:
+    """Every symbol a parameter name may stand for: speeds, the load torque, the train's
+    symbols and the parameters of its loss definitions."""
+    train = si.train
+    every = (
+        *si.speeds,
+        LOAD_TORQUE,
+        *train.symbols.values(),
+        *parameters_of(set(train.symbols.values()), train.definitions),
+    )
+    return {str(s): s for s in every}
+
+
+def _region_routines(
+    si: SeveralInputs, public: Callable[[sympy.Expr], sympy.Expr], names: tuple[str, ...]
+) -> tuple[dict[int, Routine], dict[int, Routine]]:
+    """The efficiency of each region (Mantriota and Pennestri 2003, eq. (6)) and, where
+    it assumes loaded forces, the check that they agree."""
     regions: dict[int, Routine] = {}
     forces: dict[int, Routine] = {}
     for r in si.regions:
@@ -92,14 +115,11 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         if r.loaded_forces:
             needs = f"region ({r.number}) assumes"
             forces[r.number] = forces_agree_routine(f"region_{r.number}", needs, r.loaded_forces, public, names)
-    routines += regions.values()
-    routines += forces.values()
-    in_ranges = checks_routine(
-        "in_ranges", "whether every parameter is in its range", range_checks(table, names), names
-    )
-    routines.append(in_ranges)
-    choice = _choice_steps(si, names, conditions, regions, forces, in_ranges)
-    routines += [_choice(choice, names, not_covered), _reason(choice, names)]
+    return regions, forces
+
+
+def _check_routine_names(routines: Sequence[Routine], names: tuple[str, ...]) -> None:
+    """Refuse a generated function named like a parameter or like another function."""
     seen: set[str] = set()
     for routine in routines:
         if routine.name in names:
@@ -108,6 +128,14 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
             why = "it is also the name of another function"
             raise RefusedName("generated function name", routine.name, why, "code")
         seen.add(routine.name)
+
+
+def _header_lines(
+    si: SeveralInputs, table: Sequence[Parameter], names: tuple[str, ...], routines: Sequence[Routine], not_covered: str
+) -> list[str]:
+    """The comment at the head of the program: source, inputs, parameters, speed
+    conditions, regions, functions and the reasons of ``not_covered``."""
+    train = si.train
     ports = train.ports
     lines = [
         f"Efficiency of {train.name}, driven at {', '.join(ports.inputs)}: every power-flow region "
@@ -141,7 +169,7 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         "ranges, or an efficiency outside (0, 1]; reason(...) says which, as the Python module's DesignError does:",
         *(f"  {k}: {text}" for k, text in REASONS),
     ]
-    return Program(module, tuple(lines), tuple(routines), "efficiency", names, ())
+    return lines
 
 
 @dataclass(frozen=True)

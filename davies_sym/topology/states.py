@@ -9,6 +9,7 @@ carries no power and no loss.  The result is an ordinary train, analysed as any 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 from types import MappingProxyType
 
@@ -46,33 +47,7 @@ def train_in_state(train: Train, state: State | str) -> Train:
             problems.append(
                 train.problem(f"states.{state.name}.free", f"{link!r} cannot be free and braked or clutched")
             )
-    couplings: list[Coupling] = []
-    ports = {state.input, state.output}
-    # Ports first, so that of two bearings a clutch makes parallel the port is kept.
-    for c in sorted(train.couplings, key=lambda c: c.name not in ports):
-        if set(c.links) & free:
-            continue
-        ends = (rename(c.links[0]), rename(c.links[1]))
-        if ends[0] == ends[1]:
-            continue
-        twin = next(
-            (d for d in bearings(couplings) if as_bearing(c) is not None and set(d.links) == set(ends)),
-            None,
-        )
-        if twin is not None:
-            # Two bearings between the same two members (a clutch joined two shafts that
-            # both run in the housing): one carries the load; a lossy twin would split it.
-            if not c.friction.lossless:
-                problems.append(
-                    train.problem(
-                        f"couplings.{c.name}",
-                        f"in state {state.name!r} this bearing "
-                        f"runs beside {twin.name!r} between the same members; their "
-                        "friction would need a load split",
-                    )
-                )
-            continue
-        couplings.append(replace(c, links=ends))
+    couplings = _joined_couplings(train, state, rename, free, problems)
     order = {c.name: i for i, c in enumerate(train.couplings)}
     couplings.sort(key=lambda c: order[c.name])
     kept = {c.name for c in couplings}
@@ -106,6 +81,42 @@ def train_in_state(train: Train, state: State | str) -> Train:
             {"ports": f"states.{state.name}", **{f"ports.{key}": f"states.{state.name}.{key}" for key in PORT_KEYS}}
         ),
     )
+
+
+def _joined_couplings(
+    train: Train, state: State, rename: Callable[[str], str], free: set[str], problems: list[Problem]
+) -> list[Coupling]:
+    """The couplings of ``train`` between the members ``state`` leaves (``rename``: a
+    link's member), those inside one member or at a free link left out, and of two
+    bearings between the same two members the first (a lossy twin is a problem)."""
+    couplings: list[Coupling] = []
+    ports = {state.input, state.output}
+    # Ports first, so that of two bearings a clutch makes parallel the port is kept.
+    for c in sorted(train.couplings, key=lambda c: c.name not in ports):
+        if set(c.links) & free:
+            continue
+        ends = (rename(c.links[0]), rename(c.links[1]))
+        if ends[0] == ends[1]:
+            continue
+        twin = next(
+            (d for d in bearings(couplings) if as_bearing(c) is not None and set(d.links) == set(ends)),
+            None,
+        )
+        if twin is not None:
+            # Two bearings between the same two members (a clutch joined two shafts that
+            # both run in the housing): one carries the load; a lossy twin would split it.
+            if not c.friction.lossless:
+                problems.append(
+                    train.problem(
+                        f"couplings.{c.name}",
+                        f"in state {state.name!r} this bearing "
+                        f"runs beside {twin.name!r} between the same members; their "
+                        "friction would need a load split",
+                    )
+                )
+            continue
+        couplings.append(replace(c, links=ends))
+    return couplings
 
 
 def _without(train: Train, free: set[str]) -> Train:

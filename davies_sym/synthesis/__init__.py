@@ -13,6 +13,12 @@ closed-form efficiency (``derive search``).
 - `davies_sym.synthesis.tooth_search`: the whole search -> `SearchResult`
 - `davies_sym.synthesis.best_design`: the chosen design as a train file with numbers
 - `davies_sym.synthesis.search_report`: the search's text and Pareto figure
+- `davies_sym.synthesis.shift_kinematics`: the main-axis members' speeds of a train of
+  several degrees of freedom, exact linear forms in its free shaft speeds
+- `davies_sym.synthesis.shift_elements`: brakes and clutches, those that lock the same
+  degree of freedom counted once, and the ratio of the gear a set of them engages
+- `davies_sym.synthesis.shift_schedules`: the shift schemes (elements and schedule)
+  that give a ratio table
 
 The ``derive search`` command that reads these is `davies_sym.cli.search_command`.
 """

@@ -11,6 +11,13 @@ Two geometries, one interface (`Frames`) for the eight steps of
   carrier-frame speeds of the pitch point, ``s_p (u_p x P).t = s_q (u_q x P).t``.
 
 Everything is evaluated exactly at one parameter point (square roots by sympy).
+
+Which link carries which planet, and the carrier of each mesh, are found here again,
+from the layout's points and axes at that point (`PlanarFrames._carrier` and
+`PlanarFrames._carries`, `ConicalFrames.carrier_of`), not taken from the axis structure
+(`davies_sym.geometry.axes.axis_structure`) that the layouts, the virtual power of the
+meshes and the planet sets share: the balance is a cross-check of that route, so it
+shares no code with it.
 """
 
 from __future__ import annotations

@@ -3,7 +3,10 @@
 For a mesh ``X: p -> q`` the carrier is a link c that holds both gear axes: seen from
 c, link p turns about the axis of its gear and link q about the axis of its own
 (Laus section 3.1, Definition 4; several carriers per train are allowed, section 3.6.5).
-With motions relative to c (`davies_sym.efficiency.absolute_motion`):
+The carrier is the one the geometry stage found for the mesh from the topology alone
+(`davies_sym.geometry.axes.axis_structure`, the frame the layout placed the mesh in);
+the motions confirm it.  With motions relative to c
+(`davies_sym.efficiency.absolute_motion`):
 
 * the lossless virtual power ``$_X^a . ^c$_p`` says which gear drives (eqs. (69)-(70),
   (86)-(88)); positive means it flows along the edge, from p to q;
@@ -21,9 +24,12 @@ from typing import TYPE_CHECKING
 import sympy
 
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.caches import IdentityCache
 from davies_sym.efficiency.absolute_motion import Twist, motion_along_path, walk_path
 from davies_sym.errors import DerivationError, Problem, TopologyError
+from davies_sym.geometry.axes import AxisStructure, axis_structure
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
+from davies_sym.topology.model import Train
 from davies_sym.topology.toothed_mesh import ToothedMesh
 
 if TYPE_CHECKING:
@@ -98,23 +104,32 @@ def _relative(analysis: Analysis, start: str, end: str) -> Twist:
     return motion_along_path(analysis, walk_path(analysis, start, end))
 
 
+#: The axis structure of each train whose meshes' carriers are asked, while the train lives.
+_STRUCTURES: IdentityCache[Train, AxisStructure] = IdentityCache()
+
+
+def _carriers(train: Train, mesh: ToothedMesh) -> list[str]:
+    """The link the axis structure names as the carrier of ``mesh``; for a mesh it does not
+    place (a rack beside its pinion), the links whose bearings hold its members."""
+    structure = _STRUCTURES.get(train, lambda: axis_structure(train))
+    frame = structure.meshes.get(mesh.name)
+    if frame is not None:
+        return [frame.carrier]
+    return [c for c in dict.fromkeys(structure.parent.get(link) for link in mesh.links) if c is not None]
+
+
 def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twist, Twist]]:
-    """The link holding both members of ``mesh`` (the first in link order that sees them
-    move, or any when the set is locked) and the motions of the mesh's two links seen
-    from it."""
+    """The link holding both members of ``mesh`` (`_carriers`) and the motions of the mesh's
+    two links seen from it, in which each member turns about its own axis (or slides along
+    its own line); both at rest when the set is locked (`_locked_block_member`)."""
     p, q = mesh.links
     axes = _member_twists(analysis, mesh)
-    locked = None
-    for c in analysis.train.link_names:
-        if c in (p, q):
-            continue
+    for c in _carriers(analysis.train, mesh):
         sides = (_relative(analysis, c, p), _relative(analysis, c, q))
         if _parallel(sides[0], axes[0]) and _parallel(sides[1], axes[1]):
-            if any(not x.is_zero() for twist in sides for x in twist):
-                return c, sides
-            locked = locked or (c, sides)  # the whole set turns as one block: any member will do
-    if locked is not None:
-        return locked
+            if all(x.is_zero() for twist in sides for x in twist):
+                return _locked_block_member(analysis, mesh), sides
+            return c, sides
     # A valid file can say this (a bearing joining the wrong links): a located refusal.
     train = analysis.train
     raise TopologyError(
@@ -127,6 +142,19 @@ def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twis
             )
         ],
         train.file_lines,
+    )
+
+
+def _locked_block_member(analysis: Analysis, mesh: ToothedMesh) -> str:
+    """The link the reports name as the carrier of a mesh whose set is locked (it turns as
+    one block, so the mesh's links are at rest in every member of the block): the first
+    other link, in link order, at rest relative to both, as the reports have always named
+    it (the carrier from `_carriers` is one such link)."""
+    p, q = mesh.links
+    return next(
+        c
+        for c in analysis.train.link_names
+        if c not in (p, q) and all(x.is_zero() for end in (p, q) for x in _relative(analysis, c, end))
     )
 
 

@@ -3,7 +3,12 @@
 A *planet* is a link pivoted on a moving link, its *carrier*, at a point off the
 carrier's own axis; planets of one carrier that mesh each other form one group (the two
 planets of a double-planet set), copied N times around the axis.  The gears the group
-meshes on other links are its *central* gears (suns and rings).
+meshes on other links are its *central* gears (suns and rings).  Which link carries which
+planet is the geometry stage's bearing tree and axis classes
+(`davies_sym.geometry.axes.axis_structure`, from the topology alone), the same carriers
+the layout and the virtual power of the meshes use; the conditions below are those of
+gears on parallel axes, so a planet whose gears the layout tilts (a bevel planet) forms
+no set here.
 
 **Assembly** (equal spacing).  Hold the first central gear G1 and turn the carrier by
 1/N of a revolution: the first planet group moves to the second position, and every
@@ -37,7 +42,10 @@ import numpy as np
 import sympy
 from numpy.typing import NDArray
 
+from davies_sym.algebra.screws import cross
+from davies_sym.geometry.axes import AxisStructure, axis_structure
 from davies_sym.geometry.layout import Layout
+from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.model import Train
 
 #: The most re-phasings of a planet group tried for the assembly condition (the product
@@ -76,37 +84,45 @@ class PlanetSet:
         return f"carrier {self.carrier}: planets {', '.join(self.planets)}; central gears {', '.join(self.centrals)}"
 
 
-def _same(a: tuple[sympy.Expr, ...], b: tuple[sympy.Expr, ...]) -> bool:
-    return all(sympy.expand(x - y) == 0 for x, y in zip(a, b, strict=True))
-
-
 def planet_sets(train: Train, layout: Layout) -> tuple[PlanetSet, ...]:
     """Every planet group of ``train`` (with its layout), carriers in name order."""
-    points = layout.coupling_points
-    revolutes = [c for c in train.couplings if c.kind == "revolute" and c.name in points]
-    gear_link = {g.name: g.link for g in train.gears}
-    internal = {g.name: g.internal for g in train.gears}
+    pivots = _pivots(train, axis_structure(train), layout)
     meshes = [c.gears for c in train.couplings if c.gears is not None]
-    pivot: dict[str, tuple[str, str]] = {}  # planet -> (carrier, pivot coupling)
-    for r in revolutes:
-        for planet, carrier in (r.links, r.links[::-1]):
-            if carrier == train.reference or planet == train.reference:
-                continue
-            own = [c for c in revolutes if carrier in c.links and planet not in c.links]
-            off_axis = own and all(not _same(points[c.name], points[r.name]) for c in own)
-            if off_axis and all(_same(points[c.name], points[r.name]) for c in revolutes if planet in c.links):
-                pivot[planet] = (carrier, r.name)
+    gear_link = {g.name: g.link for g in train.gears}
     out = []
-    for carrier in sorted({c for c, _ in pivot.values()}):
-        planets = sorted(p for p, (c, _) in pivot.items() if c == carrier)
+    for carrier in sorted({c for c, _ in pivots.values()}):
+        planets = sorted(p for p, (c, _) in pivots.items() if c == carrier)
         groups: list[set[str]] = []
         for p in planets:
             joined = [g for g in groups if any(_meshing(meshes, gear_link, p, q) for q in g)]
             merged = {p}.union(*joined)
             groups = [g for g in groups if g not in joined] + [merged]
         for group in sorted(groups, key=lambda g: sorted(g)):
-            out.append(_planet_set(carrier, tuple(sorted(group)), pivot, meshes, gear_link, internal, layout))
+            out.append(_planet_set(train, layout, carrier, tuple(sorted(group)), pivots))
     return tuple(out)
+
+
+def _pivots(train: Train, structure: AxisStructure, layout: Layout) -> dict[str, tuple[str, str]]:
+    """Planet -> (its carrier, the bearing that holds it there): every link that a moving
+    link holds in the bearing tree off the holder's own axis, the bearing being the one of
+    the tree (the first by name between the two).  A planet on a coaxial planet's pin
+    turns about that planet's axis and is no planet of its own; a planet whose gears turn
+    about axes the layout tilts is left out (see the module's docstring)."""
+    out = {}
+    for planet, carrier in sorted(structure.parent.items()):
+        if train.reference in (planet, carrier) or structure.axis[planet] == structure.axis[carrier]:
+            continue
+        if any(not _parallel(layout, g.name) for g in train.gears if g.link == planet):
+            continue
+        pivot = min(c.name for c in bearings(train.couplings) if set(c.links) == {planet, carrier})
+        out[planet] = (carrier, pivot)
+    return out
+
+
+def _parallel(layout: Layout, gear: str) -> bool:
+    """Whether ``gear`` turns about an axis parallel to the layout's main axis."""
+    axis = layout.gear_axes.get(gear, layout.axis)
+    return all(sympy.expand(x) == 0 for x in cross(axis, layout.axis))
 
 
 def _meshing(meshes: list[tuple[str, str]], gear_link: Mapping[str, str], a: str, b: str) -> bool:
@@ -114,14 +130,13 @@ def _meshing(meshes: list[tuple[str, str]], gear_link: Mapping[str, str], a: str
 
 
 def _planet_set(
-    carrier: str,
-    group: tuple[str, ...],
-    pivot: Mapping[str, tuple[str, str]],
-    meshes: list[tuple[str, str]],
-    gear_link: Mapping[str, str],
-    internal: Mapping[str, bool],
-    layout: Layout,
+    train: Train, layout: Layout, carrier: str, group: tuple[str, ...], pivots: Mapping[str, tuple[str, str]]
 ) -> PlanetSet:
+    """The group's central gears, the paths of meshes to its planets and further central
+    gears from the first central gear, and each planet's orbit about the carrier's axis."""
+    gear_link = {g.name: g.link for g in train.gears}
+    internal = {g.name: g.internal for g in train.gears}
+    meshes = [c.gears for c in train.couplings if c.gears is not None]
     on_planet = {g for g, link in gear_link.items() if link in group}
     centrals = sorted({y for x, y in (*meshes, *((b, a) for a, b in meshes)) if x in on_planet and y not in on_planet})
     paths: dict[str, tuple[Step, ...]] = {}
@@ -149,9 +164,9 @@ def _planet_set(
     centre = layout.coupling_points
     carrier_axis = _carrier_axis(layout, centrals)
     orbit = {
-        p: sympy.sqrt(sum((a - b) ** 2 for a, b in zip(centre[pivot[p][1]], carrier_axis, strict=True))) for p in group
+        p: sympy.sqrt(sum((a - b) ** 2 for a, b in zip(centre[pivots[p][1]], carrier_axis, strict=True))) for p in group
     }
-    return PlanetSet(carrier, group, {p: pivot[p][1] for p in group}, tuple(centrals), paths, entry, orbit)
+    return PlanetSet(carrier, group, {p: pivots[p][1] for p in group}, tuple(centrals), paths, entry, orbit)
 
 
 def _carrier_axis(layout: Layout, centrals: list[str]) -> tuple[sympy.Expr, ...]:

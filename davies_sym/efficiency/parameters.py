@@ -105,10 +105,12 @@ def _implied_by_excluded(variants: VariantSet) -> list[sympy.Expr]:
 def file_parameters(train: Train) -> tuple[str, ...]:
     """Every parameter any state of ``train`` may take, sorted: the symbols of the file
     except the friction coefficients of meshes that give ordinary efficiencies (the
-    formulas are written in the efficiencies).  The formula modules of all states of
-    one file accept all of them, so design code calls every state alike."""
+    formulas are written in the efficiencies) and the free lengths of the layout (a
+    chain's centre distance).  The formula modules of all states of one file accept all
+    of them, so design code calls every state alike."""
     replaced: set[sympy.Basic] = set()
     for c in toothed_meshes(train.couplings):
         if c.efficiencies and c.friction.coulomb is not None:
             replaced |= c.friction.coulomb.free_symbols
+    replaced |= {s for c in train.couplings for s in c.free_lengths}
     return tuple(sorted(name for name, s in train.symbols.items() if s not in replaced))

@@ -20,7 +20,7 @@ from davies_sym.caches import IdentityCache
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import axis_structure
 from davies_sym.geometry.cone import conical_layout
-from davies_sym.geometry.layout import GeometricConstraint, Layout
+from davies_sym.geometry.layout import GeometricConstraint, Layout, spacings
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
 from davies_sym.geometry.skew import skew_layout, skew_meshes
@@ -59,9 +59,13 @@ def _layout(train: Train) -> Layout:
         return skew_layout(train, _layout)
     if any(g.axis is not None or g.tilted for g in train.gears):
         return conical_layout(train)
-    # The axis classes are found once and handed to the layout that places them.
+    # The axis classes are found once and handed to the layout that places them.  A
+    # coupling whose centre distance is free (a chain) draws its strand along the
+    # placement direction, its second axis across it: such a train is drawn in 2-D.
     if train.placement is not None:
         return plane_layout(train, train.placement, axis_structure(train))
+    if any(not s.fixed for s in spacings(train)):
+        return plane_layout(train, (sympy.Integer(0), sympy.Integer(1)), axis_structure(train))
     return planar_line_layout(train, axis_structure(train))
 
 

@@ -21,8 +21,9 @@ from dataclasses import dataclass
 from itertools import product
 
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.topology.coupling_kinds import bearings, gear_meshes
-from davies_sym.topology.gear_mesh import GearMesh
+from davies_sym.geometry.layout import spacings
+from davies_sym.topology.coupling_kinds import bearings
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Train
 from davies_sym.topology.revolute import Revolute
@@ -67,7 +68,7 @@ class AxisStructure:
 def axis_structure(train: Train) -> AxisStructure:
     """The bearing tree, the mesh carriers and the axis classes of ``train``."""
     revolutes = sorted(bearings(train.couplings), key=lambda c: c.name)
-    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
+    meshes = sorted(spacings(train), key=lambda c: c.name)
     parent, depth, tree = _bearing_tree(train, revolutes)
     coaxial, bearing_on = _coaxial(train, revolutes, tree)
     _check_meshes_apart(train, meshes, revolutes, tree, coaxial)
@@ -127,14 +128,14 @@ def _bearing_tree(train: Train, revolutes: Sequence[Revolute]) -> tuple[dict[str
 Choice = tuple[MeshFrame, tuple[str, str] | None]
 
 
-def axis_links(train: Train, mesh: GearMesh) -> tuple[str, str]:
+def axis_links(train: Train, mesh: AxisSpacing) -> tuple[str, str]:
     """The links whose axes the two gears of ``mesh`` turn about: their own links, or the
     link a gear names with ``about`` (a gear fixed to a carrier about a pin it holds)."""
     first, second = (train.gear(name).axis_link for name in mesh.gears)
     return first, second
 
 
-def _options(train: Train, mesh: GearMesh, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
+def _options(train: Train, mesh: AxisSpacing, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
     """The ways ``mesh`` can keep its centre distance: (frame, the two links it makes coaxial)."""
     a, b = axis_links(train, mesh)
     pa, pb = parent.get(a), parent.get(b)
@@ -181,7 +182,7 @@ def _coaxial(
 
 def _check_meshes_apart(
     train: Train,
-    meshes: Sequence[GearMesh],
+    meshes: Sequence[AxisSpacing],
     revolutes: Sequence[Revolute],
     tree: Mapping[str, str],
     coaxial: LinkGroups,
@@ -205,20 +206,29 @@ def _check_meshes_apart(
             problem = Problem(
                 f"couplings.{mesh.name}",
                 f"links {a!r} and {b!r} turn about one axis (their bearings make them coaxial), so their gears "
-                "cannot mesh; name the planet of a pin with `axis:` on its revolute",
+                f"cannot {_joined(mesh)}; name the planet of a pin with `axis:` on its revolute",
             )
         else:
             problem = Problem(
                 f"couplings.{cause.name}.axis",
-                f"`axis: {cause.axis}` puts links {a!r} and {b!r} on one axis, so their mesh {mesh.name!r} cannot "
-                f"turn; `axis:` names the link whose axis the bearing is on: write "
+                f"`axis: {cause.axis}` puts links {a!r} and {b!r} on one axis, so their {mesh.noun} "
+                f"{mesh.name!r} cannot turn; `axis:` names the link whose axis the bearing is on: write "
                 f"`axis: {tree.get(cause.name, cause.links[1])}` for a planet on its pin, or leave `axis:` out",
             )
         raise GeometryError([problem], train.file_lines)
 
 
+def _joined(mesh: AxisSpacing) -> str:
+    """What two coaxial gears cannot do in a problem: mesh, or be joined by a chain."""
+    return "mesh" if mesh.noun == "mesh" else f"be joined by a {mesh.noun}"
+
+
 def _mesh_frames(
-    train: Train, meshes: Sequence[GearMesh], parent: Mapping[str, str], depth: Mapping[str, int], coaxial: LinkGroups
+    train: Train,
+    meshes: Sequence[AxisSpacing],
+    parent: Mapping[str, str],
+    depth: Mapping[str, int],
+    coaxial: LinkGroups,
 ) -> dict[str, MeshFrame]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
     joins two coaxial links."""
@@ -239,7 +249,7 @@ def _mesh_frames(
     problems = [
         Problem(
             f"couplings.{m.name}",
-            "no link holds both gear axes of this mesh together with "
+            f"no link holds both gear axes of this {m.noun} together with "
             "the other meshes: the planet's carrier must turn about the axis of the gear it "
             "meshes",
         )

@@ -9,6 +9,7 @@ the line from the apex to it, the tooth force along the common normal.  A tilted
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import sympy
 
@@ -16,8 +17,8 @@ from davies_sym.algebra.radicals import RadicalError, RadicalTable
 from davies_sym.algebra.screws import Vector, cross, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import axis_structure
-from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout
-from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
+from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout, spacings
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.model import Gear, Train
 
 
@@ -74,7 +75,7 @@ def _tilted_axis(
     """
     entry = f"gears.{gear.name}.axis"
     partners = []
-    for c in gear_meshes(train.couplings):
+    for c in spacings(train):
         if gear.name in c.gears:
             other = train.gear(c.gears[1] if c.gears[0] == gear.name else c.gears[0])
             if other.link in axes:
@@ -124,48 +125,14 @@ def conical_layout(train: Train) -> Layout:
     if problems:
         raise GeometryError(problems, train.file_lines)
     gears = {g.name: g for g in train.gears}
-    gear_axes = {g.name: axes[g.link] for g in train.gears}
+    cones = _Cones(gears, {g.name: axes[g.link] for g in train.gears}, radicals, problems)
+    meshes = {m.name: m for m in spacings(train)}
     structure = axis_structure(train)
     origin = vector((0, 0, 0))
-    points: dict[str, Vector] = {}
-    coupling_axes: dict[str, Vector] = {}
-    tangents: dict[str, Vector] = {}
-    cone_distance: dict[str, tuple[str, sympy.Expr]] = {}
     for c in train.couplings:
-        mesh = as_gear_mesh(c)
-        if mesh is not None:
-            g, h = (gears[n] for n in mesh.gears)
-            a, b = gear_axes[g.name], gear_axes[h.name]
-            normal = radicals.reduced(cross(a, b))
-            if all(x == 0 for x in normal):
-                problems.append(
-                    Problem(
-                        f"couplings.{c.name}",
-                        "the gear axes are parallel: give the train without axis directions (planar layout)",
-                    )
-                )
-                continue
-            sin = radicals.sqrt(_norm_squared(normal))
-            pitch = radicals.reduced((h.radius * x + g.radius * y) / sin for x, y in zip(a, b, strict=True))
-            points[c.name] = pitch
-            coupling_axes[c.name] = pitch
-            tangents[c.name] = radicals.reduced(x / sin for x in normal)
-            distance = radicals.reduce(_norm_squared(pitch))
-            for gear in (g, h):
-                if gear.name in cone_distance:
-                    other, previous = cone_distance[gear.name]
-                    if radicals.reduce(distance - previous) != 0:
-                        problems.append(
-                            Problem(
-                                f"couplings.{c.name}",
-                                f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
-                                f"sqrt({radicals.restore(distance)}) and in {other!r} at "
-                                f"sqrt({radicals.restore(previous)}); one gear has one pitch circle",
-                            )
-                        )
-                else:
-                    cone_distance[gear.name] = (c.name, distance)
-        elif as_bearing(c) is not None:
+        if c.name in meshes:
+            cones.draw(meshes[c.name])
+        elif c.name in structure.bearing_axis:
             # The bearing turns about the axis of the link it holds (its axis class).
             holder = next(
                 (link for link in sorted(axes) if structure.axis[link] == structure.bearing_axis[c.name]), None
@@ -175,20 +142,85 @@ def conical_layout(train: Train) -> Layout:
                     Problem(f"couplings.{c.name}", "no gear turns about this bearing's axis: its direction is unknown")
                 )
                 continue
-            points[c.name] = origin
-            coupling_axes[c.name] = axes[holder]
+            cones.points[c.name] = origin
+            cones.coupling_axes[c.name] = axes[holder]
         else:
-            points[c.name] = origin
+            cones.points[c.name] = origin
     if problems:
         raise GeometryError(problems, train.file_lines)
     return Layout(
         gear_centres={g.name: origin for g in train.gears},
-        coupling_points=points,
-        mesh_tangents=tangents,
-        mesh_normals={name: p for name, p in coupling_axes.items() if name in tangents},
+        coupling_points=cones.points,
+        mesh_tangents=cones.tangents,
+        mesh_normals={name: p for name, p in cones.coupling_axes.items() if name in cones.tangents},
         constraints=(),
         positive_facts=tuple(r.radicand for r in radicals.radicals),
-        gear_axes=gear_axes,
-        coupling_axes=coupling_axes,
+        gear_axes=cones.gear_axes,
+        coupling_axes=cones.coupling_axes,
         radicals=tuple(radicals.radicals),
     )
+
+
+@dataclass
+class _Cones:
+    """The pitch points, rolling axes and tooth-force directions of the meshes of a train
+    whose axes meet at the origin, and the cone distance at which each gear meshes."""
+
+    gears: Mapping[str, Gear]
+    gear_axes: dict[str, Vector]
+    radicals: RadicalTable
+    problems: list[Problem]
+    points: dict[str, Vector] = field(default_factory=dict)
+    coupling_axes: dict[str, Vector] = field(default_factory=dict)
+    tangents: dict[str, Vector] = field(default_factory=dict)
+    cone_distance: dict[str, tuple[str, sympy.Expr]] = field(default_factory=dict)
+
+    def draw(self, mesh: AxisSpacing) -> None:
+        """The pitch point P = (r_b a + r_a b) / sin S of ``mesh`` (Laus eqs. (80)-(84)), the
+        rolling axis OP and the tooth force along a x b; a problem where the axes are
+        parallel or the coupling joins parallel axes only (a chain)."""
+        radicals, name = self.radicals, mesh.name
+        g, h = (self.gears[n] for n in mesh.gears)
+        a, b = self.gear_axes[g.name], self.gear_axes[h.name]
+        normal = radicals.reduced(cross(a, b))
+        if not mesh.intersecting:
+            self.problems.append(
+                Problem(
+                    f"couplings.{name}",
+                    f"a {mesh.noun} joins parallel axes only; this train has intersecting axes: give it without "
+                    "axis directions (planar layout)",
+                )
+            )
+            return
+        if all(x == 0 for x in normal):
+            self.problems.append(
+                Problem(
+                    f"couplings.{name}",
+                    "the gear axes are parallel: give the train without axis directions (planar layout)",
+                )
+            )
+            return
+        sin = radicals.sqrt(_norm_squared(normal))
+        pitch = radicals.reduced((h.radius * x + g.radius * y) / sin for x, y in zip(a, b, strict=True))
+        self.points[name] = pitch
+        self.coupling_axes[name] = pitch
+        self.tangents[name] = radicals.reduced(x / sin for x in normal)
+        self._check_cone_distance(name, (g, h), radicals.reduce(_norm_squared(pitch)))
+
+    def _check_cone_distance(self, name: str, gears: tuple[Gear, Gear], distance: sympy.Expr) -> None:
+        """A gear meshing twice has both pitch points on its one pitch circle."""
+        restore = self.radicals.restore
+        for gear in gears:
+            if gear.name not in self.cone_distance:
+                self.cone_distance[gear.name] = (name, distance)
+                continue
+            other, previous = self.cone_distance[gear.name]
+            if self.radicals.reduce(distance - previous) != 0:
+                self.problems.append(
+                    Problem(
+                        f"couplings.{name}",
+                        f"inconsistent geometry: gear {gear.name!r} meshes here at cone distance "
+                        f"sqrt({restore(distance)}) and in {other!r} at "
+                        f"sqrt({restore(previous)}); one gear has one pitch circle",
+                    )
+                )

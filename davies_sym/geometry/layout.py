@@ -15,6 +15,7 @@ from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.topology.coupling_kinds import bearings
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.link_groups import LinkGroups
 from davies_sym.topology.model import Train
 
@@ -76,6 +77,14 @@ class Layout:
 def line_point(y: sympy.Expr) -> Vector:
     """The point at ``y`` on the layout line (x = z = 0)."""
     return vector((0, y, 0))
+
+
+def spacings(train: Train) -> list[AxisSpacing]:
+    """How each coupling that places two gears' axes spaces them (meshes, chains), in the
+    train's order."""
+    gears = {g.name: g for g in train.gears}
+    found = (c.spacing(gears) for c in train.couplings)
+    return [s for s in found if s is not None]
 
 
 def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:

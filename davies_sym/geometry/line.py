@@ -14,9 +14,11 @@ when it cannot hold.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.screws import Vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure
@@ -27,14 +29,14 @@ from davies_sym.geometry.layout import (
     Layout,
     line_point,
     loop_through,
+    spacings,
 )
-from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
-from davies_sym.topology.gear_mesh import GearMesh
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.model import Gear, Train
 
 
-def side_of_second(mesh: GearMesh, structure: AxisStructure, gears: Mapping[str, Gear]) -> int | None:
+def side_of_second(mesh: AxisSpacing, structure: AxisStructure, gears: Mapping[str, Gear]) -> int | None:
     """The sign of y_h - y_g the drawing rules give the mesh's gears (g, h), or None for a
     fixed-axis external pair, whose side follows from the positions."""
     frame = structure.meshes[mesh.name]
@@ -48,7 +50,7 @@ def side_of_second(mesh: GearMesh, structure: AxisStructure, gears: Mapping[str,
 def place_classes(
     train: Train,
     structure: AxisStructure,
-    meshes: Sequence[GearMesh],
+    meshes: Sequence[AxisSpacing],
     gears: Mapping[str, Gear],
     problems: list[Problem],
     via: dict[str, tuple[str, str]],
@@ -86,7 +88,7 @@ def place_classes(
 
 def _place_one(
     structure: AxisStructure,
-    meshes: Sequence[GearMesh],
+    meshes: Sequence[AxisSpacing],
     gears: Mapping[str, Gear],
     positions: dict[str, sympy.Expr],
     via: dict[str, tuple[str, str]],
@@ -99,7 +101,7 @@ def _place_one(
             continue
         known = 0 if placed[0] else 1
         side = side_of_second(mesh, structure, gears)
-        distance = mesh.centre_distance(gears)
+        distance = mesh.distance
         # A fixed-axis external pair: the gear placed now goes outward, whichever is written first.
         step = distance if side is None else (side if known == 0 else -side) * distance
         positions[ends[1 - known]] = sympy.expand(positions[ends[known]] + step)
@@ -112,7 +114,7 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
     """Derive axis positions, pitch points and geometric constraints of a planar train
     with the axis classes of ``structure``."""
     problems: list[Problem] = []
-    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
+    meshes = sorted(spacings(train), key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
     via: dict[str, tuple[str, str]] = {}
     positions = place_classes(train, structure, meshes, gears, problems, via)
@@ -120,56 +122,12 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
         raise GeometryError(problems, train.file_lines)
     # An annulus is larger than its pinion, and every radius is positive (3 r2 - r1 too):
     # that decides on which side a loop closes.
-    oracle = SignOracle([m.centre_distance(gears) for m in meshes if m.internal] + [g.radius for g in train.gears])
+    oracle = SignOracle([m.distance for m in meshes if m.internal] + [g.radius for g in train.gears])
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
-    points: dict[str, tuple[sympy.Expr, sympy.Expr, sympy.Expr]] = {}
     closures = Closures(oracle, problems)
-    facts: list[sympy.Expr] = []
-    for mesh in meshes:
-        g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
-        offset = sympy.expand(centres[h.name] - centres[g.name])
-        side = side_of_second(mesh, structure, gears)
-        if side is None:
-            side = oracle.sign(offset) if offset != 0 else None
-            if side not in (1, -1):
-                problems.append(
-                    Problem(
-                        f"couplings.{mesh.name}",
-                        f"cannot tell on which side of gear {g.name!r} gear {h.name!r} lies "
-                        f"(centre offset {offset}): the meshes of carrier "
-                        f"{structure.meshes[mesh.name].carrier!r} close "
-                        "a loop a line cannot draw; draw the train in 2-D with `placement:`",
-                    )
-                )
-                continue
-        if mesh.internal:
-            facts.append(mesh.centre_distance(gears))
-        base, _ = mesh.pitch_circle(gears)
-        towards = side if base is g else -side
-        points[mesh.name] = line_point(centres[base.name] + towards * base.radius)
-        ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
-        closures.close(
-            side * offset,
-            mesh.centre_distance(gears),
-            mesh.name,
-            loop=loop_through(via, ends[0], ends[1], mesh.name),
-        )
-    for c in train.couplings:
-        bearing = as_bearing(c)
-        if bearing is not None:
-            y = positions[structure.bearing_axis[c.name]]
-            if bearing.at is not None:
-                # Where the meshes fix this axis, the bearing's `at` is a constraint.
-                closures.close(
-                    y,
-                    bearing.at,
-                    c.name,
-                    f"couplings.{c.name}.at",
-                    f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {y}",
-                )
-            points[c.name] = line_point(y)
-        elif as_gear_mesh(c) is None:
-            points[c.name] = line_point(sympy.Integer(0))
+    drawing = _LineDrawing(structure, gears, centres, via)
+    points = {mesh.name: p for mesh in meshes if (p := _pitch_point(drawing, mesh, closures)) is not None}
+    points |= _other_points(train, structure, positions, {m.name for m in meshes}, closures)
     if problems:
         raise GeometryError(problems, train.file_lines)
     return Layout(
@@ -178,6 +136,74 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
         mesh_tangents={m.name: X_AXIS for m in meshes},
         mesh_normals={m.name: Y_AXIS for m in meshes},
         constraints=tuple(closures.constraints),
-        positive_facts=tuple(facts),
+        positive_facts=tuple(m.distance for m in meshes if m.internal),
         planet_second=structure.planet_second(),
     )
+
+
+@dataclass(frozen=True)
+class _LineDrawing:
+    """What drawing the meshes on the line reads: the axis classes, the gears, their
+    centres (y) and which mesh placed each class from which (``via``)."""
+
+    structure: AxisStructure
+    gears: Mapping[str, Gear]
+    centres: Mapping[str, sympy.Expr]
+    via: Mapping[str, tuple[str, str]]
+
+
+def _pitch_point(drawing: _LineDrawing, mesh: AxisSpacing, closures: Closures) -> Vector | None:
+    """The pitch point of ``mesh`` on its pitch circle towards the other gear (Laus Fig. 5),
+    its centre distance closed against the placed centres (r1 - r3 = r2 - r4, Laus section
+    3.4.1.6); None, with the problem recorded, where the side of its second gear is unknown."""
+    structure, gears, centres = drawing.structure, drawing.gears, drawing.centres
+    g, h = gears[mesh.gears[0]], gears[mesh.gears[1]]
+    offset = sympy.expand(centres[h.name] - centres[g.name])
+    side = side_of_second(mesh, structure, gears)
+    if side is None:
+        side = closures.oracle.sign(offset) if offset != 0 else None
+        if side not in (1, -1):
+            closures.problems.append(
+                Problem(
+                    f"couplings.{mesh.name}",
+                    f"cannot tell on which side of gear {g.name!r} gear {h.name!r} lies "
+                    f"(centre offset {offset}): the meshes of carrier "
+                    f"{structure.meshes[mesh.name].carrier!r} close "
+                    "a loop a line cannot draw; draw the train in 2-D with `placement:`",
+                )
+            )
+            return None
+    base = gears[mesh.pitch[0]]
+    towards = side if base is g else -side
+    ends = [structure.axis[gears[name].axis_link] for name in mesh.gears]
+    closures.close(side * offset, mesh.distance, mesh.name, loop=loop_through(drawing.via, ends[0], ends[1], mesh.name))
+    return line_point(centres[base.name] + towards * base.radius)
+
+
+def _other_points(
+    train: Train,
+    structure: AxisStructure,
+    positions: Mapping[str, sympy.Expr],
+    meshes: set[str],
+    closures: Closures,
+) -> dict[str, Vector]:
+    """A bearing's point on its axis class (its `at`, where the meshes place that axis too,
+    closed as a constraint); any other coupling but the meshes at the origin."""
+    stated = {c.name: c.at for c in all_bearings(train.couplings)}
+    points: dict[str, Vector] = {}
+    for c in train.couplings:
+        if c.name in structure.bearing_axis:
+            y = positions[structure.bearing_axis[c.name]]
+            at = stated.get(c.name)
+            if at is not None:
+                closures.close(
+                    y,
+                    at,
+                    c.name,
+                    f"couplings.{c.name}.at",
+                    f"inconsistent geometry: `at` is {at} but the gears put this axis at {y}",
+                )
+            points[c.name] = line_point(y)
+        elif c.name not in meshes:
+            points[c.name] = line_point(sympy.Integer(0))
+    return points

@@ -15,7 +15,7 @@ depend on the placement direction.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy
 
@@ -24,11 +24,10 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure
-from davies_sym.geometry.layout import Closures, Layout
+from davies_sym.geometry.layout import Closures, Layout, spacings
 from davies_sym.geometry.line import side_of_second
-from davies_sym.topology.coupling_kinds import as_bearing, as_gear_mesh, gear_meshes
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
-from davies_sym.topology.gear_mesh import GearMesh
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.model import Gear, Train
 
 Point = tuple[sympy.Expr, sympy.Expr]
@@ -40,34 +39,76 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     of the planets."""
     problems: list[Problem] = []
     gears = {g.name: g for g in train.gears}
+    meshes = sorted(spacings(train), key=lambda c: c.name)
     # Known positive: the centre distance of an internal pair, and a radius the geometry
     # writes in others (a coaxial planet's r4 = r3 + r5 - r6).
-    known = [m.centre_distance(gears) for m in gear_meshes(train.couplings) if m.internal]
+    known = [m.distance for m in spacings(train) if m.internal]
     known += [g.radius for g in train.gears if g.radius is not None and not g.radius.is_Symbol]
     radicals = RadicalTable(facts=known)
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
-    meshes = sorted(gear_meshes(train.couplings), key=lambda c: c.name)
     used: set[str] = set()
     positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used, set()))
     if problems:
         raise GeometryError(problems, train.file_lines)
-    oracle = SignOracle()
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
-    points: dict[str, Vector] = {}
-    tangents: dict[str, Vector] = {}
-    normals: dict[str, Vector] = {}
-    closures = Closures(oracle, problems)
-    facts: list[sympy.Expr] = []
+    closures = Closures(SignOracle(), problems)
+    pitch = _PitchPoints(gears, centres, radicals, closures)
     for mesh in meshes:
-        distance = mesh.centre_distance(gears)
-        on, other = mesh.pitch_circle(gears)
+        pitch.draw(mesh, mesh.name in used)
+    points = pitch.points | _other_points(train, structure, positions, unit, pitch)
+    if problems:
+        raise GeometryError(problems, train.file_lines)
+    return Layout(
+        gear_centres={name: vector((*p, 0)) for name, p in centres.items()},
+        coupling_points=points,
+        mesh_tangents=pitch.tangents,
+        mesh_normals=pitch.normals,
+        constraints=tuple(closures.constraints),
+        positive_facts=tuple(pitch.facts) + tuple(r.radicand for r in radicals.radicals),
+        radicals=tuple(radicals.radicals),
+        frame=unit,
+        planet_second=structure.planet_second(),
+    )
+
+
+@dataclass
+class _PitchPoints:
+    """The pitch points, tooth-force directions and separating directions of the meshes
+    of a 2-D drawing, from the placed centres (the line of centres has the mesh's centre
+    distance on an admissible design; a mesh that placed no class closes a loop)."""
+
+    gears: Mapping[str, Gear]
+    centres: Mapping[str, Point]
+    radicals: RadicalTable
+    closures: Closures
+    points: dict[str, Vector] = field(default_factory=dict)
+    tangents: dict[str, Vector] = field(default_factory=dict)
+    normals: dict[str, Vector] = field(default_factory=dict)
+    facts: list[sympy.Expr] = field(default_factory=list)
+
+    def draw(self, mesh: AxisSpacing, placed: bool) -> None:
+        """Draw ``mesh`` (``placed``: it placed one of its classes, so closes no loop). A
+        coupling of a free distance (a chain) locates itself; it cannot close a loop."""
+        if not mesh.fixed:
+            if not placed:
+                self.closures.problems.append(
+                    Problem(
+                        f"couplings.{mesh.name}",
+                        f"the {mesh.noun} joins axes the other couplings place already (it closes a loop of "
+                        "couplings); its centre distance is free, so it must place one of them: remove the bearing "
+                        "`at` or the mesh that places the other axis",
+                    )
+                )
+            return
+        radicals, closures = self.radicals, self.closures
+        on, other = self.gears[mesh.pitch[0]], self.gears[mesh.pitch[1]]
         if mesh.internal:
-            facts.append(on.radius - other.radius)
-        base, towards, reach = centres[on.name], centres[other.name], on.radius
+            self.facts.append(on.radius - other.radius)
+        base, towards, reach = self.centres[on.name], self.centres[other.name], on.radius
         offset = (radicals.reduce(towards[0] - base[0]), radicals.reduce(towards[1] - base[1]))
-        if mesh.name not in used:
+        if not placed:
             squared = radicals.reduce(offset[0] ** 2 + offset[1] ** 2)
             try:
                 actual = radicals.sqrt(squared)
@@ -77,43 +118,40 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
                 # the same condition for the positive lengths of an admissible design.
                 actual = None
             if actual is None or has_square_root(radicals.restore(actual)):
-                closures.close(squared, distance**2, mesh.name)
+                closures.close(squared, mesh.distance**2, mesh.name)
             else:
-                closures.close(actual, distance, mesh.name)
-        # The line of centres has length `distance` on an admissible design.
-        u = (radicals.reduce(offset[0] / distance), radicals.reduce(offset[1] / distance))
-        points[mesh.name] = radicals.reduced((base[0] + reach * u[0], base[1] + reach * u[1], 0))
-        tangents[mesh.name] = vector((u[1], -u[0], 0))
-        normals[mesh.name] = vector((u[0], u[1], 0))
+                closures.close(actual, mesh.distance, mesh.name)
+        u = (radicals.reduce(offset[0] / mesh.distance), radicals.reduce(offset[1] / mesh.distance))
+        self.points[mesh.name] = radicals.reduced((base[0] + reach * u[0], base[1] + reach * u[1], 0))
+        self.tangents[mesh.name] = vector((u[1], -u[0], 0))
+        self.normals[mesh.name] = vector((u[0], u[1], 0))
+
+
+def _other_points(
+    train: Train, structure: AxisStructure, positions: Mapping[str, Point], unit: Point, pitch: _PitchPoints
+) -> dict[str, Vector]:
+    """A bearing's point on its axis class (its `at` along the placement direction, where
+    the meshes place that axis too, closed as a constraint); any other coupling but the
+    meshes at the origin (a coupling that follows its gears is located later)."""
+    stated = {c.name: c.at for c in all_bearings(train.couplings)}
+    radicals, points = pitch.radicals, {}
     for c in train.couplings:
-        bearing = as_bearing(c)
-        if bearing is not None:
+        if c.name in structure.bearing_axis:
             point = positions[structure.bearing_axis[c.name]]
-            if bearing.at is not None:
+            at = stated.get(c.name)
+            if at is not None:
                 along = radicals.reduce(point[0] * unit[0] + point[1] * unit[1])
-                closures.close(
+                pitch.closures.close(
                     along,
-                    bearing.at,
+                    at,
                     c.name,
                     f"couplings.{c.name}.at",
-                    f"inconsistent geometry: `at` is {bearing.at} but the gears put this axis at {along}",
+                    f"inconsistent geometry: `at` is {at} but the gears put this axis at {along}",
                 )
             points[c.name] = vector((*point, 0))
-        elif as_gear_mesh(c) is None:
+        elif c.name not in pitch.points:
             points[c.name] = vector((0, 0, 0))
-    if problems:
-        raise GeometryError(problems, train.file_lines)
-    return Layout(
-        gear_centres={name: vector((*p, 0)) for name, p in centres.items()},
-        coupling_points=points,
-        mesh_tangents=tangents,
-        mesh_normals=normals,
-        constraints=tuple(closures.constraints),
-        positive_facts=tuple(facts) + tuple(r.radicand for r in radicals.radicals),
-        radicals=tuple(radicals.radicals),
-        frame=unit,
-        planet_second=structure.planet_second(),
-    )
+    return points
 
 
 @dataclass(frozen=True)
@@ -124,7 +162,7 @@ class _Drawing:
     ordered pairs of centres a triangle has closed on)."""
 
     structure: AxisStructure
-    meshes: Sequence[GearMesh]
+    meshes: Sequence[AxisSpacing]
     gears: Mapping[str, Gear]
     unit: Point
     radicals: RadicalTable
@@ -184,14 +222,17 @@ def _place_one(drawing: _Drawing, positions: dict[str, Point]) -> bool:
             here, there = ends[1 - k], ends[k]
             if here in positions or there not in positions:
                 continue
-            reach.setdefault(here, []).append((positions[there], mesh.centre_distance(gears), mesh.name))
+            if mesh.fixed:  # a free distance (a chain) closes no triangle
+                reach.setdefault(here, []).append((positions[there], mesh.distance, mesh.name))
             if first is None:
-                # ``here`` lies on the side the drawing rules give the mesh's second gear.
+                # ``here`` lies on the side the drawing rules give the mesh's second gear,
+                # across the placement direction where the coupling says so (a chain's strand).
                 side = side_of_second(mesh, structure, gears)
-                distance = mesh.centre_distance(gears)
-                step = distance if side is None else (side if k == 0 else -side) * distance
+                step = mesh.distance if side is None else (side if k == 0 else -side) * mesh.distance
+                across = mesh.across if k == 0 else -mesh.across
                 x, y = positions[there]
-                first = (here, (radicals.reduce(x + step * unit[0]), radicals.reduce(y + step * unit[1])), mesh.name)
+                x, y = x + step * unit[0] + across * unit[1], y + step * unit[1] - across * unit[0]
+                first = (here, (radicals.reduce(x), radicals.reduce(y)), mesh.name)
     if first is None:
         return False
     # Triangles first: a class that meshes two placed classes on distinct axes.

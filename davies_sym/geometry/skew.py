@@ -94,6 +94,7 @@ def _check_worm_links(
     wheel is on the parallel-axis part of the train."""
     problems: list[Problem] = []
     seen: dict[str, str] = {}
+    allowed = {c.name for c in coupling_kinds.bearings(train.couplings)} | {m.name for m in meshes}
     for mesh in meshes:
         worm, wheel = gears[mesh.gears[0]], gears[mesh.gears[1]]
         entry = f"couplings.{mesh.name}.gears"
@@ -130,7 +131,7 @@ def _check_worm_links(
                     Problem(f"couplings.{bearing.name}", "a revolute between two worm links is not supported")
                 )
         for c in train.couplings:
-            if worm.link in c.links and coupling_kinds.as_bearing(c) is None and coupling_kinds.as_skew_mesh(c) is None:
+            if worm.link in c.links and c.name not in allowed:
                 problems.append(
                     Problem(f"couplings.{c.name}", f"link {worm.link!r} of a worm joins only revolutes and its mesh")
                 )

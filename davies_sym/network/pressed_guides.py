@@ -10,7 +10,6 @@ from dataclasses import replace
 
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.network.friction_laws import FrictionLaw
-from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
 
 
@@ -27,7 +26,7 @@ def pressed_laws(train: Train, laws: Sequence[FrictionLaw]) -> tuple[FrictionLaw
             out.append(law)
             continue
         entry = f"couplings.{law.coupling}.friction.pressed_by"
-        mesh = as_toothed_mesh(train.coupling(pressing)) if pressing in names else None
+        mesh = train.coupling(pressing) if pressing in names else None
         if mesh is None or mesh.separating is None or pressing not in tooth_force:
             why = (
                 f"no coupling {pressing!r} in this train"

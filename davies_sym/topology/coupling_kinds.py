@@ -21,7 +21,16 @@ from davies_sym.topology.skew_mesh import CrossedHelicalMesh, SkewMesh, WormMesh
 from davies_sym.topology.toothed_mesh import ToothedMesh
 
 KINDS: Mapping[str, type[Coupling]] = {
-    k.kind: k for k in (Revolute, GearMesh, WormMesh, CrossedHelicalMesh, Prismatic, ScrewCoupling, RackMesh)
+    k.kind: k
+    for k in (
+        Revolute,
+        GearMesh,
+        WormMesh,
+        CrossedHelicalMesh,
+        Prismatic,
+        ScrewCoupling,
+        RackMesh,
+    )
 }
 
 

@@ -30,6 +30,46 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
+class AxisSpacing:
+    """How a coupling that joins two gears places their axes, as the layouts read it: the
+    distance between the axes along the line the layout draws them on (r_g + r_h of an
+    external mesh, R - r of an internal one, Laus section 3.4.1.6; a free length of a
+    chain), how far the second axis lies across that line, and where the pitch point is.
+
+    A mesh's distance is fixed by the radii: a loop of couplings it closes gives a
+    geometric constraint, and its pitch point lies on the line of centres, on the pitch
+    circle of ``pitch[0]`` (the annulus of an internal mesh, else the first gear).  A
+    distance written in ``free`` symbols is a length the formulas must not depend on (a
+    chain's centre distance): it places an axis but closes no loop, and the coupling
+    locates itself from the placed centres (`ToothedMesh.locate`)."""
+
+    #: The coupling's name and its two gears (first, second) as the file writes them.
+    name: str
+    gears: tuple[str, str]
+    distance: sympy.Expr
+    #: (the gear whose pitch circle holds the pitch point, the other gear).
+    pitch: tuple[str, str]
+    #: The gears turn the same way in the coupling's carrier with the first or second an
+    #: annulus (R - r > 0 is then a fact of the layout).
+    internal: bool = False
+    #: The second gear's axis lies this far across the line of placement from the first's
+    #: (on the side of the drawing's tangent direction, right of the placement direction).
+    across: sympy.Expr = sympy.S.Zero
+    #: The symbols of a distance the coupling leaves free (a chain's centre distance).
+    free: tuple[sympy.Symbol, ...] = ()
+    #: Whether the gears may turn about intersecting axes (bevel gears); a chain or a belt
+    #: joins parallel axes only.
+    intersecting: bool = True
+    #: What the coupling is called in a problem of the layout: ``mesh``, ``chain drive``.
+    noun: str = "mesh"
+
+    @property
+    def fixed(self) -> bool:
+        """Whether the radii fix the distance: it then closes loops and triangles."""
+        return not self.free
+
+
+@dataclass(frozen=True)
 class Coupling:
     """Base of the coupling kinds: a named edge from ``links[0]`` to ``links[1]``."""
 
@@ -51,6 +91,25 @@ class Coupling:
 
     @property
     def gears(self) -> tuple[str, str] | None:
+        return None
+
+    @property
+    def free_lengths(self) -> tuple[sympy.Symbol, ...]:
+        """Symbols of a length its layout leaves free (a chain's centre distance): no formula
+        holds them, so the formula modules do not take them."""
+        return ()
+
+    @property
+    def separating(self) -> sympy.Expr | None:
+        """The push of its transmitted force off its line, per unit of it, where a guide's
+        friction may be loaded by it (tan of a rack's pressure angle); None where it has none."""
+        return None
+
+    def spacing(self, gears: Mapping[str, Gear]) -> AxisSpacing | None:
+        """How it places the axes of the two gears it joins, where the layouts place them
+        from it (a mesh on parallel or intersecting axes, a chain); None for a coupling the
+        layouts place otherwise (a bearing on its link's axis, a rack beside its pinion, a
+        worm across its wheel)."""
         return None
 
     @property

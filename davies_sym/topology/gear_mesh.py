@@ -24,6 +24,7 @@ from davies_sym.algebra.screws import (
 from davies_sym.errors import DerivationError, shortened
 from davies_sym.losses.definitions import Definition
 from davies_sym.topology.angles import AngleFunctions
+from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.gear import Gear
 from davies_sym.topology.kind_screws import CouplingScrews, Placement, point_constraints
 from davies_sym.topology.loss_entries import Friction, read_friction, tooth_contact
@@ -129,6 +130,13 @@ class GearMesh(ToothedMesh):
         if self.internal and h.internal:
             return h, g
         return g, h
+
+    def spacing(self, gears: Mapping[str, Gear]) -> AxisSpacing:
+        """Its gears' axes at the centre distance, the pitch point on the line of centres."""
+        on, other = self.pitch_circle(gears)
+        return AxisSpacing(
+            self.name, self.mesh_gears, self.centre_distance(gears), (on.name, other.name), internal=self.internal
+        )
 
     def report_fields(self) -> dict[str, Any]:
         return {"gears": list(self.gears), "mesh": "internal" if self.internal else "external"}

@@ -57,6 +57,11 @@ class Placement(Protocol):
     @property
     def thrust(self) -> bool: ...
 
+    @property
+    def frame(self) -> tuple[sympy.Expr, sympy.Expr]:
+        """The unit placement direction (x, y) of a 2-D drawing: a chain's strand runs along it."""
+        ...
+
 
 @dataclass(frozen=True)
 class CouplingScrews:

@@ -33,10 +33,16 @@ def read_helix(
 
 
 def read_gear_pair(
-    entry: Mapping[str, Any], path: str, reader: EntryReader, gears: Mapping[str, Gear], words: str = ""
+    entry: Mapping[str, Any],
+    path: str,
+    reader: EntryReader,
+    gears: Mapping[str, Gear],
+    words: str = "",
+    noun: str = "mesh",
 ) -> tuple[Gear, Gear] | None:
     """The two gears a mesh entry names in ``gears:``, on different links, or None with the
-    problem recorded (``words`` says what the two are, e.g. "worm, wheel")."""
+    problem recorded (``words`` says what the two are, e.g. "worm, wheel"; ``noun`` what
+    joins them, a mesh or a chain)."""
     if "gears" not in entry:
         return None  # reported as a missing required key
     pair = entry["gears"]
@@ -56,7 +62,7 @@ def read_gear_pair(
         reader.problem(
             f"{path}.gears",
             f"gears {g1.name!r} and {g2.name!r} are both on link "
-            f"{g1.link!r}: a mesh must join gears on different links",
+            f"{g1.link!r}: a {noun} must join gears on different links",
         )
         return None
     return g1, g2

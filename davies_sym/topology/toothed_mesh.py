@@ -86,12 +86,6 @@ class ToothedMesh(Coupling):
         axis (or slides along its own line) when the carrier holds both (Laus section 3.1)."""
         raise NotImplementedError
 
-    @property
-    def separating(self) -> sympy.Expr | None:
-        """The tooth force's push along the line of centres per unit tangential force,
-        tan(pressure angle), where the entry gives the angle; None where it is taken as zero."""
-        return None
-
     def locate(self, place: Placement, gears: Mapping[str, Gear]) -> MeshLocation | None:
         """Where the layout puts it, for a kind that follows the gears it meshes; None for a
         kind the geometry stage draws (a mesh of two gears places the gears)."""

@@ -14,7 +14,7 @@ each, and the search for tooth numbers over all of them (``derive search --atlas
 - `davies_sym.atlas.entries`: one entry per displacement graph (codes, drawing, choices)
 - `davies_sym.atlas.recognition`: where a train written by hand lies in the atlas
 - `davies_sym.atlas.drawing`: SVG of a graph and of its train's layout
-- `davies_sym.atlas.report`: the atlas as text
+- `davies_sym.atlas.atlas_report`: the atlas as text
 - `davies_sym.atlas.search`: the tooth-number search over every train of the atlas
 
 The commands that read these (``derive atlas``, ``derive search --atlas``) are in

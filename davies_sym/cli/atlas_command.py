@@ -51,8 +51,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     say = Display("derive atlas", args.quiet)
 
+    from davies_sym.atlas.atlas_report import atlas_text, counts_text
     from davies_sym.atlas.entries import PUBLISHED, PUBLISHED_COUNTS
-    from davies_sym.atlas.report import atlas_text, counts_text
 
     published = PUBLISHED_COUNTS.get(args.links)
     if args.count:

@@ -7,9 +7,11 @@ from __future__ import annotations
 import json
 import random
 import re
+from dataclasses import replace
 from fractions import Fraction
 from fractions import Fraction as F
 from pathlib import Path
+from types import MappingProxyType
 
 import pytest
 import sympy
@@ -21,9 +23,11 @@ import davies_sym
 from davies_sym.atlas.entries import Entry, entry, places
 from davies_sym.atlas.enumeration import atlas, canonical_code
 from davies_sym.atlas.recognition import OutsideAtlas, train_graph
+from davies_sym.atlas.search import MESHES, oriented, search_file
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import analyse
+from davies_sym.topology.loader import load_mapping
 from davies_sym.topology.states import train_in_state
 
 
@@ -242,6 +246,36 @@ def test_a_gear_about_another_links_axis_is_read_and_checked(tmp_path) -> None:
         edited = text.replace(line, line.replace(line[line.index("about:") : line.index("}")], wrong))
         with pytest.raises(davies_sym.TopologyError, match=re.escape(says)):
             davies_sym.loads(edited)
+
+
+def _as_built(train: davies_sym.Train) -> davies_sym.Train:
+    """The train without the lines of its file (a train built from a mapping has none)."""
+    return replace(train, locations=MappingProxyType({}))
+
+
+def test_the_atlas_builds_the_train_its_file_reads(entries: dict[int, list[Entry]]) -> None:
+    """The train the atlas builds from its train-file value (no YAML in between) is the
+    one the written file reads as, for every drawn train of 4 and 5 links, with symbolic
+    radii and, for the search, with tooth numbers and every direction as a state."""
+    compared = 0
+    for e in (x for n in (4, 5) for x in entries[n] if not x.not_drawable):
+        assert e.train() == _as_built(davies_sym.loads(e.train_text())), e.name
+        if e.loaded:
+            searched = search_file(e, oriented(e.loaded), MESHES)
+            assert searched.independent
+            assert searched.train() == _as_built(davies_sym.loads(searched.text(""))), e.name
+            assert yaml.safe_load(searched.text("")) == searched.document()
+        compared += 1
+    assert compared == 16
+
+
+def test_a_train_built_from_a_mapping_is_refused_at_its_entries() -> None:
+    """`load_mapping` checks what `loads` checks; without a file its problems are located
+    by their entry paths."""
+    with pytest.raises(davies_sym.TopologyError) as caught:
+        load_mapping({"format": 1, "name": "broken", "links": ["l0"], "couplings": {}}, "atlas4_r01_d1")
+    message = str(caught.value)
+    assert "atlas4_r01_d1: links: a machine needs at least two links" in message, message
 
 
 def test_derive_atlas_counts_and_json(tmp_path, entries: dict[int, list[Entry]]) -> None:

@@ -14,12 +14,11 @@ from dataclasses import dataclass
 from itertools import combinations
 
 from davies_sym.atlas.realisation import Realisation
-from davies_sym.atlas.train_file import Choice, distance_symbol, train_document, train_text
+from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol
 from davies_sym.errors import DaviesError, GeometryError
 from davies_sym.geometry import train_layout
 from davies_sym.network.analysis import Analysis, analyse
 from davies_sym.topology.coupling_kinds import gear_meshes
-from davies_sym.topology.loader import loads
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
 
@@ -50,8 +49,7 @@ class Admissible:
 
 
 def _written(drawn: Realisation, candidates: tuple[Choice, ...], planar: bool, free_axis: int | None = None) -> Train:
-    document = train_document(drawn, "choices", candidates, "atlas", planar=planar, free_axis=free_axis)
-    return loads(train_text(document, ""))
+    return TrainFile(drawn, "choices", "atlas", candidates, planar, free_axis).train()
 
 
 def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> tuple[int, Train] | None:

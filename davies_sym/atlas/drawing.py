@@ -16,7 +16,6 @@ from davies_sym.atlas.train_file import link_name
 from davies_sym.emit.plots import figure_bytes, new_figure
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
-from davies_sym.topology.loader import loads
 
 #: Colours of the links (cycled).
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink", "tab:olive")
@@ -66,7 +65,7 @@ def layout_svg(entry: Entry) -> str:
     """The train seen along its axes at whole sample sizes: each gear a circle about its
     axis, in its link's colour (a carrier has no circle; its axes are the planets'); a
     train drawn in 2-D shows its planets off the centre line."""
-    train = resolved_train(loads(entry.train_text()))
+    train = resolved_train(entry.train())
     layout = train_layout(train)
     radii = [g.radius for g in train.gears if g.radius is not None]
     positive = radii + [r.radicand for r in layout.radicals]

@@ -9,7 +9,8 @@ from typing import Any
 from davies_sym.atlas.choices import admissible_choices
 from davies_sym.atlas.graphs import TrainGraph
 from davies_sym.atlas.realisation import Realisation, main_axis, realisations
-from davies_sym.atlas.train_file import Choice, distance_symbol, link_name, train_document, train_text
+from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol, link_name
+from davies_sym.topology.model import Train
 
 #: Where the counts are published (the docs compare them with the atlas's).
 PUBLISHED = "Yang & Ding, J. Mech. Des. 141(4) 043301 (2019)"
@@ -91,15 +92,28 @@ class Entry(GraphPlace):
             "not_drawable": self.not_drawable,
         }
 
-    def train_text(self) -> str:
+    def train_file(self) -> TrainFile:
         """The train file (the entry must be drawable and have a choice)."""
         drawn = self.drawn
         title = (
             f"Atlas of {self.links}-link planetary trains: "
             f"rotation graph {self.rotation}, displacement graph {self.index}"
         )
+        coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
+        source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
+        return TrainFile(drawn, title, source, self.choices, self.planar, self.free_axis)
+
+    def train(self) -> Train:
+        """The train of `train_file`, built without YAML."""
+        return self.train_file().train()
+
+    def train_text(self) -> str:
+        """The train file as YAML text (``derive atlas --out DIR``), under a comment that
+        says where it comes from."""
+        drawn = self.drawn
+        written = self.train_file()
         comment = (
-            f"{title}.\n"
+            f"{written.title}.\n"
             f"Canonical code {self.code}.\n"
             + (
                 "Written by derive atlas: symbolic radii; the housing holds one coaxial member in each state;\n"
@@ -115,10 +129,7 @@ class Entry(GraphPlace):
                 "triangles of its planets draws the train; the efficiency does not depend on it."
             )
         )
-        coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
-        source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
-        document = train_document(drawn, title, self.choices, source, planar=self.planar, free_axis=self.free_axis)
-        return train_text(document, comment)
+        return written.text(comment)
 
 
 def places(links: int) -> list[GraphPlace]:

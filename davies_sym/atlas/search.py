@@ -12,17 +12,14 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
-import yaml
-
 from davies_sym.atlas.entries import Entry, GraphPlace, entry, places
-from davies_sym.atlas.train_file import Choice, ToothedForm, train_document, train_text
+from davies_sym.atlas.train_file import Choice, ToothedForm, TrainFile, train_text
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.formulas import state_ratio
 from davies_sym.synthesis.problem import search_problem, tooth_symbols
 from davies_sym.synthesis.tooth_search import Candidate, ratio_feasible, run_search
-from davies_sym.topology.loader import loads
 
 #: Ordinary efficiencies of the meshes (an external spur mesh loses about 2 %, an
 #: internal one about half as much), as in the search example of docs/search.md.
@@ -54,8 +51,8 @@ class AtlasDesign:
     code: str
     choice: Choice
     candidate: Candidate
-    #: The train file with tooth symbols and this direction as its only state.
-    source: str
+    #: The train file searched: tooth symbols, every direction of the train as a state.
+    searched: TrainFile
 
     def document(self) -> dict[str, Any]:
         return {
@@ -75,16 +72,15 @@ def oriented(choices: tuple[Choice, ...]) -> tuple[Choice, ...]:
     return tuple(c for x in choices for c in (x, Choice(x.held, x.output, x.input)))
 
 
-def search_text(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> str:
+def search_file(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> TrainFile:
     """The train file of ``e`` with tooth numbers, ``choices`` as its states and the free
     tooth numbers (those the geometry does not fix) listed in ``independent:``."""
     title = f"{e.name} (tooth numbers to choose)"
     source = f"derive search --atlas: {e.name}"
-    document = train_document(e.drawn, title, choices, source, meshes, e.planar, e.free_axis)
-    train = loads(train_text(document, title))
+    written = TrainFile(e.drawn, title, source, choices, e.planar, e.free_axis, meshes)
+    train = written.train()
     fixed = {str(r.symbol) for r in resolved_train(train).dependent or ()}
-    document["independent"] = sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)
-    return train_text(document, title)
+    return replace(written, independent=tuple(sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)))
 
 
 def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
@@ -95,9 +91,9 @@ def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
     directions = oriented(e.loaded)
     if not directions:
         return out
-    text = search_text(e, directions, question.meshes)
-    train = loads(text)
-    free = list(yaml.safe_load(text)["independent"])
+    searched = search_file(e, directions, question.meshes)
+    train = searched.train()
+    free = searched.independent or ()
     states = {s.name: s for s in train.states}
     for choice in directions:
         # The search asks a target of every state of its train: this direction alone.
@@ -113,7 +109,9 @@ def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
         if not len(feasible[0]):
             continue
         result = run_search(problem, best=question.per_state, feasible=feasible)
-        out += [AtlasDesign(e.name, e.links, e.code, choice, c, text) for c in result.candidates[: question.per_state]]
+        out += [
+            AtlasDesign(e.name, e.links, e.code, choice, c, searched) for c in result.candidates[: question.per_state]
+        ]
     return out
 
 
@@ -149,16 +147,14 @@ def atlas_search(
 def design_file(design: AtlasDesign, rank: int) -> str:
     """The design as a train file with numbers (its direction the only state and the
     ports), which ``derive`` evaluates to the efficiency it was ranked by."""
-    data: Any = yaml.safe_load(design.source)
-    data["states"] = {design.choice.name: data["states"][design.choice.name]}
+    title = f"{design.train} {design.choice.name} (design {rank})"
+    written = replace(design.searched, title=title, choices=(design.choice,), independent=None)
+    data = written.document()
     for gear in data["gears"].values():
         gear["teeth"] = design.candidate.teeth[gear["teeth"]] if isinstance(gear["teeth"], str) else gear["teeth"]
-    data.pop("independent", None)
     state = data["states"][design.choice.name]
-    data["ports"] = {"input": state["input"], "output": state["output"]}
     note = (
         f"Design {rank} of derive search --atlas: {design.train}, {state['description']}; "
         f"efficiency {design.candidate.score:.6f}, speed ratio {float(design.candidate.ratios[design.choice.name]):.6f}"
     )
-    data["name"] = f"{design.train} {design.choice.name} (design {rank})"
     return train_text(data, note)

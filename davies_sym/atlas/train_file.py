@@ -6,17 +6,22 @@ The coaxial members (the links on the main axis) turn in bearings of the housing
 the catalog's Ravigneaux and Simpson sets; each state brakes one of them to the housing,
 drives a second and takes the output off a third. The choices whose speed ratio is not a
 finite, non-zero function of the radii are left out (`admissible_choices`).
+
+A train file is a frozen value (`TrainFile`): the atlas builds its trains from the
+mapping it writes (`TrainFile.train`, no YAML between them) and writes YAML text only for
+the user's files (`train_text`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import yaml
 
 from davies_sym.atlas.realisation import GearSpec, Realisation
+from davies_sym.topology.loader import load_mapping
+from davies_sym.topology.model import Train
 
 #: Name of the housing link in the train files.
 HOUSING = "housing"
@@ -124,65 +129,96 @@ def _gear_entry(drawn: Realisation, gear: GearSpec, toothed: ToothedForm | None)
     )
 
 
-def train_document(
-    drawn: Realisation,
-    title: str,
-    choices: Sequence[Choice],
-    source: str,
-    toothed: ToothedForm | None = None,
-    planar: bool = False,
-    free_axis: int | None = None,
-) -> dict[str, Any]:
-    """The train file as a mapping (YAML-ready), in the order a person reads it; drawn in
-    2-D when ``planar``, with the distance of ``free_axis`` from the main axis a symbol
-    (`distance_symbol`) when the meshes leave it free."""
-    if not choices:
-        raise ValueError("a train file needs at least one admissible choice")
-    graph = drawn.graph
-    housed = drawn.frame is None
-    reference = HOUSING if drawn.frame is None else link_name(drawn.frame)
+@dataclass(frozen=True)
+class TrainFile:
+    """The train file of a drawn graph as a value: ``choices`` as its states (the first
+    one's ports as the train's), drawn in 2-D when ``planar``, with the distance of
+    ``free_axis`` from the main axis a symbol (`distance_symbol`) when the meshes leave it
+    free, tooth numbers when ``toothed`` and the free ones listed in ``independent``.
+
+    The atlas builds the `Train` from it (`train`) and writes YAML only for the user's
+    files (`text`)."""
+
+    drawn: Realisation
+    title: str
+    source: str
+    choices: tuple[Choice, ...]
+    planar: bool = False
+    free_axis: int | None = None
+    toothed: ToothedForm | None = None
+    independent: tuple[str, ...] | None = None
+
+    def document(self) -> dict[str, Any]:
+        """The train file as a mapping (YAML-ready), in the order a person reads it."""
+        if not self.choices:
+            raise ValueError("a train file needs at least one admissible choice")
+        drawn = self.drawn
+        housed = drawn.frame is None
+        reference = HOUSING if drawn.frame is None else link_name(drawn.frame)
+        couplings: dict[str, Any] = {
+            bearing_name(x): {"type": "revolute", "links": [reference, link_name(x)], "axis": reference}
+            for x in drawn.graph.axes[drawn.main_axis]
+            if link_name(x) != reference
+        }
+        couplings |= _axis_bearings(drawn, self.free_axis)
+        couplings |= _meshes(drawn, self.toothed)
+        first = self.choices[0]
+        states = {
+            c.name: {
+                "description": f"{link_name(c.held)} held, {link_name(c.input)} in, {link_name(c.output)} out",
+                "input": port_name(drawn, c.input),
+                "output": port_name(drawn, c.output),
+            }
+            | ({"brake": [link_name(c.held)]} if housed else {})
+            for c in self.choices
+        }
+        return {
+            "format": 1,
+            "name": self.title,
+            "source": self.source,
+            # Meshes between planets of one carrier that a line cannot close: drawn in 2-D.
+            **({"placement": [0, 1]} if self.planar else {}),
+            "links": _links(drawn),
+            "reference": reference,
+            "gears": {g.name: _gear_entry(drawn, g, self.toothed) for g in drawn.gears},
+            "couplings": couplings,
+            "ports": {"input": port_name(drawn, first.input), "output": port_name(drawn, first.output)},
+            "states": states,
+            **({"independent": list(self.independent)} if self.independent is not None else {}),
+        }
+
+    def train(self) -> Train:
+        """The train this file describes, built from `document` (no YAML text)."""
+        return load_mapping(self.document())
+
+    def text(self, comment: str) -> str:
+        """The train file as YAML text under ``comment`` (`train_text`)."""
+        return train_text(self.document(), comment)
+
+
+def _links(drawn: Realisation) -> dict[str, Any]:
+    """The links with their descriptions: the housing first when there is one."""
     links: dict[str, Any] = (
-        {HOUSING: {"description": "housing (reference), holds one coaxial member per state"}} if housed else {}
+        {HOUSING: {"description": "housing (reference), holds one coaxial member per state"}}
+        if drawn.frame is None
+        else {}
     )
-    links |= {link_name(i): {"description": _description(drawn, i)} for i in range(graph.links)}
-    if not housed:
-        links[reference]["description"] += " (the frame, reference)"
-    gears = {g.name: _gear_entry(drawn, g, toothed) for g in drawn.gears}
+    links |= {link_name(i): {"description": _description(drawn, i)} for i in range(drawn.graph.links)}
+    if drawn.frame is not None:
+        links[link_name(drawn.frame)]["description"] += " (the frame, reference)"
+    return links
+
+
+def _meshes(drawn: Realisation, toothed: ToothedForm | None) -> dict[str, Any]:
+    """The meshes, with their ordinary efficiencies when ``toothed``."""
     internal = {g.name for g in drawn.gears if g.internal}
-    couplings: dict[str, Any] = {
-        bearing_name(x): {"type": "revolute", "links": [reference, link_name(x)], "axis": reference}
-        for x in graph.axes[drawn.main_axis]
-        if link_name(x) != reference
-    }
-    couplings |= _axis_bearings(drawn, free_axis)
+    meshes: dict[str, Any] = {}
     for index, m in enumerate(drawn.meshes):
         mesh: dict[str, Any] = {"type": "mesh", "gears": [m.first, m.second]}
         if toothed is not None:
             mesh["efficiency"] = toothed.internal if internal & {m.first, m.second} else toothed.external
-        couplings[f"M{index}"] = mesh
-    first = choices[0]
-    states = {
-        c.name: {
-            "description": f"{link_name(c.held)} held, {link_name(c.input)} in, {link_name(c.output)} out",
-            "input": port_name(drawn, c.input),
-            "output": port_name(drawn, c.output),
-        }
-        | ({"brake": [link_name(c.held)]} if housed else {})
-        for c in choices
-    }
-    return {
-        "format": 1,
-        "name": title,
-        "source": source,
-        # Meshes between planets of one carrier that a line cannot close: drawn in 2-D.
-        **({"placement": [0, 1]} if planar else {}),
-        "links": links,
-        "reference": reference,
-        "gears": gears,
-        "couplings": couplings,
-        "ports": {"input": port_name(drawn, first.input), "output": port_name(drawn, first.output)},
-        "states": states,
-    }
+        meshes[f"M{index}"] = mesh
+    return meshes
 
 
 class _Entry(dict[str, Any]):

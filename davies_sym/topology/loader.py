@@ -45,6 +45,14 @@ def loads(text: str, name: str | None = None) -> Train:
     return build_train(parse_yaml(text, name))
 
 
+def load_mapping(data: Mapping[str, Any], name: str | None = None) -> Train:
+    """Validate a train given as a mapping of plain YAML values (mappings, lists, text,
+    numbers, booleans), as a program that writes train files builds it: read as a
+    parsed file is, its problems located by their entry paths (no file, no lines);
+    ``name`` is used in messages."""
+    return build_train(SourceDocument(data, name=name))
+
+
 def build_train(document: SourceDocument) -> Train:
     reader = EntryReader(document)
     data = reader.mapping(document.data, "")

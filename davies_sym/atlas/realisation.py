@@ -102,74 +102,10 @@ class Realisation:
 
     @cached_property
     def _gears(self) -> tuple[tuple[GearSpec, ...], tuple[MeshSpec, ...]]:
-        central: dict[tuple[int, int, bool], list[str]] = defaultdict(list)
-        planet_gears: dict[tuple[int, int], list[dict[str, int]]] = defaultdict(list)
-        specs: dict[str, GearSpec] = {}
-        meshes: list[MeshSpec] = []
-        # The axes of the gears each gear meshes, and whether the mesh is internal: a gear
-        # meshing two gears on one axis alike (both external, or both internal) would force
-        # their radii equal and lock their links together (a train of fewer links).
-        partners: dict[str, set[tuple[int, bool]]] = defaultdict(set)
-
-        def gear(link: int, axis: int, internal: bool, suffix: str, partner: tuple[int, bool]) -> str:
-            name = f"G{link}{self.axis_name(axis)}{suffix}"
-            specs.setdefault(name, GearSpec(name, link, axis, internal))
-            partners[name].add(partner)
-            return name
-
-        def central_gear(link: int, axis: int, internal: bool, partner: tuple[int, bool]) -> str:
-            # One central gear per link and kind, another where it meshes a gear on the
-            # partner's axis alike already (two planets on one pin).
-            suffixes = central[(link, axis, internal)]
-            for suffix in suffixes:
-                if partner not in partners[f"G{link}{self.axis_name(axis)}{suffix}"]:
-                    return gear(link, axis, internal, suffix, partner)
-            suffixes.append(("r" if internal else "") + (str(len(suffixes) + 1) if suffixes else ""))
-            return gear(link, axis, internal, suffixes[-1], partner)
-
-        def planet_gear(link: int, axis: int, role: str, partner: tuple[int, bool]) -> str:
-            # The first gear of the planet without a mesh of this role (nor one with a gear on
-            # the partner's axis) takes it.
-            steps = planet_gears[(link, axis)]
-            for index, used in enumerate(steps):
-                suffix = "" if index == 0 else str(index + 1)
-                if partner in partners[f"G{link}{self.axis_name(axis)}{suffix}"]:
-                    continue
-                if used.get(role, 0) == 0 or role == "planet":
-                    used[role] = used.get(role, 0) + 1
-                    return gear(link, axis, False, suffix, partner)
-            steps.append({role: 1})
-            return gear(link, axis, False, "" if len(steps) == 1 else str(len(steps)), partner)
-
-        suns_of: dict[tuple[int, int], int] = defaultdict(int)
-        for pair in self.graph.gear_pairs:
-            first_central = self.is_central(pair.first, pair.first_axis, pair.carrier)
-            second_central = self.is_central(pair.second, pair.second_axis, pair.carrier)
-            if first_central or second_central:
-                hub, hub_axis, planet, planet_axis = (
-                    (pair.first, pair.first_axis, pair.second, pair.second_axis)
-                    if first_central
-                    else (pair.second, pair.second_axis, pair.first, pair.first_axis)
-                )
-                ring = suns_of[(planet, planet_axis)] > 0
-                suns_of[(planet, planet_axis)] += 1
-                meshes.append(
-                    MeshSpec(
-                        pair,
-                        central_gear(hub, hub_axis, ring, (planet_axis, ring)),
-                        planet_gear(planet, planet_axis, "ring" if ring else "sun", (hub_axis, ring)),
-                    )
-                )
-            else:
-                meshes.append(
-                    MeshSpec(
-                        pair,
-                        planet_gear(pair.first, pair.first_axis, "planet", (pair.second_axis, False)),
-                        planet_gear(pair.second, pair.second_axis, "planet", (pair.first_axis, False)),
-                    )
-                )
-        ordered = tuple(sorted(specs.values(), key=lambda g: (g.link, g.axis, g.name)))
-        return ordered, tuple(meshes)
+        named = _GearNames(self)
+        meshes = tuple(named.mesh(pair) for pair in self.graph.gear_pairs)
+        ordered = tuple(sorted(named.specs.values(), key=lambda g: (g.link, g.axis, g.name)))
+        return ordered, meshes
 
     def about(self, gear: GearSpec) -> int | None:
         """The link whose axis a gear is centred on when it is not its own link's (a gear
@@ -177,6 +113,80 @@ class Realisation:
         if gear.axis == self.parent_axis.get(gear.link, gear.axis):
             return None
         return min(x for x in self.graph.axes[gear.axis] if x != gear.link)
+
+
+class _GearNames:
+    """The gears of a drawing, named as its gear pairs are met (rules in the module
+    docstring): one name per link, axis and suffix."""
+
+    def __init__(self, drawn: Realisation):
+        self.drawn = drawn
+        self.specs: dict[str, GearSpec] = {}
+        self.central: dict[tuple[int, int, bool], list[str]] = defaultdict(list)
+        self.planet_gears: dict[tuple[int, int], list[dict[str, int]]] = defaultdict(list)
+        # The axes of the gears each gear meshes, and whether the mesh is internal: a gear
+        # meshing two gears on one axis alike (both external, or both internal) would force
+        # their radii equal and lock their links together (a train of fewer links).
+        self.partners: dict[str, set[tuple[int, bool]]] = defaultdict(set)
+        #: The meshes of each planet (link, axis) with a central gear so far.
+        self.suns_of: dict[tuple[int, int], int] = defaultdict(int)
+
+    def name(self, link: int, axis: int, suffix: str) -> str:
+        return f"G{link}{self.drawn.axis_name(axis)}{suffix}"
+
+    def gear(self, link: int, axis: int, internal: bool, suffix: str, partner: tuple[int, bool]) -> str:
+        name = self.name(link, axis, suffix)
+        self.specs.setdefault(name, GearSpec(name, link, axis, internal))
+        self.partners[name].add(partner)
+        return name
+
+    def central_gear(self, link: int, axis: int, internal: bool, partner: tuple[int, bool]) -> str:
+        """One central gear per link and kind, another where it meshes a gear on the
+        partner's axis alike already (two planets on one pin)."""
+        suffixes = self.central[(link, axis, internal)]
+        for suffix in suffixes:
+            if partner not in self.partners[self.name(link, axis, suffix)]:
+                return self.gear(link, axis, internal, suffix, partner)
+        suffixes.append(("r" if internal else "") + (str(len(suffixes) + 1) if suffixes else ""))
+        return self.gear(link, axis, internal, suffixes[-1], partner)
+
+    def planet_gear(self, link: int, axis: int, role: str, partner: tuple[int, bool]) -> str:
+        """The first gear of the planet without a mesh of this role (nor one with a gear
+        on the partner's axis) takes it."""
+        steps = self.planet_gears[(link, axis)]
+        for index, used in enumerate(steps):
+            suffix = "" if index == 0 else str(index + 1)
+            if partner in self.partners[self.name(link, axis, suffix)]:
+                continue
+            if used.get(role, 0) == 0 or role == "planet":
+                used[role] = used.get(role, 0) + 1
+                return self.gear(link, axis, False, suffix, partner)
+        steps.append({role: 1})
+        return self.gear(link, axis, False, "" if len(steps) == 1 else str(len(steps)), partner)
+
+    def mesh(self, pair: GearPair) -> MeshSpec:
+        """The gears ``pair`` meshes: a central gear and a planet's (a sun, then rings),
+        or two planets' gears."""
+        drawn = self.drawn
+        first_central = drawn.is_central(pair.first, pair.first_axis, pair.carrier)
+        if not (first_central or drawn.is_central(pair.second, pair.second_axis, pair.carrier)):
+            return MeshSpec(
+                pair,
+                self.planet_gear(pair.first, pair.first_axis, "planet", (pair.second_axis, False)),
+                self.planet_gear(pair.second, pair.second_axis, "planet", (pair.first_axis, False)),
+            )
+        hub, hub_axis, planet, planet_axis = (
+            (pair.first, pair.first_axis, pair.second, pair.second_axis)
+            if first_central
+            else (pair.second, pair.second_axis, pair.first, pair.first_axis)
+        )
+        ring = self.suns_of[(planet, planet_axis)] > 0
+        self.suns_of[(planet, planet_axis)] += 1
+        return MeshSpec(
+            pair,
+            self.central_gear(hub, hub_axis, ring, (planet_axis, ring)),
+            self.planet_gear(planet, planet_axis, "ring" if ring else "sun", (hub_axis, ring)),
+        )
 
 
 def main_axis(graph: TrainGraph) -> int:

@@ -206,7 +206,7 @@ def _check_meshes_apart(
             problem = Problem(
                 f"couplings.{mesh.name}",
                 f"links {a!r} and {b!r} turn about one axis (their bearings make them coaxial), so their gears "
-                f"cannot {_joined(mesh)}; name the planet of a pin with `axis:` on its revolute",
+                f"cannot {_joined(mesh)}; {_apart(mesh)}",
             )
         else:
             problem = Problem(
@@ -221,6 +221,13 @@ def _check_meshes_apart(
 def _joined(mesh: AxisSpacing) -> str:
     """What two coaxial gears cannot do in a problem: mesh, or be joined by a chain."""
     return "mesh" if mesh.noun == "mesh" else f"be joined by a {mesh.noun}"
+
+
+def _apart(mesh: AxisSpacing) -> str:
+    """How to keep two coaxial links' gears apart, in a problem."""
+    if mesh.noun == "mesh":
+        return "name the planet of a pin with `axis:` on its revolute"
+    return f"a {mesh.noun} joins two axes that one link holds apart: join each link to it by its own revolute"
 
 
 def _mesh_frames(

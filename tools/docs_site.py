@@ -37,6 +37,7 @@ from davies_sym.emit.plots import (
 )
 from davies_sym.machines.loader import build_machine, is_machine
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.topology.documents import read_document
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
@@ -138,12 +139,12 @@ def _literature_figures(
             figure = efficiency_figure(variants, sweep, values, train.ports.input, module)
             file = f"{stem}_literature_{sweep.name}.png"
         else:
-            analysis = Analysis(
-                train,
+            options = AnalysisOptions(
                 coulomb_signs="mesh-linear",
                 extra_symbols=efficiency_symbols(train),
                 layout=laus_humpage_layout(train),
             )
+            analysis = Analysis(train, options)
             roles, conditions = mesh_roles(analysis)
             name = next(r.condition for r in roles if r.coupling == "C")
             condition = next(c.simplified for c in conditions if c.name == name)

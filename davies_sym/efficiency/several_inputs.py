@@ -36,6 +36,7 @@ from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, DragLaw
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
@@ -130,9 +131,8 @@ def derive_several_inputs(
             ],
             train.file_lines,
         )
-    analysis = _SeveralInputAnalysis(
-        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=[*etas, *speeds, LOAD_TORQUE]
-    )
+    options = AnalysisOptions(coulomb_signs=CoulombSigns.MESH_LINEAR, extra_symbols=[*etas, *speeds, LOAD_TORQUE])
+    analysis = _SeveralInputAnalysis(train, options, progress)
     net = analysis.network
     say("speeds in the input speeds (null space of M_N)")
     motion = analysis.motion_magnitudes

@@ -24,6 +24,7 @@ from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.virtual_power import named_mesh_power_flow
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombSigns
 from davies_sym.progress import Progress
 from davies_sym.topology.model import Train
@@ -57,11 +58,13 @@ class SideDerivations:
             train = self.declared.train
             side = Analysis(
                 train.with_ports(train.ports if key[0] else train.ports.swapped()),
-                coulomb_signs=CoulombSigns.MESH_LINEAR,
-                progress=self.progress,
-                extra_symbols=list(self.extra),
-                layout=self.layout,
-                reversed_coulomb=key[1],
+                AnalysisOptions(
+                    coulomb_signs=CoulombSigns.MESH_LINEAR,
+                    extra_symbols=list(self.extra),
+                    layout=self.layout,
+                    reversed_coulomb=key[1],
+                ),
+                self.progress,
             )
         flows = (
             {r.coupling: r.flow for r in self.roles}

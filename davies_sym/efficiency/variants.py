@@ -48,6 +48,7 @@ from davies_sym.geometry.dependent import resolved_train, with_dependent
 from davies_sym.geometry.layout import Layout
 from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
+from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombSigns
 from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_to_derive
@@ -237,9 +238,8 @@ def derive_variants(
     etas = efficiency_symbols(train)
     _check_reserved(train)
     extra = (*etas, *OPERATING_SYMBOLS)
-    analysis = Analysis(
-        train, coulomb_signs=CoulombSigns.MESH_LINEAR, progress=progress, extra_symbols=list(extra), layout=layout
-    )
+    options = AnalysisOptions(coulomb_signs=CoulombSigns.MESH_LINEAR, extra_symbols=list(extra), layout=layout)
+    analysis = Analysis(train, options, progress)
     say("virtual power flow through the meshes")
     roles, conditions = mesh_roles(analysis)
     sides = SideDerivations(analysis, tuple(roles), extra, layout, progress)

@@ -18,10 +18,13 @@ from davies_sym.algebra.linalg import Reduce, Row, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
-from davies_sym.errors import DerivationError, MobilityError, Problem
+from davies_sym.errors import DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
+from davies_sym.network.action_nullity import action_nullity_problems
 from davies_sym.network.analysis_display import analysis_html, analysis_latex
+from davies_sym.network.analysis_options import AnalysisOptions
+from davies_sym.network.condensed_screws import condensed_screw, inner_product
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, coulomb_mode
 from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
@@ -48,29 +51,22 @@ class Analysis:
     ordinary efficiencies substituted later).  ``layout`` replaces the one derived from
     the train (to study a geometry given otherwise, e.g. a published screw table).
     ``reversed_coulomb`` names bearings whose reaction the losses reverse (a drag larger
-    than the load): their resolved Coulomb sign is taken the other way.
+    than the load): their resolved Coulomb sign is taken the other way.  These choices
+    travel together as `AnalysisOptions`.
     """
 
-    def __init__(
-        self,
-        train: Train,
-        tree: Sequence[str] | None = None,
-        action_tree: Sequence[str] | None = None,
-        coulomb_signs: CoulombSigns | str = CoulombSigns.RESOLVE,
-        progress: Progress | None = None,
-        extra_symbols: Sequence[sympy.Symbol] = (),
-        layout: Layout | None = None,
-        reversed_coulomb: frozenset[str] = frozenset(),
-    ):
-        mode = coulomb_mode(coulomb_signs)
-        if layout is None:
+    def __init__(self, train: Train, options: AnalysisOptions | None = None, progress: Progress | None = None):
+        options = options or AnalysisOptions()
+        mode = coulomb_mode(options.coulomb_signs)
+        if options.layout is None:
             train = resolved_train(train)  # the formulas hold on the geometric constraints
         self.train = train
+        self.options = options
         self.coulomb_signs = mode
-        self.reversed_coulomb = reversed_coulomb
+        self.reversed_coulomb = options.reversed_coulomb
         self._progress = progress or (lambda message: None)
         self._progress("building the coupling network")
-        self.network = Network(train, tree, action_tree, layout)
+        self.network = Network(train, options.tree, options.action_tree, options.layout)
         net = self.network
         self.input_motion = net.coupling_motions(train.ports.input)[0]
         self.input_action = net.port_action(train.ports.input)
@@ -86,7 +82,7 @@ class Analysis:
             if isinstance(law, CoulombLaw)
         }
         symbols = set(train.symbols.values()) | set(self.sign_symbols.values())
-        symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(extra_symbols)
+        symbols |= {self.input_motion.symbol, self.input_action.symbol} | set(options.extra_symbols)
         for law in net.laws:
             symbols |= law.coefficient.free_symbols
         self.ring = PolynomialRing(symbols, net.layout.radicals)
@@ -189,30 +185,9 @@ class Analysis:
         return LazyMapping(list(column), lambda name: solution[column[name]].get(index, zero))
 
     def _check_action_nullity(self, free: tuple[int, ...], index: int, cols: list[ActionVariable]) -> None:
-        if index not in free:
-            raise MobilityError(
-                [
-                    Problem(
-                        "ports.input",
-                        f"the input torque on {self.train.ports.input!r} is determined by the other "
-                        "actions: the input does no work",
-                    )
-                ],
-                self.train.file_lines,
-            )
-        others = [cols[j].name for j in free if j != index]
-        if others:
-            first = next(cols[j].coupling for j in free if j != index)
-            raise MobilityError(
-                [
-                    Problem(
-                        f"couplings.{first}",
-                        f"the actions are not determined by the input: {', '.join(others)} stay free "
-                        "(the network is overconstrained in this screw system, or a port is missing)",
-                    )
-                ],
-                self.train.file_lines,
-            )
+        problems = action_nullity_problems(self.train, free, index, cols)
+        if problems:
+            raise MobilityError(problems, self.train.file_lines)
 
     # -- friction signs (eqs. (21), (24), (41)) --------------------------------------
     def _input_pairing(self) -> sympy.Expr:
@@ -347,35 +322,21 @@ class Analysis:
     # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
     def coupling_twist(self, coupling: str) -> list[RationalFunction]:
         """Condensed motion screw of a coupling (a column of M, eq. (59))."""
-        d = self.network.order
-        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
-        for v in self.network.coupling_motions(coupling):
-            for i in range(d):
-                if v.twist[i] != 0:
-                    out[i] = out[i] + self.motion_magnitudes[v.name] * self._rf(v.twist[i])
-        return out
+        units = [(v.name, v.twist) for v in self.network.coupling_motions(coupling)]
+        return condensed_screw(self.ring, self.network.order, self.motion_magnitudes, units)
 
     def action_wrench(self, names: Sequence[str]) -> list[RationalFunction]:
         """Sum of the wrenches of the given action variables."""
-        d = self.network.order
-        out = [RationalFunction.polynomial(self.ring, self.ring.zero) for _ in range(d)]
-        for name in names:
-            v = self.network.action(name)
-            for i in range(d):
-                if v.wrench[i] != 0:
-                    out[i] = out[i] + self.action_magnitudes[name] * self._rf(v.wrench[i])
-        return out
+        units = [(name, self.network.action(name).wrench) for name in names]
+        return condensed_screw(self.ring, self.network.order, self.action_magnitudes, units)
 
     def coupling_wrench(self, coupling: str) -> list[RationalFunction]:
         """Condensed action screw of a coupling (a column of A, eqs. (26), (65))."""
         return self.action_wrench([v.name for v in self.network.coupling_actions(coupling)])
 
     def inner(self, wrench: list[RationalFunction], twist: list[RationalFunction]) -> RationalFunction:
-        total = RationalFunction.polynomial(self.ring, self.ring.zero)
-        for a, b in zip(wrench, twist, strict=True):
-            if not a.is_zero() and not b.is_zero():
-                total = total + a * b
-        return total
+        """The power of ``wrench`` on ``twist``."""
+        return inner_product(self.ring, wrench, twist)
 
     def lossless_input_power(self) -> RationalFunction:
         """Input power of the lossless network per unit input torque (T_in = 1)."""
@@ -437,13 +398,9 @@ def analyse(
     state: State | str | None = None,
 ) -> Analysis:
     """Run Davies' method on ``train`` (see `Analysis` for the options; ``state``: the
-    operating state, by name or as one of ``train.states``, of a train with states)."""
-    return Analysis(
-        train_to_derive(train, state),
-        tree=tree,
-        action_tree=action_tree,
-        coulomb_signs=coulomb_signs,
-        progress=progress,
-        extra_symbols=extra_symbols,
-        layout=layout,
-    )
+    operating state, by name or as one of ``train.states``, of a train with states).
+
+    Its seven keywords are the public API's (documented in docs/capabilities.md), so
+    they stay separate here and travel on as one `AnalysisOptions`."""
+    options = AnalysisOptions(tree, action_tree, coulomb_signs, extra_symbols, layout)
+    return Analysis(train_to_derive(train, state), options, progress)

@@ -149,6 +149,42 @@ def search_parser() -> argparse.ArgumentParser:
     return p
 
 
+def shifts_parser() -> argparse.ArgumentParser:
+    """``derive shifts``."""
+    p = Parser(
+        prog="derive shifts",
+        description="Find the shift elements (brakes and clutches among the main-axis members) and the "
+        "schedule (which are engaged in each gear) that give a ratio table with the given gearsets and "
+        "connections, and rank the schemes by the exact efficiency of every gear.",
+        epilog="The file is a train of several degrees of freedom with its permanent connections, its input "
+        "and output ports and no states:; every main-axis member runs in a bearing of the reference.",
+    )
+    p.add_argument("train", metavar="GEARSETS.yaml")
+    p.add_argument(
+        "--target",
+        nargs="+",
+        required=True,
+        metavar="GEAR=RATIO",
+        help="each gear's speed ratio (input over output speed; negative: a reverse gear)",
+    )
+    p.add_argument("--tolerance", type=fraction, default=Fraction(1, 200), metavar="REL", help="relative (0.005)")
+    p.add_argument("--elements", type=int, metavar="N", help="shift elements in the scheme (default: the fewest)")
+    p.add_argument(
+        "--engaged", type=int, metavar="K", help="elements engaged per gear (default: degrees of freedom - 1)"
+    )
+    p.add_argument("--weights", nargs="+", default=[], metavar="GEAR=W", help="weight of each gear (default equal)")
+    p.add_argument("--any-shifts", action="store_true", help="allow shifts that change more than one element")
+    p.add_argument("--top", type=int, default=TOP, metavar="K", help=f"schemes listed (default {TOP})")
+    p.add_argument("--json", action="store_true", help="one JSON document")
+    p.add_argument("-o", "--out", metavar="FILE", help="write the answer to FILE")
+    p.add_argument("--write-best", metavar="OUT.yaml", help="the best scheme as a train file, a state per gear")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes ('auto': one per core)")
+    where.add_argument("--scheduler", metavar="ADDRESS", help="derive the gears on the Dask cluster at ADDRESS")
+    p.add_argument("--quiet", action="store_true", help="no progress messages")
+    return p
+
+
 @dataclass(frozen=True)
 class Subcommand:
     """One of ``derive``'s other commands: its name, its line in ``derive --help``, its
@@ -172,6 +208,12 @@ SUBCOMMANDS = (
         "fit loss parameters to test-rig data (TRAIN.yaml DATA.csv, or --catalog NAME)",
         calibrate_parser,
         "davies_sym.cli.calibrate_command",
+    ),
+    Subcommand(
+        "shifts",
+        "brakes, clutches and schedule for a ratio table, ranked by exact efficiency",
+        shifts_parser,
+        "davies_sym.cli.shifts_command",
     ),
     Subcommand(
         "search",

@@ -68,14 +68,21 @@ def candidate_elements(speeds: MemberSpeeds, ports: tuple[str, str]) -> tuple[Sh
     return tuple(ShiftElement(group[0], tuple(group[1:])) for group in kept.values())
 
 
-def ratio_of(engaged: tuple[ShiftElement, ...], speeds: MemberSpeeds, ports: tuple[str, str]) -> Fraction | None:
-    """The speed ratio (input over output member speed) of the gear ``engaged`` makes,
-    or None when they do not leave exactly one degree of freedom (too few, or one
-    redundant) or the output stands still."""
+def gear_motion(engaged: tuple[ShiftElement, ...], speeds: MemberSpeeds, ports: tuple[str, str]) -> Form | None:
+    """The one motion the ``engaged`` elements leave, scaled to unit input speed, or
+    None when they do not leave exactly one degree of freedom (too few, or one
+    redundant) or the input or the output stands still."""
     motion = one_motion([e.form(speeds) for e in engaged], speeds.degrees_of_freedom)
     if motion is None:
         return None
-    out = speed(speeds.forms[ports[1]], motion)
-    if out == 0:
+    into, out = speed(speeds.forms[ports[0]], motion), speed(speeds.forms[ports[1]], motion)
+    if into == 0 or out == 0:
         return None
-    return speed(speeds.forms[ports[0]], motion) / out
+    return tuple(x / into for x in motion)
+
+
+def ratio_of(engaged: tuple[ShiftElement, ...], speeds: MemberSpeeds, ports: tuple[str, str]) -> Fraction | None:
+    """The speed ratio (input over output member speed) of the gear ``engaged`` makes,
+    or None where `gear_motion` finds none."""
+    motion = gear_motion(engaged, speeds, ports)
+    return None if motion is None else 1 / speed(speeds.forms[ports[1]], motion)

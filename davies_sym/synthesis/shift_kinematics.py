@@ -46,14 +46,21 @@ class MemberSpeeds:
 
 def member_speeds(train: Train) -> MemberSpeeds:
     """The speeds of the members that run in a bearing of ``train``'s reference (its
-    main-axis members), from the null space of M_N; a member whose speed is not a
-    number multiple of the free speeds (a symbolic tooth number) is refused."""
+    main-axis members), from the null space of M_N; a train of one degree of freedom
+    (nothing to shift) and a member whose speed is not a number multiple of the free
+    speeds (a symbolic tooth number) are refused."""
     analysis = Analysis(train)
     net = analysis.network
     on_reference = [c for c in bearings(train.couplings) if train.reference in c.links]
     motions = {c.name: net.coupling_motions(c.name)[0].name for c in on_reference}
     solution = analysis.motions_in(list(motions.values()))
     free = tuple(dict.fromkeys(name for c in on_reference for name in solution[motions[c.name]]))
+    if len(free) < 2:
+        why = (
+            f"the train has {len(free)} degree of freedom: nothing to shift (give the gearsets and their "
+            "permanent connections, every main-axis member in a bearing of the reference)"
+        )
+        raise InputError([train.problem("", why)], train.path)
     forms: dict[str, Form] = {}
     shaft: dict[str, str] = {}
     for c in on_reference:

@@ -1,0 +1,175 @@
+"""``derive shifts GEARSETS.yaml --target GEAR=RATIO ... --tolerance REL``: the shift
+elements and schedules that give a ratio table with the file's gearsets and permanent
+connections, ranked by the exact efficiency of every gear
+(`davies_sym.synthesis.shift_search`).
+
+Bad input exits with status 2 and one message naming the file or the option; a ratio
+table no scheme reaches exits with status 3 and names the closest ratios there are.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from davies_sym.cli.subcommand_parsers import fraction
+from davies_sym.emit.atomic import same_file, write_atomic
+from davies_sym.errors import DaviesError, InputError, Problem
+from davies_sym.fan_out import Workers
+from davies_sym.progress import Display
+from davies_sym.synthesis.shift_kinematics import member_speeds
+from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion, element_letter, gear_order
+from davies_sym.synthesis.shift_search import ShiftResult, gear_state, port_member, shift_search, unreached
+from davies_sym.topology.loader import load
+from davies_sym.topology.model import Train
+
+COMMAND = "derive shifts"
+
+
+def _targets(pairs: list[str]) -> tuple[GearTarget, ...]:
+    """``GEAR=RATIO`` pairs: named once each, ratios non-zero numbers."""
+    out: dict[str, GearTarget] = {}
+    for pair in pairs:
+        gear, sep, ratio = pair.partition("=")
+        gear = gear.strip()
+        if not sep or not gear:
+            raise InputError([Problem("--target", f"expected GEAR=RATIO (e.g. 1=4.6957, R=-3.2968), got {pair!r}")])
+        try:
+            value = fraction(ratio.strip())
+        except argparse.ArgumentTypeError as exc:
+            raise InputError([Problem("--target", f"{gear}: {exc}")]) from None
+        if value == 0:
+            raise InputError([Problem("--target", f"{gear}: a speed ratio is not zero")])
+        if gear in out:
+            raise InputError([Problem("--target", f"gear {gear} is named twice; name each gear once")])
+        out[gear] = GearTarget(gear, value)
+    return tuple(out.values())
+
+
+def _weights(pairs: list[str], targets: tuple[GearTarget, ...]) -> dict[str, float]:
+    names = {t.name for t in targets}
+    out = {}
+    for pair in pairs:
+        gear, sep, weight = pair.partition("=")
+        try:
+            value = float(fraction(weight.strip())) if sep else -1.0
+        except argparse.ArgumentTypeError:
+            value = -1.0
+        if value < 0:
+            raise InputError([Problem("--weights", f"expected GEAR=W with W a number >= 0, got {pair!r}")])
+        if gear.strip() not in names:
+            raise InputError([Problem("--weights", f"{gear.strip()!r} is not a gear of --target")])
+        out[gear.strip()] = value
+    return out
+
+
+def _question(args: argparse.Namespace, train: Train, freedom: int) -> ShiftQuestion:
+    """The question the options ask of ``train`` (of ``freedom`` degrees of freedom)."""
+    engaged = args.engaged if args.engaged is not None else freedom - 1
+    if engaged != freedom - 1:
+        why = f"the train has {freedom} degrees of freedom: a gear engages {freedom - 1} elements to leave one"
+        raise InputError([Problem("--engaged", why)])
+    if args.elements is not None and args.elements < engaged:
+        raise InputError([Problem("--elements", f"at least {engaged}, the elements one gear engages")])
+    if args.tolerance < 0:
+        raise InputError([Problem("--tolerance", "a relative deviation is >= 0")])
+    return ShiftQuestion(_targets(args.target), args.tolerance, args.elements, engaged, not args.any_shifts)
+
+
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    """The ``derive shifts`` command; returns the exit status (0, 2 bad input, 3 no
+    scheme gives the table)."""
+    say = Display(COMMAND, args.quiet)
+    try:
+        for option, path in (("-o", args.out), ("--write-best", args.write_best)):
+            if path is not None and (not path.strip() or same_file(path, args.train)):
+                raise InputError([Problem(option, f"{path!r}: name another file than the train's")])
+        train = load(args.train)
+        if train.states:
+            why = "the file has states: derive shifts finds the gears itself; take the states: entry out"
+            raise InputError([train.problem("states", why)], train.path)
+        speeds = member_speeds(train)
+        question = _question(args, train, speeds.degrees_of_freedom)
+        weights = _weights(args.weights, question.targets)
+        result = shift_search(train, question, weights, Workers(args.jobs, args.scheduler), say)
+    except DaviesError as exc:
+        text = exc.report() if isinstance(exc, InputError) else f"{COMMAND}: {args.train}: {exc}"
+        print(text.replace("<input>", args.train), file=sys.stderr)
+        return 2
+    if not result.candidates:
+        ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
+        lines = unreached(speeds, ports, question) or [
+            f"every gear is reached, but no scheme of {args.elements or 'any number of'} elements meets the rules"
+            + ("" if args.any_shifts else " (single transitions: --any-shifts lifts that one)")
+        ]
+        print("\n".join(f"{COMMAND}: {args.train}: {line}" for line in lines), file=sys.stderr)
+        return 3
+    answer = (
+        json.dumps({"status": "ok", "train": args.train, **result.document(args.top)}, indent=2) + "\n"
+        if args.json
+        else shifts_text(result, question, args.top)
+    )
+    try:
+        if args.write_best:
+            write_atomic(args.write_best, best_scheme_text(args.train, train, result))
+        if args.out:
+            write_atomic(args.out, answer)
+        else:
+            sys.stdout.write(answer)
+    except OSError as exc:
+        print(f"{COMMAND}: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
+        return 2
+    return 0
+
+
+def shifts_text(result: ShiftResult, question: ShiftQuestion, top: int) -> str:
+    """The schemes as text: elements, the shift matrix (X: engaged), ratio, step to the
+    next gear and efficiency per gear."""
+    order = [t.name for t in gear_order(question.targets)]
+    lines = [
+        f"{len(result.candidates)} scheme(s) give the {len(order)} gears ({result.searched} combinations of engaged "
+        f"elements evaluated, {result.seconds:.1f} s); the best first, by mean efficiency over the gears",
+    ]
+    for rank, c in enumerate(result.candidates[:top], 1):
+        s = c.scheme
+        letters = [element_letter(k) for k in range(len(s.elements))]
+        described = [
+            f"{n} {e.text()}" + (f" (or {', '.join('-'.join(a) for a in e.alike)})" if e.alike else "")
+            for n, e in zip(letters, s.elements, strict=True)
+        ]
+        lines += ["", f"scheme {rank}: score {c.score:.5f}", "  elements: " + "; ".join(described)]
+        lines.append(f"  {'gear':<6}{' '.join(letters)}   {'ratio':>9} {'step':>7} {'efficiency':>11}")
+        for i, gear in enumerate(order):
+            marks = " ".join("X" if k in s.schedule[gear] else "." for k in range(len(letters)))
+            following = order[i + 1] if i + 1 < len(order) else None
+            step = (
+                f"{float(s.ratios[gear] / s.ratios[following]):7.3f}"
+                if following is not None and s.ratios[gear] > 0 and s.ratios[following] > 0
+                else " " * 7
+            )
+            eta = c.efficiency[gear]
+            shown = "not covered" if eta is None else f"{float(eta):.5f}"
+            lines.append(f"  {gear:<6}{marks}   {float(s.ratios[gear]):9.4f} {step} {shown:>11}")
+    return "\n".join(lines) + "\n"
+
+
+def best_scheme_text(path: str, train: Train, result: ShiftResult) -> str:
+    """The train file as written with the best scheme appended as its states, one per
+    gear (named as the targets), which ``derive --state GEAR`` derives to the same
+    efficiency."""
+    with open(path, encoding="utf-8") as handle:
+        text = handle.read()
+    best = result.candidates[0]
+    s = best.scheme
+    named = "; ".join(f"{element_letter(k)} {e.text()}" for k, e in enumerate(s.elements))
+    lines = [f"# The best scheme of derive shifts (score {best.score:.5f}): {named}.", "states:"]
+    for gear in s.schedule:
+        state = gear_state(train, s, gear)
+        fields = [f"description: {json.dumps(state.description)}", f"input: {state.input}", f"output: {state.output}"]
+        if state.brake:
+            fields.append(f"brake: [{', '.join(state.brake)}]")
+        if state.clutch:
+            fields.append(f"clutch: [{', '.join(f'[{a}, {b}]' for a, b in state.clutch)}]")
+        lines.append(f"  {json.dumps(gear)}: {{{', '.join(fields)}}}")
+    return text.rstrip("\n") + "\n" + "\n".join(lines) + "\n"

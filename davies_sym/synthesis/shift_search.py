@@ -1,0 +1,193 @@
+"""The whole shift search of given gearsets and connections: the schemes that give the
+ratio table (`shift_schedules`), each gear of each scheme derived as an operating state
+(brakes and clutches of `davies_sym.topology.states`, Laus Tables 5 and 6) and its
+exact efficiency taken at the file's numbers, the schemes ranked by the weighted mean
+efficiency over the gears.  The states are derived through the one fan-out, each gear
+of each scheme one task."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from fractions import Fraction
+from math import comb
+from typing import Any
+
+import sympy
+
+from davies_sym.efficiency.variants import derive_variants
+from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
+from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
+from davies_sym.progress import Progress, silent
+from davies_sym.synthesis.shift_elements import candidate_elements, gear_motion
+from davies_sym.synthesis.shift_kinematics import MemberSpeeds, member_speeds, speed
+from davies_sym.synthesis.shift_schedules import (
+    RULES,
+    ShiftQuestion,
+    ShiftScheme,
+    element_letter,
+    gear_options,
+    shift_schemes,
+)
+from davies_sym.topology.loader import load
+from davies_sym.topology.model import State, Train
+from davies_sym.topology.states import train_in_state
+
+
+@dataclass(frozen=True)
+class GearTask:
+    """One gear of one scheme to derive: the train (or its file's path, for a worker in
+    another process) and the gear as an operating state."""
+
+    train: Train | str
+    state: State
+
+
+def gear_efficiency(task: GearTask) -> str | None:
+    """The exact efficiency of the task's gear at the file's numbers (as text, cheap to
+    send), or None where no variant covers it (the gear self-locks)."""
+    train = load(task.train) if isinstance(task.train, str) else task.train
+    whole = replace(train, states=(task.state,))
+    variants = derive_variants(train_in_state(whole, task.state))
+    try:
+        return str(variants.design_point({}).efficiency)
+    except MissingValuesError as exc:
+        needed = exc.problems[0].message.removeprefix("missing values for ")
+        why = f"the efficiencies need values for {needed}: write every loss as a number in the file"
+        raise InputError([Problem("", why)], train.path) from None
+    except NotCoveredError:
+        return None
+
+
+@dataclass(frozen=True)
+class ShiftCandidate:
+    """A ranked scheme: its efficiency per gear (None: not covered), the relative speed
+    of every open element per gear (input speed 1) and the score."""
+
+    scheme: ShiftScheme
+    efficiency: Mapping[str, Fraction | None]
+    open_speed: Mapping[str, Mapping[str, Fraction]]
+    score: float
+
+    def document(self) -> dict[str, Any]:
+        """The candidate as ``derive shifts --json`` writes it."""
+        s = self.scheme
+        names = [element_letter(k) for k in range(len(s.elements))]
+        return {
+            "elements": {n: e.document() for n, e in zip(names, s.elements, strict=True)},
+            "schedule": {g: [names[k] for k in ks] for g, ks in s.schedule.items()},
+            "connections": [],
+            "teeth": {},
+            "speed_ratio": {g: float(r) for g, r in s.ratios.items()},
+            "efficiency": {g: None if v is None else float(v) for g, v in self.efficiency.items()},
+            "open_speed": {g: {n: float(v) for n, v in o.items()} for g, o in self.open_speed.items()},
+            "score": self.score,
+        }
+
+
+@dataclass(frozen=True)
+class ShiftResult:
+    """Every feasible scheme, best first, with what was searched."""
+
+    candidates: tuple[ShiftCandidate, ...]
+    searched: int
+    seconds: float
+    rules: tuple[str, ...] = RULES
+
+    def document(self, top: int) -> dict[str, Any]:
+        return {
+            "candidates": [c.document() for c in self.candidates[:top]],
+            "searched": self.searched,
+            "feasible": len(self.candidates),
+            "rules": list(self.rules),
+            "seconds": round(self.seconds, 3),
+        }
+
+
+def gear_state(train: Train, scheme: ShiftScheme, gear: str) -> State:
+    """The gear ``gear`` of ``scheme`` as an operating state of ``train``."""
+    engaged = scheme.engaged(gear)
+    letters = " ".join(element_letter(k) for k in scheme.schedule[gear])
+    return State(
+        gear,
+        train.ports.input,
+        train.ports.output,
+        brake=tuple(e.members[0] for e in engaged if e.kind == "brake"),
+        clutch=tuple((e.members[0], e.members[1]) for e in engaged if e.kind == "clutch"),
+        description=f"gear {gear} ({letters})",
+    )
+
+
+def _open_speeds(scheme: ShiftScheme, speeds: MemberSpeeds, ports: tuple[str, str]) -> dict[str, dict[str, Fraction]]:
+    """The speed each open element slips at in each gear (its equation's value), the
+    input at unit speed: what its drag loss grows with."""
+    out: dict[str, dict[str, Fraction]] = {}
+    for gear, engaged in scheme.schedule.items():
+        motion = gear_motion(scheme.engaged(gear), speeds, ports)
+        assert motion is not None  # a matched gear leaves one motion
+        out[gear] = {
+            element_letter(k): speed(e.form(speeds), motion) for k, e in enumerate(scheme.elements) if k not in engaged
+        }
+    return out
+
+
+def unreached(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> list[str]:
+    """For each target no combination reaches, a line naming the closest ratios there are."""
+    candidates = candidate_elements(speeds, ports)
+    options = gear_options(speeds, ports, candidates, replace(question, tolerance=Fraction(10**9)))
+    lines = []
+    strict = gear_options(speeds, ports, candidates, question)
+    for target in question.targets:
+        if strict[target.name]:
+            continue
+        near = sorted(options[target.name], key=lambda o: abs(o[1] - target.ratio))[:3]
+        shown = ", ".join(f"{float(r):.4f} ({' + '.join(candidates[k].text() for k in sorted(c))})" for c, r in near)
+        lines.append(f"gear {target.name}: no elements give {float(target.ratio):g}; the closest: {shown or 'none'}")
+    return lines
+
+
+def shift_search(
+    train: Train,
+    question: ShiftQuestion,
+    weights: Mapping[str, float] | None = None,
+    workers: Workers = IN_THIS_PROCESS,
+    progress: Progress = silent,
+) -> ShiftResult:
+    """Every scheme of ``question`` for ``train`` (its sets, connections and ports as
+    written, no states), its gears derived and ranked: weighted mean efficiency, then
+    the ratio error, then fewer elements."""
+    start = time.perf_counter()
+    speeds = member_speeds(train)
+    ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
+    schemes = shift_schemes(speeds, ports, question)
+    progress(f"{len(schemes)} scheme(s) give the ratio table; deriving their gears")
+    gears = [gear_state(train, s, g) for s in schemes for g in s.schedule]
+    if not train.path or workers.here(len(gears)):
+        workers, tasks = IN_THIS_PROCESS, [GearTask(train, state) for state in gears]
+    else:  # a worker reads the file itself
+        tasks = [GearTask(train.path, state) for state in gears]
+    found = iter(fan_out(gear_efficiency, tasks, workers, Counted(progress, "gear")))
+    weight = weights or {}
+    ranked = []
+    for s in schemes:
+        efficiency = {g: None if (v := next(found)) is None else Fraction(str(sympy.Rational(v))) for g in s.schedule}
+        covered = [g for g, v in efficiency.items() if v is not None]
+        total = sum(weight.get(g, 1.0) for g in s.schedule)
+        score = sum(weight.get(g, 1.0) * float(efficiency[g] or 0) for g in covered) / total
+        ranked.append(ShiftCandidate(s, efficiency, _open_speeds(s, speeds, ports), score))
+    error = {id(c): sum(abs(float(c.scheme.ratios[t.name] / t.ratio) - 1) for t in question.targets) for c in ranked}
+    ranked.sort(key=lambda c: (-c.score, error[id(c)], len(c.scheme.elements)))
+    return ShiftResult(tuple(ranked), _combinations(speeds, ports, question), time.perf_counter() - start)
+
+
+def port_member(train: Train, port: str) -> str:
+    """The main-axis member a port's bearing carries (the link other than the reference)."""
+    coupling = train.coupling(port)
+    return coupling.links[1] if coupling.links[0] == train.reference else coupling.links[0]
+
+
+def _combinations(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> int:
+    """How many combinations of engaged elements were evaluated."""
+    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
+    return comb(len(candidate_elements(speeds, ports)), engaged)

@@ -21,6 +21,7 @@ import pytest
 import sympy
 import yaml
 from hostile.helpers import assert_refused, run_main
+from test_chain_drive import CHAIN
 
 import davies_sym
 from davies_sym.network.analysis import Analysis
@@ -103,6 +104,42 @@ ports: {input: A, output: G}
         "C",
         {"r": 20, "eta_P": sympy.Rational(98, 100), "eta_R": sympy.Rational(97, 100), "mu": sympy.Rational(1, 10)},
         ("mu",),
+    ),
+    "chain": (
+        CHAIN,
+        "K",
+        {
+            "z1": 46,
+            "z2": 17,
+            "r3": 20,
+            "r4": 50,
+            "eta_1": sympy.Rational(98, 100),
+            "eta_2": sympy.Rational(97, 100),
+            "eta_C": sympy.Rational(99, 100),
+        },
+        (),
+    ),
+    "belt": (
+        """
+name: belt to an internal gear pair
+links: [0, 1, 2, 3]
+reference: 0
+gears:
+  a: {link: 1, radius: r1}
+  b: {link: 2, radius: r2}
+  c: {link: 2, radius: r3}
+  d: {link: 3, radius: r4, internal: true}
+couplings:
+  A: {type: revolute, links: [0, 1]}
+  B: {type: revolute, links: [0, 2]}
+  D: {type: revolute, links: [0, 3]}
+  V: {type: belt, gears: [a, b], efficiency: eta_V}
+  C: {type: mesh, gears: [c, d], efficiency: eta_C}
+ports: {input: A, output: D}
+""",
+        "V",
+        {"r1": 40, "r2": 90, "r3": 15, "r4": 60, "eta_V": sympy.Rational(95, 100), "eta_C": sympy.Rational(98, 100)},
+        (),
     ),
     "screws": (
         """

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
+from davies_sym.topology.chain_drive import BeltDrive, ChainDrive
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.prismatic import Prismatic
@@ -30,6 +31,8 @@ KINDS: Mapping[str, type[Coupling]] = {
         Prismatic,
         ScrewCoupling,
         RackMesh,
+        ChainDrive,
+        BeltDrive,
     )
 }
 

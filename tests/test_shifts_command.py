@@ -111,3 +111,32 @@ def test_a_table_no_scheme_reaches_names_the_closest(capsys: pytest.CaptureFixtu
     status, out, err = _run(["shifts", str(SIMPSON), "--target", "1=2.4286", "2=1.9", "--quiet"], capsys)
     assert status == 3
     assert "gear 2: no elements give 1.9; the closest: " in err and out == ""
+
+
+def test_the_ravigneaux_scheme_and_the_catalogs_own_states(capsys: pytest.CaptureFixture[str]) -> None:
+    """The ZF 3HP12 Ravigneaux set given an input shaft (tests/data/shifts_ravigneaux.yaml)
+    and its four published ratios: clutches from the input shaft to either sun, brakes
+    on the carrier and on the large sun, third gear locked; each gear's efficiency is
+    what the catalog's hand-written states (catalog/ravigneaux.yaml) give at the same
+    numbers."""
+    argv = ["shifts", str(DATA / "shifts_ravigneaux.yaml"), "--target", "R=-2.000", "1=2.560", "2=1.520", "3=1.000"]
+    status, out, err = _run([*argv, "--json", "--quiet"], capsys)
+    assert status == 0, err
+    (candidate,) = json.loads(out)["candidates"]
+    engaged = {
+        gear: sorted(str(candidate["elements"][k].get("brake", candidate["elements"][k].get("clutch"))) for k in ks)
+        for gear, ks in candidate["schedule"].items()
+    }
+    assert engaged == {
+        "1": ["['in', 's1']", "c"],
+        "2": ["['in', 's1']", "s2"],
+        "3": ["['in', 's1']", "['in', 's2']"],
+        "R": ["['in', 's2']", "c"],
+    }
+    values = ["rs1=25", "rs2=32", "rps=16", "rr=64", "eta_1=0.98", "eta_2=0.98", "eta_3=0.98", "eta_4=0.99"]
+    for gear, state in (("1", "first"), ("2", "second"), ("3", "third"), ("R", "reverse")):
+        status, out, err = _run(
+            [str(CATALOG / "ravigneaux.yaml"), "--state", state, "--eval", *values, "--json"], capsys
+        )
+        assert status == 0, err
+        assert json.loads(out)["efficiency"] == pytest.approx(candidate["efficiency"][gear], abs=1e-12), gear

@@ -140,3 +140,15 @@ def test_the_ravigneaux_scheme_and_the_catalogs_own_states(capsys: pytest.Captur
         )
         assert status == 0, err
         assert json.loads(out)["efficiency"] == pytest.approx(candidate["efficiency"][gear], abs=1e-12), gear
+
+
+def test_drag_lowers_the_score_by_the_slip_speeds(capsys: pytest.CaptureFixture[str]) -> None:
+    """With --drag c each gear loses c times the sum of its open elements' squared slip
+    speeds: the score falls by c times the mean of those sums over the gears."""
+    argv = ["shifts", str(SIMPSON), "--target", *SIMPSON_TARGETS, "--json", "--quiet"]
+    _, plain, _ = _run(argv, capsys)
+    _, dragged, _ = _run([*argv, "--drag", "1/100"], capsys)
+    (free,), (held,) = json.loads(plain)["candidates"], json.loads(dragged)["candidates"]
+    sums = [sum(v * v for v in slips.values()) for slips in free["open_speed"].values()]
+    assert held["score"] == pytest.approx(free["score"] - 0.01 * sum(sums) / len(sums), abs=1e-12)
+    assert held["efficiency"] == free["efficiency"]

@@ -20,7 +20,7 @@ from davies_sym.fan_out import Workers
 from davies_sym.progress import Display
 from davies_sym.synthesis.shift_kinematics import member_speeds
 from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion, element_letter, gear_order
-from davies_sym.synthesis.shift_search import ShiftResult, gear_state, port_member, shift_search, unreached
+from davies_sym.synthesis.shift_search import Ranking, ShiftResult, gear_state, port_member, shift_search, unreached
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 
@@ -91,8 +91,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             raise InputError([train.problem("states", why)], train.path)
         speeds = member_speeds(train)
         question = _question(args, train, speeds.degrees_of_freedom)
-        weights = _weights(args.weights, question.targets)
-        result = shift_search(train, question, weights, Workers(args.jobs, args.scheduler), say)
+        if args.drag < 0:
+            raise InputError([Problem("--drag", f"a drag coefficient is >= 0, got {args.drag}")])
+        ranking = Ranking(_weights(args.weights, question.targets), float(args.drag))
+        result = shift_search(train, question, ranking, Workers(args.jobs, args.scheduler), say)
     except DaviesError as exc:
         text = exc.report() if isinstance(exc, InputError) else f"{COMMAND}: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)

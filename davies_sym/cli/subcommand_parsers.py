@@ -173,6 +173,14 @@ def shifts_parser() -> argparse.ArgumentParser:
         "--engaged", type=int, metavar="K", help="elements engaged per gear (default: degrees of freedom - 1)"
     )
     p.add_argument("--weights", nargs="+", default=[], metavar="GEAR=W", help="weight of each gear (default equal)")
+    p.add_argument(
+        "--drag",
+        type=fraction,
+        default=Fraction(0),
+        metavar="COEFF",
+        help="rank less the open elements' drag: torque COEFF v at relative speed v, in units of the input "
+        "power at unit input speed (default 0)",
+    )
     p.add_argument("--any-shifts", action="store_true", help="allow shifts that change more than one element")
     p.add_argument("--top", type=int, default=TOP, metavar="K", help=f"schemes listed (default {TOP})")
     p.add_argument("--json", action="store_true", help="one JSON document")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from math import comb
 from typing import Any
@@ -58,6 +58,29 @@ def gear_efficiency(task: GearTask) -> str | None:
         raise InputError([Problem("", why)], train.path) from None
     except NotCoveredError:
         return None
+
+
+@dataclass(frozen=True)
+class Ranking:
+    """How schemes are scored: each gear's ``weight`` (default 1, e.g. its share of a drive
+    cycle's time) and the ``drag`` coefficient of the open elements: each slips at its
+    relative speed v with a drag torque ``drag`` v, losing ``drag`` v**2 in units of the
+    input power at unit input speed."""
+
+    weights: Mapping[str, float] = field(default_factory=dict)
+    drag: float = 0.0
+
+    def score(
+        self, efficiency: Mapping[str, Fraction | None], open_speed: Mapping[str, Mapping[str, Fraction]]
+    ) -> float:
+        """The weighted mean over the gears of the efficiency less the open elements'
+        drag loss; a gear not covered counts as zero."""
+        total = sum(self.weights.get(g, 1.0) for g in efficiency)
+        value = 0.0
+        for gear, eta in efficiency.items():
+            loss = self.drag * sum(float(v) ** 2 for v in open_speed[gear].values())
+            value += self.weights.get(gear, 1.0) * (float(eta) - loss if eta is not None else 0.0)
+        return value / total
 
 
 @dataclass(frozen=True)
@@ -150,13 +173,13 @@ def unreached(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuest
 def shift_search(
     train: Train,
     question: ShiftQuestion,
-    weights: Mapping[str, float] | None = None,
+    ranking: Ranking | None = None,
     workers: Workers = IN_THIS_PROCESS,
     progress: Progress = silent,
 ) -> ShiftResult:
     """Every scheme of ``question`` for ``train`` (its sets, connections and ports as
-    written, no states), its gears derived and ranked: weighted mean efficiency, then
-    the ratio error, then fewer elements."""
+    written, no states), its gears derived and ranked by ``ranking`` (weighted mean
+    efficiency less drag), then the ratio error, then fewer elements."""
     start = time.perf_counter()
     speeds = member_speeds(train)
     ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
@@ -168,14 +191,12 @@ def shift_search(
     else:  # a worker reads the file itself
         tasks = [GearTask(train.path, state) for state in gears]
     found = iter(fan_out(gear_efficiency, tasks, workers, Counted(progress, "gear")))
-    weight = weights or {}
+    ranking = ranking or Ranking()
     ranked = []
     for s in schemes:
         efficiency = {g: None if (v := next(found)) is None else Fraction(str(sympy.Rational(v))) for g in s.schedule}
-        covered = [g for g, v in efficiency.items() if v is not None]
-        total = sum(weight.get(g, 1.0) for g in s.schedule)
-        score = sum(weight.get(g, 1.0) * float(efficiency[g] or 0) for g in covered) / total
-        ranked.append(ShiftCandidate(s, efficiency, _open_speeds(s, speeds, ports), score))
+        slips = _open_speeds(s, speeds, ports)
+        ranked.append(ShiftCandidate(s, efficiency, slips, ranking.score(efficiency, slips)))
     error = {id(c): sum(abs(float(c.scheme.ratios[t.name] / t.ratio) - 1) for t in question.targets) for c in ranked}
     ranked.sort(key=lambda c: (-c.score, error[id(c)], len(c.scheme.elements)))
     return ShiftResult(tuple(ranked), _combinations(speeds, ports, question), time.perf_counter() - start)

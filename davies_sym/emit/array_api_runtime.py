@@ -155,6 +155,10 @@ def _own_any(xp: Any, mine: Any, numbers: Any, code: Any) -> Any:
     return own
 
 
+# Seven parameters, as the generated modules have them: this module is copied as it is
+# into each (`davies_sym.emit.formula_code.runtime_of`), so a change here changes every
+# module generated, which the catalog's outputs pin; a comment between definitions is
+# not copied.
 def _select_any(
     xp: Any,
     variants: Any,

@@ -290,18 +290,21 @@ class FormulaTables:
         return cls({name: [] for name in tables})
 
     def add(
-        self,
-        table: str,
-        key: str,
-        name: str,
-        doc: str,
-        exprs: Sequence[sympy.Expr],
-        returns: str = "Array",
-        relation: bool = False,
+        self, table: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr], returns: str = "Array"
     ) -> tuple[str, ...]:
         """The `formula_function` ``name`` of ``exprs``, entered in ``table`` under
         ``key``; its argument names."""
-        function, args = formula_function(name, doc, exprs, returns, relation)
+        return self._enter(table, key, name, formula_function(name, doc, exprs, returns))
+
+    def add_relation(self, table: str, key: str, name: str, doc: str, exprs: Sequence[sympy.Expr]) -> tuple[str, ...]:
+        """`add` for a relation: the function says whether the expression is positive (an
+        array of booleans)."""
+        return self._enter(table, key, name, formula_function(name, doc, exprs, "NDArray[np.bool_]", relation=True))
+
+    def _enter(self, table: str, key: str, name: str, made: tuple[ast.FunctionDef, tuple[str, ...]]) -> tuple[str, ...]:
+        """The function ``made`` (with its argument names) kept, and entered in ``table``
+        under ``key``; its argument names."""
+        function, args = made
         self.functions.append(function)
         self.tables[table].append((key, name, args))
         return args

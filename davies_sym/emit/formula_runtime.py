@@ -290,6 +290,10 @@ def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
     return cast(NDArray[np.bool_], xp.asarray(~xp.isfinite(ratio) | (ratio == 0)))
 
 
+# Seven parameters, as the generated modules have them: this module is copied as it is
+# into each (`davies_sym.emit.formula_code.runtime_of`), so a change here changes every
+# module generated, which the catalog's outputs pin; a comment between definitions is
+# not copied.
 def _screened(
     result: Array,
     numbers: NDArray[np.int64],

@@ -283,14 +283,8 @@ def _add_conditions(formulas: FormulaTables, variants: VariantSet, relations: Se
             [public(c.expression)],
         )
     for k, r in enumerate(relations, start=1):
-        formulas.add(
-            "_RELATIONS",
-            f"{sympy.sstr(r)} > 0",
-            f"_relation_{k}",
-            f"Whether {sympy.sstr(r)} > 0.",
-            [r],
-            "NDArray[np.bool_]",
-            relation=True,
+        formulas.add_relation(
+            "_RELATIONS", f"{sympy.sstr(r)} > 0", f"_relation_{k}", f"Whether {sympy.sstr(r)} > 0.", [r]
         )
 
 

@@ -6,6 +6,7 @@ from typing import Any
 
 import sympy
 
+from davies_sym.efficiency.turning_conditions import MeshRole
 from davies_sym.efficiency.variant_result import ExcludedVariant, Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.force_conditions import force_conditions, force_text
@@ -69,47 +70,11 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
         }
         for c in variants.conditions
     ]
-    meshes = []
-    for r in variants.roles:
-        meshes.append(
-            {
-                "coupling": r.coupling,
-                "carrier": r.flow.carrier,
-                "gears": list(r.flow.gears),
-                "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
-                "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
-                "decided": r.condition is None,
-                "carries_power": not r.idle,
-                "first_gear_drives_when": "no power crosses the mesh"
-                if r.idle
-                else (
-                    ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
-                    if r.condition is None
-                    else f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"
-                ),
-            }
-        )
-    items: list[dict[str, Any]] = []
-    for v in variants.listed:
-        if isinstance(v, ExcludedVariant):
-            items.append(_excluded_entry(variants, v))
-            continue
-        items.append(
-            {
-                **_common_entry(variants, v),
-                "efficiency": sympy.sstr(v.efficiency),
-                "latex": display_latex(v.efficiency),
-                "feasible": v.feasible,
-                "derivative_check": v.derivative_check,
-                "self_locking_sampled": v.self_locking_point is not None,
-                "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
-                "reversed_forces": sorted(v.reversed_forces),
-                "loaded_forces": [
-                    {"force": what, "expression": sympy.sstr(force), "sign": sign}
-                    for what, force, sign in variant_forces(variants, v)
-                ],
-            }
-        )
+    meshes = [_mesh_entry(variants, r) for r in variants.roles]
+    items = [
+        _excluded_entry(variants, v) if isinstance(v, ExcludedVariant) else _variant_entry(variants, v)
+        for v in variants.listed
+    ]
     definitions = [
         {
             "symbol": str(d.symbol),
@@ -121,6 +86,44 @@ def variants_document(variants: VariantSet) -> dict[str, Any]:
         for d in variants.train.definitions
     ]
     return {"turning_conditions": conditions, "meshes": meshes, "variants": items, "definitions": definitions}
+
+
+def _mesh_entry(variants: VariantSet, r: MeshRole) -> dict[str, Any]:
+    """One mesh of the ``meshes`` entry: its gears, virtual power and when its first gear drives."""
+    return {
+        "coupling": r.coupling,
+        "carrier": r.flow.carrier,
+        "gears": list(r.flow.gears),
+        "virtual_power_per_input_power": sympy.sstr(r.flow.flow_ratio.to_expr()),
+        "efficiency_symbols": [sympy.sstr(e) for e in r.efficiencies],
+        "decided": r.condition is None,
+        "carries_power": not r.idle,
+        "first_gear_drives_when": "no power crosses the mesh"
+        if r.idle
+        else (
+            ("always" if r.fixed and r.fixed > 0 else "never") + f" (input {variants.train.ports.input})"
+            if r.condition is None
+            else f"{r.condition} {'>' if r.orientation > 0 else '<'} 0 (input {variants.train.ports.input})"
+        ),
+    }
+
+
+def _variant_entry(variants: VariantSet, v: Variant) -> dict[str, Any]:
+    """One derived variant of the ``variants`` entry: its efficiency and what was checked of it."""
+    return {
+        **_common_entry(variants, v),
+        "efficiency": sympy.sstr(v.efficiency),
+        "latex": display_latex(v.efficiency),
+        "feasible": v.feasible,
+        "derivative_check": v.derivative_check,
+        "self_locking_sampled": v.self_locking_point is not None,
+        "sign_expression": None if v.locking_expression is None else sympy.sstr(v.locking_expression),
+        "reversed_forces": sorted(v.reversed_forces),
+        "loaded_forces": [
+            {"force": what, "expression": sympy.sstr(force), "sign": sign}
+            for what, force, sign in variant_forces(variants, v)
+        ],
+    }
 
 
 def _common_entry(variants: VariantSet, v: Variant | ExcludedVariant) -> dict[str, Any]:

@@ -42,7 +42,15 @@ from davies_sym.emit.languages.routines import (
 )
 from davies_sym.emit.languages.sensitivities import sensitivity_routines
 from davies_sym.emit.languages.text import origin_text, parameter_lines
-from davies_sym.emit.languages.variant_choice import REASONS, by_port, choice_steps, port_choice, port_reason
+from davies_sym.emit.languages.variant_choice import (
+    REASONS,
+    ChoiceRoutines,
+    PortSignature,
+    by_port,
+    choice_steps,
+    port_choice,
+    port_reason,
+)
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
 
 
@@ -116,19 +124,17 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
         # A helper (the Python module's speed_ratio screens its values; this one is raw).
         turning = replace(formula_routine("raw_speed_ratio", summary, ratio, names), exported=False)
         routines.append(turning)
-    steps = [choice_steps(variants, port, names, routines, forces, admissible, turning) for port in ports]
+    called = ChoiceRoutines({r.name: r for r in routines}, forces, admissible, turning)
+    steps = [choice_steps(variants, port, names, called) for port in ports]
     choices = [port_choice(variants, port, names, st, not_covered) for port, st in zip(ports, steps, strict=True)]
     reasons = [port_reason(variants, port, names, st) for port, st in zip(ports, steps, strict=True)]
     routines += [*choices, *reasons]
-    port_argument = fresh("input_port", names)
-    entry = by_port("efficiency", "the efficiency", choices, names, port_argument, ports, not_covered)
-    routines += [
-        entry,
-        by_port("reason", "why there is an efficiency or not", reasons, names, port_argument, ports, not_covered),
-    ]
-    routines += sensitivity_routines(variants, names, public, steps, port_argument, ports, not_covered)
+    signature = PortSignature(names, fresh("input_port", names), ports, not_covered)
+    entry = by_port("efficiency", "the efficiency", choices, signature)
+    routines += [entry, by_port("reason", "why there is an efficiency or not", reasons, signature)]
+    routines += sensitivity_routines(variants, public, steps, signature)
     _check_unique(routines, names)
-    header = _header(variants, names, table, relations, routines, not_covered, state)
+    header = _header(variants, signature, table, relations, routines, state)
     return Program(module, header, tuple(routines), entry.name, names, ports)
 
 
@@ -146,15 +152,14 @@ def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:
 
 def _header(
     variants: VariantSet,
-    names: tuple[str, ...],
+    signature: PortSignature,
     table: tuple[Parameter, ...],
     relations: list[sympy.Expr],
     routines: list[Routine],
-    not_covered: str,
     state: str | None,
 ) -> tuple[str, ...]:
     """The opening comment: train, source, parameters, conditions, variants, functions."""
-    train = variants.train
+    train, names, not_covered = variants.train, signature.names, signature.not_covered
     lines = [
         f"Efficiency of {train.name}: every turning-condition variant (Davies' method; Laus 2011, Tables 5 and 6).",
         f"Source: {train.source or 'not given'}.",

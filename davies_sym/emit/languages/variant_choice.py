@@ -6,7 +6,7 @@ a port's routine by the port's number."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import sympy
@@ -37,55 +37,60 @@ class Choice:
     order: tuple[str, ...] = ()
 
 
-def choice_steps(
-    variants: VariantSet,
-    port: str,
-    names: tuple[str, ...],
-    routines: list[Routine],
-    forces: dict[str, Routine],
-    admissible: Routine,
-    turning: Routine | None,
-) -> Choice:
-    taken = set(names)
+@dataclass(frozen=True)
+class ChoiceRoutines:
+    """The routines a port's choice calls: every routine by name (each condition's as
+    ``condition_<name>``, each variant's as its name), the loaded-force checks by variant,
+    ``admissible``, and ``turning``, the raw speed ratio (None where the ratio has
+    parameters the routines do not take)."""
 
-    def local(base: str) -> str:
-        name = fresh(base, taken)
-        taken.add(name)
-        return name
+    by_name: Mapping[str, Routine]
+    forces: Mapping[str, Routine]
+    admissible: Routine
+    turning: Routine | None
 
-    steps: list[Step] = []
-    ok = local("ok")
-    steps.append(Step(ok, Kind.BOOL, call(admissible)))
-    turns = local("turns")
-    if turning is None:
-        steps.append(Step(turns, Kind.BOOL, sympy.true))
-    else:
-        ratio = local("ratio")
-        steps.append(Step(ratio, Kind.REAL, call(turning)))
-        finite = relation(sympy.Abs(sympy.Symbol(ratio)), "<", LARGEST)
-        steps.append(Step(turns, Kind.BOOL, sympy.And(finite, relation(sympy.Symbol(ratio), "!=", sympy.Integer(0)))))
+
+@dataclass(frozen=True)
+class PortSignature:
+    """What the routines picked by the input port share: the parameter ``names``, the
+    argument ``port_argument`` that numbers the input port, the two ``ports``, and what
+    the language returns where there is no efficiency (``not_covered``)."""
+
+    names: tuple[str, ...]
+    port_argument: str
+    ports: tuple[str, str]
+    not_covered: str
+
+
+def choice_steps(variants: VariantSet, port: str, names: tuple[str, ...], called: ChoiceRoutines) -> Choice:
+    """The steps that pick the variant of input ``port`` (see `Choice`), with local names
+    clear of the parameter ``names``."""
+    local = _local_names(names)
+    steps, ok, turns = _screen_steps(local, called)
     negative: dict[str, sympy.Symbol] = {}
-    by_name = {r.name: r for r in routines}
     for c in variants.conditions:
         name = local(f"negative_{c.name}")
         negative[c.name] = sympy.Symbol(name)
-        steps.append(Step(name, Kind.BOOL, relation(call(by_name[f"condition_{c.name}"]), "<", sympy.Integer(0))))
+        condition = call(called.by_name[f"condition_{c.name}"])
+        steps.append(Step(name, Kind.BOOL, relation(condition, "<", sympy.Integer(0))))
     mine = [v for v in variants.variants if v.input == port]
     agrees: dict[str, sympy.Symbol] = {}
     for v in mine:
-        if v.name in forces:
+        if v.name in called.forces:
             name = local(f"agrees_{v.number}")
             agrees[v.name] = sympy.Symbol(name)
-            steps.append(Step(name, Kind.BOOL, call(forces[v.name])))
+            steps.append(Step(name, Kind.BOOL, call(called.forces[v.name])))
     branches, regions = [], []
     for v in mine:
         signs = [negative[c] if s < 0 else sympy.Not(negative[c]) for c, s in v.signs.items()]
         holds = sympy.And(sympy.Symbol(ok), *signs, *([agrees[v.name]] if v.name in agrees else []))
-        branches.append((call(by_name[v.name]), holds))
-        regions.append((call(by_name[v.name]), sympy.And(sympy.Symbol(ok), *signs)))
+        branches.append((call(called.by_name[v.name]), holds))
+        regions.append((call(called.by_name[v.name]), sympy.And(sympy.Symbol(ok), *signs)))
     # Where the losses move a turning point past its lossless boundary, the variant of
     # another region whose loaded forces all agree holds.
-    branches += [(call(by_name[v.name]), sympy.And(sympy.Symbol(ok), agrees[v.name])) for v in mine if v.name in agrees]
+    branches += [
+        (call(called.by_name[v.name]), sympy.And(sympy.Symbol(ok), agrees[v.name])) for v in mine if v.name in agrees
+    ]
     order = [v.name for v in mine] + [v.name for v in mine if v.name in agrees]
     chosen = local("chosen")
     steps.append(Step(chosen, Kind.REAL, sympy.Piecewise(*branches, (NOT_COVERED, True), evaluate=False)))
@@ -99,6 +104,35 @@ def choice_steps(
         local,
         tuple(order),
     )
+
+
+def _local_names(names: tuple[str, ...]) -> Callable[[str], str]:
+    """A source of local names: each new, none among ``names`` or those it gave before."""
+    taken = set(names)
+
+    def local(base: str) -> str:
+        name = fresh(base, taken)
+        taken.add(name)
+        return name
+
+    return local
+
+
+def _screen_steps(local: Callable[[str], str], called: ChoiceRoutines) -> tuple[list[Step], str, str]:
+    """The first steps of a choice and the names they set: ``ok`` (the design is
+    admissible) and ``turns`` (both ports turn: the speed ratio is finite and not 0)."""
+    steps: list[Step] = []
+    ok = local("ok")
+    steps.append(Step(ok, Kind.BOOL, call(called.admissible)))
+    turns = local("turns")
+    if called.turning is None:
+        steps.append(Step(turns, Kind.BOOL, sympy.true))
+    else:
+        ratio = local("ratio")
+        steps.append(Step(ratio, Kind.REAL, call(called.turning)))
+        finite = relation(sympy.Abs(sympy.Symbol(ratio)), "<", LARGEST)
+        steps.append(Step(turns, Kind.BOOL, sympy.And(finite, relation(sympy.Symbol(ratio), "!=", sympy.Integer(0)))))
+    return steps, ok, turns
 
 
 def working(value: sympy.Symbol) -> sympy.Basic:
@@ -176,16 +210,9 @@ def port_reason(variants: VariantSet, port: str, names: tuple[str, ...], choice:
     )
 
 
-def by_port(
-    name: str,
-    what: str,
-    choices: list[Routine],
-    names: tuple[str, ...],
-    port_argument: str,
-    ports: tuple[str, str],
-    not_covered: str,
-) -> Routine:
+def by_port(name: str, what: str, choices: list[Routine], signature: PortSignature) -> Routine:
     """``name(..., input_port)``: ``choices[input_port]`` (the routine of that input port)."""
+    names, port_argument, ports = signature.names, signature.port_argument, signature.ports
     port = sympy.Symbol(port_argument, integer=True)
     picked = sympy.Piecewise(
         *((call(choice), sympy.Eq(port, k)) for k, choice in enumerate(choices)), (NOT_COVERED, True), evaluate=False
@@ -195,7 +222,7 @@ def by_port(
         name,
         f"{what} with {port_argument} = 0: {ports[0]} the input, {ports[1]} the "
         f"output, = 1: {ports[1]} the input, {ports[0]} the output; "
-        f"{not_covered} for any other value",
+        f"{signature.not_covered} for any other value",
         (*(Argument(n, Kind.REAL) for n in names), Argument(port_argument, Kind.PORT)),
         Kind.REAL,
         (Step(result, Kind.REAL, picked),),

@@ -173,3 +173,40 @@ def test_a_symbolic_tooth_number_is_refused_at_its_bearing() -> None:
     text = text.replace("P2: {link: p2, radius: 20}", "P2: {link: p2, radius: rp2}")
     with pytest.raises(InputError, match=r"couplings\.[A-Z]: the speed of this bearing's member is"):
         member_speeds(loads(text))
+
+
+TWO_SETS = DATA / "shifts_two_sets.yaml"
+
+
+def test_connections_rediscover_the_simpson_three_speed() -> None:
+    """Two identical simple sets, nothing connected, three joins and four elements for
+    the Simpson ratios: among the designs is the Simpson set (common sun, front carrier
+    = rear ring = output) with its elements (clutches from the input to the front ring
+    and to the sun, brakes on the sun and on the rear carrier), found once for both
+    labellings of the two sets."""
+    from davies_sym.synthesis.shift_connections import designs, planetary_sets, relabellings
+
+    train = load(TWO_SETS)
+    speeds = member_speeds(train)
+    targets = tuple(GearTarget(g, Fraction(r)) for g, r in SIMPSON_TABLE.items())
+    found, searched = designs(train, speeds, ("in", "out"), ShiftQuestion(targets, Fraction(5, 1000), 4, None, True, 3))
+    assert searched > 0
+    matches = []
+    for mapping in relabellings(planetary_sets(train, speeds.members())):
+        groups = {frozenset(mapping[m] for m in b) for b in ({"s1", "s2"}, {"c1", "r2", "out"})}
+        sun = {(mapping["s1"],), (mapping["s2"],)}
+        front_ring = {("in", mapping["r1"])}
+        to_sun = {("in", mapping["s1"]), ("in", mapping["s2"])}
+        rear_carrier = {(mapping["c2"],)}
+        wanted = {
+            "1": [front_ring, rear_carrier],
+            "2": [front_ring, sun],
+            "3": [front_ring, to_sun],
+            "R": [to_sun, rear_carrier],
+        }
+        for d in (d for d in found if d.connections == groups):
+            writings = {g: [{e.members, *e.alike} for e in d.scheme.engaged(g)] for g in SIMPSON_TABLE}
+            if all(any(w & options for w in writings[g]) for g, opts in wanted.items() for options in opts):
+                matches.append(d)
+    assert len(matches) == 1, "the Simpson design appears once, in one labelling of the sets"
+    assert matches[0].scheme.ratios == {"1": Fraction(17, 7), "2": Fraction(10, 7), "3": 1, "R": Fraction(-7, 3)}

@@ -152,3 +152,20 @@ def test_drag_lowers_the_score_by_the_slip_speeds(capsys: pytest.CaptureFixture[
     sums = [sum(v * v for v in slips.values()) for slips in free["open_speed"].values()]
     assert held["score"] == pytest.approx(free["score"] - 0.01 * sum(sums) / len(sums), abs=1e-12)
     assert held["efficiency"] == free["efficiency"]
+
+
+def test_connections_and_the_file_written(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The issue's two-set example: three joins, four elements; the JSON lists the joins,
+    and the best design written as a train file (joins as clutches in every state)
+    derives to the efficiencies it was ranked by."""
+    best = tmp_path / "best.yaml"
+    argv = ["shifts", str(DATA / "shifts_two_sets.yaml"), "--target", *SIMPSON_TARGETS, "--connections", "3"]
+    status, out, err = _run([*argv, "--elements", "4", "--json", "--quiet", "--write-best", str(best)], capsys)
+    assert status == 0, err
+    document = json.loads(out)
+    first = document["candidates"][0]
+    assert len(first["connections"]) == 3 and document["feasible"] >= 1
+    for gear, efficiency in first["efficiency"].items():
+        status, out, err = _run([str(best), "--state", gear, "--eval", "--json"], capsys)
+        assert status == 0, err
+        assert json.loads(out)["efficiency"] == pytest.approx(efficiency, abs=1e-12), gear

@@ -18,6 +18,7 @@ from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.fan_out import Workers
 from davies_sym.progress import Display
+from davies_sym.synthesis.shift_connections import ConnectedScheme
 from davies_sym.synthesis.shift_kinematics import member_speeds
 from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion, element_letter, gear_order
 from davies_sym.synthesis.shift_search import Ranking, ShiftResult, gear_state, port_member, shift_search, unreached
@@ -66,15 +67,22 @@ def _weights(pairs: list[str], targets: tuple[GearTarget, ...]) -> dict[str, flo
 
 def _question(args: argparse.Namespace, train: Train, freedom: int) -> ShiftQuestion:
     """The question the options ask of ``train`` (of ``freedom`` degrees of freedom)."""
-    engaged = args.engaged if args.engaged is not None else freedom - 1
-    if engaged != freedom - 1:
-        why = f"the train has {freedom} degrees of freedom: a gear engages {freedom - 1} elements to leave one"
+    if not 0 <= args.connections <= freedom - 2:
+        why = f"from 0 to {freedom - 2}: each join takes one of the {freedom} degrees of freedom, and a gear needs two"
+        raise InputError([Problem("--connections", why)])
+    left = freedom - args.connections
+    engaged = args.engaged if args.engaged is not None else left - 1
+    if engaged != left - 1:
+        joined = f" with {args.connections} connection(s)" if args.connections else ""
+        why = f"the train has {left} degrees of freedom{joined}: a gear engages {left - 1} elements to leave one"
         raise InputError([Problem("--engaged", why)])
     if args.elements is not None and args.elements < engaged:
         raise InputError([Problem("--elements", f"at least {engaged}, the elements one gear engages")])
     if args.tolerance < 0:
         raise InputError([Problem("--tolerance", "a relative deviation is >= 0")])
-    return ShiftQuestion(_targets(args.target), args.tolerance, args.elements, engaged, not args.any_shifts)
+    return ShiftQuestion(
+        _targets(args.target), args.tolerance, args.elements, engaged, not args.any_shifts, args.connections
+    )
 
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
@@ -140,7 +148,11 @@ def shifts_text(result: ShiftResult, question: ShiftQuestion, top: int) -> str:
             f"{n} {e.text()}" + (f" (or {', '.join('-'.join(a) for a in e.alike)})" if e.alike else "")
             for n, e in zip(letters, s.elements, strict=True)
         ]
-        lines += ["", f"scheme {rank}: score {c.score:.5f}", "  elements: " + "; ".join(described)]
+        lines += ["", f"scheme {rank}: score {c.score:.5f}"]
+        if c.connections:
+            joined = ", ".join("=".join(sorted(b)) for b in sorted(c.connections, key=sorted))
+            lines.append(f"  connections: {joined}")
+        lines.append("  elements: " + "; ".join(described))
         lines.append(f"  {'gear':<6}{' '.join(letters)}   {'ratio':>9} {'step':>7} {'efficiency':>11}")
         for i, gear in enumerate(order):
             marks = " ".join("X" if k in s.schedule[gear] else "." for k in range(len(letters)))
@@ -165,9 +177,13 @@ def best_scheme_text(path: str, train: Train, result: ShiftResult) -> str:
     best = result.candidates[0]
     s = best.scheme
     named = "; ".join(f"{element_letter(k)} {e.text()}" for k, e in enumerate(s.elements))
-    lines = [f"# The best scheme of derive shifts (score {best.score:.5f}): {named}.", "states:"]
+    joined = ", ".join("=".join(sorted(b)) for b in sorted(best.connections, key=sorted))
+    lines = [f"# The best scheme of derive shifts (score {best.score:.5f}): {named}."]
+    if joined:
+        lines.append(f"# Permanent connections {joined}: clutches engaged in every gear.")
+    lines.append("states:")
     for gear in s.schedule:
-        state = gear_state(train, s, gear)
+        state = gear_state(train, ConnectedScheme(best.connections, s), gear)
         fields = [f"description: {json.dumps(state.description)}", f"input: {state.input}", f"output: {state.output}"]
         if state.brake:
             fields.append(f"brake: [{', '.join(state.brake)}]")

@@ -174,6 +174,13 @@ def shifts_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--weights", nargs="+", default=[], metavar="GEAR=W", help="weight of each gear (default equal)")
     p.add_argument(
+        "--connections",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also search N permanent joins between members of different sets (or a shaft and a member)",
+    )
+    p.add_argument(
         "--drag",
         type=fraction,
         default=Fraction(0),

@@ -49,13 +49,16 @@ class GearTarget:
 class ShiftQuestion:
     """What is asked: the ratio table within a relative ``tolerance``; ``elements`` in
     the scheme (None: the fewest that work), ``engaged`` per gear (None: the degrees of
-    freedom less one), single-transition shifts between forward gears unless lifted."""
+    freedom less one, after the connections), single-transition shifts between forward
+    gears unless lifted."""
 
     targets: tuple[GearTarget, ...]
     tolerance: Fraction
     elements: int | None = None
     engaged: int | None = None
     single_transitions: bool = True
+    #: Permanent joins searched with the elements (`shift_connections`); 0: as written.
+    connections: int = 0
 
 
 @dataclass(frozen=True)

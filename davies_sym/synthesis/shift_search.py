@@ -11,7 +11,6 @@ import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
-from math import comb
 from typing import Any
 
 import sympy
@@ -20,6 +19,7 @@ from davies_sym.efficiency.variants import derive_variants
 from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.progress import Progress, silent
+from davies_sym.synthesis.shift_connections import ConnectedScheme, designs, joined_speeds, joins_of
 from davies_sym.synthesis.shift_elements import candidate_elements, gear_motion
 from davies_sym.synthesis.shift_kinematics import MemberSpeeds, member_speeds, speed
 from davies_sym.synthesis.shift_schedules import (
@@ -28,8 +28,8 @@ from davies_sym.synthesis.shift_schedules import (
     ShiftScheme,
     element_letter,
     gear_options,
-    shift_schemes,
 )
+from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_in_state
@@ -48,6 +48,11 @@ def gear_efficiency(task: GearTask) -> str | None:
     """The exact efficiency of the task's gear at the file's numbers (as text, cheap to
     send), or None where no variant covers it (the gear self-locks)."""
     train = load(task.train) if isinstance(task.train, str) else task.train
+    if _ports_joined(train, task.state):
+        # Input and output are one member: the power passes through no mesh. Only the
+        # bearings could lose, and a lossy one would need the load split between them.
+        lossless = all(c.friction.lossless for c in bearings(train.couplings))
+        return "1" if lossless else None
     whole = replace(train, states=(task.state,))
     variants = derive_variants(train_in_state(whole, task.state))
     try:
@@ -58,6 +63,17 @@ def gear_efficiency(task: GearTask) -> str | None:
         raise InputError([Problem("", why)], train.path) from None
     except NotCoveredError:
         return None
+
+
+def _ports_joined(train: Train, state: State) -> bool:
+    """Whether the state's clutches make the input and output members one."""
+    group = {m: {m} for pair in state.clutch for m in pair}
+    for a, b in state.clutch:
+        merged = group[a] | group[b]
+        for m in merged:
+            group[m] = merged
+    into, out = port_member(train, state.input), port_member(train, state.output)
+    return out in group.get(into, {into})
 
 
 @dataclass(frozen=True)
@@ -92,6 +108,8 @@ class ShiftCandidate:
     efficiency: Mapping[str, Fraction | None]
     open_speed: Mapping[str, Mapping[str, Fraction]]
     score: float
+    #: The groups of members joined for good (empty: the connections as written).
+    connections: frozenset[frozenset[str]] = frozenset()
 
     def document(self) -> dict[str, Any]:
         """The candidate as ``derive shifts --json`` writes it."""
@@ -100,7 +118,7 @@ class ShiftCandidate:
         return {
             "elements": {n: e.document() for n, e in zip(names, s.elements, strict=True)},
             "schedule": {g: [names[k] for k in ks] for g, ks in s.schedule.items()},
-            "connections": [],
+            "connections": [list(j) for j in joins_of(self.connections)],
             "teeth": {},
             "speed_ratio": {g: float(r) for g, r in s.ratios.items()},
             "efficiency": {g: None if v is None else float(v) for g, v in self.efficiency.items()},
@@ -128,17 +146,24 @@ class ShiftResult:
         }
 
 
-def gear_state(train: Train, scheme: ShiftScheme, gear: str) -> State:
-    """The gear ``gear`` of ``scheme`` as an operating state of ``train``."""
+def gear_state(train: Train, design: ConnectedScheme, gear: str) -> State:
+    """The gear ``gear`` of ``design`` as an operating state of ``train``: its engaged
+    brakes and clutches, and the permanent connections as clutches engaged in every
+    gear."""
+    scheme = design.scheme
     engaged = scheme.engaged(gear)
     letters = " ".join(element_letter(k) for k in scheme.schedule[gear])
+    joined = " and the connections" if design.connections else ""
     return State(
         gear,
         train.ports.input,
         train.ports.output,
         brake=tuple(e.members[0] for e in engaged if e.kind == "brake"),
-        clutch=tuple((e.members[0], e.members[1]) for e in engaged if e.kind == "clutch"),
-        description=f"gear {gear} ({letters})",
+        clutch=(
+            *joins_of(design.connections),
+            *((e.members[0], e.members[1]) for e in engaged if e.kind == "clutch"),
+        ),
+        description=f"gear {gear} ({letters}{joined})",
     )
 
 
@@ -183,32 +208,30 @@ def shift_search(
     start = time.perf_counter()
     speeds = member_speeds(train)
     ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
-    schemes = shift_schemes(speeds, ports, question)
-    progress(f"{len(schemes)} scheme(s) give the ratio table; deriving their gears")
-    gears = [gear_state(train, s, g) for s in schemes for g in s.schedule]
+    found, searched = designs(train, speeds, ports, question)
+    progress(f"{len(found)} scheme(s) give the ratio table; deriving their gears")
+    gears = [gear_state(train, d, g) for d in found for g in d.scheme.schedule]
     if not train.path or workers.here(len(gears)):
         workers, tasks = IN_THIS_PROCESS, [GearTask(train, state) for state in gears]
     else:  # a worker reads the file itself
         tasks = [GearTask(train.path, state) for state in gears]
-    found = iter(fan_out(gear_efficiency, tasks, workers, Counted(progress, "gear")))
+    values = iter(fan_out(gear_efficiency, tasks, workers, Counted(progress, "gear")))
     ranking = ranking or Ranking()
     ranked = []
-    for s in schemes:
-        efficiency = {g: None if (v := next(found)) is None else Fraction(str(sympy.Rational(v))) for g in s.schedule}
-        slips = _open_speeds(s, speeds, ports)
-        ranked.append(ShiftCandidate(s, efficiency, slips, ranking.score(efficiency, slips)))
+    for d in found:
+        efficiency = {
+            g: None if (v := next(values)) is None else Fraction(str(sympy.Rational(v))) for g in d.scheme.schedule
+        }
+        joined = joined_speeds(speeds, d.connections) if d.connections else speeds
+        assert joined is not None  # a found design's joins leave the train movable
+        slips = _open_speeds(d.scheme, joined, ports)
+        ranked.append(ShiftCandidate(d.scheme, efficiency, slips, ranking.score(efficiency, slips), d.connections))
     error = {id(c): sum(abs(float(c.scheme.ratios[t.name] / t.ratio) - 1) for t in question.targets) for c in ranked}
     ranked.sort(key=lambda c: (-c.score, error[id(c)], len(c.scheme.elements)))
-    return ShiftResult(tuple(ranked), _combinations(speeds, ports, question), time.perf_counter() - start)
+    return ShiftResult(tuple(ranked), searched, time.perf_counter() - start)
 
 
 def port_member(train: Train, port: str) -> str:
     """The main-axis member a port's bearing carries (the link other than the reference)."""
     coupling = train.coupling(port)
     return coupling.links[1] if coupling.links[0] == train.reference else coupling.links[0]
-
-
-def _combinations(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> int:
-    """How many combinations of engaged elements were evaluated."""
-    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
-    return comb(len(candidate_elements(speeds, ports)), engaged)

@@ -1,0 +1,222 @@
+"""Permanent connections searched with the shift elements (level 2 of ``derive
+shifts``): members of different planetary sets (or a shaft and a member) joined for
+good, N joins at a time, and the shift schemes of each connected train.
+
+A connection is a clutch always engaged: one more equation on the member speeds, so the
+connected train's speeds are the old ones on the null space of the joins' equations.
+Joins that make the same groups of members are one design, and so are designs that map
+onto each other when identical sets (same sizes, member by member) swap their labels:
+only one of each is searched or listed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from itertools import combinations, permutations, product
+from math import comb
+from typing import Any
+
+import flint
+
+from davies_sym.synthesis.shift_elements import ShiftElement, candidate_elements
+from davies_sym.synthesis.shift_kinematics import Form, MemberSpeeds, speed
+from davies_sym.synthesis.shift_schedules import ShiftQuestion, ShiftScheme, shift_schemes
+from davies_sym.topology.coupling_kinds import bearings
+from davies_sym.topology.model import Train
+
+#: A group of members joined for good.
+Block = frozenset[str]
+
+
+@dataclass(frozen=True)
+class PlanetarySet:
+    """The main-axis members of one set (its carrier and the central gears its planets
+    mesh) and each one's role with its size: ("carrier", planet radii) or ("sun" /
+    "ring", pitch radius); sets with the same roles and sizes are identical."""
+
+    members: tuple[str, ...]
+    roles: Mapping[str, tuple[object, ...]]
+
+    def signature(self) -> tuple[tuple[object, ...], ...]:
+        return tuple(sorted(self.roles.values(), key=str))
+
+
+def planetary_sets(train: Train, main_axis: Sequence[str]) -> tuple[PlanetarySet, ...]:
+    """The sets of ``train``: the planets on one carrier with the central members they
+    mesh; a main-axis member in no set (a shaft) is a set of its own."""
+    axis = set(main_axis)
+    radius = {g.link: g for g in train.gears}
+    carriers: dict[str, set[str]] = {}
+    planets: dict[str, list[str]] = {}
+    for link in train.link_names:
+        if link in axis or link == train.reference:
+            continue
+        held = [c for c in bearings(train.couplings) if link in c.links]
+        meshed = [c for c in train.couplings if getattr(c, "meshing", False) and link in c.links]
+        for c in held:
+            carrier = c.links[0] if c.links[1] == link else c.links[1]
+            if carrier in axis:
+                carriers.setdefault(carrier, set()).update(
+                    m for d in meshed for m in d.links if m in axis and m != carrier
+                )
+                planets.setdefault(carrier, []).append(link)
+    sets: list[PlanetarySet] = []
+    for carrier, central in carriers.items():
+        roles: dict[str, tuple[object, ...]] = {
+            carrier: ("carrier", tuple(sorted(str(radius[p].radius) for p in planets[carrier] if p in radius)))
+        }
+        for m in sorted(central):
+            g = radius.get(m)
+            roles[m] = ("ring" if g is not None and g.internal else "sun", str(g.radius) if g is not None else "")
+        sets.append(PlanetarySet((carrier, *sorted(central)), roles))
+    placed = {m for s in sets for m in s.members}
+    sets += [PlanetarySet((m,), {m: ("shaft", m)}) for m in main_axis if m not in placed]
+    return tuple(sets)
+
+
+def relabellings(sets: Sequence[PlanetarySet]) -> list[dict[str, str]]:
+    """Every renaming of members that swaps identical sets member for member (the
+    identity first)."""
+    groups: dict[tuple[tuple[object, ...], ...], list[PlanetarySet]] = {}
+    for s in sets:
+        groups.setdefault(s.signature(), []).append(s)
+    per_group = []
+    for same in groups.values():
+        maps = []
+        for order in permutations(same):
+            mapping = {}
+            for source, target in zip(same, order, strict=True):
+                by_role = {role: m for m, role in target.roles.items()}
+                mapping.update({m: by_role[role] for m, role in source.roles.items()})
+            maps.append(mapping)
+        per_group.append(maps)
+    return [{k: v for part in combo for k, v in part.items()} for combo in product(*per_group)]
+
+
+def _blocks(joins: Sequence[tuple[str, str]]) -> frozenset[Block]:
+    """The groups of members ``joins`` make (groups of two or more)."""
+    group: dict[str, set[str]] = {}
+    for a, b in joins:
+        merged = group.get(a, {a}) | group.get(b, {b})
+        for m in merged:
+            group[m] = merged
+    return frozenset(frozenset(g) for g in {id(g): g for g in group.values()}.values())
+
+
+def _renamed(blocks: frozenset[Block], mapping: Mapping[str, str]) -> tuple[tuple[str, ...], ...]:
+    return tuple(sorted(tuple(sorted(mapping.get(m, m) for m in b)) for b in blocks))
+
+
+def connection_choices(sets: Sequence[PlanetarySet], joins: int) -> list[frozenset[Block]]:
+    """Every way to make ``joins`` independent joins between members of different sets,
+    as the groups they make, one of each group pattern under the relabellings of
+    identical sets."""
+    home = {m: k for k, s in enumerate(sets) for m in s.members}
+    pairs = [(a, b) for a, b in combinations(list(home), 2) if home[a] != home[b]]
+    maps = relabellings(sets)
+    seen: set[tuple[tuple[str, ...], ...]] = set()
+    out = []
+    for chosen in combinations(pairs, joins):
+        blocks = _blocks(chosen)
+        if sum(len(b) - 1 for b in blocks) != joins:
+            continue  # a join the others already made
+        canonical = min(_renamed(blocks, m) for m in maps)
+        if canonical not in seen:
+            seen.add(canonical)
+            out.append(blocks)
+    return out
+
+
+def joined_speeds(speeds: MemberSpeeds, blocks: frozenset[Block]) -> MemberSpeeds | None:
+    """The member speeds once the ``blocks`` turn as one: the old forms on a basis of
+    the joins' null space (None when the joins lock the train)."""
+    rows = [
+        tuple(a - b for a, b in zip(speeds.forms[first], speeds.forms[m], strict=True))
+        for block in sorted(blocks, key=sorted)
+        for first in [min(block)]
+        for m in sorted(block - {first})
+    ]
+    basis = _null_basis(rows, speeds.degrees_of_freedom)
+    if len(basis) < 2:
+        return None
+    free = tuple(f"q{k}" for k in range(len(basis)))
+    forms = {m: tuple(speed(f, v) for v in basis) for m, f in speeds.forms.items()}
+    return MemberSpeeds(free, forms, speeds.shaft)
+
+
+def _null_basis(rows: Sequence[Form], columns: int) -> list[Form]:
+    """A basis of the vectors every row annihilates, exact."""
+    if not rows:
+        return [tuple(Fraction(int(i == j)) for i in range(columns)) for j in range(columns)]
+    matrix = flint.fmpq_mat(len(rows), columns, [flint.fmpq(x.numerator, x.denominator) for r in rows for x in r])
+    reduced, rank = matrix.rref()
+    pivots = [next(j for j in range(columns) if reduced[i, j] != 0) for i in range(rank)]
+    basis = []
+    for loose in (j for j in range(columns) if j not in pivots):
+        vector = [Fraction(0)] * columns
+        vector[loose] = Fraction(1)
+        for i, j in enumerate(pivots):
+            entry = reduced[i, loose]
+            vector[j] = -Fraction(int(entry.p), int(entry.q))
+        basis.append(tuple(vector))
+    return basis
+
+
+@dataclass(frozen=True)
+class ConnectedScheme:
+    """A scheme of a train with permanent ``connections`` (the groups of members joined)."""
+
+    connections: frozenset[Block]
+    scheme: ShiftScheme
+
+
+def designs(
+    train: Train, speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion
+) -> tuple[list[ConnectedScheme], int]:
+    """The schemes of the train as written, or of every choice of
+    ``question.connections`` joins (each design once under the relabellings of
+    identical sets), and how many combinations of engaged elements were evaluated."""
+    if not question.connections:
+        return [ConnectedScheme(frozenset(), s) for s in shift_schemes(speeds, ports, question)], _searched(
+            speeds, ports, question
+        )
+    sets = planetary_sets(train, speeds.members())
+    maps = relabellings(sets)
+    seen: set[tuple[Any, ...]] = set()
+    found: list[ConnectedScheme] = []
+    searched = 0
+    for blocks in connection_choices(sets, question.connections):
+        joined = joined_speeds(speeds, blocks)
+        if joined is None or any(ports[0] in b and ports[1] in b for b in blocks):
+            continue
+        searched += _searched(joined, ports, question)
+        for scheme in shift_schemes(joined, ports, question):
+            key = min(_design_key(blocks, scheme, m) for m in maps)
+            if key not in seen:
+                seen.add(key)
+                found.append(ConnectedScheme(blocks, scheme))
+    return found, searched
+
+
+def _searched(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> int:
+    """How many combinations of engaged elements one train's search evaluates."""
+    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
+    return comb(len(candidate_elements(speeds, ports)), engaged)
+
+
+def joins_of(blocks: frozenset[Block]) -> list[tuple[str, str]]:
+    """The groups as joins: the first member of each (by name) to each other."""
+    return [(min(b), m) for b in sorted(blocks, key=sorted) for m in sorted(b - {min(b)})]
+
+
+def _design_key(blocks: frozenset[Block], scheme: ShiftScheme, mapping: Mapping[str, str]) -> tuple[Any, ...]:
+    """The design renamed by ``mapping``, written so that equal designs compare equal:
+    the groups, and per gear the engaged elements each as every way it may be written."""
+
+    def written(e: ShiftElement) -> tuple[tuple[str, ...], ...]:
+        return tuple(sorted(tuple(sorted(mapping.get(m, m) for m in w)) for w in (e.members, *e.alike)))
+
+    gears = tuple(sorted((g, tuple(sorted(written(e) for e in scheme.engaged(g)))) for g in scheme.schedule))
+    return (_renamed(blocks, mapping), gears)

@@ -107,6 +107,21 @@ def test_bad_input_is_refused_with_one_message(argv: list[str], says: str, capsy
     assert out == ""
 
 
+def test_sets_running_on_the_input_shaft_have_nothing_to_brake(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Every central member and carrier in a bearing of the input shaft, not of the
+    housing: only the shafts could be held, and holding either stops the drive."""
+    text = (DATA / "shifts_two_sets.yaml").read_text(encoding="utf-8")
+    for member in ("s1", "r1", "c1", "s2", "r2", "c2"):
+        text = text.replace(f"links: [0, {member}]", f"links: [in, {member}]")
+    path = tmp_path / "on_shaft.yaml"
+    path.write_text(text, encoding="utf-8")
+    status, out, err = _run(["shifts", str(path), "--target", "1=2", "--quiet"], capsys)
+    assert status == 2 and out == ""
+    assert "couplings: no member can be braked" in err
+
+
 def test_a_table_no_scheme_reaches_names_the_closest(capsys: pytest.CaptureFixture[str]) -> None:
     status, out, err = _run(["shifts", str(SIMPSON), "--target", "1=2.4286", "2=1.9", "--quiet"], capsys)
     assert status == 3

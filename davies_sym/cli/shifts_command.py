@@ -98,6 +98,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             why = "the file has states: derive shifts finds the gears itself; take the states: entry out"
             raise InputError([train.problem("states", why)], train.path)
         speeds = member_speeds(train)
+        ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
+        if set(speeds.members()) <= set(ports):
+            why = (
+                "no member can be braked: only the input and output shafts run in bearings of the reference; "
+                "give every main-axis member of the sets a bearing of the reference"
+            )
+            raise InputError([train.problem("couplings", why)], train.path)
         question = _question(args, train, speeds.degrees_of_freedom)
         if args.drag < 0:
             raise InputError([Problem("--drag", f"a drag coefficient is >= 0, got {args.drag}")])
@@ -108,7 +115,6 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         print(text.replace("<input>", args.train), file=sys.stderr)
         return 2
     if not result.candidates:
-        ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
         lines = unreached(speeds, ports, question) or [
             f"every gear is reached, but no scheme of {args.elements or 'any number of'} elements meets the rules"
             + ("" if args.any_shifts else " (single transitions: --any-shifts lifts that one)")

@@ -129,6 +129,9 @@ def test_module_efficiency_equals_the_exact_variant(name):
 #: gear has one (rs1 - rr) that an admissible design never changes (the annulus is larger
 #: than its sun), so one region only.
 TURNING_CONDITIONS = {
+    "bicycle_hub[high]": 0,
+    "bicycle_hub[low]": 0,
+    "bicycle_hub[normal]": 0,
     "buckingham_pair": 0,
     "crossed_helical": 0,
     "humpage": 1,

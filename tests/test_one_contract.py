@@ -53,7 +53,7 @@ from conftest import CATALOG, ROOT, TRAIN_FILES
 SEVERAL_INPUTS = {"sr20_differential"}
 #: Chen's balance takes parallel or intersecting axes and ordinary efficiencies, of gear
 #: pairs with bearings and lossless sliders (not a rack in its pressed guide).
-NO_BALANCE = {"crossed_helical", "worm_drive", "worm_planetary", "buckingham_pair", "rack_pinion"}
+NO_BALANCE = {"crossed_helical", "worm_drive", "worm_planetary", "buckingham_pair", "rack_pinion", "bicycle_hub"}
 
 
 def _cases() -> list[tuple[str, str | None]]:

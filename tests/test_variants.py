@@ -185,8 +185,9 @@ SKEW = {"crossed_helical", "worm_drive", "worm_planetary"}
 TOOTH_GEOMETRY = {"buckingham_pair"}
 #: Chen's balance covers gear pairs, bearings and lossless sliders; the rack and its pressed
 #: guide are checked against their hand derivation (tests/test_rack_pinion.py), where the
-#: balance's refusal is checked too.
-OUTSIDE_BALANCE = {"rack_pinion"}
+#: balance's refusal is checked too, and the chain-driven hub against its own
+#: (tests/test_bicycle_hub.py).
+OUTSIDE_BALANCE = {"rack_pinion", "bicycle_hub[low]", "bicycle_hub[normal]", "bicycle_hub[high]"}
 
 
 @pytest.mark.parametrize(

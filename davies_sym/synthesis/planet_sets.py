@@ -103,18 +103,27 @@ def planet_sets(train: Train, layout: Layout) -> tuple[PlanetSet, ...]:
 
 
 def _pivots(train: Train, structure: AxisStructure, layout: Layout) -> dict[str, tuple[str, str]]:
-    """Planet -> (its carrier, the bearing that holds it there): every link that a moving
+    """Planet -> (its carrier, the bearing that pins it there): every link that a moving
     link holds in the bearing tree off the holder's own axis, the bearing being the one of
-    the tree (the first by name between the two).  A planet on a coaxial planet's pin
+    the tree (the first by name between the two).  All of a planet's bearings lie on its
+    own axis (a link that also holds links off its axis is their carrier, not a planet),
+    and no other bearing of the carrier lies there; a planet on a coaxial planet's pin
     turns about that planet's axis and is no planet of its own; a planet whose gears turn
     about axes the layout tilts is left out (see the module's docstring)."""
+    revolutes = bearings(train.couplings)
     out = {}
     for planet, carrier in sorted(structure.parent.items()):
-        if train.reference in (planet, carrier) or structure.axis[planet] == structure.axis[carrier]:
+        axis = structure.axis[planet]
+        if train.reference in (planet, carrier) or structure.axis[carrier] == axis:
+            continue
+        on_axis = {c.name: structure.bearing_axis[c.name] == axis for c in revolutes}
+        if not all(on_axis[c.name] for c in revolutes if planet in c.links):
+            continue
+        if any(on_axis[c.name] for c in revolutes if carrier in c.links and planet not in c.links):
             continue
         if any(not _parallel(layout, g.name) for g in train.gears if g.link == planet):
             continue
-        pivot = min(c.name for c in bearings(train.couplings) if set(c.links) == {planet, carrier})
+        pivot = min(c.name for c in revolutes if set(c.links) == {planet, carrier})
         out[planet] = (carrier, pivot)
     return out
 

@@ -185,20 +185,24 @@ def mesh_power(
     return derivation.solved[key]
 
 
+def case_draws(points: Sequence[Point], efficiencies: Collection[sympy.Symbol], seed: int) -> Draws | None:
+    """The sampled losses and input torques at ``points`` that `reached_cases` reads
+    (``efficiencies``: the ordinary ones; None without points)."""
+    return Draws(points, efficiencies, INPUT_TORQUE, seed, drawn=OPERATING_SYMBOLS) if points else None
+
+
 def reached_cases(
     first: Mapping[str, bool],
     derive: Callable[[frozenset[str]], Derivation],
     roles: Sequence[MeshRole],
-    points: Sequence[Point],
-    efficiencies: Collection[sympy.Symbol],
-    seed: int,
+    draws: Draws | None,
     swapped: bool = False,
 ) -> list[LoadCase]:
-    """The variant's lossless case, then every reversal sampled losses and input torques
-    reach at ``points`` (``derive``: the derivation with the named bearings' reactions
-    reversed; ``swapped``: the declared input's derivation, read for the other input)."""
+    """The variant's lossless case, then every reversal the sampled losses and input
+    torques ``draws`` (`case_draws`) reach (``derive``: the derivation with the named
+    bearings' reactions reversed; ``swapped``: the declared input's derivation, read for
+    the other input)."""
     bearings = {law.coupling for law in loaded_laws(derive(frozenset()).analysis, roles)} - {r.coupling for r in roles}
-    draws = Draws(points, efficiencies, INPUT_TORQUE, seed, drawn=OPERATING_SYMBOLS) if points else None
     out: list[LoadCase] = []
     queue: list[frozenset[str]] = [frozenset()]
     seen = set(queue)

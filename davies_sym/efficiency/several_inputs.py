@@ -20,7 +20,7 @@ output's power over the sum of the input shafts' powers, in closed form
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from functools import cached_property
 from itertools import combinations
 
@@ -31,7 +31,7 @@ from davies_sym.efficiency.mesh_friction import check_mesh_friction, only_mesh_l
 from davies_sym.efficiency.parameter_domain import efficiency_symbols
 from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, Region, SeveralInputs, SpeedCondition, speed_symbol
 from davies_sym.efficiency.region_forms import RegionContext, is_loaded, region_forms
-from davies_sym.efficiency.region_sampling import holds_somewhere, reached_signs
+from davies_sym.efficiency.region_sampling import Point, holds_somewhere, reached_signs
 from davies_sym.efficiency.virtual_power import MeshPowerFlow, mesh_power_flow
 from davies_sym.errors import DerivationError, MobilityError, Problem
 from davies_sym.geometry.dependent import resolved_train
@@ -121,16 +121,7 @@ def derive_several_inputs(
     speeds = tuple(speed_symbol(p) for p in ports.inputs)
     moving = frozenset(speeds)
     etas = efficiency_symbols(train)
-    clash = sorted(str(s) for s in (*speeds, LOAD_TORQUE) if str(s) in train.symbols)
-    if clash:
-        raise MobilityError(
-            [
-                Problem(
-                    "", f"{', '.join(clash)} name the input speeds and the load torque; rename the symbol in the file"
-                )
-            ],
-            train.file_lines,
-        )
+    _check_speed_names(train, speeds)
     options = AnalysisOptions(coulomb_signs=CoulombSigns.MESH_LINEAR, extra_symbols=[*etas, *speeds, LOAD_TORQUE])
     analysis = _SeveralInputAnalysis(train, options, progress)
     net = analysis.network
@@ -145,8 +136,41 @@ def derive_several_inputs(
         k, orientation = conditions.add(form, f"port {p} turns forwards")
         said[f"port {p}"] = (k, sign * orientation)
     say("virtual power through the meshes")
+    flows = _law_conditions(analysis, moving, conditions, said)
+    names = [f"s{k + 1}" for k in range(len(conditions.forms))]
+    found = reached_signs(train, analysis, conditions.forms, speeds, samples, seed)
+    context = RegionContext(analysis, said, flows, port_speeds, pairing, analysis.lossless_action_coefficients)
+    regions = _regions(context, found, names, etas, seed, say)
+    conds = tuple(
+        SpeedCondition(n, f, tuple(d)) for n, f, d in zip(names, conditions.forms, conditions.decides, strict=True)
+    )
+    return SeveralInputs(train, analysis, speeds, port_speeds, conds, tuple(regions), pairing)
+
+
+def _check_speed_names(train: Train, speeds: tuple[sympy.Symbol, ...]) -> None:
+    """Refuse a train whose own symbols take the names of the input speeds or the load torque."""
+    clash = sorted(str(s) for s in (*speeds, LOAD_TORQUE) if str(s) in train.symbols)
+    if clash:
+        raise MobilityError(
+            [
+                Problem(
+                    "", f"{', '.join(clash)} name the input speeds and the load torque; rename the symbol in the file"
+                )
+            ],
+            train.file_lines,
+        )
+
+
+def _law_conditions(
+    analysis: Analysis, moving: frozenset[sympy.Symbol], conditions: _Conditions, said: dict[str, tuple[int, int]]
+) -> dict[str, MeshPowerFlow]:
+    """The speed conditions the friction laws add to ``conditions`` (each entered in
+    ``said``): which gear drives in each loaded mesh, which way each coupling with a drag
+    or a bearing's Coulomb friction turns; the meshes' virtual power flows."""
+    net, train = analysis.network, analysis.train
+    motion = analysis.motion_magnitudes
     lossless = analysis.lossless_action_coefficients  # per unit torque of the first input
-    load_action = net.port_action(ports.output).name
+    load_action = net.port_action(train.ports.output).name
     flows: dict[str, MeshPowerFlow] = {}
     for law in net.laws:
         mesh = as_toothed_mesh(train.coupling(law.coupling))
@@ -163,9 +187,20 @@ def derive_several_inputs(
             sign, form = _primitive(motion[law.motion], analysis, moving)
             k, orientation = conditions.add(form, f"coupling {law.coupling} turns forwards")
             said[f"turn {law.coupling}"] = (k, sign * orientation)
-    names = [f"s{k + 1}" for k in range(len(conditions.forms))]
-    found = reached_signs(train, analysis, conditions.forms, speeds, samples, seed)
-    context = RegionContext(analysis, said, flows, port_speeds, pairing, lossless)
+    return flows
+
+
+def _regions(
+    context: RegionContext,
+    found: Mapping[tuple[int, ...], list[Point]],
+    names: list[str],
+    etas: Sequence[sympy.Symbol],
+    seed: int,
+    say: Progress,
+) -> list[Region]:
+    """The regions of each speed sector ``found`` reached (with its sampled points): the
+    lossless one, then each with reversed loaded forces that holds at one of the points."""
+    net, flows = context.analysis.network, context.flows
     loaded = [law.coupling for law in net.laws if is_loaded(law, flows)]
     # Only losses that do not scale with the tooth forces (drag, viscous, bearing friction)
     # can reverse a loaded force.
@@ -180,7 +215,4 @@ def derive_several_inputs(
             candidate = region_forms(context, len(regions) + 1, named, signs, reversal)
             if holds_somewhere(candidate, points, etas, seed=seed + len(regions)):
                 regions.append(candidate)
-    conds = tuple(
-        SpeedCondition(n, f, tuple(d)) for n, f, d in zip(names, conditions.forms, conditions.decides, strict=True)
-    )
-    return SeveralInputs(train, analysis, speeds, port_speeds, conds, tuple(regions), pairing)
+    return regions

@@ -23,6 +23,7 @@ from davies_sym.topology.symbol_display import latex
 
 if TYPE_CHECKING:
     from davies_sym.network.analysis import Analysis
+    from davies_sym.topology.toothed_mesh import ToothedMesh
 
 
 @dataclass(frozen=True)
@@ -105,57 +106,46 @@ def mesh_roles(analysis: Analysis) -> tuple[list[MeshRole], list[TurningConditio
             continue
         if c.friction.coulomb is None and c.friction.linear is None:
             continue
-        flow = mesh_power_flow(analysis, c)
-        if flow.flow_ratio.is_zero():
-            # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
-            roles.append(
-                MeshRole(c.name, flow, fixed=1, condition=None, orientation=1, efficiencies=c.efficiencies, idle=True)
-            )
-            continue
-        content, factors = flow.flow_ratio.factor_list()
-        sign, undecided = analysis.oracle.classify(content, factors)
-        if sign in (1, -1):
-            roles.append(MeshRole(c.name, flow, fixed=sign, condition=None, orientation=1, efficiencies=c.efficiencies))
-            continue
-        orientation, general = _normalised(sympy.expand(undecided))
-        shorter = _shorter(analysis, general)
-        if shorter.is_number:
-            # Decided on the geometric constraints only.
-            roles.append(
-                MeshRole(
-                    c.name,
-                    flow,
-                    fixed=orientation * (1 if shorter > 0 else -1),
-                    condition=None,
-                    orientation=1,
-                    efficiencies=c.efficiencies,
-                )
-            )
-            continue
-        simple_sign, simplified = _normalised(shorter)
-        orientation *= simple_sign
-        for existing in conditions:
-            same = sympy.expand(existing.simplified - simplified) == 0
-            opposite = sympy.expand(existing.simplified + simplified) == 0
-            if same or opposite:
-                roles.append(
-                    MeshRole(
-                        c.name,
-                        flow,
-                        fixed=None,
-                        condition=existing.name,
-                        orientation=orientation * (1 if same else -1),
-                        efficiencies=c.efficiencies,
-                    )
-                )
-                break
-        else:
-            name = f"c{len(conditions) + 1}"
-            conditions.append(TurningCondition(name, simple_sign * general, simplified))
-            roles.append(
-                MeshRole(c.name, flow, fixed=None, condition=name, orientation=orientation, efficiencies=c.efficiencies)
-            )
+        roles.append(_mesh_role(analysis, c, c.efficiencies, conditions))
     return roles, conditions
+
+
+def _mesh_role(
+    analysis: Analysis,
+    c: ToothedMesh,
+    efficiencies: tuple[sympy.Expr, sympy.Expr],
+    conditions: list[TurningCondition],
+) -> MeshRole:
+    """The role of mesh ``c`` (with its ordinary ``efficiencies``): idle, decided by the
+    geometry, or decided by a turning condition, which is added to ``conditions`` unless
+    one there agrees with it up to sign."""
+    flow = mesh_power_flow(analysis, c)
+    if flow.flow_ratio.is_zero():
+        # No virtual power crosses the mesh (unloaded or locked set): no loss either way.
+        return MeshRole(c.name, flow, fixed=1, condition=None, orientation=1, efficiencies=efficiencies, idle=True)
+    content, factors = flow.flow_ratio.factor_list()
+    sign, undecided = analysis.oracle.classify(content, factors)
+    if sign in (1, -1):
+        return MeshRole(c.name, flow, fixed=sign, condition=None, orientation=1, efficiencies=efficiencies)
+    orientation, general = _normalised(sympy.expand(undecided))
+    shorter = _shorter(analysis, general)
+    if shorter.is_number:
+        # Decided on the geometric constraints only.
+        fixed = orientation * (1 if shorter > 0 else -1)
+        return MeshRole(c.name, flow, fixed=fixed, condition=None, orientation=1, efficiencies=efficiencies)
+    simple_sign, simplified = _normalised(shorter)
+    orientation *= simple_sign
+    for existing in conditions:
+        same = sympy.expand(existing.simplified - simplified) == 0
+        opposite = sympy.expand(existing.simplified + simplified) == 0
+        if same or opposite:
+            oriented = orientation * (1 if same else -1)
+            return MeshRole(
+                c.name, flow, fixed=None, condition=existing.name, orientation=oriented, efficiencies=efficiencies
+            )
+    name = f"c{len(conditions) + 1}"
+    conditions.append(TurningCondition(name, simple_sign * general, simplified))
+    return MeshRole(c.name, flow, fixed=None, condition=name, orientation=orientation, efficiencies=efficiencies)
 
 
 def condition_signs(conditions: Sequence[TurningCondition]) -> list[dict[str, int]]:

@@ -108,21 +108,7 @@ def holding_variant(
     rule of Laus's tables)."""
     signs = condition_signs_at(conditions, values, path)
     port_variants = [v for v in variants if v.input == port]
-    own = [v for v in port_variants if dict(v.signs) == signs]
-    never = [v for v in excluded if v.input == port and dict(v.signs) == signs]
-    if not own and never:
-        raise DesignError(
-            [
-                Problem(
-                    "values",
-                    f"these values lie in the region of variant ({never[0].number}), which no admissible "
-                    f"design reaches: {never[0].reason}; check the values",
-                )
-            ],
-            path,
-        )
-    if not own:
-        raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+    own = _region_variants(port_variants, excluded, port, signs, path)
     others = [v for v in port_variants if dict(v.signs) != signs and v.loaded_forces]
     try:
         agreeing = [v for v in (*own, *others) if agrees(v, values, path)]
@@ -150,6 +136,34 @@ def holding_variant(
         f"the power flows of variants {numbers} all agree with their own forces at these values, "
         "with different efficiencies: the friction does not decide the power flow here"
     )
+
+
+def _region_variants(
+    port_variants: Sequence[Variant],
+    excluded: Sequence[ExcludedVariant],
+    port: str,
+    signs: Mapping[str, int],
+    path: str | None,
+) -> list[Variant]:
+    """The variants of input ``port`` (``port_variants``) in the region of the turning
+    conditions' ``signs``; refused where that region's variant is ``excluded`` (no
+    admissible design reaches it)."""
+    own = [v for v in port_variants if dict(v.signs) == signs]
+    never = [v for v in excluded if v.input == port and dict(v.signs) == signs]
+    if not own and never:
+        raise DesignError(
+            [
+                Problem(
+                    "values",
+                    f"these values lie in the region of variant ({never[0].number}), which no admissible "
+                    f"design reaches: {never[0].reason}; check the values",
+                )
+            ],
+            path,
+        )
+    if not own:
+        raise DerivationError(f"no variant for input {port} and signs {signs}")  # pragma: no cover
+    return own
 
 
 def _one_value(values: Sequence[sympy.Expr]) -> bool:

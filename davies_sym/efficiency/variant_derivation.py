@@ -15,7 +15,7 @@ import sympy
 
 from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.efficiency.empty_regions import emptiness_proof
-from davies_sym.efficiency.light_load import Derivation, LoadCase, reached_cases
+from davies_sym.efficiency.light_load import Derivation, LoadCase, case_draws, reached_cases
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE, at_operating_point, zeta_forms
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition
@@ -165,11 +165,12 @@ class VariantList:
         ctx.say(f"variant {number} of {total}: input {port_in}")
         if ctx.resolve_again:
             derive = partial(ctx.sides.derivation, declared_input)
-            base, *reversals = reached_cases(first, derive, roles, region, ctx.etas, ctx.seed)
+            base, *reversals = reached_cases(first, derive, roles, case_draws(region, ctx.etas, ctx.seed))
         else:
             # Only the meshes' own friction: one solution serves both inputs.
             same = partial(_same, ctx.sides.derivation(True, frozenset()))
-            base, *reversals = reached_cases(first, same, roles, region, ctx.etas, ctx.seed, not declared_input)
+            draws = case_draws(region, ctx.etas, ctx.seed)
+            base, *reversals = reached_cases(first, same, roles, draws, not declared_input)
         variant = Variant(
             number, port_in, port_out, signs, first, base.efficiency, bool(region), loaded_forces=base.forces
         )

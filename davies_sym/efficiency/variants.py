@@ -229,14 +229,9 @@ def derive_variants(
     The steps are those of Laus section 3.1 in order (motions, virtual power through the
     meshes, turning conditions, one variant per region), kept in one function to be read
     as the method; its seven parameters are the public API's keywords."""
-    train = train_to_derive(train, state)
+    train = _checked_train(train, state, layout, inputs)
     say = progress or (lambda message: None)
-    _check_ports(train, inputs)
-    check_mesh_friction(train)
-    if layout is None:
-        train = resolved_train(train)
     etas = efficiency_symbols(train)
-    _check_reserved(train)
     extra = (*etas, *OPERATING_SYMBOLS)
     options = AnalysisOptions(coulomb_signs=CoulombSigns.MESH_LINEAR, extra_symbols=list(extra), layout=layout)
     analysis = Analysis(train, options, progress)
@@ -246,21 +241,13 @@ def derive_variants(
     declared = sides.derivation(True, frozenset())
     domain = ParameterDomain.of(train, analysis.network.layout)
     regions = sampled_regions(domain, conditions, samples, seed, _other_symbols(declared.form, etas, roles))
-    context = VariantContext(
-        train,
-        sides,
-        tuple(conditions),
-        tuple(condition_signs(conditions)),
-        regions,
-        tuple(geometry_facts(train, analysis.network.layout, conditions)),
-        tuple(etas),
-        # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
-        # too) changes with the input side, and at light load can reverse a loaded force:
-        # derive the other side again, and the cases the losses reach.
-        not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles}),
-        seed,
-        say,
-    )
+    combos = tuple(condition_signs(conditions))
+    facts = tuple(geometry_facts(train, analysis.network.layout, conditions))
+    # Every law but a mesh's own friction (bearings, viscous and drag anywhere, a mesh's
+    # too) changes with the input side, and at light load can reverse a loaded force:
+    # derive the other side again, and the cases the losses reach.
+    again = not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles})
+    context = VariantContext(train, sides, tuple(conditions), combos, regions, facts, tuple(etas), again, seed, say)
     found = VariantList(context)
     found.add_side(True, inputs)
     found.add_side(False, inputs)
@@ -280,6 +267,21 @@ def derive_variants(
         tuple(found.excluded),
         context.facts,
     )
+
+
+def _checked_train(
+    train: Train, state: State | str | None, layout: Layout | None, inputs: Sequence[str] | None
+) -> Train:
+    """The train to derive, in ``state``, refused where `derive_variants` cannot derive it
+    (input ports, mesh friction, reserved names), with its geometric constraints resolved
+    unless a ``layout`` is given."""
+    train = train_to_derive(train, state)
+    _check_ports(train, inputs)
+    check_mesh_friction(train)
+    if layout is None:
+        train = resolved_train(train)
+    _check_reserved(train)
+    return train
 
 
 def _check_ports(train: Train, inputs: Sequence[str] | None) -> None:

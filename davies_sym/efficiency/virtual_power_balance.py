@@ -105,46 +105,26 @@ def balance_at(
     # The frames refuse a coupling outside the balance's scope first: that is the reason to give.
     frames: Frames = (ConicalFrames if conical else PlanarFrames)(train, values, layout)
     _check_algebraic(values)
-    meshes, carriers, arms = frames.meshes, frames.carriers, frames.arms
-    links = [link for link in train.link_names if link != train.reference]
-    col = {link: i for i, link in enumerate(links)}
-
-    # (i) kinematics: Willis equations and the input speed set to 1.
-    rows = []
-    for m in meshes:
-        row: Row = [sympy.Integer(0)] * len(links)
-        for sign, arm, link in zip((1, -1), arms[m.name], m.links, strict=True):
-            frames.speed(row, col, link, carriers[m.name], sign * arm)
-        rows.append(row)
-    w = _speeds(train, port_in, links, [*rows, *frames.extra_kinematics(col)])
+    links = tuple(link for link in train.link_names if link != train.reference)
+    w = _kinematics(train, frames, links, port_in)
     out_a, out_b = train.coupling(port_out).links
     out_speed = exact(w[out_b] - w[out_a])
     # A port that does not turn is refused as every entry point refuses it (the input turns at 1).
     turning_ratio(sympy.zoo if is_zero(out_speed) else 1 / out_speed, {}, port_in, port_out, True)
+    return _Balance(train, frames, values, links, w, (port_in, port_out)).result()
 
-    def rel(link: str, carrier: str) -> sympy.Expr:
-        return frames.relative(w, link, carrier)
 
-    def solve(first_drives: Mapping[str, bool] | None) -> tuple[Torques, sympy.Expr]:
-        # Unknowns: (M_p, M_q) per mesh, the extra ones of the geometry, then the output
-        # torque; the input torque is 1.
-        n = 2 * len(meshes) + frames.extra_unknowns + 1
-        eqs = [
-            _loss_row(m, k, n, arms[m.name], rel, carriers[m.name], first_drives, values) for k, m in enumerate(meshes)
-        ]
-        rhs: list[sympy.Expr] = [sympy.Integer(0)] * len(meshes)
-        for link in links:  # (vi) torque balance of every member about its axis
-            row = [sympy.Integer(0)] * n
-            for k, m in enumerate(meshes):
-                frames.reactions(row, link, k, m)
-            frames.extra_reactions(row, link, 2 * len(meshes))
-            const, row[n - 1] = _port_terms(train, link, port_in, port_out)
-            eqs.append(row)
-            rhs.append(-const)
-        x = _solve_exact(eqs, rhs, "the torque balances do not determine the torques")
-        return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
-
-    return _balance_result(train, meshes, carriers, w, rel, solve, port_in, port_out)
+def _kinematics(train: Train, frames: Frames, links: tuple[str, ...], port_in: str) -> dict[str, sympy.Expr]:
+    """(i) kinematics: the speed of every link, from one Willis equation per mesh (and the
+    geometry's own rows) and the input speed set to 1."""
+    col = {link: i for i, link in enumerate(links)}
+    rows = []
+    for m in frames.meshes:
+        row: Row = [sympy.Integer(0)] * len(links)
+        for sign, arm, link in zip((1, -1), frames.arms[m.name], m.links, strict=True):
+            frames.speed(row, col, link, frames.carriers[m.name], sign * arm)
+        rows.append(row)
+    return _speeds(train, port_in, list(links), [*rows, *frames.extra_kinematics(col)])
 
 
 def _check_given(train: Train, given: Mapping[sympy.Symbol, sympy.Expr]) -> None:
@@ -197,31 +177,6 @@ def _speeds(train: Train, port_in: str, links: list[str], rows: list[list[sympy.
     return w
 
 
-def _loss_row(
-    mesh: GearMesh,
-    k: int,
-    n: int,
-    arms: tuple[sympy.Expr, sympy.Expr],
-    rel: Callable[[str, str], sympy.Expr],
-    carrier: str,
-    first_drives: Mapping[str, bool] | None,
-    values: Values,
-) -> list[sympy.Expr]:
-    """(iv-v) Loss formula of mesh ``k``: M_q s_q + eta M_p s_p = 0 (driver p) divided by the
-    carrier-frame speed through Willis (s_p a_p = s_q a_q): eta M_p a_q + M_q a_p = 0, which
-    stays regular in a locked set (where the mesh does not turn and loses nothing)."""
-    a_p, a_q = arms
-    turning = rel(mesh.links[0], carrier) != 0 or rel(mesh.links[1], carrier) != 0
-    row = [sympy.Integer(0)] * n
-    row[2 * k], row[2 * k + 1] = a_q, a_p
-    if first_drives is not None and turning:
-        if first_drives[mesh.name]:
-            row[2 * k] = _efficiency(mesh, 0, values) * a_q
-        else:
-            row[2 * k + 1] = _efficiency(mesh, 1, values) * a_p
-    return row
-
-
 def _port_terms(train: Train, link: str, port_in: str, port_out: str) -> tuple[sympy.Expr, sympy.Expr]:
     """Torque-balance terms of the ports on ``link``: the unit input torque (a constant) and
     the coefficient of the unknown output torque."""
@@ -237,66 +192,110 @@ def _port_terms(train: Train, link: str, port_in: str, port_out: str) -> tuple[s
     return const, out
 
 
-def _balance_result(
-    train: Train,
-    meshes: list[GearMesh],
-    carriers: Mapping[str, str],
-    w: Mapping[str, sympy.Expr],
-    rel: Callable[[str, str], sympy.Expr],
-    solve: Callable[[Mapping[str, bool] | None], tuple[Torques, sympy.Expr]],
-    port_in: str,
-    port_out: str,
-) -> BalanceResult:
-    """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency.
+@dataclass(frozen=True)
+class _Balance:
+    """The balance of one train at one design point once its link speeds ``w`` are known
+    (input speed 1): what Chen's steps (ii)-(viii) share.  ``ports``: the input port,
+    then the output port."""
 
-    The lossless drivers (Chen's steps (ii)-(iii)) hold while the lossy solution keeps
-    every mesh's power crossing the way they assume.  Near a turning point the losses can
-    reverse a small mesh power: then every assignment of drivers is tried and the one
-    that agrees with its own solution is taken (a working one, with positive efficiency,
-    before a self-locking one); none or several different ones are refused."""
-    pa, pb = train.coupling(port_in).links
-    p_in = exact(w[pb] - w[pa])
-    qa, qb = train.coupling(port_out).links
-    out_speed = w[qb] - w[qa]
+    train: Train
+    frames: Frames
+    values: Values
+    links: tuple[str, ...]
+    w: Mapping[str, sympy.Expr]
+    ports: tuple[str, str]
 
-    def delivered(torques: Torques, mesh: GearMesh, side: int) -> sympy.Expr:
+    def rel(self, link: str, carrier: str) -> sympy.Expr:
+        """The speed of ``link`` relative to ``carrier``."""
+        return self.frames.relative(self.w, link, carrier)
+
+    def solve(self, first_drives: Mapping[str, bool] | None) -> tuple[Torques, sympy.Expr]:
+        """(vi-vii) the mesh torques and the output torque, the input torque 1: lossless
+        (``first_drives`` None) or with the losses of the given drivers."""
+        # Unknowns: (M_p, M_q) per mesh, the extra ones of the geometry, then the output
+        # torque; the input torque is 1.
+        frames, meshes = self.frames, self.frames.meshes
+        n = 2 * len(meshes) + frames.extra_unknowns + 1
+        eqs = [self.loss_row(m, k, n, first_drives) for k, m in enumerate(meshes)]
+        rhs: list[sympy.Expr] = [sympy.Integer(0)] * len(meshes)
+        for link in self.links:  # (vi) torque balance of every member about its axis
+            row = [sympy.Integer(0)] * n
+            for k, m in enumerate(meshes):
+                frames.reactions(row, link, k, m)
+            frames.extra_reactions(row, link, 2 * len(meshes))
+            const, row[n - 1] = _port_terms(self.train, link, *self.ports)
+            eqs.append(row)
+            rhs.append(-const)
+        x = _solve_exact(eqs, rhs, "the torque balances do not determine the torques")
+        return {m.name: (x[2 * k], x[2 * k + 1]) for k, m in enumerate(meshes)}, x[n - 1]
+
+    def loss_row(self, mesh: GearMesh, k: int, n: int, first_drives: Mapping[str, bool] | None) -> list[sympy.Expr]:
+        """(iv-v) Loss formula of mesh ``k`` (of ``n`` unknowns): M_q s_q + eta M_p s_p = 0
+        (driver p) divided by the carrier-frame speed through Willis (s_p a_p = s_q a_q):
+        eta M_p a_q + M_q a_p = 0, which stays regular in a locked set (where the mesh
+        does not turn and loses nothing)."""
+        a_p, a_q = self.frames.arms[mesh.name]
+        carrier = self.frames.carriers[mesh.name]
+        turning = self.rel(mesh.links[0], carrier) != 0 or self.rel(mesh.links[1], carrier) != 0
+        row = [sympy.Integer(0)] * n
+        row[2 * k], row[2 * k + 1] = a_q, a_p
+        if first_drives is not None and turning:
+            if first_drives[mesh.name]:
+                row[2 * k] = _efficiency(mesh, 0, self.values) * a_q
+            else:
+                row[2 * k + 1] = _efficiency(mesh, 1, self.values) * a_p
+        return row
+
+    def delivered(self, torques: Torques, mesh: GearMesh, side: int) -> sympy.Expr:
         """The virtual power gear ``side`` of ``mesh`` delivers in its carrier's frame."""
-        return exact(-torques[mesh.name][side] * rel(mesh.links[side], carriers[mesh.name]))
+        return exact(-torques[mesh.name][side] * self.rel(mesh.links[side], self.frames.carriers[mesh.name]))
 
-    def agrees(torques: Torques, first: Mapping[str, bool]) -> bool:
+    def agrees(self, torques: Torques, first: Mapping[str, bool]) -> bool:
+        """Whether every mesh's driver delivers virtual power in the solution ``torques``."""
         # The driven side receives eta times what the driver delivers: one side decides.
-        return all(delivered(torques, m, 0 if first[m.name] else 1) >= 0 for m in meshes)
+        return all(self.delivered(torques, m, 0 if first[m.name] else 1) >= 0 for m in self.frames.meshes)
 
-    # (ii-iii) lossless flow: the side delivering virtual power drives.
-    lossless, _ = solve(None)
-    first = {m.name: bool(delivered(lossless, m, 0) >= 0) for m in meshes}
-    # (vii) with losses
-    torques, t_out = solve(first)
-    if not agrees(torques, first):
-        first, torques, t_out = _agreeing_drivers(meshes, solve, agrees, lambda t: exact(-t * out_speed / p_in))
-    p_out = exact(t_out * out_speed)
-    losses = {
-        m.name: sympy.Rational(
-            exact(
-                -(
-                    torques[m.name][0] * rel(m.links[0], carriers[m.name])
-                    + torques[m.name][1] * rel(m.links[1], carriers[m.name])
-                )
+    def loss(self, torques: Torques, mesh: GearMesh) -> sympy.Rational:
+        """The power lost in ``mesh`` (frame-invariant, eq. (4.4))."""
+        carrier = self.frames.carriers[mesh.name]
+        t_p, t_q = torques[mesh.name]
+        return sympy.Rational(exact(-(t_p * self.rel(mesh.links[0], carrier) + t_q * self.rel(mesh.links[1], carrier))))
+
+    def result(self) -> BalanceResult:
+        """Steps (ii)-(viii): lossless flow and drivers, the lossy solve, losses, efficiency.
+
+        The lossless drivers (Chen's steps (ii)-(iii)) hold while the lossy solution keeps
+        every mesh's power crossing the way they assume.  Near a turning point the losses can
+        reverse a small mesh power: then every assignment of drivers is tried and the one
+        that agrees with its own solution is taken (a working one, with positive efficiency,
+        before a self-locking one); none or several different ones are refused."""
+        train, w, meshes = self.train, self.w, self.frames.meshes
+        pa, pb = train.coupling(self.ports[0]).links
+        p_in = exact(w[pb] - w[pa])
+        qa, qb = train.coupling(self.ports[1]).links
+        out_speed = w[qb] - w[qa]
+        # (ii-iii) lossless flow: the side delivering virtual power drives.
+        lossless, _ = self.solve(None)
+        first = {m.name: bool(self.delivered(lossless, m, 0) >= 0) for m in meshes}
+        # (vii) with losses
+        torques, t_out = self.solve(first)
+        if not self.agrees(torques, first):
+            first, torques, t_out = _agreeing_drivers(
+                meshes, self.solve, self.agrees, lambda t: exact(-t * out_speed / p_in)
             )
+        p_out = exact(t_out * out_speed)
+        losses = {m.name: self.loss(torques, m) for m in meshes}
+        # (viii) efficiency, with the power balance (4.3b) as a check.
+        total_loss = sum(losses.values(), sympy.Integer(0))
+        if exact(p_in + p_out - total_loss) != 0:
+            # The net power entering the train is what its meshes dissipate.
+            raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
+        efficiency = sympy.Rational(exact((p_in - total_loss) / p_in))
+        if exact(efficiency + p_out / p_in) != 0:
+            raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
+        return BalanceResult(
+            efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first, {k: exact(v) for k, v in w.items()}
         )
-        for m in meshes
-    }
-    # (viii) efficiency, with the power balance (4.3b) as a check.
-    total_loss = sum(losses.values(), sympy.Integer(0))
-    if exact(p_in + p_out - total_loss) != 0:
-        # The net power entering the train is what its meshes dissipate.
-        raise DerivationError("virtual-power balance: P_in + P_out differs from the losses")  # pragma: no cover
-    efficiency = sympy.Rational(exact((p_in - total_loss) / p_in))
-    if exact(efficiency + p_out / p_in) != 0:
-        raise DerivationError("virtual-power balance: the two efficiency forms differ")  # pragma: no cover
-    return BalanceResult(
-        efficiency, sympy.Rational(p_in), sympy.Rational(p_out), losses, first, {k: exact(v) for k, v in w.items()}
-    )
 
 
 def _agreeing_drivers(

@@ -11,7 +11,7 @@ neglects (sec. 4.2) and are dropped with the friction loads they would carry.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import networkx as nx
@@ -163,32 +163,73 @@ def build_network(
     if numeric:
         joints = [_floating(j) for j in joints]
     coords = PLANAR if planar else SPATIAL
-    d = len(coords)
-
-    motions: list[str] = []
-    twist_columns: list[tuple[int, Screw]] = []
-    actions: list[str] = []
-    wrench_columns: list[tuple[int, Screw]] = []
-    ports: dict[str, PortAction] = {}
-    friction: list[FrictionAction] = []
-    shift_columns: dict[str, tuple[int, Screw]] = {}
+    columns = _Columns()
     for j, (coupling, joint) in enumerate(zip(couplings, joints, strict=True)):
         for name, twist in joint.freedoms:
-            motions.append(name)
-            twist_columns.append((j, twist))
+            columns.motions.append(name)
+            columns.twists.append((j, twist))
+        kept = columns.add_constraints(j, joint, zero, coords)
+        for port in (p for p in machine.ports if p.coupling == coupling.name):
+            columns.add_port(j, port, coupling, joint)
+        columns.add_friction(j, joint, kept)
+
+    def blocks(matrix: tuple[tuple[int, ...], ...], screws: list[tuple[int, Screw]]) -> Any:
+        return _blocks(matrix, screws, coords, numeric)
+
+    return Network(
+        order=len(coords),
+        coordinates=coords,
+        motions=tuple(columns.motions),
+        actions=tuple(columns.actions),
+        motion_matrix=blocks(graph.circuits, columns.twists),
+        action_matrix=blocks(graph.cutsets, columns.wrenches),
+        ports=columns.ports,
+        friction=tuple(columns.friction),
+        joints=tuple(joints),
+        tree=graph.tree,
+        shifts={name: blocks(graph.cutsets, [column]) for name, column in columns.shifts.items()},
+    )
+
+
+@dataclass
+class _Columns:
+    """The network's variables in column order, each with its joint's index and its unit
+    screw (``twists`` for the ``motions``, ``wrenches`` for the ``actions``); the port
+    actions, the friction actions kept, and the shift column of a slider's face friction."""
+
+    motions: list[str] = field(default_factory=list)
+    twists: list[tuple[int, Screw]] = field(default_factory=list)
+    actions: list[str] = field(default_factory=list)
+    wrenches: list[tuple[int, Screw]] = field(default_factory=list)
+    ports: dict[str, PortAction] = field(default_factory=dict)
+    friction: list[FrictionAction] = field(default_factory=list)
+    shifts: dict[str, tuple[int, Screw]] = field(default_factory=dict)
+
+    def add_action(self, name: str, j: int, wrench: Screw) -> None:
+        """An action column: ``name`` on joint ``j`` with its unit ``wrench``."""
+        self.actions.append(name)
+        self.wrenches.append((j, wrench))
+
+    def add_constraints(self, j: int, joint: JointScrews, zero: ZeroTest, coords: tuple[int, ...]) -> list[str]:
+        """The constraint actions of joint ``j`` that do not vanish in the screw system
+        (``coords``); their names."""
         kept = []
         for name, wrench in joint.constraints:
             if not all(zero(wrench[i]) for i in coords):
-                actions.append(name)
-                wrench_columns.append((j, wrench))
+                self.add_action(name, j, wrench)
                 kept.append(name)
-        for port in (p for p in machine.ports if p.coupling == coupling.name):
-            freedom, wrench = _port_wrench(port, joint, coupling.at)
-            name = freedom[0].upper() + freedom[1:] if port.action == "freedom" else freedom
-            actions.append(name)
-            wrench_columns.append((j, wrench))
-            terms = tuple((sympy.expand(sum(wrench[i] * twist[i] for i in range(6))), m) for m, twist in joint.freedoms)
-            ports[port.name] = PortAction(port.name, name, coupling.name, tuple(t for t in terms if t[0] != 0))
+        return kept
+
+    def add_port(self, j: int, port: Port, coupling: Coupling, joint: JointScrews) -> None:
+        """The action of ``port`` on joint ``j`` and the power its wrench does on the freedoms."""
+        freedom, wrench = _port_wrench(port, joint, coupling.at)
+        name = freedom[0].upper() + freedom[1:] if port.action == "freedom" else freedom
+        self.add_action(name, j, wrench)
+        terms = tuple((sympy.expand(sum(wrench[i] * twist[i] for i in range(6))), m) for m, twist in joint.freedoms)
+        self.ports[port.name] = PortAction(port.name, name, coupling.name, tuple(t for t in terms if t[0] != 0))
+
+    def add_friction(self, j: int, joint: JointScrews, kept: list[str]) -> None:
+        """The friction actions of joint ``j``, loaded by the constraint actions ``kept``."""
         faces = [f for f in joint.friction if f.shift is not None and any(n in kept for n, _ in f.load)]
         for f in joint.friction:
             load = tuple((name, w) for name, w in f.load if name in kept)
@@ -196,31 +237,22 @@ def build_network(
                 continue  # the face of a force the screw system drops carries nothing
             if f.shift is not None and sum(1 for g in faces if g.freedom == f.freedom) == 1:
                 f = replace(f, name=friction_name(f.freedom))  # one face left: no number
-            friction.append(replace(f, load=load))
-            actions.append(f.name)
-            wrench_columns.append((j, f.screw))
+            self.friction.append(replace(f, load=load))
+            self.add_action(f.name, j, f.screw)
             if f.shift is not None:
-                shift_columns[f.name] = (j, f.shift)
+                self.shifts[f.name] = (j, f.shift)
 
-    def blocks(matrix: tuple[tuple[int, ...], ...], columns: list[tuple[int, Screw]]) -> Any:
-        out = np.zeros((len(matrix) * d, len(columns))) if numeric else sympy.zeros(len(matrix) * d, len(columns))
-        for i, row in enumerate(matrix):
-            for c, (j, screw) in enumerate(columns):
-                if row[j]:
-                    for r, k in enumerate(coords):
-                        out[i * d + r, c] = row[j] * screw[k]
-        return out
 
-    return Network(
-        order=d,
-        coordinates=coords,
-        motions=tuple(motions),
-        actions=tuple(actions),
-        motion_matrix=blocks(graph.circuits, twist_columns),
-        action_matrix=blocks(graph.cutsets, wrench_columns),
-        ports=ports,
-        friction=tuple(friction),
-        joints=tuple(joints),
-        tree=graph.tree,
-        shifts={name: blocks(graph.cutsets, [column]) for name, column in shift_columns.items()},
-    )
+def _blocks(
+    matrix: tuple[tuple[int, ...], ...], columns: list[tuple[int, Screw]], coords: tuple[int, ...], numeric: bool
+) -> Any:
+    """``sum_j matrix_ij screw_j``: one block of d rows per row of the circuit or cutset
+    ``matrix``, the screws' components ``coords`` (numpy when ``numeric``)."""
+    d = len(coords)
+    out = np.zeros((len(matrix) * d, len(columns))) if numeric else sympy.zeros(len(matrix) * d, len(columns))
+    for i, row in enumerate(matrix):
+        for c, (j, screw) in enumerate(columns):
+            if row[j]:
+                for r, k in enumerate(coords):
+                    out[i * d + r, c] = row[j] * screw[k]
+    return out

@@ -58,18 +58,7 @@ def build_train(document: SourceDocument) -> Train:
     data = reader.mapping(document.data, "")
     if data is None:
         raise TopologyError(reader.problems, document.name)
-    reader.check_keys(data, "", TOP_LEVEL)
-    version = data.get("format", FORMAT_VERSION)
-    if version != FORMAT_VERSION or isinstance(version, bool):  # YAML's true is not the version 1
-        reader.problem(
-            "format", f"unsupported topology language version {describe(version)} (this is {FORMAT_VERSION})"
-        )
-    # A missing table is reported once (its key); references to its names are not.
-    for key, kind in (("links", "link"), ("couplings", "coupling")):
-        if key not in data:
-            reader.unreadable.add(kind)
-    if "gears" not in data:
-        reader.absent.add("gear")
+    _check_top_level(data, reader)
     links = _read_links(data["links"], reader) if "links" in data else []
     gears = read_gears(data.get("gears", {}), reader, {link.name for link in links})
     couplings = (
@@ -81,10 +70,7 @@ def build_train(document: SourceDocument) -> Train:
         raise TopologyError(reader.problems, document.name)
     _check_connected(links, couplings, reader)
     reference = _read_reference(data.get("reference"), reader, links, couplings, ports)
-    dof = data.get("degrees_of_freedom")
-    if dof is not None and (not isinstance(dof, int) or isinstance(dof, bool) or dof < 1):
-        reader.problem("degrees_of_freedom", f"expected a positive integer, got {describe(dof)}")
-        dof = None
+    dof = _read_degrees_of_freedom(data.get("degrees_of_freedom"), reader)
     expected = read_expected(data.get("expected", []), reader, couplings)
     states = _read_states(data.get("states", {}), reader, {link.name for link in links}, couplings, reference)
     for i, check in enumerate(expected):
@@ -93,11 +79,7 @@ def build_train(document: SourceDocument) -> Train:
     placement = read_placement(data["placement"], reader) if "placement" in data else None
     independent = read_independent(data["independent"], reader) if "independent" in data else None
     calibrate = read_calibrate(data["calibrate"], reader) if "calibrate" in data else None
-    for key in ("name", "source", "notes"):
-        if key in data and not isinstance(data[key], str):
-            reader.problem(key, f"expected text, got {describe(data[key])}")
-    if isinstance(data.get("name"), str) and not data["name"].strip():
-        reader.problem("name", "the train needs a name: write a few words that say what it is")
+    _check_texts(data, reader)
     if reader.problems or ports is None or reference is None:
         raise TopologyError(reader.problems, document.name)
     return Train(
@@ -119,6 +101,41 @@ def build_train(document: SourceDocument) -> Train:
         independent=independent,
         written=MappingProxyType(dict(reader.written)),
     )
+
+
+def _check_top_level(data: Mapping[str, Any], reader: EntryReader) -> None:
+    """The file's top-level keys and language version; a missing table of links or
+    couplings is noted so that references to its names are not reported one by one."""
+    reader.check_keys(data, "", TOP_LEVEL)
+    version = data.get("format", FORMAT_VERSION)
+    if version != FORMAT_VERSION or isinstance(version, bool):  # YAML's true is not the version 1
+        reader.problem(
+            "format", f"unsupported topology language version {describe(version)} (this is {FORMAT_VERSION})"
+        )
+    # A missing table is reported once (its key); references to its names are not.
+    for key, kind in (("links", "link"), ("couplings", "coupling")):
+        if key not in data:
+            reader.unreadable.add(kind)
+    if "gears" not in data:
+        reader.absent.add("gear")
+
+
+def _read_degrees_of_freedom(dof: Any, reader: EntryReader) -> int | None:
+    """The file's ``degrees_of_freedom``: a positive integer, or None (absent or refused)."""
+    if dof is not None and (not isinstance(dof, int) or isinstance(dof, bool) or dof < 1):
+        reader.problem("degrees_of_freedom", f"expected a positive integer, got {describe(dof)}")
+        return None
+    return dof
+
+
+def _check_texts(data: Mapping[str, Any], reader: EntryReader) -> None:
+    """The free texts of the file (``name``, ``source``, ``notes``) are text, and the name
+    is not blank."""
+    for key in ("name", "source", "notes"):
+        if key in data and not isinstance(data[key], str):
+            reader.problem(key, f"expected text, got {describe(data[key])}")
+    if isinstance(data.get("name"), str) and not data["name"].strip():
+        reader.problem("name", "the train needs a name: write a few words that say what it is")
 
 
 def _read_links(value: Any, reader: EntryReader) -> list[Link]:
@@ -300,23 +317,8 @@ def _read_states(
         if entry is None:
             continue
         reader.check_keys(entry, path, STATE)
-        # A state's ports are read as the top-level ones are: a coupling, not a mesh.
-        ports = [_port(entry[key], f"{path}.{key}", reader, couplings) if key in entry else None for key in PORT_KEYS]
-        if ports[0] is not None and ports[0] == ports[1]:
-            reader.problem(f"{path}.output", f"{ports[1]!r} is also the input: every port must be a different coupling")
-            ports[1] = None
-
-        def members(key: str, items: Any, path: str = path) -> list[str]:
-            found: list[str] = []
-            for i, item in enumerate(reader.items(items, f"{path}.{key}", "a list of links") or []):
-                link = reader.name(item, f"{path}.{key}[{i}]")
-                if link is not None and link not in links:
-                    reader.unknown(f"{path}.{key}[{i}]", "link", link)
-                elif link is not None:
-                    found.append(link)
-            return found
-
-        brake = members("brake", entry.get("brake", []))
+        ports = _state_ports(entry, path, reader, couplings)
+        brake = _members(entry.get("brake", []), f"{path}.brake", reader, links)
         for i, link in enumerate(brake):
             if link == reference:
                 reader.problem(
@@ -324,21 +326,8 @@ def _read_states(
                     f"{link!r} is the reference link (the housing): a brake holds another member to it; "
                     "name the member to hold",
                 )
-        free = members("free", entry.get("free", []))
-        clutch: list[tuple[str, str]] = []
-        pairs = reader.items(entry.get("clutch", []), f"{path}.clutch", "a list of pairs [link, link]") or []
-        if pairs and not any(isinstance(pair, list) for pair in pairs):
-            # Names where pairs are expected (`clutch: c2`, `clutch: [r1, s]`): one problem, not one per name.
-            shown = f"[[{', '.join(_as_written(n) for n in pairs)}]]" if len(pairs) == 2 else ""
-            shown = shown if 0 < len(shown) <= 80 else "[[LINK, LINK]]"
-            reader.problem(f"{path}.clutch", f"a clutch is a pair of links inside the list: write clutch: {shown}")
-            pairs = []
-        for i, pair in enumerate(pairs):
-            found = members(f"clutch[{i}]", pair)
-            if len(found) != 2 or found[0] == found[1]:
-                reader.problem(f"{path}.clutch[{i}]", "a clutch joins two different links: [link, link]")
-            else:
-                clutch.append((found[0], found[1]))
+        free = _members(entry.get("free", []), f"{path}.free", reader, links)
+        clutch = _clutches(entry.get("clutch", []), path, reader, links)
         if ports[0] is not None and ports[1] is not None:
             out.append(
                 State(
@@ -352,6 +341,50 @@ def _read_states(
                 )
             )
     return tuple(out)
+
+
+def _state_ports(
+    entry: Mapping[str, Any], path: str, reader: EntryReader, couplings: Mapping[str, Coupling]
+) -> list[str | None]:
+    """A state's input and output ports, read as the top-level ones are (a coupling, not a
+    mesh); an output that is also the input is refused (None)."""
+    ports = [_port(entry[key], f"{path}.{key}", reader, couplings) if key in entry else None for key in PORT_KEYS]
+    if ports[0] is not None and ports[0] == ports[1]:
+        reader.problem(f"{path}.output", f"{ports[1]!r} is also the input: every port must be a different coupling")
+        ports[1] = None
+    return ports
+
+
+def _members(items: Any, path: str, reader: EntryReader, links: set[str]) -> list[str]:
+    """The links a state's list at ``path`` names (a brake's, a clutch's, the free ones);
+    an unknown link is reported and left out."""
+    found: list[str] = []
+    for i, item in enumerate(reader.items(items, path, "a list of links") or []):
+        link = reader.name(item, f"{path}[{i}]")
+        if link is not None and link not in links:
+            reader.unknown(f"{path}[{i}]", "link", link)
+        elif link is not None:
+            found.append(link)
+    return found
+
+
+def _clutches(value: Any, path: str, reader: EntryReader, links: set[str]) -> list[tuple[str, str]]:
+    """The pairs of links the clutches of the state at ``path`` join."""
+    clutch: list[tuple[str, str]] = []
+    pairs = reader.items(value, f"{path}.clutch", "a list of pairs [link, link]") or []
+    if pairs and not any(isinstance(pair, list) for pair in pairs):
+        # Names where pairs are expected (`clutch: c2`, `clutch: [r1, s]`): one problem, not one per name.
+        shown = f"[[{', '.join(_as_written(n) for n in pairs)}]]" if len(pairs) == 2 else ""
+        shown = shown if 0 < len(shown) <= 80 else "[[LINK, LINK]]"
+        reader.problem(f"{path}.clutch", f"a clutch is a pair of links inside the list: write clutch: {shown}")
+        pairs = []
+    for i, pair in enumerate(pairs):
+        found = _members(pair, f"{path}.clutch[{i}]", reader, links)
+        if len(found) != 2 or found[0] == found[1]:
+            reader.problem(f"{path}.clutch[{i}]", "a clutch joins two different links: [link, link]")
+        else:
+            clutch.append((found[0], found[1]))
+    return clutch
 
 
 def _text(entry: Mapping[str, Any], key: str, path: str, reader: EntryReader) -> str:

@@ -188,13 +188,7 @@ def tooth_contact(
     if "mu" not in entry or "pressure_angle" not in entry:
         return ()  # reported as missing required keys
     mu = reader.quantity(entry["mu"], f"{path}.mu", "friction")
-    degrees = reader.quantity(entry["pressure_angle"], f"{path}.pressure_angle", "angle")
-    if degrees is not None and not (degrees.is_number and 0 < degrees < 45):
-        reader.problem(
-            f"{path}.pressure_angle",
-            f"expected a number of degrees between 0 and 45, got {describe(entry['pressure_angle'])}",
-        )
-        degrees = None
+    degrees = _pressure_angle(entry, path, reader)
     lengths = [
         reader.quantity(entry[k], f"{path}.{k}", "length") if k in entry else None
         for k in ("addendum", "approach", "recess")
@@ -217,31 +211,56 @@ def tooth_contact(
             addendum = modules.pop()
     if mu is None or degrees is None or (approach is None and addendum is None):
         return ()
-    angle = degrees * sympy.pi / 180
-    out = []
-    for driver, driven in (gears, gears[::-1]):
-        if approach is not None and recess is not None:
+    contact = _ToothContact(mu, degrees * sympy.pi / 180, addendum, approach, recess)
+    return tuple(
+        contact.efficiency(name, driver, driven, driver is gears[0], reader) for driver, driven in (gears, gears[::-1])
+    )
+
+
+def _pressure_angle(entry: Mapping[str, Any], path: str, reader: EntryReader) -> sympy.Expr | None:
+    """The ``pressure_angle`` of a tooth-contact entry in degrees, refused outside (0, 45)."""
+    degrees = reader.quantity(entry["pressure_angle"], f"{path}.pressure_angle", "angle")
+    if degrees is not None and not (degrees.is_number and 0 < degrees < 45):
+        reader.problem(
+            f"{path}.pressure_angle",
+            f"expected a number of degrees between 0 and 45, got {describe(entry['pressure_angle'])}",
+        )
+        return None
+    return degrees
+
+
+@dataclass(frozen=True)
+class _ToothContact:
+    """A mesh's tooth contact as read: the friction coefficient ``mu``, the pressure
+    ``angle`` (radians), and the ``addendum`` or the ``approach`` and ``recess`` lengths
+    (given for the first gear driving)."""
+
+    mu: sympy.Expr
+    angle: sympy.Expr
+    addendum: sympy.Expr | None
+    approach: sympy.Expr | None
+    recess: sympy.Expr | None
+
+    def efficiency(self, name: str, driver: Gear, driven: Gear, first: bool, reader: EntryReader) -> Definition:
+        """The ordinary efficiency of mesh ``name`` with ``driver`` driving ``driven``
+        (``first``: the driver is the mesh's first gear), Laus eq. (136)."""
+        if self.approach is not None and self.recess is not None:
             # Lengths are given for the first gear driving; the other way round the pitch
             # point splits the path of contact the other way.
-            lengths_of = (approach, recess) if driver is gears[0] else (recess, approach)
+            lengths_of = (self.approach, self.recess) if first else (self.recess, self.approach)
         else:
-            assert addendum is not None
-            lengths_of = contact_lengths(driver.radius, driven.radius, addendum, angle)
+            assert self.addendum is not None
+            lengths_of = contact_lengths(driver.radius, driven.radius, self.addendum, self.angle)
         symbol = _defined_symbol(f"eta_{name}_{driver.name}_{driven.name}", "efficiency", reader)
-        out.append(
-            Definition(
-                symbol,
-                spur_mesh_efficiency(driver.radius, driven.radius, angle, mu, *lengths_of),
-                f"ordinary efficiency of mesh {name}, gear {driver.name} driving gear {driven.name}, "
-                "from the tooth geometry",
-                "Laus App. A, eqs. (134)-(136)",
-                _units(
-                    (mu, "1"),
-                    *((x, "length (one unit for all)") for x in (addendum, approach, recess) if x is not None),
-                ),
-            )
+        given = (self.addendum, self.approach, self.recess)
+        return Definition(
+            symbol,
+            spur_mesh_efficiency(driver.radius, driven.radius, self.angle, self.mu, *lengths_of),
+            f"ordinary efficiency of mesh {name}, gear {driver.name} driving gear {driven.name}, "
+            "from the tooth geometry",
+            "Laus App. A, eqs. (134)-(136)",
+            _units((self.mu, "1"), *((x, "length (one unit for all)") for x in given if x is not None)),
         )
-    return tuple(out)
 
 
 def _defined_symbol(name: str, role: str, reader: EntryReader) -> sympy.Symbol:

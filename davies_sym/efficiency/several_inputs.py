@@ -20,7 +20,7 @@ output's power over the sum of the input shafts' powers, in closed form
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from functools import cached_property
 from itertools import combinations
 
@@ -38,12 +38,11 @@ from davies_sym.geometry.dependent import resolved_train
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, DragLaw
+from davies_sym.progress import Progress
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import Train
 
 __all__ = ["LOAD_TORQUE", "Region", "SeveralInputs", "SpeedCondition", "derive_several_inputs", "speed_symbol"]
-
-Progress = Callable[[str], None]
 
 
 class _SeveralInputAnalysis(Analysis):

@@ -18,7 +18,7 @@ as self-locking.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -50,10 +50,9 @@ from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombSigns
+from davies_sym.progress import Progress
 from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_to_derive
-
-Progress = Callable[[str], None]
 
 
 @dataclass(frozen=True, eq=False)

@@ -8,7 +8,7 @@ actions, as in Laus eqs. (16) and (23).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from functools import cached_property, partial
 
 import sympy
@@ -30,12 +30,11 @@ from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
 from davies_sym.network.null_space import Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
+from davies_sym.progress import Progress
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
 from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_to_derive
 from davies_sym.topology.symbols import make_symbol
-
-Progress = Callable[[str], None]
 
 
 class Analysis:

@@ -148,7 +148,9 @@ def search_problem(
     min_teeth: int = MIN_TEETH,
     weights: Mapping[str, float] | None = None,
 ) -> SearchProblem:
-    """The search of ``train`` for ``targets`` ((state, ratio) pairs), checked."""
+    """The search of ``train`` for ``targets`` ((state, ratio) pairs), checked.  Its
+    seven parameters are ``derive search``'s options one for one (and the atlas search
+    passes them so); each is checked and named by its option."""
     if tolerance < 0:
         raise _refused("--tolerance", f"a tolerance is a relative deviation >= 0, got {tolerance}", train)
     if planets is not None and planets < 1:

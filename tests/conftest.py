@@ -111,7 +111,7 @@ def catalog_trains(parallel_axes_only: bool = False) -> list[tuple[str, davies_s
 
 #: Hostile-input cases the package does not handle yet (one test id a line); each is
 #: marked xfail(strict=True), so a fix shows as XPASS and its line is then removed.
-KNOWN_HOSTILE_FAILURES = os.path.join(ROOT, "tests", "hostile", "known_failures.txt")
+KNOWN_HOSTILE_FAILURES = os.path.join(ROOT, "tests", "harness", "known_failures.txt")
 
 
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:

@@ -7,7 +7,7 @@ from fractions import Fraction
 
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 import davies_sym
 from davies_sym.errors import InputError
@@ -59,7 +59,7 @@ def test_single_state_document_has_the_speed_ratio() -> None:
     import json
     import random
 
-    from hostile.helpers import run_main
+    from harness.helpers import run_main
 
     document = json.loads(run_main([catalog_path("wolfrom"), "--json", "--quiet"]).stdout)
     ratio = document["speed_ratio"]

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 from hand.markdown import blocks, commands
-from hostile.helpers import Result, run_main_in
+from harness.helpers import Result, run_main_in
 from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -16,7 +16,7 @@ from types import MappingProxyType
 import pytest
 import sympy
 import yaml
-from hostile.helpers import Result, run_main_in
+from harness.helpers import Result, run_main_in
 from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 import davies_sym

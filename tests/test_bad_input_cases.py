@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 
 import pytest
-from hostile.helpers import (
+from harness.helpers import (
     CATALOG,
     DATA,
     assert_at,

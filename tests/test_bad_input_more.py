@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from hostile.helpers import (
+from harness.helpers import (
     CATALOG,
     DATA,
     assert_edit_refused,

@@ -2,7 +2,7 @@
 by the contract of docs/errors.md.
 
 The generator is deterministic (a fixed seed, a fixed number of cases) and runs ``derive``
-in this process (`hostile.helpers.run_main`).  It covers each class of bad input the
+in this process (`harness.helpers.run_main`).  It covers each class of bad input the
 sweep that found tests/test_bad_input_cases.py did: values of the wrong type, one item
 where a list is expected, unknown keys at the top level and in entries, bad operating
 states, reserved names, YAML tags a value does not fit, bad option values, outputs that
@@ -30,7 +30,7 @@ from typing import Any
 
 import pytest
 import yaml
-from hostile.helpers import CATALOG, DATA, Result, entry_paths, run_main
+from harness.helpers import CATALOG, DATA, Result, entry_paths, run_main
 
 SEED = 20250611
 #: Cases per class: about 250 in all, a minute at most on one core.

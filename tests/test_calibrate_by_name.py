@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 
 import pytest
-from hostile.helpers import assert_refused, run_main
+from harness.helpers import assert_refused, run_main
 
 from conftest import CATALOG, catalog_path
 

@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from hostile.helpers import CATALOG, MAX_STDERR, dump, full_run, load_yaml, rename_everywhere, run_main
+from harness.helpers import CATALOG, MAX_STDERR, dump, full_run, load_yaml, rename_everywhere, run_main
 
 from conftest import TRAIN_FILES
 

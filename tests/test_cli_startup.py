@@ -66,7 +66,7 @@ def test_unknown_attribute_is_an_attribute_error() -> None:
 def test_help_lists_every_other_command_and_each_answers_its_own_help() -> None:
     """`derive --help` names calibrate and search with a line each; `derive NAME --help`
     answers for each, exit 0."""
-    from hostile.helpers import run_main
+    from harness.helpers import run_main
 
     from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 

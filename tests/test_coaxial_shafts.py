@@ -10,7 +10,7 @@ import re
 
 import pytest
 import sympy
-from hostile.helpers import run_main_in
+from harness.helpers import run_main_in
 
 import davies_sym
 from davies_sym.geometry import train_layout

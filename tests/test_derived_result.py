@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from davies_sym.efficiency.several_inputs import derive_several_inputs
 from davies_sym.efficiency.variants import derive_variants

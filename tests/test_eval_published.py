@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hostile.helpers import assert_refused, run_main
+from harness.helpers import assert_refused, run_main
 
 from conftest import catalog_path
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 import sympy
-from hostile.helpers import CATALOG, run_main
+from harness.helpers import CATALOG, run_main
 
 from davies_sym.algebra.exact_sign import UndecidedSign, number_sign
 

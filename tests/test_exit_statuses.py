@@ -14,7 +14,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from conftest import catalog_path
 

@@ -21,7 +21,7 @@ import warnings
 import numpy as np
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, efficiency_symbols
 from davies_sym.efficiency.parameters import admissible_relations, formula_symbols, parameter_table

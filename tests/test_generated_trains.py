@@ -46,7 +46,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from hostile.helpers import Result, run_main
+from harness.helpers import Result, run_main
 from hypothesis import example, given, seed, settings
 from oracle.balance import OracleError, SelfLocking, solve
 from oracle.compare import LOCKING, OK, close, compare

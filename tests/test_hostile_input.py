@@ -30,7 +30,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from hostile.helpers import (
+from harness.helpers import (
     CATALOG,
     HANG_GUARD,
     Result,

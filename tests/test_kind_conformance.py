@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 import sympy
 import yaml
-from hostile.helpers import assert_refused, run_main
+from harness.helpers import assert_refused, run_main
 from test_chain_drive import CHAIN
 
 import davies_sym

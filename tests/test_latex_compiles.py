@@ -406,7 +406,7 @@ def test_lossy_two_input_document_fits(tmp_path: Path) -> None:
 def test_out_dir_documents_compile(tmp_path: Path) -> None:
     """``derive FILE ... --out DIR`` (as derivations/ is written) gives .tex files that
     compile and fit."""
-    from hostile.helpers import run_main
+    from harness.helpers import run_main
 
     out = tmp_path / "out"
     out.mkdir()

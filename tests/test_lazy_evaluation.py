@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 import davies_sym
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import sympy
 from hand.latex import document_equations, force_conditions, read_latex
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracle.balance import Gear, Member, Mesh
 from oracle.lossy_balance import Bearing, LossyTrain, solve
 

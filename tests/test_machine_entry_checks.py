@@ -7,7 +7,7 @@ machine-file cases)."""
 from __future__ import annotations
 
 import pytest
-from hostile.helpers import CATALOG, assert_at, assert_edit_refused, line_of, replaced, run_main, write
+from harness.helpers import CATALOG, assert_at, assert_edit_refused, line_of, replaced, run_main, write
 
 FOUR_BAR = (CATALOG / "four_bar.yaml").read_text(encoding="utf-8")
 SLIDER = (CATALOG / "slider_crank.yaml").read_text(encoding="utf-8")

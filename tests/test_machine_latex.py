@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 import sympy
 from hand.latex import document_equations, read_latex, same_rational_function
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from test_latex_compiles import compile_log, layout_problems, needs_pdflatex, prose_problems
 
 from conftest import CATALOG, ROOT

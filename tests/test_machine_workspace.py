@@ -9,7 +9,7 @@ import math
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from davies_sym.machines.loader import build_machine
 from davies_sym.machines.passages import passed, split_sliders

@@ -11,7 +11,7 @@ from pathlib import Path
 import mpmath
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracles.four_bar_statics import four_bar
 from oracles.upu_statics import simulate
 

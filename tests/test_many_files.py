@@ -10,7 +10,7 @@ import os
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_cli, run_main
+from harness.helpers import run_cli, run_main
 
 from conftest import ROOT
 

@@ -36,7 +36,7 @@ from types import ModuleType
 
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 import davies_sym
 from davies_sym.efficiency.parameter_domain import ParameterDomain, efficiency_symbols

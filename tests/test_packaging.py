@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 from hand.markdown import blocks as _blocks
 from hand.markdown import commands as _commands
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.topology.catalog_files import catalog_names

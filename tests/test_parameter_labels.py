@@ -18,7 +18,7 @@ from pathlib import Path
 from types import ModuleType
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from davies_sym import Train, derive_variants, loads, train_in_state
 from davies_sym.efficiency.parameters import parameter_table

@@ -30,7 +30,7 @@ from typing import Any
 
 import pytest
 import yaml
-from hostile.helpers import CATALOG, Result, assert_refused, rename_everywhere, run_main
+from harness.helpers import CATALOG, Result, assert_refused, rename_everywhere, run_main
 from hypothesis import event, given, seed, settings
 from hypothesis import strategies as st
 from oracle.compare import LOCKING, OK, compare

@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from conftest import catalog_path
 

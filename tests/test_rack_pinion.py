@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 import sympy
-from hostile.helpers import assert_edit_refused, run_main
+from harness.helpers import assert_edit_refused, run_main
 
 import davies_sym
 from davies_sym.efficiency.variants import derive_variants

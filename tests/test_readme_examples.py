@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 from hand.markdown import blocks as _blocks
 from hand.markdown import commands as _commands
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")

@@ -10,7 +10,7 @@ import re
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 from conftest import ROOT
 

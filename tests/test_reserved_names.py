@@ -13,7 +13,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import pytest
-from hostile.helpers import CATALOG, run_main
+from harness.helpers import CATALOG, run_main
 
 from davies_sym.emit import array_api_runtime, formula_runtime, several_inputs_runtime, shared_runtime
 from davies_sym.emit.formula_code import module_level_names

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import pytest
 import yaml
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 DATA = Path(__file__).resolve().parent / "data"
 PLANETARY = DATA / "search_planetary.yaml"

@@ -9,7 +9,7 @@ import re
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 DATA = Path(__file__).resolve().parent / "data"
 STATES = DATA / "search_states.yaml"

@@ -31,7 +31,7 @@ from fractions import Fraction as F
 from pathlib import Path
 
 import pytest
-from hostile.helpers import run_main
+from harness.helpers import run_main
 
 ROOT = Path(__file__).resolve().parents[1]
 EIGHT_SPEED = ROOT / "benchmarks" / "search_eight_speed.yaml"

@@ -35,7 +35,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from hostile.helpers import (
+from harness.helpers import (
     DATA,
     HANG_GUARD,
     Result,

@@ -17,7 +17,7 @@ from types import ModuleType
 import numpy as np
 import pytest
 import sympy
-from hostile.helpers import assert_refused, run_main
+from harness.helpers import assert_refused, run_main
 
 import davies_sym
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracle.balance import Gear, Member, Mesh
 from oracle.lossy_balance import Bearing, LossyTrain, NoConsistentSolution, solve, sr20, sr20_at_row
 

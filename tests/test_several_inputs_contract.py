@@ -18,7 +18,7 @@ from types import ModuleType
 
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracle.lossy_balance import sr20, sr20_at_row
 
 import davies_sym

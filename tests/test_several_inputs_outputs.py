@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import sympy
 from hand.latex import document_equations, force_conditions, read_latex
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracle.lossy_balance import NoConsistentSolution, sr20, sr20_at_row
 
 import davies_sym

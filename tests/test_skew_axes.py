@@ -11,7 +11,7 @@ from math import atan, cos, pi, sin, tan
 
 import pytest
 import sympy
-from hostile.helpers import run_main
+from harness.helpers import run_main
 from oracle.skew_pair import SkewPair
 
 import davies_sym

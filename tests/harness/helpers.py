@@ -1,4 +1,4 @@
-"""Run ``derive`` on hostile inputs and check the refusal contract.
+"""Run ``derive`` as a user does and check the refusal contract of its answers to bad input.
 
 Two runners:
 
@@ -230,7 +230,7 @@ def assert_not_executed(*markers: Path, result: Result | None = None) -> None:
 
 
 def full_run(config: pytest.Config) -> bool:
-    """Whether the whole hostile set runs: ``HOSTILE_FULL=1`` only.
+    """Whether the whole bad-input set runs: ``HOSTILE_FULL=1`` only.
 
     The README's tiers (the fast one, and the slow one with ``-m slow``, which CI runs) take
     the default cases; the extended ones are tens of thousands and take hours, so they run
@@ -240,7 +240,7 @@ def full_run(config: pytest.Config) -> bool:
 
 def skip_slow_unless_full(request: pytest.FixtureRequest) -> None:
     if request.node.get_closest_marker("slow") is not None and not full_run(request.config):
-        pytest.skip("extended hostile case: run with HOSTILE_FULL=1")
+        pytest.skip("extended bad-input case: run with HOSTILE_FULL=1")
 
 
 # --- YAML documents -----------------------------------------------------------------------------------------

@@ -1,1 +1,0 @@
-"""Helpers of the security and hostile-input tests (black box: the ``derive`` command)."""

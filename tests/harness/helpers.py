@@ -189,6 +189,16 @@ def write(folder: Path, text: str, name: str = "train.yaml") -> Path:
     return path
 
 
+def write_file(folder: Path, name: str, content: str | bytes) -> Path:
+    """``content`` (text in UTF-8, or bytes as they are) written as ``folder/name``."""
+    path = folder / name
+    if isinstance(content, bytes):
+        path.write_bytes(content)
+    else:
+        path.write_text(content, encoding="utf-8")
+    return path
+
+
 def replaced(text: str, old: str, new: str) -> str:
     """``text`` with the first ``old`` (which must be there) replaced by ``new``."""
     assert old in text, old

@@ -2,11 +2,13 @@
 by the contract of docs/errors.md.
 
 The generator is deterministic (a fixed seed, a fixed number of cases) and runs ``derive``
-in this process (`harness.helpers.run_main`).  It covers each class of bad input the
-sweep that found tests/test_bad_input_cases.py did: values of the wrong type, one item
-where a list is expected, unknown keys at the top level and in entries, bad operating
-states, reserved names, YAML tags a value does not fit, bad option values, outputs that
-name one file twice or an input, and targets that cannot be written.
+in this process (`harness.helpers.run_main`).  It covers each class of bad input whose
+regression tests live in the files named after what they check (tests/test_train_entry_checks.py,
+test_state_entry_checks.py, test_symbol_name_checks.py, test_option_checks.py,
+test_output_targets.py): values of the wrong type, one item where a list is expected,
+unknown keys at the top level and in entries, bad operating states, reserved names, YAML
+tags a value does not fit, bad option values, outputs that name one file twice or an
+input, and targets that cannot be written.
 
 Every case must end cleanly: exit status 0 with an output; or 2 with a message line per
 problem, each naming the file and where (``FILE:LINE: ENTRY: ...`` for the file, ``FILE:

@@ -1,6 +1,7 @@
-"""Trains described here (not from the references), each checked by an independent route:
-hand-derived classic formulas, the power balance, the ideal limit, the sign of the
-partial derivatives, relabelling and the low-level screw form."""
+"""Small trains written here (not from the references: an idler chain, a simple planetary,
+a rack in the low-level screw form, gears sized by teeth and modules), each checked by an
+independent route: hand-derived classic formulas, the power balance, the ideal limit, the
+sign of the partial derivatives, relabelling and the low-level screw form."""
 
 from __future__ import annotations
 

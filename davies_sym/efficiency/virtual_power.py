@@ -124,11 +124,15 @@ def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twis
     its own line); both at rest when the set is locked (`_locked_block_member`)."""
     p, q = mesh.links
     axes = _member_twists(analysis, mesh)
-    for c in _carriers(analysis.train, mesh):
+    # A mesh's carrier is a third link: one of its own gears' links cannot hold both axes.
+    for c in (c for c in _carriers(analysis.train, mesh) if c not in (p, q)):
         sides = (_relative(analysis, c, p), _relative(analysis, c, q))
         if _parallel(sides[0], axes[0]) and _parallel(sides[1], axes[1]):
             if all(x.is_zero() for twist in sides for x in twist):
-                return _locked_block_member(analysis, mesh), sides
+                named = _locked_block_member(analysis, mesh)
+                if named is not None:
+                    return named, sides
+                continue
             return c, sides
     # A valid file can say this (a bearing joining the wrong links): a located refusal.
     train = analysis.train
@@ -145,16 +149,19 @@ def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twis
     )
 
 
-def _locked_block_member(analysis: Analysis, mesh: ToothedMesh) -> str:
+def _locked_block_member(analysis: Analysis, mesh: ToothedMesh) -> str | None:
     """The link the reports name as the carrier of a mesh whose set is locked (it turns as
     one block, so the mesh's links are at rest in every member of the block): the first
     other link, in link order, at rest relative to both, as the reports have always named
     it (the carrier from `_carriers` is one such link)."""
     p, q = mesh.links
     return next(
-        c
-        for c in analysis.train.link_names
-        if c not in (p, q) and all(x.is_zero() for end in (p, q) for x in _relative(analysis, c, end))
+        (
+            c
+            for c in analysis.train.link_names
+            if c not in (p, q) and all(x.is_zero() for end in (p, q) for x in _relative(analysis, c, end))
+        ),
+        None,
     )
 
 

@@ -15,7 +15,7 @@ import os
 import resource
 import time
 
-from davies_sym.machines.loader import build_machine
+from davies_sym.machines.machine_loader import build_machine
 from davies_sym.machines.task import run_task
 from davies_sym.topology.documents import read_document
 

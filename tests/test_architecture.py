@@ -19,7 +19,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "davies_sym"
 STAGES = (
     "errors",
     "caches",
-    "arguments",
+    "option_types",
     "progress",
     "fan_out",
     "algebra",
@@ -72,7 +72,7 @@ def _imports() -> dict[str, list[tuple[str, tuple[str, ...], int]]]:
 
 def test_every_stage_is_a_package_with_a_docstring_saying_what_it_owns() -> None:
     for stage in STAGES:
-        if stage in ("errors", "caches", "arguments", "progress", "fan_out", "__init__"):
+        if stage in ("errors", "caches", "option_types", "progress", "fan_out", "__init__"):
             assert (PACKAGE / f"{stage}.py").exists()
             continue
         init = PACKAGE / stage / "__init__.py"

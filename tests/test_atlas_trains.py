@@ -20,7 +20,7 @@ from harness.helpers import Result, run_main_in
 from oracle.balance import Gear, Member, Mesh, State, TrainSpec, in_state, solve
 
 import davies_sym
-from davies_sym.atlas.entries import Entry, entry, places
+from davies_sym.atlas.atlas_entries import Entry, entry, places
 from davies_sym.atlas.enumeration import atlas, canonical_code
 from davies_sym.atlas.recognition import OutsideAtlas, train_graph
 from davies_sym.atlas.search import MESHES, oriented, search_file

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 from harness.helpers import run_main
 
-from davies_sym.machines.loader import build_machine
+from davies_sym.machines.machine_loader import build_machine
 from davies_sym.machines.passages import passed, split_sliders
 from davies_sym.machines.task import run_task
 from davies_sym.topology.documents import read_document

@@ -17,8 +17,8 @@ from oracles.upu_statics import simulate
 
 from davies_sym.machines.closed_form import derive_closed_forms
 from davies_sym.machines.cycle import cycle_efficiency
-from davies_sym.machines.loader import build_machine
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_loader import build_machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.numeric import NumericMachine, solve_position
 from davies_sym.machines.task import run_task
 from davies_sym.topology.documents import read_document

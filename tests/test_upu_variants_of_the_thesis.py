@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from davies_sym.machines.loader import build_machine
+from davies_sym.machines.machine_loader import build_machine
 from davies_sym.machines.task import run_task
 from davies_sym.topology.yaml_source import parse_yaml
 

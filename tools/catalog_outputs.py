@@ -24,7 +24,7 @@ from davies_sym.emit.derived_result import DerivedResult, OneInputResult, Severa
 from davies_sym.emit.languages import LANGUAGES, emit_code
 from davies_sym.emit.latex import latex_states_document
 from davies_sym.errors import DaviesError
-from davies_sym.machines.loader import is_machine
+from davies_sym.machines.machine_loader import is_machine
 from davies_sym.topology.catalog_files import catalog_folder
 from davies_sym.topology.documents import read_document
 from davies_sym.topology.loader import build_train

@@ -35,7 +35,7 @@ from davies_sym.emit.plots import (
     region_figure,
     turning_surface_figure,
 )
-from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.topology.documents import read_document

@@ -12,7 +12,7 @@ from davies_sym.emit.machine_plots import task_figure
 from davies_sym.errors import NotCoveredError
 from davies_sym.machines.closed_form import derive_closed_forms
 from davies_sym.machines.cycle import cycle_efficiency
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.task import run_task
 from davies_sym.topology.symbol_display import latex, mathml_body
 

@@ -11,7 +11,7 @@ each, and the search for tooth numbers over all of them (``derive search --atlas
   numbers, housing or frame, ports and states)
 - `davies_sym.atlas.choices`: the held / input / output choices whose speed ratio the
   gears set
-- `davies_sym.atlas.entries`: one entry per displacement graph (codes, drawing, choices)
+- `davies_sym.atlas.atlas_entries`: one entry per displacement graph (codes, drawing, choices)
 - `davies_sym.atlas.recognition`: where a train written by hand lies in the atlas
 - `davies_sym.atlas.drawing`: SVG of a graph and of its train's layout
 - `davies_sym.atlas.atlas_report`: the atlas as text

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from davies_sym.atlas.entries import PUBLISHED, Entry
+from davies_sym.atlas.atlas_entries import PUBLISHED, Entry
 
 
 def _entry_line(e: Entry) -> str:

@@ -11,7 +11,7 @@ import networkx as nx
 import sympy
 
 from davies_sym.algebra.radicals import restore
-from davies_sym.atlas.entries import Entry
+from davies_sym.atlas.atlas_entries import Entry
 from davies_sym.atlas.train_file import link_name
 from davies_sym.emit.plots import figure_bytes, new_figure
 from davies_sym.geometry import train_layout

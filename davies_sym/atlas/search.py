@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
-from davies_sym.atlas.entries import Entry, GraphPlace, entry, places
+from davies_sym.atlas.atlas_entries import Entry, GraphPlace, entry, places
 from davies_sym.atlas.train_file import Choice, ToothedForm, TrainFile, train_text
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.geometry.dependent import resolved_train

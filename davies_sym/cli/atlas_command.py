@@ -29,7 +29,7 @@ def folder_refused(command: str, folder: str | None) -> bool:
 
 def _entries(links: int, workers: Workers, say: Progress) -> list[Any]:
     """Every entry of the atlas, in the order of the codes (workers read the motions)."""
-    from davies_sym.atlas.entries import entry, places
+    from davies_sym.atlas.atlas_entries import entry, places
 
     found = places(links)
     rotations = len({p.rotation for p in found})
@@ -51,8 +51,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     say = Display("derive atlas", args.quiet)
 
+    from davies_sym.atlas.atlas_entries import PUBLISHED, PUBLISHED_COUNTS
     from davies_sym.atlas.atlas_report import atlas_text, counts_text
-    from davies_sym.atlas.entries import PUBLISHED, PUBLISHED_COUNTS
 
     published = PUBLISHED_COUNTS.get(args.links)
     if args.count:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 from davies_sym.errors import DaviesError, InputError, Problem
-from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.topology.catalog_files import catalog_file, catalog_folder, catalog_names
 from davies_sym.topology.documents import read_document
 from davies_sym.topology.loader import build_train

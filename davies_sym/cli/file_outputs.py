@@ -11,7 +11,7 @@ from davies_sym.cli.machine_input import machine_outputs
 from davies_sym.cli.one_input_outputs import one_input_outputs
 from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, several_outputs
 from davies_sym.errors import InputError, Problem
-from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.progress import Progress
 from davies_sym.topology.loader import build_train
 from davies_sym.topology.yaml_source import SourceDocument

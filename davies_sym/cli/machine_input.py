@@ -15,7 +15,7 @@ from davies_sym.emit.machine_report import closed_form_json, closed_form_text, t
 from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import ClosedForms, derive_closed_forms
 from davies_sym.machines.cycle import CycleEfficiency, check_assembles, cycle_efficiency
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.numeric import NumericMachine, solve_position
 from davies_sym.machines.task import run_task
 from davies_sym.progress import Progress

@@ -22,7 +22,7 @@ from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, sev
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, TopologyError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
-from davies_sym.machines.loader import build_machine, is_machine
+from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.progress import Progress, note, silent
 from davies_sym.topology.documents import document_from_bytes, read_train_file
 from davies_sym.topology.loader import build_train

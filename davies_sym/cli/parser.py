@@ -7,10 +7,10 @@ from __future__ import annotations
 import argparse
 from importlib import metadata
 
-from davies_sym.arguments import Parser, jobs
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
 from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 from davies_sym.emit.language_names import LANGUAGES
+from davies_sym.option_types import Parser, jobs
 
 
 def _version() -> str:

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
-from davies_sym.arguments import Parser, jobs
+from davies_sym.option_types import Parser, jobs
 
 #: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
 FEWEST_LINKS, MOST_LINKS = 3, 8

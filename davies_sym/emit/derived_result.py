@@ -19,10 +19,10 @@ from davies_sym.efficiency.parameters import file_parameters
 from davies_sym.efficiency.several_inputs import SeveralInputs
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.json_document import summary_document, text_summary, train_document
-from davies_sym.emit.languages.one_input import one_input_program
+from davies_sym.emit.languages.one_input_program import one_input_program
 from davies_sym.emit.languages.program import Program
 from davies_sym.emit.languages.registry import Programmed
-from davies_sym.emit.languages.several_inputs import several_inputs_program
+from davies_sym.emit.languages.several_input_program import several_inputs_program
 from davies_sym.emit.latex import latex_document, latex_states_document
 from davies_sym.emit.python_module import python_module
 from davies_sym.emit.several_inputs_latex import several_inputs_latex

@@ -4,7 +4,7 @@ port supplies, their total, and the power the loaded ports take, against time.""
 from __future__ import annotations
 
 from davies_sym.emit.plots import figure_bytes, new_figure
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.task import TaskResult
 
 

@@ -11,7 +11,7 @@ import sympy
 from davies_sym.machines.closed_form import ClosedForms, DirectionForms, ModeVariant
 from davies_sym.machines.cycle import CycleEfficiency
 from davies_sym.machines.joints import FrictionAction
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.network import Network
 from davies_sym.machines.task import TaskResult
 

@@ -19,7 +19,7 @@ import sympy
 from davies_sym.errors import NotCoveredError
 from davies_sym.machines.closure import solve_closure
 from davies_sym.machines.linear import solve_exact
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 from davies_sym.machines.network import Network, build_network
 from davies_sym.machines.vectors import Vector
 

@@ -20,7 +20,7 @@ import numpy as np
 import sympy
 
 from davies_sym.errors import MissingValuesError, NotCoveredError, Problem
-from davies_sym.machines.model import Machine
+from davies_sym.machines.machine_model import Machine
 
 #: Newton iterations before a position is refused, and the residual accepted.
 ITERATIONS = 60

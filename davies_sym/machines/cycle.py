@@ -19,7 +19,7 @@ from sympy.integrals.manualintegrate import manualintegrate
 
 from davies_sym.errors import MissingValuesError, NotCoveredError, Problem
 from davies_sym.machines.closed_form import DirectionForms, ModeVariant
-from davies_sym.machines.model import Cycle, Machine
+from davies_sym.machines.machine_model import Cycle, Machine
 from davies_sym.machines.numeric import NumericMachine
 
 #: Positions of a cycle at which the linkage must assemble before its efficiency is given.

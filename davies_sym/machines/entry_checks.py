@@ -14,7 +14,7 @@ import sympy
 
 from davies_sym.algebra.screws import UNIT
 from davies_sym.machines.joints import JOINT_KINDS
-from davies_sym.machines.model import MAX_STEPS, TIME, Cycle, Expected, Task
+from davies_sym.machines.machine_model import MAX_STEPS, TIME, Cycle, Expected, Task
 
 Said = list[tuple[str, str]]
 

@@ -17,7 +17,7 @@ from typing import Any
 import sympy
 
 from davies_sym.algebra.screws import cross, force_wrench, rotation_twist, torque_wrench, translation_twist
-from davies_sym.machines.model import Coupling
+from davies_sym.machines.machine_model import Coupling
 from davies_sym.machines.vectors import AXES, Vector
 
 #: Screws and vectors hold sympy expressions (closed forms) or floats (numeric solution).

@@ -31,7 +31,7 @@ from davies_sym.machines.joints import (
     joint_screws,
     numerically_zero,
 )
-from davies_sym.machines.model import Coupling, Machine, Port
+from davies_sym.machines.machine_model import Coupling, Machine, Port
 from davies_sym.network.coupling_graph import CouplingGraph
 
 PLANAR = (2, 3, 4)

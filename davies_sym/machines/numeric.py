@@ -24,7 +24,7 @@ from davies_sym.machines import passages
 from davies_sym.machines.closure import NumericClosure, solve_closure
 from davies_sym.machines.joints import FrictionAction
 from davies_sym.machines.linear import solve_numeric
-from davies_sym.machines.model import Coupling, Friction, Machine
+from davies_sym.machines.machine_model import Coupling, Friction, Machine
 from davies_sym.machines.network import GraphMatrices, Network, build_network, graph_matrices
 
 #: Fixed-point rounds before the friction is continued from zero, and its steps.

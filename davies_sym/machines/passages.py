@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from davies_sym.machines.linear import orientation
-from davies_sym.machines.model import Coupling
+from davies_sym.machines.machine_model import Coupling
 from davies_sym.machines.network import Network
 
 #: Couplings that are one contact of a slider split in two (Laus sec. 4.3.2).

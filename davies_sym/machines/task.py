@@ -19,7 +19,7 @@ import sympy
 
 from davies_sym.errors import NotCoveredError, Problem, TopologyError
 from davies_sym.machines import passages
-from davies_sym.machines.model import MAX_STEPS, TIME, Machine, Task
+from davies_sym.machines.machine_model import MAX_STEPS, TIME, Machine, Task
 from davies_sym.machines.numeric import NumericMachine, PositionSolution, solve_position
 
 

@@ -14,7 +14,7 @@ from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.languages.program import NOT_COVERED, Argument, Kind, Routine, Step
 from davies_sym.emit.languages.routines import call, formula_routine
 from davies_sym.emit.languages.text import identifier_part
-from davies_sym.emit.languages.variant_choice import Choice, PortSignature, by_port, working
+from davies_sym.emit.languages.variant_choice_program import Choice, PortSignature, by_port, working
 
 
 def sensitivity_routines(

@@ -42,7 +42,7 @@ from davies_sym.emit.languages.routines import (
 )
 from davies_sym.emit.languages.sensitivities import sensitivity_routines
 from davies_sym.emit.languages.text import origin_text, parameter_lines
-from davies_sym.emit.languages.variant_choice import (
+from davies_sym.emit.languages.variant_choice_program import (
     REASONS,
     ChoiceRoutines,
     PortSignature,

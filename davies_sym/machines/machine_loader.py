@@ -15,7 +15,7 @@ from davies_sym.algebra.screws import cross
 from davies_sym.errors import Problem, TopologyError
 from davies_sym.machines import entry_checks
 from davies_sym.machines.joints import JOINT_KINDS
-from davies_sym.machines.model import Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
+from davies_sym.machines.machine_model import Coupling, Cycle, Expected, Friction, Limit, Machine, Port, Task
 from davies_sym.machines.vectors import AXES, Vector, parse_scalar, parse_vector
 from davies_sym.topology.expressions import ExpressionError
 from davies_sym.topology.yaml_source import SourceDocument

@@ -1,4 +1,4 @@
-"""The plain data of a machine file, as frozen dataclasses (read by `loader`)."""
+"""The plain data of a machine file, as frozen dataclasses (read by `machine_loader`)."""
 
 from __future__ import annotations
 

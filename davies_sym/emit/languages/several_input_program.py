@@ -24,7 +24,7 @@ from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import given_forms
 from davies_sym.efficiency.several_inputs import LOAD_TORQUE, Region, SeveralInputs
 from davies_sym.emit.languages.names import RefusedName
-from davies_sym.emit.languages.one_input import range_checks
+from davies_sym.emit.languages.one_input_program import range_checks
 from davies_sym.emit.languages.program import NOT_COVERED, Argument, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import (
     call,
@@ -35,7 +35,7 @@ from davies_sym.emit.languages.routines import (
     relation,
 )
 from davies_sym.emit.languages.text import origin_text, parameter_lines
-from davies_sym.emit.languages.variant_choice import working
+from davies_sym.emit.languages.variant_choice_program import working
 from davies_sym.emit.several_inputs_report import condition_text, mesh_text, region_force_text
 from davies_sym.losses.definitions import parameters_of
 

@@ -25,7 +25,7 @@ def _run(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str,
 
 
 def test_every_command_is_in_the_table_and_in_the_help(capsys: pytest.CaptureFixture[str]) -> None:
-    assert [c.name for c in SUBCOMMANDS] == ["atlas", "calibrate", "search"]
+    assert [c.name for c in SUBCOMMANDS] == ["atlas", "calibrate", "shifts", "search"]
     status, out, _ = _run(["--help"], capsys)
     assert status == 0
     for command in SUBCOMMANDS:

@@ -124,11 +124,12 @@ def find_carrier(analysis: Analysis, mesh: ToothedMesh) -> tuple[str, tuple[Twis
     its own line); both at rest when the set is locked (`_locked_block_member`)."""
     p, q = mesh.links
     axes = _member_twists(analysis, mesh)
-    # A mesh's carrier is a third link: one of its own gears' links cannot hold both axes.
-    for c in (c for c in _carriers(analysis.train, mesh) if c not in (p, q)):
+    for c in _carriers(analysis.train, mesh):
         sides = (_relative(analysis, c, p), _relative(analysis, c, q))
         if _parallel(sides[0], axes[0]) and _parallel(sides[1], axes[1]):
             if all(x.is_zero() for twist in sides for x in twist):
+                # A locked set is named by a third link at rest with it; with none, a
+                # gear's own link would be its carrier (a bearing joining the wrong links).
                 named = _locked_block_member(analysis, mesh)
                 if named is not None:
                     return named, sides

@@ -13,15 +13,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 from itertools import combinations, permutations, product
 from math import comb
 from typing import Any
 
-import flint
-
 from davies_sym.synthesis.shift_elements import ShiftElement, candidate_elements
-from davies_sym.synthesis.shift_kinematics import Form, MemberSpeeds, speed
+from davies_sym.synthesis.shift_kinematics import MemberSpeeds, null_basis, speed
 from davies_sym.synthesis.shift_schedules import ShiftQuestion, ShiftScheme, shift_schemes
 from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.model import Train
@@ -95,7 +92,7 @@ def relabellings(sets: Sequence[PlanetarySet]) -> list[dict[str, str]]:
     return [{k: v for part in combo for k, v in part.items()} for combo in product(*per_group)]
 
 
-def _blocks(joins: Sequence[tuple[str, str]]) -> frozenset[Block]:
+def join_groups(joins: Sequence[tuple[str, str]]) -> frozenset[Block]:
     """The groups of members ``joins`` make (groups of two or more)."""
     group: dict[str, set[str]] = {}
     for a, b in joins:
@@ -119,7 +116,7 @@ def connection_choices(sets: Sequence[PlanetarySet], joins: int) -> list[frozens
     seen: set[tuple[tuple[str, ...], ...]] = set()
     out = []
     for chosen in combinations(pairs, joins):
-        blocks = _blocks(chosen)
+        blocks = join_groups(chosen)
         if sum(len(b) - 1 for b in blocks) != joins:
             continue  # a join the others already made
         canonical = min(_renamed(blocks, m) for m in maps)
@@ -138,30 +135,12 @@ def joined_speeds(speeds: MemberSpeeds, blocks: frozenset[Block]) -> MemberSpeed
         for first in [min(block)]
         for m in sorted(block - {first})
     ]
-    basis = _null_basis(rows, speeds.degrees_of_freedom)
+    basis = null_basis(rows, speeds.degrees_of_freedom)
     if len(basis) < 2:
         return None
     free = tuple(f"q{k}" for k in range(len(basis)))
     forms = {m: tuple(speed(f, v) for v in basis) for m, f in speeds.forms.items()}
     return MemberSpeeds(free, forms, speeds.shaft)
-
-
-def _null_basis(rows: Sequence[Form], columns: int) -> list[Form]:
-    """A basis of the vectors every row annihilates, exact."""
-    if not rows:
-        return [tuple(Fraction(int(i == j)) for i in range(columns)) for j in range(columns)]
-    matrix = flint.fmpq_mat(len(rows), columns, [flint.fmpq(x.numerator, x.denominator) for r in rows for x in r])
-    reduced, rank = matrix.rref()
-    pivots = [next(j for j in range(columns) if reduced[i, j] != 0) for i in range(rank)]
-    basis = []
-    for loose in (j for j in range(columns) if j not in pivots):
-        vector = [Fraction(0)] * columns
-        vector[loose] = Fraction(1)
-        for i, j in enumerate(pivots):
-            entry = reduced[i, loose]
-            vector[j] = -Fraction(int(entry.p), int(entry.q))
-        basis.append(tuple(vector))
-    return basis
 
 
 @dataclass(frozen=True)

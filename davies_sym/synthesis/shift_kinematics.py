@@ -18,6 +18,7 @@ from fractions import Fraction
 
 import flint
 
+from davies_sym.caches import IdentityCache
 from davies_sym.errors import InputError
 from davies_sym.network.analysis import Analysis
 from davies_sym.topology.coupling_kinds import bearings
@@ -44,11 +45,19 @@ class MemberSpeeds:
         return tuple(self.forms)
 
 
+#: The member speeds of each train asked (the command checks them, the search uses them).
+_SPEEDS: IdentityCache[Train, MemberSpeeds] = IdentityCache()
+
+
 def member_speeds(train: Train) -> MemberSpeeds:
     """The speeds of the members that run in a bearing of ``train``'s reference (its
     main-axis members), from the null space of M_N; a train of one degree of freedom
     (nothing to shift) and a member whose speed is not a number multiple of the free
     speeds (a symbolic tooth number) are refused."""
+    return _SPEEDS.get(train, lambda: _member_speeds(train))
+
+
+def _member_speeds(train: Train) -> MemberSpeeds:
     analysis = Analysis(train)
     net = analysis.network
     on_reference = [c for c in bearings(train.couplings) if train.reference in c.links]
@@ -88,26 +97,33 @@ def _number(train: Train, coupling: str, coefficient: object) -> Fraction:
     return Fraction(int(value.p), int(value.q))
 
 
+def null_basis(rows: Sequence[Form], columns: int) -> list[Form]:
+    """A basis of the vectors every row annihilates (exact, from the reduced row echelon
+    form): one vector per column without a pivot."""
+    if not rows:
+        return [tuple(Fraction(int(i == j)) for i in range(columns)) for j in range(columns)]
+    matrix = flint.fmpq_mat(len(rows), columns, [flint.fmpq(x.numerator, x.denominator) for r in rows for x in r])
+    reduced, rank = matrix.rref()
+    pivots = [next(j for j in range(columns) if reduced[i, j] != 0) for i in range(rank)]
+    basis = []
+    for loose in (j for j in range(columns) if j not in pivots):
+        vector = [Fraction(0)] * columns
+        vector[loose] = Fraction(1)
+        for i, j in enumerate(pivots):
+            entry = reduced[i, loose]
+            vector[j] = -Fraction(int(entry.p), int(entry.q))
+        basis.append(tuple(vector))
+    return basis
+
+
 def one_motion(rows: Sequence[Form], free: int) -> Form | None:
     """The motion left by the engaged elements' equations ``rows`` (each a form that
     must vanish): a basis vector of their null space when ``rows`` are independent and
     leave exactly one degree of freedom, else None (a redundant element, or too few)."""
     if len(rows) != free - 1:
         return None
-    if not rows:
-        return (Fraction(1),)
-    matrix = flint.fmpq_mat(len(rows), free, [flint.fmpq(x.numerator, x.denominator) for r in rows for x in r])
-    reduced, rank = matrix.rref()
-    if rank != len(rows):
-        return None
-    pivots = [next(j for j in range(free) if reduced[i, j] != 0) for i in range(rank)]
-    loose = next(j for j in range(free) if j not in pivots)
-    vector = [Fraction(0)] * free
-    vector[loose] = Fraction(1)
-    for i, j in enumerate(pivots):
-        entry = reduced[i, loose]
-        vector[j] = -Fraction(int(entry.p), int(entry.q))
-    return tuple(vector)
+    basis = null_basis(rows, free)
+    return basis[0] if len(basis) == 1 else None
 
 
 def speed(form: Form, motion: Form) -> Fraction:

@@ -19,7 +19,7 @@ from davies_sym.efficiency.variants import derive_variants
 from davies_sym.errors import InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.progress import Progress, silent
-from davies_sym.synthesis.shift_connections import ConnectedScheme, designs, joined_speeds, joins_of
+from davies_sym.synthesis.shift_connections import ConnectedScheme, designs, join_groups, joined_speeds, joins_of
 from davies_sym.synthesis.shift_elements import candidate_elements, gear_motion
 from davies_sym.synthesis.shift_kinematics import MemberSpeeds, member_speeds, speed
 from davies_sym.synthesis.shift_schedules import (
@@ -67,13 +67,8 @@ def gear_efficiency(task: GearTask) -> str | None:
 
 def _ports_joined(train: Train, state: State) -> bool:
     """Whether the state's clutches make the input and output members one."""
-    group = {m: {m} for pair in state.clutch for m in pair}
-    for a, b in state.clutch:
-        merged = group[a] | group[b]
-        for m in merged:
-            group[m] = merged
     into, out = port_member(train, state.input), port_member(train, state.output)
-    return out in group.get(into, {into})
+    return any(into in group and out in group for group in join_groups(state.clutch))
 
 
 @dataclass(frozen=True)
@@ -185,9 +180,8 @@ def unreached(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuest
     candidates = candidate_elements(speeds, ports)
     options = gear_options(speeds, ports, candidates, replace(question, tolerance=Fraction(10**9)))
     lines = []
-    strict = gear_options(speeds, ports, candidates, question)
     for target in question.targets:
-        if strict[target.name]:
+        if any(abs(r - target.ratio) <= question.tolerance * abs(target.ratio) for _, r in options[target.name]):
             continue
         near = sorted(options[target.name], key=lambda o: abs(o[1] - target.ratio))[:3]
         shown = ", ".join(f"{float(r):.4f} ({' + '.join(candidates[k].text() for k in sorted(c))})" for c, r in near)

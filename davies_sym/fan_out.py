@@ -1,5 +1,6 @@
 """Tasks spread over workers, the one way every command does it (``derive FILES --out
-DIR``, ``derive search``, ``derive atlas``, ``derive search --atlas``): in this process,
+DIR``, ``derive search``, ``derive atlas``, ``derive search --atlas``, ``derive
+shifts``, ``derive calibrate --starts N``): in this process,
 on N local processes (``--jobs N``, the standard library's process pool) or on a Dask
 cluster (``--scheduler ADDRESS``).  Tasks and results are values that pickle (frozen
 dataclasses); the results come back in the order of the tasks, while the progress

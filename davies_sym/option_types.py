@@ -18,6 +18,13 @@ def jobs(text: str) -> int:
     return int(text)
 
 
+def starts(text: str) -> int:
+    """``--starts N``: a whole number of start points, 1 to 1024."""
+    if not text.isdigit() or not 1 <= int(text) <= 1024:
+        raise argparse.ArgumentTypeError(f"expected a number of start points from 1 to 1024, got {text!r}")
+    return int(text)
+
+
 class Parser(argparse.ArgumentParser):
     """An argument parser that reads a value beginning with a minus sign and a digit as a
     value, not an option: ``--target -22/25`` (a fraction), as it reads ``-0.88``.  No

@@ -19,13 +19,25 @@ from collections.abc import Sequence
 import numpy as np
 
 from davies_sym.calibration.fit_report import fit_text, residual_figure
-from davies_sym.calibration.measurements import read_measurements
-from davies_sym.calibration.train_fit import calibrate, derived_model
-from davies_sym.calibration.train_model import check_loaded, columns_of
+from davies_sym.calibration.fit_starts import MultiStart, best_of, start_groups, start_points
+from davies_sym.calibration.least_squares import Fit
+from davies_sym.calibration.measurements import Measurements, read_measurements
+from davies_sym.calibration.train_fit import (
+    StartGroup,
+    calibrate,
+    derived_model,
+    fit_bounds,
+    fit_start_group,
+    fits_from,
+)
+from davies_sym.calibration.train_model import TrainModel, check_loaded, columns_of
 from davies_sym.efficiency.design_values import design_values
+from davies_sym.efficiency.several_inputs import SeveralInputs
+from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.emit.plots import figure_format
 from davies_sym.errors import CalibrationError, DaviesError, InputError, Problem
+from davies_sym.fan_out import Counted, Workers, fan_out
 from davies_sym.progress import Display
 from davies_sym.topology.catalog_files import catalog_file
 from davies_sym.topology.expressions import assignments
@@ -100,6 +112,42 @@ def _data_files(args: argparse.Namespace, train: Train) -> tuple[str, list[str]]
     return files[0], list(args.predict) if args.predict is not None else files[1:]
 
 
+def _fit(
+    args: argparse.Namespace,
+    derived: VariantSet | SeveralInputs,
+    data: Measurements,
+    fixed: dict[str, float],
+    say: Display,
+) -> tuple[TrainModel, Fit, MultiStart | None]:
+    """The fit from the file's start values, or with ``--starts N`` the best of N starts
+    fitted in groups on the workers (each group derives the train once)."""
+    if args.starts == 1:
+        model, result = calibrate(derived, data, args.fit, fixed)
+        return model, result, None
+    bounds = fit_bounds(derived, args.fit)
+    model = TrainModel(derived, bounds.fitted, fixed)
+    workers = Workers(args.jobs, args.scheduler)
+    points = start_points(bounds, args.starts)
+    if workers.here(args.starts):
+        results = fits_from(model, data, bounds, points)
+    else:
+        groups = [
+            StartGroup(
+                str(derived.train.path),
+                data.path,
+                bounds.fitted,
+                tuple(sorted(fixed.items())),
+                tuple(tuple(p.items()) for p in group),
+            )
+            for group in start_groups(points, args.starts if args.scheduler else args.jobs)
+        ]
+        say(f"fitting from {args.starts} starts {workers.describe(len(groups))}")
+        counted = Counted(say, "start group")
+        results = tuple(r for fits in fan_out(fit_start_group, groups, workers, counted) for r in fits)
+    best = best_of(results)
+    return model, best.best, best
+
+
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     """The ``derive calibrate`` command, its arguments parsed by ``parser``; returns the
     exit status (0, or 2 for bad input)."""
@@ -130,7 +178,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         for other in others:
             check_loaded(derived, other)
         say(f"fitting to the {len(data.lines)} rows of {data.path}")
-        model, result = calibrate(derived, data, args.fit, fixed)
+        model, result, starts = _fit(args, derived, data, fixed, say)
     except CalibrationError as exc:
         print(f"derive calibrate: {exc}", file=sys.stderr)
         return 2
@@ -140,6 +188,9 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         return 2
     document = {"status": "ok", "train": train.path, "data": data.path, **result.as_dict()}
     lines = [fit_text(result)]
+    if starts is not None:
+        document["starts"] = starts.as_dict()
+        lines.append(starts.text())
     if others:
         predicted = np.concatenate([model.predict(other, result.parameters) for other in others])
         document["predicted_efficiency"] = [None if np.isnan(v) else float(v) for v in predicted]

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
-from davies_sym.option_types import Parser, jobs
+from davies_sym.option_types import Parser, jobs, starts
 
 #: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
 FEWEST_LINKS, MOST_LINKS = 3, 8
@@ -90,6 +90,16 @@ def calibrate_parser() -> argparse.ArgumentParser:
     p.add_argument("--at", nargs="+", metavar="NAME=VALUE", default=[], help="values of the parameters not fitted")
     p.add_argument("--json", action="store_true", help="one JSON object")
     p.add_argument("-o", "--out", metavar="FIG.png", help="write the residual plot (.png, .svg or .pdf)")
+    p.add_argument(
+        "--starts",
+        type=starts,
+        default=1,
+        metavar="N",
+        help="fit from N start points (the file's, then spread over the ranges) and keep the least squares",
+    )
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes ('auto': one per core)")
+    where.add_argument("--scheduler", metavar="ADDRESS", help="fit the starts on the Dask cluster at ADDRESS")
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 

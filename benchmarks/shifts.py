@@ -7,7 +7,10 @@ process (the gears' derivation included):
   five elements; wanted under 60 s on a 2-core machine;
 - level 2, two simple sets of sun 30, planet 20, ring 70 and two shafts, nothing
   connected (tests/data/shifts_two_sets.yaml), the Simpson ratios, three connections
-  and four elements; wanted under 60 s.
+  and four elements; wanted under 60 s;
+- teeth searched with the scheme, the Simpson sets with their teeth as symbols
+  (tests/data/shifts_simpson_teeth.yaml), sun 17 to 60, planets 17 to 40, three planets
+  per set.
 
     python benchmarks/shifts.py [--jobs N]
 """
@@ -33,6 +36,11 @@ CASES = {
         os.path.join(DATA, "shifts_two_sets.yaml"),
         *("--target", *SIMPSON, "--tolerance", "0.005", "--connections", "3", "--elements", "4"),
     ],
+    "teeth, Simpson sets, sun 17-60, planets 17-40, 3 planets": [
+        os.path.join(DATA, "shifts_simpson_teeth.yaml"),
+        *("--target", *SIMPSON, "--tolerance", "0.005", "--teeth", "zs=17:60", "zp1=17:40", "zp2=17:40"),
+        *("--planets", "3"),
+    ],
 }
 
 
@@ -49,7 +57,8 @@ def main(extra: list[str]) -> None:
         document = json.loads(done.stdout)
         print(
             f"{name}: {seconds:.1f} s wall ({document['seconds']:.1f} s searching), "
-            f"{document['feasible']} scheme(s), {document['searched']} combinations evaluated"
+            f"{document['feasible']} design(s), {document['searched']} combinations evaluated"
+            + (f", {document['tooth_designs']} tooth designs" if "tooth_designs" in document else "")
         )
 
 

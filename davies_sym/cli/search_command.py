@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from davies_sym.cli.atlas_search_command import atlas_search
-from davies_sym.cli.subcommand_parsers import TOP
+from davies_sym.cli.subcommand_parsers import TOP, tooth_bounds
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.fan_out import Workers
@@ -39,23 +39,6 @@ def _targets(pairs: Sequence[str]) -> list[tuple[str | None, Fraction]]:
     for pair in pairs:
         state, sep, ratio = pair.rpartition("=")
         out.append((state.strip() if sep else None, _number(ratio, "--target")))
-    return out
-
-
-def _teeth(pairs: Sequence[str]) -> dict[str, tuple[int, int]]:
-    out: dict[str, tuple[int, int]] = {}
-    for pair in pairs:
-        name, sep, span = pair.partition("=")
-        low, colon, high = span.partition(":")
-        try:
-            bounds = (int(low), int(high))
-        except ValueError:
-            bounds = None
-        if not sep or not colon or bounds is None:
-            raise InputError([Problem("--teeth", f"expected NAME=LO:HI with whole LO and HI, got {pair!r}")])
-        if name.strip() in out:
-            raise InputError([Problem("--teeth", f"{name.strip()} has bounds twice")])
-        out[name.strip()] = bounds
     return out
 
 
@@ -114,7 +97,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             train,
             _targets(args.target),
             _number(args.tolerance, "--tolerance"),
-            _teeth(args.teeth),
+            tooth_bounds(args.teeth),
             args.planets,
             args.min_teeth,
             _weights(args.weights),
@@ -132,7 +115,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             with open(args.train, encoding="utf-8") as handle:
                 source = handle.read()
             note = f"The best design of derive search {args.train}: efficiency {best.score:.6f}"
-            write_atomic(args.write_best, best_design_text(problem, source, best.teeth, note))
+            write_atomic(args.write_best, best_design_text(source, best.teeth, note))
         if args.plot:
             write_atomic(args.out, figure_bytes(pareto_figure(result), figure_format(args.out) or ".png"))
             sys.stdout.write(answer)

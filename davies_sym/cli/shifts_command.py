@@ -13,15 +13,17 @@ import argparse
 import json
 import sys
 
-from davies_sym.cli.subcommand_parsers import fraction
+from davies_sym.cli.subcommand_parsers import fraction, tooth_bounds
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, Problem
 from davies_sym.fan_out import Workers
 from davies_sym.progress import Display
+from davies_sym.synthesis.best_design import best_design_text
 from davies_sym.synthesis.shift_connections import ConnectedScheme
-from davies_sym.synthesis.shift_kinematics import member_speeds
+from davies_sym.synthesis.shift_kinematics import member_forms, member_speeds
 from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion, element_letter, gear_order
 from davies_sym.synthesis.shift_search import Ranking, ShiftResult, gear_state, port_member, shift_search, unreached
+from davies_sym.synthesis.shift_teeth import ToothRanges, shift_teeth_search
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
 
@@ -97,25 +99,37 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         if train.states:
             why = "the file has states: derive shifts finds the gears itself; take the states: entry out"
             raise InputError([train.problem("states", why)], train.path)
-        speeds = member_speeds(train)
+        forms = member_forms(train)
         ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
-        if set(speeds.members()) <= set(ports):
+        if set(forms.forms) <= set(ports):
             why = (
                 "no member can be braked: only the input and output shafts run in bearings of the reference; "
                 "give every main-axis member of the sets a bearing of the reference"
             )
             raise InputError([train.problem("couplings", why)], train.path)
-        question = _question(args, train, speeds.degrees_of_freedom)
+        question = _question(args, train, len(forms.free))
         if args.drag < 0:
             raise InputError([Problem("--drag", f"a drag coefficient is >= 0, got {args.drag}")])
         ranking = Ranking(_weights(args.weights, question.targets), float(args.drag))
-        result = shift_search(train, question, ranking, Workers(args.jobs, args.scheduler), say)
+        workers = Workers(args.jobs, args.scheduler)
+        if args.teeth is not None:
+            if question.connections:
+                why = "searches the tooth numbers of the connections as written: give --connections 0 with --teeth"
+                raise InputError([Problem("--teeth", why)])
+            ranges = ToothRanges(tooth_bounds(args.teeth), args.planets, args.min_teeth)
+            result = shift_teeth_search(train, question, ranges, ranking, workers, say)
+        else:
+            for option in ("--planets", "--min-teeth"):
+                if getattr(args, option[2:].replace("-", "_")) != parser.get_default(option[2:].replace("-", "_")):
+                    raise InputError([Problem(option, "applies to a tooth search: give --teeth NAME=LO:HI too")])
+            speeds = member_speeds(train)
+            result = shift_search(train, question, ranking, workers, say)
     except DaviesError as exc:
         text = exc.report() if isinstance(exc, InputError) else f"{COMMAND}: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)
         return 2
     if not result.candidates:
-        lines = unreached(speeds, ports, question) or [
+        lines = ([] if args.teeth is not None else unreached(speeds, ports, question)) or [
             f"every gear is reached, but no scheme of {args.elements or 'any number of'} elements meets the rules"
             + ("" if args.any_shifts else " (single transitions: --any-shifts lifts that one)")
         ]
@@ -143,9 +157,11 @@ def shifts_text(result: ShiftResult, question: ShiftQuestion, top: int) -> str:
     """The schemes as text: elements, the shift matrix (X: engaged), ratio, step to the
     next gear and efficiency per gear."""
     order = [t.name for t in gear_order(question.targets)]
+    what = "scheme(s)" if result.tooth_designs is None else "design(s) (tooth numbers and scheme)"
+    among = "" if result.tooth_designs is None else f" of {result.tooth_designs} admissible tooth designs"
     lines = [
-        f"{len(result.candidates)} scheme(s) give the {len(order)} gears ({result.searched} combinations of engaged "
-        f"elements evaluated, {result.seconds:.1f} s); the best first, by mean efficiency over the gears",
+        f"{result.feasible} {what} give the {len(order)} gears ({result.searched} combinations of engaged "
+        f"elements evaluated{among}, {result.seconds:.1f} s); the best first, by mean efficiency over the gears",
     ]
     for rank, c in enumerate(result.candidates[:top], 1):
         s = c.scheme
@@ -154,10 +170,12 @@ def shifts_text(result: ShiftResult, question: ShiftQuestion, top: int) -> str:
             f"{n} {e.text()}" + (f" (or {', '.join('-'.join(a) for a in e.alike)})" if e.alike else "")
             for n, e in zip(letters, s.elements, strict=True)
         ]
-        lines += ["", f"scheme {rank}: score {c.score:.5f}"]
+        lines += ["", f"{'scheme' if not c.teeth else 'design'} {rank}: score {c.score:.5f}"]
         if c.connections:
             joined = ", ".join("=".join(sorted(b)) for b in sorted(c.connections, key=sorted))
             lines.append(f"  connections: {joined}")
+        if c.teeth:
+            lines.append("  teeth: " + " ".join(f"{n}={v}" for n, v in c.teeth.items()))
         lines.append("  elements: " + "; ".join(described))
         lines.append(f"  {'gear':<6}{' '.join(letters)}   {'ratio':>9} {'step':>7} {'efficiency':>11}")
         for i, gear in enumerate(order):
@@ -184,6 +202,9 @@ def best_scheme_text(path: str, train: Train, result: ShiftResult) -> str:
     s = best.scheme
     named = "; ".join(f"{element_letter(k)} {e.text()}" for k, e in enumerate(s.elements))
     joined = ", ".join("=".join(sorted(b)) for b in sorted(best.connections, key=sorted))
+    if best.teeth:
+        shown = " ".join(f"{n}={v}" for n, v in best.teeth.items())
+        text = best_design_text(text, best.teeth, f"The tooth numbers of derive shifts' best design: {shown}.")
     lines = [f"# The best scheme of derive shifts (score {best.score:.5f}): {named}."]
     if joined:
         lines.append(f"# Permanent connections {joined}: clutches engaged in every gear.")

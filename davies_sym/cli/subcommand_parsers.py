@@ -7,10 +7,11 @@ only when the command runs."""
 from __future__ import annotations
 
 import argparse
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
+from davies_sym.errors import InputError, Problem
 from davies_sym.option_types import Parser, jobs, starts
 
 #: Link counts the atlas enumerates (9 links: 71,837 trains, beyond a command's minutes).
@@ -47,6 +48,32 @@ def tooth_range(text: str) -> tuple[int, int]:
     if not (low.isdigit() and high.isdigit()) or not 1 <= int(low) <= int(high):
         raise argparse.ArgumentTypeError(f"expected LO:HI, whole numbers with 1 <= LO <= HI, got {text!r}")
     return int(low), int(high)
+
+
+def tooth_bounds(pairs: Sequence[str]) -> dict[str, tuple[int, int]]:
+    """``--teeth NAME=LO:HI ...`` of `derive search` and `derive shifts`: the bounds by name, each once."""
+    out: dict[str, tuple[int, int]] = {}
+    for pair in pairs:
+        name, sep, span = pair.partition("=")
+        low, colon, high = span.partition(":")
+        try:
+            bounds = (int(low), int(high))
+        except ValueError:
+            bounds = None
+        if not sep or not colon or bounds is None:
+            raise InputError([Problem("--teeth", f"expected NAME=LO:HI with whole LO and HI, got {pair!r}")])
+        if name.strip() in out:
+            raise InputError([Problem("--teeth", f"{name.strip()} has bounds twice")])
+        out[name.strip()] = bounds
+    return out
+
+
+def _tooth_options(p: argparse.ArgumentParser, teeth: str, condition: str = "with --teeth: ") -> None:
+    """``--teeth``, ``--planets`` and ``--min-teeth``, as `derive search` and `derive shifts` take them."""
+    p.add_argument("--teeth", nargs="+", metavar="NAME=LO:HI", help=teeth)
+    planets = "planets per set, equally spaced (assembly and tip clearance)"
+    p.add_argument("--planets", type=int, metavar="N", help=condition + planets)
+    p.add_argument("--min-teeth", type=int, default=17, metavar="Z", help=f"{condition}fewest teeth on any gear (17)")
 
 
 def atlas_parser() -> argparse.ArgumentParser:
@@ -128,16 +155,7 @@ def search_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--tolerance", default="0.01", metavar="REL", help="relative deviation allowed from each target (default 0.01)"
     )
-    p.add_argument(
-        "--teeth",
-        nargs="+",
-        metavar="NAME=LO:HI",
-        help="bounds of every free tooth number (with --atlas: LO:HI for every gear, default 17:100)",
-    )
-    p.add_argument(
-        "--planets", type=int, metavar="N", help="planets per set, equally spaced (assembly and tip clearance)"
-    )
-    p.add_argument("--min-teeth", type=int, default=17, metavar="Z", help="fewest teeth on any gear (default 17)")
+    _tooth_options(p, "bounds of every free tooth number (with --atlas: LO:HI for every gear, default 17:100)", "")
     p.add_argument(
         "--weights", nargs="+", default=[], metavar="STATE=W", help="weight of each state in the score (default equal)"
     )
@@ -198,6 +216,7 @@ def shifts_parser() -> argparse.ArgumentParser:
         help="rank less the open elements' drag: torque COEFF v at relative speed v, in units of the input "
         "power at unit input speed (default 0)",
     )
+    _tooth_options(p, "search the free tooth numbers within their bounds with the scheme (the teeth are symbols)")
     p.add_argument("--any-shifts", action="store_true", help="allow shifts that change more than one element")
     p.add_argument("--top", type=int, default=TOP, metavar="K", help=f"schemes listed (default {TOP})")
     p.add_argument("--json", action="store_true", help="one JSON document")

@@ -9,10 +9,8 @@ from typing import Any
 
 import yaml
 
-from davies_sym.synthesis.problem import SearchProblem
 
-
-def best_design_text(problem: SearchProblem, source_text: str, teeth: Mapping[str, int], note: str) -> str:
+def best_design_text(source_text: str, teeth: Mapping[str, int], note: str) -> str:
     """The YAML of the design with ``teeth`` (every tooth number by symbol name)."""
     data: Any = yaml.safe_load(source_text)
     for entry in (data.get("gears") or {}).values():

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import inspect
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from types import ModuleType
 
 import numpy as np
@@ -27,7 +27,7 @@ from davies_sym.network.analysis import analyse
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.problem import SearchProblem, Target
 from davies_sym.topology.loader import load
-from davies_sym.topology.model import Train
+from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_in_state
 
 
@@ -59,11 +59,20 @@ def derive_state(task: StateTask) -> DerivedState:
     module."""
     train = load(task.train) if isinstance(task.train, str) else task.train
     chosen = next((s for s in train.states if s.name == task.state), None)
+    return derived_in_state(train, chosen, task.teeth)
+
+
+def derived_in_state(train: Train, chosen: State | None, teeth: frozenset[str]) -> DerivedState:
+    """The formulas of ``train`` in the operating state ``chosen`` (None: as written),
+    which need not be one of the file's states (a gear the shift search proposes)."""
+    if chosen is not None and chosen not in train.states:
+        train = replace(train, states=(chosen,))
     in_state = train_in_state(train, chosen) if chosen is not None else train
     variants = derive_variants(in_state)
-    others = tuple(sorted(str(s) for s in variants.parameters if str(s) not in task.teeth))
+    others = tuple(sorted(str(s) for s in variants.parameters if str(s) not in teeth))
     ratio = sympy.srepr(variants.analysis.speed_ratio().to_expr())
-    return DerivedState(task.state, in_state.ports.input, ratio, python_module(variants) if not others else "", others)
+    name = chosen.name if chosen is not None else None
+    return DerivedState(name, in_state.ports.input, ratio, python_module(variants) if not others else "", others)
 
 
 @dataclass(frozen=True, eq=False)

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import flint
+import sympy
 
 from davies_sym.caches import IdentityCache
 from davies_sym.errors import InputError
@@ -57,7 +58,21 @@ def member_speeds(train: Train) -> MemberSpeeds:
     return _SPEEDS.get(train, lambda: _member_speeds(train))
 
 
-def _member_speeds(train: Train) -> MemberSpeeds:
+@dataclass(frozen=True)
+class MemberForms:
+    """The main-axis members' speeds as written by the analysis: per member one
+    coefficient (a sympy expression, in the tooth numbers where they are symbols) per
+    free speed, and the bearing each member runs in."""
+
+    free: tuple[str, ...]
+    forms: Mapping[str, tuple[sympy.Expr, ...]]
+    shaft: Mapping[str, str]
+
+
+def member_forms(train: Train) -> MemberForms:
+    """The speeds of the members in a bearing of the reference from the null space of
+    M_N, the bearings' speeds as its free variables; a train of one degree of freedom
+    (nothing to shift) is refused."""
     analysis = Analysis(train)
     net = analysis.network
     on_reference = [c for c in bearings(train.couplings) if train.reference in c.links]
@@ -70,28 +85,32 @@ def _member_speeds(train: Train) -> MemberSpeeds:
             "permanent connections, every main-axis member in a bearing of the reference)"
         )
         raise InputError([train.problem("", why)], train.path)
-    forms: dict[str, Form] = {}
+    forms: dict[str, tuple[sympy.Expr, ...]] = {}
     shaft: dict[str, str] = {}
     for c in on_reference:
         member = c.links[1] if c.links[0] == train.reference else c.links[0]
         # The bearing's motion is its second link's relative to its first.
         sign = 1 if c.links[0] == train.reference else -1
         combination = solution[motions[c.name]]
-        forms[member] = tuple(sign * _number(train, c.name, combination.get(f)) for f in free)
+        zero = sympy.Integer(0)
+        forms[member] = tuple(sign * (combination[f].to_expr() if f in combination else zero) for f in free)
         shaft[member] = c.name
     order = {name: k for k, name in enumerate(train.link_names)}
     ordered = sorted(forms, key=order.__getitem__)
-    return MemberSpeeds(free, {m: forms[m] for m in ordered}, {m: shaft[m] for m in ordered})
+    return MemberForms(free, {m: forms[m] for m in ordered}, {m: shaft[m] for m in ordered})
 
 
-def _number(train: Train, coupling: str, coefficient: object) -> Fraction:
-    if coefficient is None:
-        return Fraction(0)
-    value = coefficient.to_expr()  # type: ignore[attr-defined]
+def _member_speeds(train: Train) -> MemberSpeeds:
+    written = member_forms(train)
+    forms = {m: tuple(_number(train, written.shaft[m], x) for x in form) for m, form in written.forms.items()}
+    return MemberSpeeds(written.free, forms, dict(written.shaft))
+
+
+def _number(train: Train, coupling: str, value: sympy.Expr) -> Fraction:
     if not value.is_Rational:
         why = (
             f"the speed of this bearing's member is {value} times a free speed: write the tooth numbers as "
-            "numbers (the shift search needs exact speed ratios)"
+            "numbers, or search them with --teeth (the shift search needs exact speed ratios)"
         )
         raise InputError([train.problem(f"couplings.{coupling}", why)], train.path)
     return Fraction(int(value.p), int(value.q))

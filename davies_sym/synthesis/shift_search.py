@@ -48,7 +48,7 @@ def gear_efficiency(task: GearTask) -> str | None:
     """The exact efficiency of the task's gear at the file's numbers (as text, cheap to
     send), or None where no variant covers it (the gear self-locks)."""
     train = load(task.train) if isinstance(task.train, str) else task.train
-    if _ports_joined(train, task.state):
+    if ports_joined(train, task.state):
         # Input and output are one member: the power passes through no mesh. Only the
         # bearings could lose, and a lossy one would need the load split between them.
         lossless = all(c.friction.lossless for c in bearings(train.couplings))
@@ -65,7 +65,7 @@ def gear_efficiency(task: GearTask) -> str | None:
         return None
 
 
-def _ports_joined(train: Train, state: State) -> bool:
+def ports_joined(train: Train, state: State) -> bool:
     """Whether the state's clutches make the input and output members one."""
     into, out = port_member(train, state.input), port_member(train, state.output)
     return any(into in group and out in group for group in join_groups(state.clutch))
@@ -105,6 +105,8 @@ class ShiftCandidate:
     score: float
     #: The groups of members joined for good (empty: the connections as written).
     connections: frozenset[frozenset[str]] = frozenset()
+    #: The tooth numbers by name, where they were searched with the scheme (`shift_teeth`).
+    teeth: Mapping[str, int] = field(default_factory=dict)
 
     def document(self) -> dict[str, Any]:
         """The candidate as ``derive shifts --json`` writes it."""
@@ -114,7 +116,7 @@ class ShiftCandidate:
             "elements": {n: e.document() for n, e in zip(names, s.elements, strict=True)},
             "schedule": {g: [names[k] for k in ks] for g, ks in s.schedule.items()},
             "connections": [list(j) for j in joins_of(self.connections)],
-            "teeth": {},
+            "teeth": dict(self.teeth),
             "speed_ratio": {g: float(r) for g, r in s.ratios.items()},
             "efficiency": {g: None if v is None else float(v) for g, v in self.efficiency.items()},
             "open_speed": {g: {n: float(v) for n, v in o.items()} for g, o in self.open_speed.items()},
@@ -130,15 +132,26 @@ class ShiftResult:
     searched: int
     seconds: float
     rules: tuple[str, ...] = RULES
+    #: Feasible designs, where more were found than listed (the tooth search lists the best).
+    found: int | None = None
+    #: Tooth designs the rules admit, where the teeth were searched.
+    tooth_designs: int | None = None
+
+    @property
+    def feasible(self) -> int:
+        return len(self.candidates) if self.found is None else self.found
 
     def document(self, top: int) -> dict[str, Any]:
-        return {
+        out = {
             "candidates": [c.document() for c in self.candidates[:top]],
             "searched": self.searched,
-            "feasible": len(self.candidates),
+            "feasible": self.feasible,
             "rules": list(self.rules),
             "seconds": round(self.seconds, 3),
         }
+        if self.tooth_designs is not None:
+            out["tooth_designs"] = self.tooth_designs
+        return out
 
 
 def gear_state(train: Train, design: ConnectedScheme, gear: str) -> State:
@@ -162,7 +175,7 @@ def gear_state(train: Train, design: ConnectedScheme, gear: str) -> State:
     )
 
 
-def _open_speeds(scheme: ShiftScheme, speeds: MemberSpeeds, ports: tuple[str, str]) -> dict[str, dict[str, Fraction]]:
+def open_speeds(scheme: ShiftScheme, speeds: MemberSpeeds, ports: tuple[str, str]) -> dict[str, dict[str, Fraction]]:
     """The speed each open element slips at in each gear (its equation's value), the
     input at unit speed: what its drag loss grows with."""
     out: dict[str, dict[str, Fraction]] = {}
@@ -218,7 +231,7 @@ def shift_search(
         }
         joined = joined_speeds(speeds, d.connections) if d.connections else speeds
         assert joined is not None  # a found design's joins leave the train movable
-        slips = _open_speeds(d.scheme, joined, ports)
+        slips = open_speeds(d.scheme, joined, ports)
         ranked.append(ShiftCandidate(d.scheme, efficiency, slips, ranking.score(efficiency, slips), d.connections))
     error = {id(c): sum(abs(float(c.scheme.ratios[t.name] / t.ratio) - 1) for t in question.targets) for c in ranked}
     ranked.sort(key=lambda c: (-c.score, error[id(c)], len(c.scheme.elements)))

@@ -107,7 +107,9 @@ def _windows(problem: SearchProblem, ratios: Sequence[sympy.Expr]) -> list[Windo
     return out
 
 
-def _planet_rules(problem: SearchProblem, sets: Sequence[PlanetSet]) -> list[rules.Rule]:
+def planet_rules(problem: SearchProblem, sets: Sequence[PlanetSet]) -> list[rules.Rule]:
+    """The assembly and tip-clearance rules, each applied or not and why not (no
+    ``--planets``, no planet set, one planet)."""
     if problem.planets is None:
         note = "no --planets given"
     elif not sets:
@@ -158,24 +160,10 @@ def run_search(
     whole_train = resolved_train(problem.train)
     sets = planet_sets(whole_train, train_layout(whole_train))
     free = problem.free
-    planet_rules = _planet_rules(problem, sets)
+    planet_applied = planet_rules(problem, sets)
     rows, teeth, examined = feasible or ratio_feasible(problem, [f.ratio for f in formulas], progress)
     ratio_parts = [ExactRational.of(f.ratio, free) for f in formulas]
-    gears = _gear_columns(problem, teeth, len(rows))
-    n = problem.planets
-    if planet_rules[0].applied and n is not None and len(rows):
-        keep = rules.equally_spaced(sets, gears, n)
-        rows, teeth, gears = rows[keep], {k: t[keep] for k, t in teeth.items()}, {k: g[keep] for k, g in gears.items()}
-    if planet_rules[1].applied and n is not None and len(rows):
-        keep = np.ones(len(rows), dtype=bool)
-        for pset in sets:
-            for planet in pset.planets:
-                radius = sympy.lambdify(free, pset.orbit[planet], "numpy")
-                orbit = np.broadcast_to(np.asarray(radius(*rows.T.astype(float)), dtype=float), (len(rows),))
-                for g in problem.train.gears:
-                    if g.link == planet and g.module is not None and g.name in gears:
-                        keep &= rules.tips_clear(orbit, (float(g.module) * (gears[g.name] + 2.0)).astype(np.float64), n)
-        rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
+    rows, teeth = planet_filtered(problem, sets, rows, teeth)
     if best is not None and len(rows) > best:
         keep = _among_the_best(formulas, _in_gear_order(problem, teeth), best)
         rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
@@ -196,10 +184,35 @@ def run_search(
         rules.Rule(rules.WHOLE, rules.MEANINGS[rules.WHOLE]),
         rules.Rule(rules.MIN_TEETH, rules.MEANINGS[rules.MIN_TEETH]),
         rules.Rule(rules.RATIO, rules.MEANINGS[rules.RATIO]),
-        *planet_rules,
+        *planet_applied,
         rules.Rule(rules.RUNS, rules.MEANINGS[rules.RUNS]),
     ]
     return SearchResult(problem, candidates, problem.size, examined, tuple(applied), time.perf_counter() - start, sets)
+
+
+def planet_filtered(
+    problem: SearchProblem, sets: Sequence[PlanetSet], rows: NDArray[np.int64], teeth: dict[str, NDArray[np.int64]]
+) -> tuple[NDArray[np.int64], dict[str, NDArray[np.int64]]]:
+    """The designs (``rows`` of free tooth numbers, ``teeth`` every tooth number by name)
+    whose ``problem.planets`` planets assemble equally spaced and clear each other's
+    tips, where the rules apply (`_planet_rules`)."""
+    applied = [r.applied for r in planet_rules(problem, sets)]
+    n = problem.planets
+    gears = _gear_columns(problem, teeth, len(rows))
+    if applied[0] and n is not None and len(rows):
+        keep = rules.equally_spaced(sets, gears, n)
+        rows, teeth, gears = rows[keep], {k: t[keep] for k, t in teeth.items()}, {k: g[keep] for k, g in gears.items()}
+    if applied[1] and n is not None and len(rows):
+        keep = np.ones(len(rows), dtype=bool)
+        for pset in sets:
+            for planet in pset.planets:
+                radius = sympy.lambdify(problem.free, pset.orbit[planet], "numpy")
+                orbit = np.broadcast_to(np.asarray(radius(*rows.T.astype(float)), dtype=float), (len(rows),))
+                for g in problem.train.gears:
+                    if g.link == planet and g.module is not None and g.name in gears:
+                        keep &= rules.tips_clear(orbit, (float(g.module) * (gears[g.name] + 2.0)).astype(np.float64), n)
+        rows, teeth = rows[keep], {k: t[keep] for k, t in teeth.items()}
+    return rows, teeth
 
 
 def ratio_feasible(

@@ -184,3 +184,46 @@ def test_connections_and_the_file_written(tmp_path: Path, capsys: pytest.Capture
         status, out, err = _run([str(best), "--state", gear, "--eval", "--json"], capsys)
         assert status == 0, err
         assert json.loads(out)["efficiency"] == pytest.approx(efficiency, abs=1e-12), gear
+
+
+def test_a_gear_joining_input_and_output_is_noted_not_written() -> None:
+    """A design whose third gear clutches the output and the input to one member (a
+    direct drive through no mesh): the written file says so in a comment and holds the
+    other gears as states, each of which derives; derive refuses a state whose ports
+    are one member, so none is written for it."""
+    from davies_sym.cli.shifts_command import best_scheme_text
+    from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion
+    from davies_sym.synthesis.shift_search import ShiftResult, shift_search
+    from davies_sym.topology.loader import load, loads
+    from davies_sym.topology.states import train_in_state
+
+    path = DATA / "shifts_two_sets.yaml"
+    train = load(path)
+    targets = tuple(GearTarget(g, Fraction(r)) for g, r in (t.split("=") for t in SIMPSON_TARGETS))
+    result = shift_search(train, ShiftQuestion(targets, Fraction(5, 1000), 4, None, True, 3))
+
+    def joined(c: object, gear: str) -> bool:  # the gear's clutches and the joins, grouped by hand
+        groups = [set(b) for b in c.connections] + [
+            set(e.members) for e in c.scheme.engaged(gear) if len(e.members) == 2
+        ]
+        merged = True
+        while merged:
+            merged = False
+            for a in range(len(groups)):
+                for b in range(a + 1, len(groups)):
+                    if groups[a] & groups[b]:
+                        groups[a] |= groups.pop(b)
+                        merged = True
+                        break
+                if merged:
+                    break
+        return any({"in", "out"} <= g for g in groups)
+
+    direct = [c for c in result.candidates if joined(c, "3")]
+    assert direct, "the two-set search has a design whose direct gear clutches the output shaft"
+    text = best_scheme_text(str(path), train, ShiftResult((direct[0],), result.searched, result.seconds))
+    assert "# gear 3 (" in text and "joins the input and output members" in text
+    written = loads(text, str(path))
+    assert sorted(s.name for s in written.states) == ["1", "2", "R"]
+    for state in written.states:
+        assert train_in_state(written, state).ports.input == "I"

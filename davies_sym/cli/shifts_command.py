@@ -22,7 +22,15 @@ from davies_sym.synthesis.best_design import best_design_text
 from davies_sym.synthesis.shift_connections import ConnectedScheme
 from davies_sym.synthesis.shift_kinematics import member_forms, member_speeds
 from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion, element_letter, gear_order
-from davies_sym.synthesis.shift_search import Ranking, ShiftResult, gear_state, port_member, shift_search, unreached
+from davies_sym.synthesis.shift_search import (
+    Ranking,
+    ShiftResult,
+    gear_state,
+    port_member,
+    ports_joined,
+    shift_search,
+    unreached,
+)
 from davies_sym.synthesis.shift_teeth import ToothRanges, shift_teeth_search
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import Train
@@ -211,6 +219,14 @@ def best_scheme_text(path: str, train: Train, result: ShiftResult) -> str:
     lines.append("states:")
     for gear in s.schedule:
         state = gear_state(train, ConnectedScheme(best.connections, s), gear)
+        if ports_joined(train, state):
+            # One member carries both ports: no state of the file can name both (derive
+            # refuses it), and the gear is a direct drive through no mesh.
+            lines.append(
+                f"  # gear {gear} ({state.description.partition('(')[2].rstrip(')')}) joins the input and output "
+                "members: a direct drive (ratio 1) through no mesh, so no state is written for it"
+            )
+            continue
         fields = [f"description: {json.dumps(state.description)}", f"input: {state.input}", f"output: {state.output}"]
         if state.brake:
             fields.append(f"brake: [{', '.join(state.brake)}]")

@@ -187,43 +187,26 @@ def test_connections_and_the_file_written(tmp_path: Path, capsys: pytest.Capture
 
 
 def test_a_gear_joining_input_and_output_is_noted_not_written() -> None:
-    """A design whose third gear clutches the output and the input to one member (a
+    """A scheme whose third gear clutches the input to the output member directly (a
     direct drive through no mesh): the written file says so in a comment and holds the
-    other gears as states, each of which derives; derive refuses a state whose ports
-    are one member, so none is written for it."""
+    other gears as states, each of which derives to the Simpson ratio by hand; derive
+    refuses a state whose ports are one member, so none is written for it."""
     from davies_sym.cli.shifts_command import best_scheme_text
-    from davies_sym.synthesis.shift_schedules import GearTarget, ShiftQuestion
-    from davies_sym.synthesis.shift_search import ShiftResult, shift_search
+    from davies_sym.efficiency.variants import derive_variants
+    from davies_sym.synthesis.shift_elements import ShiftElement
+    from davies_sym.synthesis.shift_schedules import ShiftScheme
+    from davies_sym.synthesis.shift_search import ShiftCandidate, ShiftResult
     from davies_sym.topology.loader import load, loads
     from davies_sym.topology.states import train_in_state
 
-    path = DATA / "shifts_two_sets.yaml"
-    train = load(path)
-    targets = tuple(GearTarget(g, Fraction(r)) for g, r in (t.split("=") for t in SIMPSON_TARGETS))
-    result = shift_search(train, ShiftQuestion(targets, Fraction(5, 1000), 4, None, True, 3))
-
-    def joined(c: object, gear: str) -> bool:  # the gear's clutches and the joins, grouped by hand
-        groups = [set(b) for b in c.connections] + [
-            set(e.members) for e in c.scheme.engaged(gear) if len(e.members) == 2
-        ]
-        merged = True
-        while merged:
-            merged = False
-            for a in range(len(groups)):
-                for b in range(a + 1, len(groups)):
-                    if groups[a] & groups[b]:
-                        groups[a] |= groups.pop(b)
-                        merged = True
-                        break
-                if merged:
-                    break
-        return any({"in", "out"} <= g for g in groups)
-
-    direct = [c for c in result.candidates if joined(c, "3")]
-    assert direct, "the two-set search has a design whose direct gear clutches the output shaft"
-    text = best_scheme_text(str(path), train, ShiftResult((direct[0],), result.searched, result.seconds))
-    assert "# gear 3 (" in text and "joins the input and output members" in text
-    written = loads(text, str(path))
-    assert sorted(s.name for s in written.states) == ["1", "2", "R"]
+    elements = (ShiftElement(("s",)), ShiftElement(("c2",)), ShiftElement(("in", "r1")), ShiftElement(("in", "o")))
+    ratios = {"1": Fraction(17, 7), "2": Fraction(10, 7), "3": Fraction(1)}
+    scheme = ShiftScheme(elements, {"1": (1, 2), "2": (0, 2), "3": (2, 3)}, ratios)
+    candidate = ShiftCandidate(scheme, {g: None for g in ratios}, {g: {} for g in ratios}, 0.5)
+    text = best_scheme_text(str(SIMPSON), load(SIMPSON), ShiftResult((candidate,), 1, 0.0))
+    assert "# gear 3 (C D) joins the input and output members" in text
+    written = loads(text, str(SIMPSON))
+    assert sorted(s.name for s in written.states) == ["1", "2"]
     for state in written.states:
-        assert train_in_state(written, state).ports.input == "I"
+        ratio = derive_variants(train_in_state(written, state)).analysis.speed_ratio().to_expr()
+        assert ratio == ratios[state.name]  # sun 30, rings 70: (70 + 100) / 70 and 100 / 70

@@ -11,15 +11,16 @@ only one of each is searched or listed.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from itertools import combinations, permutations, product
-from math import comb
+from itertools import permutations, product
 from typing import Any
 
-from davies_sym.synthesis.shift_elements import ShiftElement, candidate_elements
+from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
+from davies_sym.progress import Progress, silent
+from davies_sym.synthesis.shift_elements import ShiftElement
 from davies_sym.synthesis.shift_kinematics import MemberSpeeds, null_basis, speed
-from davies_sym.synthesis.shift_schedules import ShiftQuestion, ShiftScheme, shift_schemes
+from davies_sym.synthesis.shift_schedules import ShiftQuestion, ShiftScheme, scheme_search
 from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.model import Train
 
@@ -106,24 +107,69 @@ def _renamed(blocks: frozenset[Block], mapping: Mapping[str, str]) -> tuple[tupl
     return tuple(sorted(tuple(sorted(mapping.get(m, m) for m in b)) for b in blocks))
 
 
-def connection_choices(sets: Sequence[PlanetarySet], joins: int) -> list[frozenset[Block]]:
-    """Every way to make ``joins`` independent joins between members of different sets,
-    as the groups they make, one of each group pattern under the relabellings of
-    identical sets."""
+def _member_order(sets: Sequence[PlanetarySet]) -> tuple[list[str], dict[str, int]]:
+    """The members in the order the joins are assigned, and each one's set."""
     home = {m: k for k, s in enumerate(sets) for m in s.members}
-    pairs = [(a, b) for a, b in combinations(list(home), 2) if home[a] != home[b]]
-    maps = relabellings(sets)
-    seen: set[tuple[tuple[str, ...], ...]] = set()
-    out = []
-    for chosen in combinations(pairs, joins):
-        blocks = join_groups(chosen)
-        if sum(len(b) - 1 for b in blocks) != joins:
-            continue  # a join the others already made
-        canonical = min(_renamed(blocks, m) for m in maps)
-        if canonical not in seen:
-            seen.add(canonical)
-            out.append(blocks)
+    return list(home), home
+
+
+def join_prefixes(sets: Sequence[PlanetarySet], joins: int, depth: int) -> list[tuple[int, ...]]:
+    """The ways the first ``depth`` members can be grouped on the way to ``joins`` joins
+    (each member's group by number, groups numbered as they open): each prefix is one
+    task of the search, which `connection_choices` completes."""
+    members, home = _member_order(sets)
+    depth = min(depth, len(members))
+    out: list[tuple[int, ...]] = []
+
+    def extend(i: int, groups: list[list[str]], prefix: tuple[int, ...]) -> None:
+        if i - len(groups) > joins:
+            return
+        if i == depth:
+            out.append(prefix)
+            return
+        for k in _open_to(members[i], groups, home):
+            groups[k].append(members[i]) if k < len(groups) else groups.append([members[i]])
+            extend(i + 1, groups, (*prefix, k))
+            groups[k].pop() if groups[k][:-1] else groups.pop()
+
+    extend(0, [], ())
     return out
+
+
+def _open_to(member: str, groups: list[list[str]], home: Mapping[str, int]) -> list[int]:
+    """The groups ``member`` may join (none holding a member of its set; a group of its
+    own numbered last)."""
+    return [k for k, g in enumerate(groups) if all(home[m] != home[member] for m in g)] + [len(groups)]
+
+
+def connection_choices(
+    sets: Sequence[PlanetarySet], joins: int, prefix: tuple[int, ...] = ()
+) -> Iterator[frozenset[Block]]:
+    """Every way to make ``joins`` independent joins between members of different sets
+    (beginning as ``prefix`` groups the first members), as the groups they make: the
+    groupings of the members in which no group holds two members of one set, each
+    taken in the one labelling of identical sets that writes it least."""
+    members, home = _member_order(sets)
+    maps = relabellings(sets)
+    groups: list[list[str]] = []
+    for k, member in zip(prefix, members, strict=False):
+        groups[k].append(member) if k < len(groups) else groups.append([member])
+
+    def extend(i: int) -> Iterator[frozenset[Block]]:
+        made = i - len(groups)
+        if made > joins or len(members) - i < joins - made:
+            return
+        if i == len(members):
+            blocks = frozenset(frozenset(g) for g in groups if len(g) > 1)
+            if _renamed(blocks, maps[0]) == min(_renamed(blocks, m) for m in maps):
+                yield blocks
+            return
+        for k in _open_to(members[i], groups, home):
+            groups[k].append(members[i]) if k < len(groups) else groups.append([members[i]])
+            yield from extend(i + 1)
+            groups[k].pop() if groups[k][:-1] else groups.pop()
+
+    yield from extend(len(prefix))
 
 
 def joined_speeds(speeds: MemberSpeeds, blocks: frozenset[Block]) -> MemberSpeeds | None:
@@ -151,38 +197,69 @@ class ConnectedScheme:
     scheme: ShiftScheme
 
 
-def designs(
-    train: Train, speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion
-) -> tuple[list[ConnectedScheme], int]:
-    """The schemes of the train as written, or of every choice of
-    ``question.connections`` joins (each design once under the relabellings of
-    identical sets), and how many combinations of engaged elements were evaluated."""
-    if not question.connections:
-        return [ConnectedScheme(frozenset(), s) for s in shift_schemes(speeds, ports, question)], _searched(
-            speeds, ports, question
-        )
-    sets = planetary_sets(train, speeds.members())
-    maps = relabellings(sets)
-    seen: set[tuple[Any, ...]] = set()
+@dataclass(frozen=True)
+class JoinTask:
+    """The connected trains of one join prefix (`join_prefixes`): the free train's
+    speeds, its sets, the ports' members and the question."""
+
+    speeds: MemberSpeeds
+    sets: tuple[PlanetarySet, ...]
+    ports: tuple[str, str]
+    question: ShiftQuestion
+    prefix: tuple[int, ...]
+
+
+def join_schemes(task: JoinTask) -> tuple[list[ConnectedScheme], int]:
+    """The schemes of every connected train of the task's prefix, and how many
+    combinations of engaged elements were screened."""
     found: list[ConnectedScheme] = []
     searched = 0
-    for blocks in connection_choices(sets, question.connections):
-        joined = joined_speeds(speeds, blocks)
-        if joined is None or any(ports[0] in b and ports[1] in b for b in blocks):
+    for blocks in connection_choices(task.sets, task.question.connections, task.prefix):
+        joined = joined_speeds(task.speeds, blocks)
+        if joined is None or any(task.ports[0] in b and task.ports[1] in b for b in blocks):
             continue
-        searched += _searched(joined, ports, question)
-        for scheme in shift_schemes(joined, ports, question):
-            key = min(_design_key(blocks, scheme, m) for m in maps)
-            if key not in seen:
-                seen.add(key)
-                found.append(ConnectedScheme(blocks, scheme))
+        schemes, screened = scheme_search(joined, task.ports, task.question)
+        searched += screened
+        found += [ConnectedScheme(blocks, scheme) for scheme in schemes]
     return found, searched
 
 
-def _searched(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> int:
-    """How many combinations of engaged elements one train's search evaluates."""
-    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
-    return comb(len(candidate_elements(speeds, ports)), engaged)
+#: Members grouped in advance per task of the connection search.
+PREFIX_DEPTH = 6
+
+
+def designs(
+    train: Train,
+    speeds: MemberSpeeds,
+    ports: tuple[str, str],
+    question: ShiftQuestion,
+    workers: Workers = IN_THIS_PROCESS,
+    progress: Progress = silent,
+) -> tuple[list[ConnectedScheme], int]:
+    """The schemes of the train as written, or of every choice of
+    ``question.connections`` joins (each design once under the relabellings of
+    identical sets; the choices spread over ``workers`` by their first members'
+    grouping), and how many combinations of engaged elements were screened."""
+    if not question.connections:
+        schemes, searched = scheme_search(speeds, ports, question)
+        return [ConnectedScheme(frozenset(), s) for s in schemes], searched
+    sets = planetary_sets(train, speeds.members())
+    maps = relabellings(sets)
+    tasks = [
+        JoinTask(speeds, sets, ports, question, p) for p in join_prefixes(sets, question.connections, PREFIX_DEPTH)
+    ]
+    progress(f"{len(tasks)} groups of connection choices {workers.describe(len(tasks))}")
+    seen: set[tuple[Any, ...]] = set()
+    found: list[ConnectedScheme] = []
+    searched = 0
+    for part, screened in fan_out(join_schemes, tasks, workers, Counted(progress, "group")):
+        searched += screened
+        for design in part:
+            key = min(_design_key(design.connections, design.scheme, m) for m in maps)
+            if key not in seen:
+                seen.add(key)
+                found.append(design)
+    return found, searched
 
 
 def joins_of(blocks: frozenset[Block]) -> list[tuple[str, str]]:

@@ -3,8 +3,9 @@
 ratio table.
 
 Never the blind product: the ratio of a gear depends only on which elements it engages,
-so the exact ratio of every combination of ``engaged`` candidate elements is computed
-once (`shift_elements.ratio_of`) and each target keeps the combinations within its
+so the ratio of every combination of ``engaged`` candidate elements is screened once in
+floating point (`shift_screen`), the exact ratio (`shift_elements.ratio_of`) computed
+where a target is in reach, and each target keeps the combinations within its
 tolerance; the schedules are then matched gear by gear, forward gears in order of
 falling ratio, with the rules pruning as they go:
 
@@ -22,9 +23,13 @@ from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from itertools import combinations
+from math import comb
+
+import numpy as np
 
 from davies_sym.synthesis.shift_elements import ShiftElement, candidate_elements, ratio_of
 from davies_sym.synthesis.shift_kinematics import MemberSpeeds
+from davies_sym.synthesis.shift_screen import combination_ratios, in_reach
 
 #: The rules a scheme is checked by, as the output lists them.
 RULES = (
@@ -94,7 +99,16 @@ def gear_options(
     ratio is within the tolerance, with that ratio; each combination evaluated once."""
     engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
     options: dict[str, list[tuple[frozenset[int], Fraction]]] = {t.name: [] for t in question.targets}
-    for combo in combinations(range(len(candidates)), engaged):
+    combos = np.array(list(combinations(range(len(candidates)), engaged)), dtype=np.int64).reshape(-1, engaged)
+    forms = np.array([[[float(x) for x in e.form(speeds)] for e in candidates]]).reshape(1, len(candidates), -1)
+    into, out = (np.array([[float(x) for x in speeds.forms[p]]]) for p in ports)
+    screened = combination_ratios(forms, into, out, combos)[0]
+    near = [in_reach(screened, t.ratio, question.tolerance) for t in question.targets]
+    if not all(n.any() for n in near):
+        return options  # a target out of every combination's reach: no scheme
+    reach = np.logical_or.reduce(near)
+    # The exact ratio only where the screen finds a target in reach.
+    for combo in combos[reach].tolist():
         ratio = ratio_of(tuple(candidates[k] for k in combo), speeds, ports)
         if ratio is None:
             continue
@@ -136,20 +150,28 @@ def _matched(
 def shift_schemes(speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion) -> tuple[ShiftScheme, ...]:
     """Every feasible scheme of ``question.elements`` elements (or of the fewest that
     give one), each once; ``ports``: the input and output members."""
+    return scheme_search(speeds, ports, question)[0]
+
+
+def scheme_search(
+    speeds: MemberSpeeds, ports: tuple[str, str], question: ShiftQuestion
+) -> tuple[tuple[ShiftScheme, ...], int]:
+    """`shift_schemes`, and how many combinations of engaged elements were screened."""
     candidates = candidate_elements(speeds, ports)
+    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
+    searched = comb(len(candidates), engaged)
     options = gear_options(speeds, ports, candidates, question)
     if any(not found for found in options.values()):
-        return ()
+        return (), searched
     order = gear_order(question.targets)
-    engaged = question.engaged if question.engaged is not None else speeds.degrees_of_freedom - 1
     sizes = [question.elements] if question.elements is not None else range(engaged, len(candidates) + 1)
     for size in sizes:
         found = [
             _scheme(order, choice, candidates) for choice in _matched(order, options, size, question.single_transitions)
         ]
         if found:
-            return tuple(found)
-    return ()
+            return tuple(found), searched
+    return (), searched
 
 
 def _scheme(

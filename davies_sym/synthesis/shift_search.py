@@ -215,7 +215,7 @@ def shift_search(
     start = time.perf_counter()
     speeds = member_speeds(train)
     ports = (port_member(train, train.ports.input), port_member(train, train.ports.output))
-    found, searched = designs(train, speeds, ports, question)
+    found, searched = designs(train, speeds, ports, question, workers, progress)
     progress(f"{len(found)} scheme(s) give the ratio table; deriving their gears")
     gears = [gear_state(train, d, g) for d in found for g in d.scheme.schedule]
     if not train.path or workers.here(len(gears)):

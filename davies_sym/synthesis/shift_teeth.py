@@ -9,7 +9,7 @@ Never the blind product of designs and schemes:
 1. The member speeds are written once in the tooth numbers (`member_forms`); their
    exact values at every design (`ExactRational`) sort the designs into kinematic
    classes: designs whose every speed coefficient is equal have the same schemes.
-2. A vectorised screen (floating point, a relative slack of `SLACK`) evaluates the
+2. A vectorised screen (`shift_screen`, floating point) evaluates the
    ratio of every combination of engaged elements in every class at once and keeps the
    classes where each target has some combination within the tolerance.
 3. The level-1 search (`shift_schedules.shift_schemes`, exact rationals) runs on each
@@ -46,6 +46,7 @@ from davies_sym.synthesis.problem import MIN_TEETH, SearchProblem, Target, searc
 from davies_sym.synthesis.shift_connections import ConnectedScheme
 from davies_sym.synthesis.shift_kinematics import MemberForms, MemberSpeeds, member_forms
 from davies_sym.synthesis.shift_schedules import RULES, ShiftQuestion, ShiftScheme, shift_schemes
+from davies_sym.synthesis.shift_screen import combination_ratios, in_reach
 from davies_sym.synthesis.shift_search import (
     Ranking,
     ShiftCandidate,
@@ -60,9 +61,6 @@ from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.loader import load
 from davies_sym.topology.model import State, Train
 
-#: Relative slack of the floating-point screen: a class is kept when a ratio lies within
-#: the tolerance widened by this much (the exact search decides).
-SLACK = 1e-9
 #: Classes times combinations of engaged elements the screen evaluates at most.
 MAX_SCREENED = 50_000_000
 #: Tooth designs (the product of the ranges) a search takes at most.
@@ -158,8 +156,7 @@ def kinematic_classes(forms: MemberForms, designs: ToothDesigns) -> list[Kinemat
 
 def screened(classes: Sequence[KinematicClass], ports: tuple[str, str], question: ShiftQuestion) -> NDArray[np.bool_]:
     """Which classes have, for every target, some combination of engaged elements whose
-    ratio (floating point) lies within the tolerance widened by `SLACK`: the exact
-    search needs to look at no other."""
+    ratio is in reach (`shift_screen`): the exact search needs to look at no other."""
     if not classes:
         return np.zeros(0, dtype=bool)
     members = classes[0].speeds.members()
@@ -176,18 +173,8 @@ def screened(classes: Sequence[KinematicClass], ports: tuple[str, str], question
             f"is beyond {MAX_SCREENED:,}: narrow the --teeth ranges"
         )
         raise InputError([Problem("--teeth", why)])
-    into, out = speeds[:, index[ports[0]]], speeds[:, index[ports[1]]]
-    hit = np.zeros((len(classes), len(question.targets)), dtype=bool)
-    batch = max(1, 2_000_000 // (len(classes) * engaged * freedom))
-    for start in range(0, len(combos), batch):
-        rows = elements[:, combos[start : start + batch]]  # classes x combos x engaged x freedom
-        motion = np.stack([(-1) ** j * np.linalg.det(np.delete(rows, j, axis=3)) for j in range(freedom)], axis=-1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = np.einsum("cd,cbd->cb", into, motion) / np.einsum("cd,cbd->cb", out, motion)
-        for t, target in enumerate(question.targets):
-            wanted = float(target.ratio)
-            near = np.abs(ratio - wanted) <= float(question.tolerance) * abs(wanted) * (1 + SLACK) + 1e-12
-            hit[:, t] |= near.any(axis=1)
+    ratios = combination_ratios(elements, speeds[:, index[ports[0]]], speeds[:, index[ports[1]]], combos)
+    hit = np.stack([in_reach(ratios, t.ratio, question.tolerance).any(axis=1) for t in question.targets], axis=1)
     return np.asarray(hit.all(axis=1), dtype=bool)
 
 

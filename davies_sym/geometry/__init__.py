@@ -10,7 +10,7 @@ helical mesh places its first gear across the parallel-axis part (`.skew`).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 import sympy
@@ -18,15 +18,16 @@ import sympy
 from davies_sym.algebra.screws import Vector
 from davies_sym.caches import IdentityCache
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.geometry.axes import axis_structure
+from davies_sym.geometry.axes import axis_structure, spacings
 from davies_sym.geometry.cone import conical_layout
-from davies_sym.geometry.layout import GeometricConstraint, Layout, spacings
+from davies_sym.geometry.layout import GeometricConstraint, Layout
 from davies_sym.geometry.line import planar_line_layout
 from davies_sym.geometry.plane import plane_layout
-from davies_sym.geometry.skew import skew_layout, skew_meshes
-from davies_sym.topology.coupling_kinds import gear_meshes, toothed_meshes
+from davies_sym.geometry.skew import skew_layout
+from davies_sym.topology.coupling_kinds import CouplingsByKind, by_kind
+from davies_sym.topology.gear_mesh import GearMesh
 from davies_sym.topology.model import Train
-from davies_sym.topology.toothed_mesh import LocationError
+from davies_sym.topology.toothed_mesh import LocationError, ToothedMesh
 
 __all__ = ["GeometricConstraint", "Layout", "train_layout"]
 
@@ -47,29 +48,38 @@ def _derived_layout(train: Train) -> Layout:
     if train.whole is not None:
         layout = _restricted(train_layout(train.whole), train)
     else:
-        layout = _following(_helical(_layout(train), train), train)
+        kinds = by_kind(train.couplings)
+        layout = _following(_helical(_layout(train, kinds), kinds.gear, train), kinds.toothed, train)
         # A radius solved from a constraint is a length: its expression is positive.
         facts = tuple(r.expression for r in train.dependent or ())
         layout = replace(layout, positive_facts=layout.positive_facts + facts) if facts else layout
     return layout
 
 
-def _layout(train: Train) -> Layout:
-    if skew_meshes(train):
-        return skew_layout(train, _layout)
+def _layout(train: Train, kinds: CouplingsByKind) -> Layout:
+    if kinds.skew:
+        return skew_layout(train, kinds, _parallel_layout)
+    spaced = spacings(train)
     if any(g.axis is not None or g.tilted for g in train.gears):
-        return conical_layout(train)
+        return conical_layout(train, spaced)
     # The axis classes are found once and handed to the layout that places them.  A
     # coupling whose centre distance is free (a chain) draws its strand along the
     # placement direction, its second axis across it: such a train is drawn in 2-D.
-    if train.placement is not None:
-        return plane_layout(train, train.placement, axis_structure(train))
-    if any(not s.fixed for s in spacings(train)):
-        return plane_layout(train, (sympy.Integer(0), sympy.Integer(1)), axis_structure(train))
-    return planar_line_layout(train, axis_structure(train))
+    structure = axis_structure(train, spaced)
+    direction = train.placement
+    if direction is None and any(not s.fixed for s in spaced):
+        direction = (sympy.Integer(0), sympy.Integer(1))
+    if direction is not None:
+        return plane_layout(train, direction, structure)
+    return planar_line_layout(train, structure)
 
 
-def _following(layout: Layout, train: Train) -> Layout:
+def _parallel_layout(train: Train) -> Layout:
+    """The layout of the parallel-axis part of a train with skew meshes."""
+    return _layout(train, by_kind(train.couplings))
+
+
+def _following(layout: Layout, meshes: Sequence[ToothedMesh], train: Train) -> Layout:
     """``layout`` with the meshes that follow the gears they mesh put where their kinds
     say (a rack beside its pinion): the layouts place the gears, these kinds place
     themselves from them."""
@@ -77,7 +87,7 @@ def _following(layout: Layout, train: Train) -> Layout:
     points, tangents, normals = dict(layout.coupling_points), dict(layout.mesh_tangents), dict(layout.mesh_normals)
     problems = []
     placed = False
-    for mesh in toothed_meshes(train.couplings):
+    for mesh in meshes:
         try:
             where = mesh.locate(layout, gears)
         except LocationError as e:
@@ -92,9 +102,10 @@ def _following(layout: Layout, train: Train) -> Layout:
     return replace(layout, coupling_points=points, mesh_tangents=tangents, mesh_normals=normals) if placed else layout
 
 
-def _helical(layout: Layout, train: Train) -> Layout:
-    """``layout`` marked as carrying thrust when a mesh is helical (parallel axes only)."""
-    helical = [c for c in gear_meshes(train.couplings) if c.helix is not None]
+def _helical(layout: Layout, meshes: Sequence[GearMesh], train: Train) -> Layout:
+    """``layout`` marked as carrying thrust when a mesh of ``meshes`` (the train's gear
+    meshes) is helical (parallel axes only)."""
+    helical = [c for c in meshes if c.helix is not None]
     if not helical:
         return layout
     if layout.gear_axes:

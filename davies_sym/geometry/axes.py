@@ -21,10 +21,9 @@ from dataclasses import dataclass
 from itertools import product
 
 from davies_sym.errors import GeometryError, Problem
-from davies_sym.geometry.layout import spacings
 from davies_sym.topology.coupling_kinds import bearings
 from davies_sym.topology.couplings import AxisSpacing
-from davies_sym.topology.link_groups import LinkGroups
+from davies_sym.topology.link_groups import link_classes
 from davies_sym.topology.model import Train
 from davies_sym.topology.revolute import Revolute
 
@@ -55,25 +54,35 @@ class AxisStructure:
     bearing_axis: Mapping[str, str]
     meshes: Mapping[str, MeshFrame]
     root: str
-
-    def planet_second(self) -> frozenset[str]:
-        """The meshes whose second gear turns on a planet axis."""
-        return frozenset(name for name, frame in self.meshes.items() if frame.planet == 1)
+    #: How each coupling that places two gears' axes spaces them (`spacings`), in the
+    #: train's order: what the layouts place the axes by.
+    spacings: tuple[AxisSpacing, ...] = ()
+    #: The meshes whose second gear turns on a planet axis.
+    planet_second: frozenset[str] = frozenset()
 
     def classes(self) -> list[str]:
         """Every axis class, sorted."""
         return sorted(set(self.axis.values()))
 
 
-def axis_structure(train: Train) -> AxisStructure:
-    """The bearing tree, the mesh carriers and the axis classes of ``train``."""
+def spacings(train: Train) -> list[AxisSpacing]:
+    """How each coupling that places two gears' axes spaces them (meshes, chains), in the
+    train's order."""
+    gears = {g.name: g for g in train.gears}
+    found = (c.spacing(gears) for c in train.couplings)
+    return [s for s in found if s is not None]
+
+
+def axis_structure(train: Train, spaced: Sequence[AxisSpacing] | None = None) -> AxisStructure:
+    """The bearing tree, the mesh carriers and the axis classes of ``train`` (``spaced``:
+    its `spacings`, where the caller has them already)."""
+    spaced = tuple(spacings(train) if spaced is None else spaced)
     revolutes = sorted(bearings(train.couplings), key=lambda c: c.name)
-    meshes = sorted(spacings(train), key=lambda c: c.name)
+    meshes = sorted(spaced, key=lambda c: c.name)
     parent, depth, tree = _bearing_tree(train, revolutes)
     coaxial, bearing_on = _coaxial(train, revolutes, tree)
     _check_meshes_apart(train, meshes, revolutes, tree, coaxial)
-    frames = _mesh_frames(train, meshes, _axis_holders(parent, coaxial), depth, coaxial)
-    axis = {link: _representative(coaxial, link, train.link_names) for link in train.link_names}
+    frames, axis = _mesh_frames(train, meshes, _axis_holders(parent, coaxial), depth, revolutes, tree)
     bearing_axis = {name: axis[link] for name, link in bearing_on.items()}
     return AxisStructure(
         parent=parent,
@@ -82,16 +91,19 @@ def axis_structure(train: Train) -> AxisStructure:
         bearing_axis=bearing_axis,
         meshes=frames,
         root=_root(train, axis, bearing_axis),
+        spacings=spaced,
+        planet_second=frozenset(name for name, frame in frames.items() if frame.planet == 1),
     )
 
 
-def _axis_holders(parent: Mapping[str, str], coaxial: LinkGroups) -> dict[str, str]:
+def _axis_holders(parent: Mapping[str, str], coaxial: Mapping[str, str]) -> dict[str, str]:
     """The link that holds each link's axis: its parent in the bearing tree, or, for a
     link held on its parent's own axis (a planet turning on a coaxial planet), the holder
-    of that parent's axis, so that the carrier of both is found for its meshes."""
+    of that parent's axis, so that the carrier of both is found for its meshes
+    (``coaxial``: each link's axis class)."""
     holders: dict[str, str] = {}
     for link, holder in parent.items():
-        while coaxial.find(holder) == coaxial.find(link) and holder in parent:
+        while coaxial[holder] == coaxial[link] and holder in parent:
             holder = parent[holder]
         holders[link] = holder
     return holders
@@ -155,11 +167,17 @@ def _options(train: Train, mesh: AxisSpacing, parent: Mapping[str, str], depth: 
 
 
 def _coaxial(
-    train: Train, revolutes: Sequence[Revolute], tree: Mapping[str, str], without: str | None = None
-) -> tuple[LinkGroups, dict[str, str]]:
-    """The links that turn about one axis, and the link each bearing is on (``without``:
-    that bearing's `axis:` left out, to find which entry makes two links coaxial)."""
-    coaxial = LinkGroups(sorted(train.link_names))
+    train: Train,
+    revolutes: Sequence[Revolute],
+    tree: Mapping[str, str],
+    without: str | None = None,
+    equals: Sequence[tuple[str, str]] = (),
+) -> tuple[dict[str, str], dict[str, str]]:
+    """The links that turn about one axis (each link's class, named by its first link),
+    and the link each bearing is on (``without``: that bearing's `axis:` left out, to find
+    which entry makes two links coaxial; ``equals``: pairs of links the meshes make
+    coaxial besides)."""
+    joined: list[tuple[str, str]] = list(equals)
     bearing_on: dict[str, str] = {}
     for c in revolutes:
         a, b = c.links
@@ -168,16 +186,16 @@ def _coaxial(
             child = tree[c.name]
             holder = a if child == b else b
             if axis == holder:  # the bearing is on the holder's axis: the two turn about one axis
-                coaxial.union(child, holder)
+                joined.append((child, holder))
             elif axis is not None and axis not in c.links:  # on a third link's axis
-                coaxial.union(child, axis)
+                joined.append((child, axis))
             bearing_on[c.name] = child
         elif axis is not None:
             bearing_on[c.name] = axis
         else:  # a second bearing between two held links: they turn about one axis
-            coaxial.union(a, b)
+            joined.append((a, b))
             bearing_on[c.name] = a
-    return coaxial, bearing_on
+    return link_classes(train.link_names, joined), bearing_on
 
 
 def _check_meshes_apart(
@@ -185,20 +203,19 @@ def _check_meshes_apart(
     meshes: Sequence[AxisSpacing],
     revolutes: Sequence[Revolute],
     tree: Mapping[str, str],
-    coaxial: LinkGroups,
+    coaxial: Mapping[str, str],
 ) -> None:
     """No mesh joins two links that turn about one axis; the problem is filed at the
     bearing whose `axis:` makes them coaxial where one does, else at the mesh."""
     for mesh in meshes:
         a, b = axis_links(train, mesh)
-        if coaxial.find(a) != coaxial.find(b):
+        if coaxial[a] != coaxial[b]:
             continue
         cause = next(
             (
                 c
                 for c in revolutes
-                if c.axis is not None
-                and (groups := _coaxial(train, revolutes, tree, c.name)[0]).find(a) != groups.find(b)
+                if c.axis is not None and (groups := _coaxial(train, revolutes, tree, c.name)[0])[a] != groups[b]
             ),
             None,
         )
@@ -235,24 +252,20 @@ def _mesh_frames(
     meshes: Sequence[AxisSpacing],
     parent: Mapping[str, str],
     depth: Mapping[str, int],
-    coaxial: LinkGroups,
-) -> dict[str, MeshFrame]:
+    revolutes: Sequence[Revolute],
+    tree: Mapping[str, str],
+) -> tuple[dict[str, MeshFrame], dict[str, str]]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
-    joins two coaxial links."""
+    joins two coaxial links, and the axis classes of the links with the axes it makes
+    coaxial (each link's class, named by its first link); the ``revolutes`` (``tree``:
+    the bearing tree) make links coaxial before the meshes do."""
     ends = {m.name: axis_links(train, m) for m in meshes}
     choices = [_options(train, m, parent, depth) for m in meshes]
     for assignment in _assignments(choices):
-        groups = LinkGroups(sorted(train.link_names))
-        for link in train.link_names:
-            groups.union(link, coaxial.find(link))
-        for _, equal in assignment:
-            if equal is not None:
-                groups.union(*equal)
-        if all(groups.find(ends[m.name][0]) != groups.find(ends[m.name][1]) for m in meshes):
-            for _, equal in assignment:
-                if equal is not None:
-                    coaxial.union(*equal)
-            return {m.name: frame for m, (frame, _) in zip(meshes, assignment, strict=True)}
+        equals = [equal for _, equal in assignment if equal is not None]
+        groups = _coaxial(train, revolutes, tree, equals=equals)[0]
+        if all(groups[ends[m.name][0]] != groups[ends[m.name][1]] for m in meshes):
+            return {m.name: frame for m, (frame, _) in zip(meshes, assignment, strict=True)}, groups
     problems = [
         Problem(
             f"couplings.{m.name}",
@@ -273,12 +286,6 @@ def _assignments(choices: Sequence[list[Choice]]) -> Iterator[tuple[Choice, ...]
     if any(not c for c in choices):
         return iter(())
     return product(*choices)
-
-
-def _representative(groups: LinkGroups, link: str, names: Sequence[str]) -> str:
-    """The first link (in name order) of the axis class of ``link``."""
-    root = groups.find(link)
-    return min(n for n in names if groups.find(n) == root)
 
 
 def _root(train: Train, axis: Mapping[str, str], bearing_axis: Mapping[str, str]) -> str:

@@ -8,7 +8,7 @@ the line from the apex to it, the tooth force along the common normal.  A tilted
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -17,7 +17,7 @@ from davies_sym.algebra.radicals import RadicalError, RadicalTable
 from davies_sym.algebra.screws import Vector, cross, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import axis_structure
-from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout, spacings
+from davies_sym.geometry.layout import X_AXIS, Y_AXIS, Layout
 from davies_sym.topology.couplings import AxisSpacing
 from davies_sym.topology.model import Gear, Train
 
@@ -27,7 +27,8 @@ def _norm_squared(v: Vector) -> sympy.Expr:
 
 
 def _unit(v: Vector, radicals: RadicalTable) -> Vector:
-    norm = radicals.sqrt(_norm_squared(v))
+    squared = _norm_squared(v)
+    norm = radicals.sqrt(squared)
     return radicals.reduced(x / norm for x in v)
 
 
@@ -35,8 +36,15 @@ def _dot(a: Vector, b: Vector) -> sympy.Expr:
     return sympy.expand(sum(x * y for x, y in zip(a, b, strict=True)))
 
 
-def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) -> dict[str, Vector]:
-    """Unit axis direction of every geared link: given ones first, then tilted planets."""
+def _link_axes(
+    train: Train,
+    gears: Mapping[str, Gear],
+    spaced: Sequence[AxisSpacing],
+    radicals: RadicalTable,
+    problems: list[Problem],
+) -> dict[str, Vector]:
+    """Unit axis direction of every geared link (``gears``: the train's, by name;
+    ``spaced``: its `spacings`): given ones first, then tilted planets."""
     axes: dict[str, Vector] = {}
     for g in train.gears:
         if g.axis is None:
@@ -48,7 +56,7 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
         axes.setdefault(g.link, axis)
     for g in train.gears:
         if g.tilted and g.link not in axes:
-            tilted = _tilted_axis(train, g, axes, radicals, problems)
+            tilted = _tilted_axis(spaced, gears, g, axes, radicals, problems)
             if tilted is not None:
                 axes[g.link] = tilted
     tilted_links = {g.link for g in train.gears if g.tilted}
@@ -64,7 +72,12 @@ def _link_axes(train: Train, radicals: RadicalTable, problems: list[Problem]) ->
 
 
 def _tilted_axis(
-    train: Train, gear: Gear, axes: Mapping[str, Vector], radicals: RadicalTable, problems: list[Problem]
+    spaced: Sequence[AxisSpacing],
+    gears: Mapping[str, Gear],
+    gear: Gear,
+    axes: Mapping[str, Vector],
+    radicals: RadicalTable,
+    problems: list[Problem],
 ) -> Vector | None:
     """Axis of a bevel planet meshing two coaxial gears A and B that face each other.
 
@@ -75,9 +88,9 @@ def _tilted_axis(
     """
     entry = f"gears.{gear.name}.axis"
     partners = []
-    for c in spacings(train):
+    for c in spaced:
         if gear.name in c.gears:
-            other = train.gear(c.gears[1] if c.gears[0] == gear.name else c.gears[0])
+            other = gears[c.gears[1] if c.gears[0] == gear.name else c.gears[0]]
             if other.link in axes:
                 partners.append(other)
     if len(partners) != 2:
@@ -108,7 +121,7 @@ def _tilted_axis(
     return radicals.reduced((rise * e - step * z) / (2 * rp) for e, z in zip(radial, b, strict=True))
 
 
-def conical_layout(train: Train) -> Layout:
+def conical_layout(train: Train, spaced: Sequence[AxisSpacing]) -> Layout:
     """Bevel and face-gear trains whose axes all meet at the origin (Laus section 3.5).
 
     A mesh of gears with unit axes a, b and pitch radii r_a, r_b has its pitch point in the
@@ -117,17 +130,18 @@ def conical_layout(train: Train) -> Layout:
     rotation about the line OP (the pitch cones roll), the tooth force acts at P along
     a x b, and a bearing turns about the axis of the gears of its link.  Square roots
     (tilted axes) stay exact as radical symbols; a gear meshing twice must have both
-    pitch points on one pitch circle (equal cone distances).
+    pitch points on one pitch circle (equal cone distances).  ``spaced``: the train's
+    `spacings`.
     """
     problems: list[Problem] = []
     radicals = RadicalTable()
-    axes = _link_axes(train, radicals, problems)
+    gears = {g.name: g for g in train.gears}
+    axes = _link_axes(train, gears, spaced, radicals, problems)
     if problems:
         raise GeometryError(problems, train.file_lines)
-    gears = {g.name: g for g in train.gears}
     cones = _Cones(gears, {g.name: axes[g.link] for g in train.gears}, radicals, problems)
-    meshes = {m.name: m for m in spacings(train)}
-    structure = axis_structure(train)
+    meshes = {m.name: m for m in spaced}
+    structure = axis_structure(train, spaced)
     origin = vector((0, 0, 0))
     for c in train.couplings:
         if c.name in meshes:

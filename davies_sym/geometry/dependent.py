@@ -25,7 +25,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.caches import IdentityCache
 from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
-from davies_sym.geometry.layout import Layout, polynomial_part, solve_linear
+from davies_sym.geometry.layout import Layout, linear_roots, polynomial_part, tidy_quotient
 from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Relation, Train
 
@@ -70,10 +70,8 @@ def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:
         expr = without_positive_factors(polynomial_part(sympy.expand(c.expression.subs(values))))
         if expr == 0:
             continue  # implied by the constraints solved already
-        candidates = [
-            s for s in sorted_symbols(expr.free_symbols) if sympy.degree(expr, s) == 1 and str(s) not in independent
-        ]
-        if not candidates:
+        roots = linear_roots(expr, independent)
+        if not roots:
             problems.append(
                 Problem(
                     "independent" if independent else f"couplings.{c.coupling}",
@@ -86,21 +84,15 @@ def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:
                 )
             )
             continue
-        symbol = min(candidates, key=lambda s: _rank(s, expr, c.coupling, preferred))
-        solution = _tidy(solve_linear(expr, symbol))
-        relations = [Relation(r.symbol, _tidy(r.expression.subs(symbol, solution)), r.constraint) for r in relations]
+        symbol = min(roots, key=lambda s: _rank(s, roots[s], c.coupling, preferred))
+        solution = tidy_quotient(roots[symbol])
+        relations = [
+            Relation(r.symbol, tidy_quotient(r.expression.subs(symbol, solution)), r.constraint) for r in relations
+        ]
         relations.append(Relation(symbol, solution, str(c)))
     if problems:
         raise GeometryError(problems, train.file_lines)
     return tuple(relations)
-
-
-def _tidy(expr: sympy.Expr) -> sympy.Expr:
-    """``expr`` expanded; a quotient (a module solved before it) over one denominator first,
-    so that a relation holds no quotient of quotients."""
-    if polynomial_part(expr) is expr:
-        return sympy.expand(expr)
-    return sympy.expand(sympy.cancel(expr))
 
 
 def _preferred(train: Train, planet_second: frozenset[str]) -> dict[str, list[sympy.Symbol]]:
@@ -114,9 +106,11 @@ def _preferred(train: Train, planet_second: frozenset[str]) -> dict[str, list[sy
 
 
 def _rank(
-    symbol: sympy.Symbol, expr: sympy.Expr, coupling: str, preferred: Mapping[str, list[sympy.Symbol]]
+    symbol: sympy.Symbol, solution: sympy.Expr, coupling: str, preferred: Mapping[str, list[sympy.Symbol]]
 ) -> tuple[int, int, str]:
-    solution = solve_linear(expr, symbol)
+    """How much ``symbol`` (whose root is ``solution``) is preferred as the parameter a
+    constraint closed by ``coupling`` gives: a positive sum first, then the closing
+    mesh's radii in ``preferred`` order, then by name (lowest first)."""
     positive_sum = solution.is_Add and all(t.as_coeff_Mul()[0] > 0 for t in solution.args)
     closing = preferred.get(coupling, [])
     return (0 if positive_sum else 1, closing.index(symbol) if symbol in closing else len(closing), str(symbol))

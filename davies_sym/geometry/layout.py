@@ -1,10 +1,10 @@
 """What every layout hands on: `Layout`, the geometric constraints, and the
-helpers the line, plane and cone layouts share (axis groups, constraint bookkeeping,
-eliminating one radius per constraint)."""
+helpers the line, plane and cone layouts share (constraint bookkeeping, eliminating one
+radius per constraint)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import sympy
@@ -13,11 +13,7 @@ from davies_sym.algebra.radicals import Radical
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.errors import GeometryError, Problem
-from davies_sym.topology.coupling_kinds import bearings
-from davies_sym.topology.couplings import AxisSpacing
-from davies_sym.topology.link_groups import LinkGroups
-from davies_sym.topology.model import Train
+from davies_sym.errors import Problem
 
 Z_AXIS: Vector = vector((0, 0, 1))
 X_AXIS: Vector = vector((1, 0, 0))
@@ -79,50 +75,23 @@ def line_point(y: sympy.Expr) -> Vector:
     return vector((0, y, 0))
 
 
-def spacings(train: Train) -> list[AxisSpacing]:
-    """How each coupling that places two gears' axes spaces them (meshes, chains), in the
-    train's order."""
-    gears = {g.name: g for g in train.gears}
-    found = (c.spacing(gears) for c in train.couplings)
-    return [s for s in found if s is not None]
-
-
-def axis_groups(train: Train) -> tuple[set[str], LinkGroups]:
-    """The geared links, and the groups of them that share one axis (joined by a revolute
-    that names no axis: coaxial members)."""
-    geared = {g.axis_link for g in train.gears}
-    groups = LinkGroups(list(train.link_names))
-    for c in bearings(train.couplings):
-        if c.axis is None and c.links[0] in geared and c.links[1] in geared:
-            groups.union(*c.links)
-    return geared, groups
-
-
-def check_placed(train: Train, groups: LinkGroups, positions: Mapping[str, object], problems: list[Problem]) -> None:
-    """Every gear's axis group has a position, or the layout fails with all problems."""
-    for g in train.gears:
-        if groups.find(g.axis_link) not in positions:
-            problems.append(
-                Problem(
-                    f"gears.{g.name}",
-                    "its position cannot be derived: no mesh or revolute with `at` connects it "
-                    "to the rest of the train",
-                )
-            )
-    if problems:
-        raise GeometryError(problems, train.file_lines)
-
-
 def constraint_substitutions(constraints: tuple[GeometricConstraint, ...]) -> list[dict[sympy.Symbol, sympy.Expr]]:
     """Every way to eliminate one symbol with one linear constraint: r1 - r3 = r2 - r4
     gives r4 -> r2 + r3 - r1, r1 -> r2 + r3 - r4, ..."""
     out = []
     for c in constraints:
-        expr = polynomial_part(c.expression)
-        for s in sorted_symbols(expr.free_symbols):
-            if sympy.degree(expr, s) == 1:
-                out.append({s: solve_linear(expr, s)})
+        out += [{s: root} for s, root in linear_roots(polynomial_part(c.expression)).items()]
     return out
+
+
+def linear_roots(expr: sympy.Expr, kept: Collection[str] = ()) -> dict[sympy.Symbol, sympy.Expr]:
+    """Each symbol in which ``expr = 0`` is linear (by name, none of ``kept``) -> its root
+    (`solve_linear`), in the order of the symbols."""
+    return {
+        s: solve_linear(expr, s)
+        for s in sorted_symbols(expr.free_symbols)
+        if sympy.degree(expr, s) == 1 and str(s) not in kept
+    }
 
 
 def polynomial_part(expr: sympy.Expr) -> sympy.Expr:
@@ -140,6 +109,14 @@ def solve_linear(expr: sympy.Expr, symbol: sympy.Symbol) -> sympy.Expr:
     general ``solve``."""
     expr = sympy.expand(expr)
     return sympy.expand(-expr.subs(symbol, 0) / expr.coeff(symbol, 1))
+
+
+def tidy_quotient(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` expanded; a quotient (a module solved before it) over one denominator first,
+    so that a relation holds no quotient of quotients."""
+    if polynomial_part(expr) is expr:
+        return sympy.expand(expr)
+    return sympy.expand(sympy.cancel(expr))
 
 
 def joint_substitution(constraints: tuple[GeometricConstraint, ...]) -> dict[sympy.Symbol, sympy.Expr]:

@@ -29,7 +29,6 @@ from davies_sym.geometry.layout import (
     Layout,
     line_point,
     loop_through,
-    spacings,
 )
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
 from davies_sym.topology.couplings import AxisSpacing
@@ -114,7 +113,7 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
     """Derive axis positions, pitch points and geometric constraints of a planar train
     with the axis classes of ``structure``."""
     problems: list[Problem] = []
-    meshes = sorted(spacings(train), key=lambda c: c.name)
+    meshes = sorted(structure.spacings, key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
     via: dict[str, tuple[str, str]] = {}
     positions = place_classes(train, structure, meshes, gears, problems, via)
@@ -137,7 +136,7 @@ def planar_line_layout(train: Train, structure: AxisStructure) -> Layout:
         mesh_normals={m.name: Y_AXIS for m in meshes},
         constraints=tuple(closures.constraints),
         positive_facts=tuple(m.distance for m in meshes if m.internal),
-        planet_second=structure.planet_second(),
+        planet_second=structure.planet_second,
     )
 
 

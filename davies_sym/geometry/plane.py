@@ -24,7 +24,7 @@ from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.axes import AxisStructure
-from davies_sym.geometry.layout import Closures, Layout, spacings
+from davies_sym.geometry.layout import Closures, Layout
 from davies_sym.geometry.line import side_of_second
 from davies_sym.topology.coupling_kinds import bearings as all_bearings
 from davies_sym.topology.couplings import AxisSpacing
@@ -39,10 +39,10 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     of the planets."""
     problems: list[Problem] = []
     gears = {g.name: g for g in train.gears}
-    meshes = sorted(spacings(train), key=lambda c: c.name)
+    meshes = sorted(structure.spacings, key=lambda c: c.name)
     # Known positive: the centre distance of an internal pair, and a radius the geometry
     # writes in others (a coaxial planet's r4 = r3 + r5 - r6).
-    known = [m.distance for m in spacings(train) if m.internal]
+    known = [m.distance for m in structure.spacings if m.internal]
     known += [g.radius for g in train.gears if g.radius is not None and not g.radius.is_Symbol]
     radicals = RadicalTable(facts=known)
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
@@ -69,7 +69,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
         positive_facts=tuple(pitch.facts) + tuple(r.radicand for r in radicals.radicals),
         radicals=tuple(radicals.radicals),
         frame=unit,
-        planet_second=structure.planet_second(),
+        planet_second=structure.planet_second,
     )
 
 

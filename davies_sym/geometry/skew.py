@@ -12,7 +12,7 @@ spatial, and a spur mesh becomes a point contact (`Layout.spatial`).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import replace
 
 import sympy
@@ -20,24 +20,19 @@ import sympy
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.errors import GeometryError, Problem
 from davies_sym.geometry.layout import X_AXIS, Layout
-from davies_sym.topology import coupling_kinds
+from davies_sym.topology.coupling_kinds import CouplingsByKind
 from davies_sym.topology.model import Gear, Train
 from davies_sym.topology.revolute import Revolute
 from davies_sym.topology.skew_mesh import SkewMesh
 
 
-def skew_meshes(train: Train) -> list[SkewMesh]:
-    """The skew meshes of ``train``, by name."""
-    return sorted(coupling_kinds.skew_meshes(train.couplings), key=lambda c: c.name)
-
-
-def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
-    """The layout of ``train``: its parallel-axis part by ``parallel``, then each worm link
-    placed across its wheel's axis."""
-    meshes = skew_meshes(train)
+def skew_layout(train: Train, kinds: CouplingsByKind, parallel: Callable[[Train], Layout]) -> Layout:
+    """The layout of ``train`` (its couplings split by ``kinds``): its parallel-axis part by
+    ``parallel``, then each worm link placed across its wheel's axis."""
+    meshes = sorted(kinds.skew, key=lambda c: c.name)
     gears = {g.name: g for g in train.gears}
     worms = {gears[m.gears[0]].link: m for m in meshes}
-    _check_worm_links(train, gears, meshes, worms)
+    _check_worm_links(train, kinds.bearings, gears, meshes, worms)
     rest = _parallel_part(train, set(worms))
     layout = parallel(rest)
     if layout.axis != vector((0, 0, 1)) or layout.gear_axes:
@@ -65,7 +60,7 @@ def skew_layout(train: Train, parallel: Callable[[Train], Layout]) -> Layout:
         normal = vector((s, c * in_pitch_plane[1], c * in_pitch_plane[2]))
         centres[worm.name], gear_axes[worm.name] = worm_centre, worm_axis
         points[mesh.name], tangents[mesh.name], normals[mesh.name] = pitch_point, tooth_line, normal
-        for bearing in _bearings(train, link):
+        for bearing in _bearings(kinds.bearings, link):
             points[bearing.name], coupling_axes[bearing.name] = worm_centre, worm_axis
     return replace(
         layout,
@@ -83,18 +78,22 @@ def _plus(point: Vector, distance: sympy.Expr, direction: Vector) -> Vector:
     return vector([sympy.expand(p + distance * d) for p, d in zip(point, direction, strict=True)])
 
 
-def _bearings(train: Train, link: str) -> list[Revolute]:
-    return [c for c in coupling_kinds.bearings(train.couplings) if link in c.links]
+def _bearings(bearings: Sequence[Revolute], link: str) -> list[Revolute]:
+    return [c for c in bearings if link in c.links]
 
 
 def _check_worm_links(
-    train: Train, gears: Mapping[str, Gear], meshes: list[SkewMesh], worms: dict[str, SkewMesh]
+    train: Train,
+    revolutes: Sequence[Revolute],
+    gears: Mapping[str, Gear],
+    meshes: list[SkewMesh],
+    worms: dict[str, SkewMesh],
 ) -> None:
     """A worm's link carries that worm only and turns in bearings on the worm's axis; the
     wheel is on the parallel-axis part of the train."""
     problems: list[Problem] = []
     seen: dict[str, str] = {}
-    allowed = {c.name for c in coupling_kinds.bearings(train.couplings)} | {m.name for m in meshes}
+    allowed = {c.name for c in revolutes} | {m.name for m in meshes}
     for mesh in meshes:
         worm, wheel = gears[mesh.gears[0]], gears[mesh.gears[1]]
         entry = f"couplings.{mesh.name}.gears"
@@ -121,7 +120,7 @@ def _check_worm_links(
             problems.append(
                 Problem(entry, f"the second gear {wheel.name!r} is on the worm link of mesh {worms[wheel.link].name}")
             )
-        bearings = _bearings(train, worm.link)
+        bearings = _bearings(revolutes, worm.link)
         if not bearings:
             problems.append(Problem(entry, f"link {worm.link!r} of {worm.name!r} needs a revolute (its bearing)"))
         for bearing in bearings:

@@ -10,6 +10,7 @@ own members (`Coupling.written_quantities`, `Coupling.noun`, ...).
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 
 from davies_sym.topology.chain_drive import BeltDrive, ChainDrive
 from davies_sym.topology.couplings import Coupling
@@ -79,6 +80,28 @@ def as_bearing(coupling: Coupling) -> Revolute | None:
 def sliders(couplings: Iterable[Coupling]) -> list[Prismatic]:
     """The prismatic pairs, in order."""
     return [c for c in couplings if isinstance(c, Prismatic)]
+
+
+@dataclass(frozen=True)
+class CouplingsByKind:
+    """A train's couplings split by kind once, each group in the train's order: what a
+    stage that asks several of the queries above reads instead of asking each."""
+
+    toothed: tuple[ToothedMesh, ...]
+    gear: tuple[GearMesh, ...]
+    skew: tuple[SkewMesh, ...]
+    bearings: tuple[Revolute, ...]
+
+
+def by_kind(couplings: Iterable[Coupling]) -> CouplingsByKind:
+    """``couplings`` split by kind: toothed meshes, gear meshes, skew meshes, bearings."""
+    couplings = tuple(couplings)
+    return CouplingsByKind(
+        toothed=tuple(toothed_meshes(couplings)),
+        gear=tuple(gear_meshes(couplings)),
+        skew=tuple(skew_meshes(couplings)),
+        bearings=tuple(bearings(couplings)),
+    )
 
 
 def as_written_screws(coupling: Coupling) -> ScrewCoupling | None:

@@ -17,7 +17,7 @@ from davies_sym.caches import IdentityCache
 from davies_sym.errors import InputError, Problem, TopologyError
 from davies_sym.topology.coupling_kinds import as_bearing, bearings
 from davies_sym.topology.couplings import Coupling
-from davies_sym.topology.link_groups import LinkGroups
+from davies_sym.topology.link_groups import link_roots
 from davies_sym.topology.model import Link, Ports, State, Train
 from davies_sym.topology.schema import PORT_KEYS
 
@@ -28,22 +28,19 @@ def train_in_state(train: Train, state: State | str) -> Train:
     if isinstance(state, str):
         state = train.state(state, "state")
     problems: list[Problem] = []
-    joined = LinkGroups(train.link_names)
-    for link in state.brake:
-        joined.union(link, train.reference)
-    for a, b in state.clutch:
-        joined.union(b, a)
+    pairs = [*((link, train.reference) for link in state.brake), *((b, a) for a, b in state.clutch)]
+    joined = link_roots(train.link_names, pairs)
     groups: dict[str, list[str]] = {}
     for link in train.link_names:
-        groups.setdefault(joined.find(link), []).append(link)
+        groups.setdefault(joined[link], []).append(link)
     names = {root: root if root == train.reference else "+".join(members) for root, members in groups.items()}
 
     def rename(link: str) -> str:
-        return names[joined.find(link)]
+        return names[joined[link]]
 
     free = set(state.free)
     for link in free:
-        if joined.find(link) != link or len(groups[link]) > 1:
+        if joined[link] != link or len(groups[link]) > 1:
             problems.append(
                 train.problem(f"states.{state.name}.free", f"{link!r} cannot be free and braked or clutched")
             )

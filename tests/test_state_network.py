@@ -43,7 +43,8 @@ def test_shared_network_equals_network_from_scratch(path: str) -> None:
     train = davies_sym.load(ROOT / path)
     for state in train.states:
         resolved = resolved_train(davies_sym.train_in_state(train, state))
-        assert shared_screws(resolved) is not None, state.name
+        assert resolved.whole is not None
+        assert shared_screws(resolved, train_layout(resolved.whole)) is not None, state.name
         net, fresh = Network(resolved), _from_scratch(path, state.name)
         assert net.tree == fresh.tree and net.action_tree == fresh.action_tree
         assert net.system.coordinates == fresh.system.coordinates and net.system.lift == fresh.system.lift
@@ -111,15 +112,17 @@ def test_a_given_layout_or_a_train_on_its_own_takes_nothing_shared() -> None:
     Network(state, layout=train_layout(state))
     assert computed_shared_screws(state.whole) is None
     alone = resolved_train(davies_sym.load(ROOT / "catalog/tuplin.yaml"))
-    assert shared_screws(alone) is None
+    assert shared_screws(alone, train_layout(alone)) is None
 
 
 def test_a_coupling_other_than_its_whole_s_is_not_shared() -> None:
     state = _states("catalog/simpson.yaml")[0]
     first, *rest = state.couplings
-    assert shared_screws(state) is not None
+    assert state.whole is not None
+    whole = train_layout(state.whole)
+    assert shared_screws(state, whole) is not None
     # Screws are shared only for the whole's own couplings (their ends aside).
-    assert shared_screws(replace(state, couplings=(replace(first, name=f"{first.name}2"), *rest))) is None
+    assert shared_screws(replace(state, couplings=(replace(first, name=f"{first.name}2"), *rest)), whole) is None
 
 
 def test_states_that_free_the_same_members_share_one_whole_whatever_their_ports() -> None:

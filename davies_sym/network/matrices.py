@@ -20,7 +20,6 @@ from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
 from davies_sym.network.coupling_graph import CouplingGraph
-from davies_sym.network.coupling_screws import coupling_screws, written_square_root
 from davies_sym.network.friction_laws import LOSS_ROLES, CoulombLaw, DragLaw, FrictionLaw, LinearLaw, ViscousLaw
 from davies_sym.network.pressed_guides import pressed_laws
 from davies_sym.network.screw_system import (
@@ -31,7 +30,7 @@ from davies_sym.network.screw_system import (
     minimal_screw_system,
     reduce_coupling,
 )
-from davies_sym.network.shared_screws import shared_screws
+from davies_sym.network.shared_screws import coupling_screws, shared_screws, written_square_root
 from davies_sym.topology.coupling_kinds import as_bearing, as_written_screws
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.kind_screws import CouplingScrews
@@ -90,15 +89,16 @@ class Network:
     ):
         self.train = train
         self.layout = layout if layout is not None else train_layout(train)
+        # A state given its whole's layout takes the screw work its whole train shares, unless
+        # square roots are written in its screws: their radical symbols are numbered per train.
+        whole = train_layout(train.whole) if layout is None and train.whole is not None else None
         self.graph = CouplingGraph(train.link_names, [(c.name, *c.links) for c in train.couplings])
         self.tree = tuple(tree) if tree is not None else self.graph.default_tree(train.reference)
         self.action_tree = tuple(action_tree) if action_tree is not None else self.tree
         for label, t in (("tree", self.tree), ("action tree", self.action_tree)):
             if not self.graph.is_spanning_tree(t):
                 raise DerivationError(f"{label} {list(t)} is not a spanning tree of the coupling graph")
-        # A state given its whole's layout takes the screw work its whole train shares, unless
-        # square roots are written in its screws: their radical symbols are numbered per train.
-        shared = shared_screws(train) if layout is None else None
+        shared = shared_screws(train, whole) if whole is not None else None
         if shared is not None and not shared.written_square_root(c.name for c in train.couplings):
             full = {c.name: shared.screws(c.name) for c in train.couplings}
             self.system: ScrewSystem = shared.system(tuple(full))

@@ -1,6 +1,9 @@
-"""The screw work of a multi-speed train, done once for the states that share a whole train.
+"""The screws each coupling contributes to the network, and the screw work of a
+multi-speed train, done once for the states that share a whole train.
 
-A state (`davies_sym.topology.states.train_in_state`) keeps the couplings of its whole
+Each kind writes its own screws for a given layout (``Coupling.screws``, Laus Tables
+3-4, 12-13); square roots written in a low-level coupling's screws are found here for
+the layout's radical table.  A state (`davies_sym.topology.states.train_in_state`) keeps the couplings of its whole
 train with their ends renamed, and the layout of the whole (a brake or a clutch joins
 members, it does not move an axis).  A coupling's screws read its name, gears and kind
 from the coupling and its point, axis and tangent from the layout, never its ends, so
@@ -17,9 +20,9 @@ from dataclasses import replace
 
 import sympy
 
+from davies_sym.algebra.radicals import has_square_root
 from davies_sym.caches import IdentityCache
-from davies_sym.geometry import train_layout
-from davies_sym.network.coupling_screws import coupling_screws, written_square_root
+from davies_sym.geometry.layout import Layout
 from davies_sym.network.screw_system import (
     ReducedCoupling,
     ScrewSystem,
@@ -27,8 +30,22 @@ from davies_sym.network.screw_system import (
     minimal_screw_system,
     reduce_coupling,
 )
+from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.kind_screws import CouplingScrews
 from davies_sym.topology.model import Train
+
+
+def written_square_root(screws: CouplingScrews) -> bool:
+    """Whether a square root is written in the screws (a low-level coupling's), which
+    the layout's radical table must absorb."""
+    return any(
+        has_square_root(x) for group in (screws.motions, screws.constraints) for named in group for x in named.screw
+    )
+
+
+def coupling_screws(coupling: Coupling, layout: Layout) -> CouplingScrews:
+    """The unit twists and candidate unit wrenches of ``coupling`` in ``layout``."""
+    return coupling.screws(layout)
 
 
 class SharedScrews:
@@ -37,11 +54,11 @@ class SharedScrews:
 
     Screw systems are keyed by the couplings a state keeps (a state that drops
     couplings may span a smaller system); reduced couplings by the system and the
-    coupling, so states whose systems agree share them.
+    coupling, so states whose systems agree share them.  ``layout`` is the whole train's.
     """
 
-    def __init__(self, whole: Train):
-        self.layout = train_layout(whole)
+    def __init__(self, whole: Train, layout: Layout):
+        self.layout = layout
         self.couplings = {c.name: c for c in whole.couplings}
         self._screws: dict[str, CouplingScrews] = {}
         self._rooted: dict[str, bool] = {}
@@ -69,7 +86,8 @@ class SharedScrews:
         """The screw system the couplings ``kept`` span (`minimal_screw_system`)."""
         known = self._systems.get(kept)
         if known is None:
-            essential = essential_twists((self.screws(n) for n in kept), self.layout.spatial)
+            screws = [self.screws(n) for n in kept]
+            essential = essential_twists(screws, self.layout.spatial)
             known = self._systems[kept] = minimal_screw_system(essential, self.layout.radicals)
         return known
 
@@ -92,14 +110,15 @@ def computed_shared_screws(whole: Train) -> SharedScrews | None:
     return _SHARED.peek(whole)
 
 
-def shared_screws(train: Train) -> SharedScrews | None:
-    """The shared screw work of ``train``'s whole train, when ``train`` is a state whose
-    couplings are its whole's with other ends (the only difference `coupling_screws`
-    does not read); None for a train on its own."""
+def shared_screws(train: Train, whole_layout: Layout) -> SharedScrews | None:
+    """The shared screw work of ``train``'s whole train (whose layout is
+    ``whole_layout``), when ``train`` is a state whose couplings are its whole's with
+    other ends (the only difference `coupling_screws` does not read); None for a train on
+    its own."""
     whole = train.whole
     if whole is None:
         return None
-    shared = _SHARED.get(whole, lambda: SharedScrews(whole))
+    shared = _SHARED.get(whole, lambda: SharedScrews(whole, whole_layout))
     for c in train.couplings:
         own = shared.couplings.get(c.name)
         if own is None or replace(c, links=own.links) != own:

@@ -108,7 +108,8 @@ def main(sample: int) -> None:
         f"median, {max(seconds) * 1000:.1f} ms slowest per choice"
     )
     whole = counts[6] / 2 * per
-    print(f"whole search extrapolated: about {whole / 3600:.1f} core-hours ({counts[6] / 2:,.0f} choices after relabelling)")
+    choices = counts[6] / 2
+    print(f"whole search extrapolated: about {whole / 3600:.1f} core-hours ({choices:,.0f} choices after relabelling)")
 
 
 if __name__ == "__main__":

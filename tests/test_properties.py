@@ -299,7 +299,7 @@ def test_mutated_catalog_file_is_answered_or_refused_many(train: str) -> None:
 # --- valid trains against the oracle ------------------------------------------------------------------------
 
 #: Families whose trains derive in about a second; the slow run adds the 2-D double-pinion set
-#: and Simpson's four states (Ravigneaux, 30 s a train, is left to tests/test_random_trains.py).
+#: and Simpson's four states (Ravigneaux, 30 s a train, is left to tests/test_seeded_trains_oracle.py).
 FAST_FAMILIES = ("pair", "chain", "planetary", "stepped", "wolfrom", "tuplin")
 SLOW_FAMILIES = (*FAST_FAMILIES, "double_pinion", "simpson")
 #: Parts of a spelling (tests/oracle/random_trains.py): none of them changes the train.

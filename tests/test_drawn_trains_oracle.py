@@ -6,7 +6,7 @@ the independent oracle (tests/oracle/balance.py).
   exits 0, or 2 or 3 with every line of standard error a located refusal (``<kind>
   error: FILE``, and ``FILE:LINE: ENTRY:`` for topology, geometry and mobility
   errors); never a traceback, exit 1 or exit 4.
-* The engine agrees with the oracle on the drawn trains, as tests/test_random_trains.py
+* The engine agrees with the oracle on the drawn trains, as tests/test_seeded_trains_oracle.py
   checks the seeded ones: every state, both input ports, speed ratio and efficiency at
   the drawn (exact, rational) design to a relative 1e-9, self-locking on both sides; and
   ``derive --eval`` prints the same numbers (its exit status 3 where the oracle finds the

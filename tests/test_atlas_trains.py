@@ -332,6 +332,7 @@ def test_every_six_link_file_derives(entries: dict[int, list[Entry]]) -> None:
         resolved = resolved_train(train)
         free = sorted({s for g in resolved.gears for s in sympy.sympify(g.radius).free_symbols}, key=str)
         lossless = {p: 1 for p in first.parameters if str(p).startswith("eta_")}
+        efficiency = None  # not the last train's when no draw is a design of this one
         for _ in range(400):  # a point of the design space: every radius and layout fact positive
             values: dict[object, object] = {s: chooser.randint(5, 60) for s in free} | lossless
             try:

@@ -48,6 +48,9 @@ class Entry(GraphPlace):
     #: The axis whose distance from the main axis the meshes leave free (a parameter of
     #: the train file the efficiency does not depend on), or None.
     free_axis: int | None = None
+    #: The order the train file writes its meshes in (the layout places them so), or
+    #: None: that of the gear pairs.
+    order: tuple[int, ...] | None = None
 
     @property
     def name(self) -> str:
@@ -101,7 +104,7 @@ class Entry(GraphPlace):
         )
         coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
         source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
-        return TrainFile(drawn, title, source, self.choices, self.planar, self.free_axis)
+        return TrainFile(drawn, title, source, self.choices, self.planar, self.free_axis, order=self.order)
 
     def train(self) -> Train:
         """The train of `train_file`, built without YAML."""
@@ -160,6 +163,7 @@ def entry(place: GraphPlace) -> Entry:
                 drawing=drawn,
                 loaded=found.loaded,
                 free_axis=found.free_axis,
+                order=found.order,
             )
     reason = next((r for r in reasons if r), "no held member leaves two others turning at a ratio set by the gears")
     return Entry(**where, choices=(), not_drawable=reason)

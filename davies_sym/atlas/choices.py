@@ -6,17 +6,24 @@ output becomes the input), so the choice of which of the two is written as the i
 only names the state. A choice is *admissible* when the speed ratio between the two
 members is a finite, non-zero function of the radii: a constant ratio would mean the
 two members turn as one (or one stands still) whatever the gears.
+
+The choices are read from a drawing that some positive radii build: a layout whose
+loops of meshes ask for a radius that is not positive is redrawn (`_way_to_draw`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from itertools import combinations
+from dataclasses import dataclass, replace
+from itertools import combinations, permutations
 
+import sympy
+
+from davies_sym.algebra.linear_regions import Requirement, empty_region
 from davies_sym.atlas.realisation import Realisation
 from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol
 from davies_sym.errors import DaviesError, GeometryError
 from davies_sym.geometry import train_layout
+from davies_sym.geometry.layout import Layout, polynomial_part
 from davies_sym.network.analysis import Analysis, analyse
 from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Train
@@ -46,13 +53,78 @@ class Admissible:
     reason: str | None = None
     #: The axis whose distance from the main axis is a free parameter, or None.
     free_axis: int | None = None
+    #: The order the meshes are written (and placed) in, or None: that of the gear pairs.
+    order: tuple[int, ...] | None = None
 
 
-def _written(drawn: Realisation, candidates: tuple[Choice, ...], planar: bool, free_axis: int | None = None) -> Train:
-    return TrainFile(drawn, "choices", "atlas", candidates, planar, free_axis).train()
+@dataclass(frozen=True)
+class _Way:
+    """One way of writing a drawn train: on a line or in 2-D, a free axis distance or
+    none, the meshes in an order (None: that of the gear pairs)."""
+
+    planar: bool
+    free_axis: int | None = None
+    order: tuple[int, ...] | None = None
 
 
-def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> tuple[int, Train] | None:
+#: A way of writing a train, with the train so written.
+_Written = tuple[_Way, Train]
+
+
+def _written(drawn: Realisation, candidates: tuple[Choice, ...], way: _Way) -> Train:
+    return TrainFile(drawn, "choices", "atlas", candidates, way.planar, way.free_axis, order=way.order).train()
+
+
+def admits_positive_radii(train: Train, layout: Layout) -> bool:
+    """False where no design of positive radii satisfies the geometric constraints of the
+    layout (its loops of meshes, Laus section 3.4.1.6) with every fact of the layout
+    positive (an annulus larger than its pinion, a triangle of planet axes that closes):
+    the linear constraints solved exactly, the emptiness of what is left proved by
+    Fourier-Motzkin elimination over the rationals (`empty_region`); True otherwise, also
+    where the proof is out of its reach (a constraint of higher degree is left out)."""
+    positive = [sympy.sympify(g.radius) for g in train.gears] + [sympy.sympify(f) for f in layout.positive_facts]
+    symbols = sorted(set().union(*(e.free_symbols for e in positive)), key=str)
+    linear = [e for c in layout.constraints if (e := polynomial_part(c.expression)).is_polynomial(*symbols)]
+    linear = [e for e in linear if sympy.Poly(e, *symbols).total_degree() <= 1]
+    solutions = sympy.linsolve(linear, symbols) if linear else sympy.FiniteSet(tuple(symbols))
+    if not solutions:
+        return False
+    (solution,) = solutions
+    solved = dict(zip(symbols, solution, strict=True))
+    return empty_region([Requirement(sympy.expand(e.xreplace(solved)), ">") for e in positive]) is None
+
+
+def _drawing(drawn: Realisation, candidates: tuple[Choice, ...], way: _Way) -> Train | GeometryError | None:
+    """The train written ``way`` when its layout draws it with positive radii; the
+    geometry's error when it cannot be drawn; None when its loops of meshes ask for a
+    radius that is not positive."""
+    train = _written(drawn, candidates, way)
+    try:
+        layout = train_layout(train)
+    except GeometryError as exc:
+        return exc
+    return train if admits_positive_radii(train, layout) else None
+
+
+def _ordered(drawn: Realisation, candidates: tuple[Choice, ...], way: _Way) -> _Written | GeometryError | None:
+    """The train written ``way``, with the meshes in the order of the gear pairs; where
+    that drawing asks for a radius that is not positive (on a line: a planet placed
+    outward of the planet it meshes where it lies inward), in the first other order (of
+    the permutations, lexicographic) that draws it without. The geometry's error where
+    the order of the gear pairs cannot be drawn (no other is tried: a line that cannot
+    be drawn gives way to 2-D); None where no order draws it."""
+    found = _drawing(drawn, candidates, way)
+    if found is not None:
+        return (way, found) if isinstance(found, Train) else found
+    identity = tuple(range(len(drawn.meshes)))
+    for order in permutations(identity):
+        other = replace(way, order=order)
+        if order != identity and isinstance(train := _drawing(drawn, candidates, other), Train):
+            return other, train
+    return None
+
+
+def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> _Written | None:
     """The first planet axis (in the order of the labelling) whose distance from the main
     axis, left free, lets the 2-D placement close every loop of meshes, with the train so
     written; None when none does. A loop of four planet axes and the main one (two planets
@@ -62,39 +134,45 @@ def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> tuple[i
     for axis in range(len(drawn.graph.axes)):
         if axis == drawn.main_axis:
             continue
-        train = _written(drawn, candidates, True, axis)
-        try:
-            layout = train_layout(train)
-        except GeometryError:
+        found = _ordered(drawn, candidates, _Way(True, axis))
+        if not isinstance(found, tuple):
             continue
+        layout = train_layout(found[1])
         free = distance_symbol(drawn, axis)
         if not any(free in map(str, c.expression.free_symbols) for c in layout.constraints):
-            return axis, train
+            return found
     return None
+
+
+def _way_to_draw(drawn: Realisation, candidates: tuple[Choice, ...]) -> _Written | str:
+    """How the train is written: on a line; in 2-D (`placement:`) where the meshes between
+    planets close loops a line cannot, or where no order of the meshes draws the line
+    with positive radii; in 2-D with a free axis distance where the placement keeps a free
+    shape. The reason where none draws it."""
+    line = _ordered(drawn, candidates, _Way(False))
+    if isinstance(line, tuple):
+        return line
+    planar = _ordered(drawn, candidates, _Way(True))
+    if isinstance(planar, tuple):
+        return planar
+    free = _free_drawing(drawn, candidates)
+    if free is not None:
+        return free
+    why = planar.problems[0].message if planar is not None else "no order of its meshes gives positive radii"
+    return f"neither a line nor 2-D placement draws it ({why})"
 
 
 def admissible_choices(drawn: Realisation) -> Admissible:
     """The choices whose speed ratio is finite, non-zero and depends on the radii, read
-    from the motions of the train written with every choice as a state; drawn on a line,
-    or in 2-D (`placement:`) when the meshes between planets close loops a line cannot."""
+    from the motions of the train written with every choice as a state, drawn as
+    `_way_to_draw` says."""
     candidates = every_choice(drawn)
     if not candidates:
         return Admissible((), False)
-    planar, free_axis = False, None
-    train = _written(drawn, candidates, planar)
-    try:
-        train_layout(train)
-    except GeometryError:
-        planar = True
-        train = _written(drawn, candidates, planar)
-        try:
-            train_layout(train)
-        except GeometryError as exc:
-            free = _free_drawing(drawn, candidates)
-            if free is None:
-                reason = f"neither a line nor 2-D placement draws it ({exc.problems[0].message})"
-                return Admissible((), planar, (), reason)
-            free_axis, train = free
+    found = _way_to_draw(drawn, candidates)
+    if isinstance(found, str):
+        return Admissible((), True, (), found)
+    way, train = found
     kept, loaded = [], []
     for choice, state in zip(candidates, train.states, strict=True):
         try:
@@ -106,7 +184,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
                     loaded.append(choice)
         except (DaviesError, ZeroDivisionError):
             continue
-    return Admissible(tuple(kept), planar, tuple(loaded), free_axis=free_axis)
+    return Admissible(tuple(kept), way.planar, tuple(loaded), free_axis=way.free_axis, order=way.order)
 
 
 def _every_mesh_loaded(analysis: Analysis) -> bool:

@@ -134,7 +134,9 @@ class TrainFile:
     """The train file of a drawn graph as a value: ``choices`` as its states (the first
     one's ports as the train's), drawn in 2-D when ``planar``, with the distance of
     ``free_axis`` from the main axis a symbol (`distance_symbol`) when the meshes leave it
-    free, tooth numbers when ``toothed`` and the free ones listed in ``independent``.
+    free, tooth numbers when ``toothed`` and the free ones listed in ``independent``; the
+    meshes written in ``order`` (indices of the drawing's meshes; None: in the order of
+    the gear pairs), which is the order the layout places them in.
 
     The atlas builds the `Train` from it (`train`) and writes YAML only for the user's
     files (`text`)."""
@@ -147,6 +149,7 @@ class TrainFile:
     free_axis: int | None = None
     toothed: ToothedForm | None = None
     independent: tuple[str, ...] | None = None
+    order: tuple[int, ...] | None = None
 
     def document(self) -> dict[str, Any]:
         """The train file as a mapping (YAML-ready), in the order a person reads it."""
@@ -161,7 +164,7 @@ class TrainFile:
             if link_name(x) != reference
         }
         couplings |= _axis_bearings(drawn, self.free_axis)
-        couplings |= _meshes(drawn, self.toothed)
+        couplings |= _meshes(drawn, self.toothed, self.order)
         first = self.choices[0]
         states = {
             c.name: {
@@ -209,11 +212,14 @@ def _links(drawn: Realisation) -> dict[str, Any]:
     return links
 
 
-def _meshes(drawn: Realisation, toothed: ToothedForm | None) -> dict[str, Any]:
-    """The meshes, with their ordinary efficiencies when ``toothed``."""
+def _meshes(drawn: Realisation, toothed: ToothedForm | None, order: tuple[int, ...] | None) -> dict[str, Any]:
+    """The meshes, named M0, M1, ... in ``order`` (the layout places them in the order of
+    their names: on a line, a mesh between two planets of one carrier puts the planet it
+    places outward of the other), with their ordinary efficiencies when ``toothed``."""
     internal = {g.name for g in drawn.gears if g.internal}
+    written = drawn.meshes if order is None else tuple(drawn.meshes[k] for k in order)
     meshes: dict[str, Any] = {}
-    for index, m in enumerate(drawn.meshes):
+    for index, m in enumerate(written):
         mesh: dict[str, Any] = {"type": "mesh", "gears": [m.first, m.second]}
         if toothed is not None:
             mesh["efficiency"] = toothed.internal if internal & {m.first, m.second} else toothed.external

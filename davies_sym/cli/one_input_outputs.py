@@ -65,6 +65,19 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     return figure_bytes(region_figure(variants, x, y, fixed, port), figure_suffix(args.out, train.path))
 
 
+def _fmu(result: OneInputResult, args: argparse.Namespace) -> bytes:
+    """The ``.fmu`` of ``--emit fmu -o TRAIN.fmu``: the parameters start at ``--at``'s
+    values, else the file's first check's, each checked as ``--eval`` checks it."""
+    from davies_sym.emit.fmu_archive import fmu_archive
+
+    train = result.train
+    if not args.out:
+        raise InputError([Problem("--emit", "fmu writes an archive: give its file with -o TRAIN.fmu")], train.path)
+    published = {k: v for k, v in result.file_train.published_design(args.state).items() if k in train.symbols}
+    given = values(train, args.at, "--at", (), published)
+    return fmu_archive(result, {str(k): float(v) for k, v in given.items()})
+
+
 def derive_sets(
     train: Train, state: str | None, progress: Progress, failures: list[str], inputs: Sequence[str] | None = None
 ) -> list[tuple[str, VariantSet]]:
@@ -175,8 +188,10 @@ def one_input_outputs(
 ) -> list[tuple[str | None, str | bytes]]:
     """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation
     (of the states that derive; the others are reported in ``failures``)."""
-    if (args.vs or args.at) and not args.plot:
-        raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    if args.vs and not args.plot:
+        raise InputError([Problem("--vs", "only with --plot")], train.path)
+    if args.at and not (args.plot or args.emit == "fmu"):
+        raise InputError([Problem("--at", "only with --plot or --emit fmu")], train.path)
     check_emit(args, train.path)
     _check_ports(train, args)
     # An evaluation alone needs only the variants of its input port.
@@ -201,6 +216,8 @@ def one_input_outputs(
         writer = sensitivity_latex if args.latex else sensitivity_text
         return [(args.out, "".join(writer(vs, args.sensitivity) for _, vs in _taking(sets, args.sensitivity, train)))]
     result = OneInputResult(train, tuple(sets), args.state, progress)
+    if args.emit == "fmu":
+        return [(args.out, _fmu(result, args))]
 
     def answer() -> Evaluation:
         chosen = result.train  # the state's train: its own ports and symbols

@@ -9,7 +9,7 @@ from importlib import metadata
 
 from davies_sym.cli.completion import ANY_FILE, SHELLS, YAML_FILES, catalog_completion
 from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
-from davies_sym.emit.language_names import LANGUAGES
+from davies_sym.emit.language_names import EMIT_TARGETS, LANGUAGES
 from davies_sym.option_types import Parser, jobs
 
 
@@ -98,11 +98,13 @@ def _document_options(p: argparse.ArgumentParser) -> None:
     python.complete = ANY_FILE  # type: ignore[attr-defined]
     p.add_argument(
         "--emit",
-        choices=LANGUAGES,
+        choices=EMIT_TARGETS,
         metavar="LANG",
         help=f"print (or with -o FILE write) the formulas as code in LANG ({', '.join(LANGUAGES)}): one "
         "function per variant (per power-flow region for a train with several inputs) and per turning "
-        "condition, and the choice efficiency(...) that picks the one that holds; in place of the document",
+        "condition, and the choice efficiency(...) that picks the one that holds; in place of the document; "
+        "fmu: write a Functional Mock-up Unit (FMI 2.0 co-simulation) to -o TRAIN.fmu, its parameters "
+        "starting at --at NAME=VALUE (default: the file's first published check)",
     )
     p.add_argument(
         "--completion",
@@ -162,7 +164,8 @@ def _figure_options(p: argparse.ArgumentParser) -> None:
         nargs="+",
         metavar="NAME=VALUE",
         default=[],
-        help="with --plot: values of the other parameters (default: the first published check of the file)",
+        help="with --plot: values of the other parameters; with --emit fmu: the parameters' start values "
+        "(default: the first published check of the file)",
     )
 
 

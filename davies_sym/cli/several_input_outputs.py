@@ -78,6 +78,12 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
     if (args.vs or args.at) and not args.plot:
         raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
     check_emit(args, train.path)
+    if args.emit == "fmu":
+        why = (
+            "fmu: the unit is built for a train driven at one port; for one driven at several shafts write "
+            "--emit c (its regions by the shafts' speeds) and wrap it"
+        )
+        raise InputError([Problem("--emit", why)], train.path)
 
 
 def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:

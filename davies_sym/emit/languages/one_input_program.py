@@ -50,6 +50,7 @@ from davies_sym.emit.languages.variant_choice_program import (
     choice_steps,
     port_choice,
     port_reason,
+    port_variant,
 )
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
 
@@ -128,10 +129,12 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     steps = [choice_steps(variants, port, names, called) for port in ports]
     choices = [port_choice(variants, port, names, st, not_covered) for port, st in zip(ports, steps, strict=True)]
     reasons = [port_reason(variants, port, names, st) for port, st in zip(ports, steps, strict=True)]
-    routines += [*choices, *reasons]
+    numbers = [port_variant(variants, port, names, st) for port, st in zip(ports, steps, strict=True)]
+    routines += [*choices, *reasons, *numbers]
     signature = PortSignature(names, fresh("input_port", names), ports, not_covered)
     entry = by_port("efficiency", "the efficiency", choices, signature)
     routines += [entry, by_port("reason", "why there is an efficiency or not", reasons, signature)]
+    routines.append(by_port("variant", "the number of the variant that holds (0: none)", numbers, signature))
     routines += sensitivity_routines(variants, public, steps, signature)
     _check_unique(routines, names)
     header = _header(variants, signature, table, relations, routines, state)

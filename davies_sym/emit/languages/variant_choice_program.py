@@ -210,6 +210,30 @@ def port_reason(variants: VariantSet, port: str, names: tuple[str, ...], choice:
     )
 
 
+def port_variant(variants: VariantSet, port: str, names: tuple[str, ...], choice: Choice) -> Routine:
+    """``variant_from_<port>(...)``: the number of the variant the choice of ``port``
+    picks (its turning conditions hold and its loaded forces agree), self-locking or
+    not; 0 outside the admissible parameters, where a port does not turn or no
+    variant holds (``reason_from_<port>`` says which)."""
+    number = {v.name: v.number for v in variants.variants}
+    code = choice.local("number")
+    picked = sympy.Piecewise(
+        (sympy.Integer(0), sympy.Not(sympy.And(choice.ok, choice.turns))),
+        *((sympy.Integer(number[name]), held) for name, held in zip(choice.order, choice.held, strict=True)),
+        (sympy.Integer(0), True),
+        evaluate=False,
+    )
+    return Routine(
+        f"variant_from_{identifier_part(port)}",
+        f"the number of the variant efficiency_from_{identifier_part(port)} takes (self-locking or not); 0 "
+        "where none holds",
+        tuple(Argument(n, Kind.REAL) for n in names),
+        Kind.REAL,
+        (*(s for s in choice.steps if s.target != str(choice.chosen)), Step(code, Kind.REAL, picked)),
+        sympy.Symbol(code),
+    )
+
+
 def by_port(name: str, what: str, choices: list[Routine], signature: PortSignature) -> Routine:
     """``name(..., input_port)``: ``choices[input_port]`` (the routine of that input port)."""
     names, port_argument, ports = signature.names, signature.port_argument, signature.ports

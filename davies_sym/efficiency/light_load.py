@@ -17,8 +17,9 @@ gear gives in its carrier's frame (the tooth force and friction moment of the ac
 solution of D_A, ``Analysis.action_solution``, on the driving side) is positive, and
 each bearing's reaction has the sign it assumes.  Both are closed forms in the geometry,
 the losses and the operating point.  The mesh conditions do not depend on the region,
-so the variant of a neighbouring region holds where the losses move a turning point past
-the lossless boundary.  Which bearing reversals admissible designs reach is found by
+so the formula of a neighbouring region holds where the losses move a turning point past
+the lossless boundary: that case is a variant of the region it lies in, with the mesh
+reversed (`davies_sym.efficiency.mesh_reversals`).  Which bearing reversals admissible designs reach is found by
 sampling losses and input torque over decades at the variant's sampled geometries,
 starting from the lossless directions and following the forces that disagree.  A case
 missed here is never a wrong number: where no case agrees, the answer is refused.

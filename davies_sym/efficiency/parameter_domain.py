@@ -199,6 +199,17 @@ class ParameterDomain:
         except ZeroDivisionError:  # a fact undefined here (a dependent module's pole): no design
             return False
 
+    def completed(self, free: Point) -> Point | None:
+        """``free`` (values of the symbols the constraints leave free, and of any others)
+        with the eliminated symbols added, or None where it is no admissible design."""
+        point = dict(free)
+        try:
+            for symbol, expr in self.eliminated.items():
+                point[symbol] = self.value(expr, point)
+        except ZeroDivisionError:
+            return None
+        return point if self._admissible(point) else None
+
     def value(self, expr: sympy.Expr, point: Point) -> sympy.Rational:
         """Exact value of a rational expression of the train's symbols at ``point``."""
         v = self._converted(sympy.sympify(expr)).evaluate(point)

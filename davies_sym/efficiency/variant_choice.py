@@ -5,10 +5,14 @@ The turning conditions are the signs of the lossless mesh powers (eqs. (86)-(88)
 losses a variant holds where its assumptions agree with its own solution: each driving
 gear gives power in its carrier's frame, each bearing's reaction has the assumed sign
 (`davies_sym.efficiency.light_load`).  Near a turning condition the friction in the
-other meshes can reverse a small mesh power, so the variant that holds may be that of
-the neighbouring region; at light load a drag can reverse a force anywhere.  Every
-variant whose assumptions agree is found; one efficiency among them is the answer, none
-or several different ones are refused, never guessed.
+other meshes can reverse a small mesh power, so the variant that holds may be one of
+the region's reversed-mesh variants (`davies_sym.efficiency.mesh_reversals`: the
+neighbouring region's formula with the region's turning conditions and the reversed
+mesh's condition); at light load a drag can reverse a force anywhere.  The region's own
+variants come first; another region's is taken only where none of them agrees (a
+reversal the sampling did not reach).  Every variant whose assumptions agree is found;
+one efficiency among them is the answer, none or several different ones are refused,
+never guessed.
 """
 
 from __future__ import annotations

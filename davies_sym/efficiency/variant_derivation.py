@@ -16,6 +16,7 @@ import sympy
 from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.efficiency.empty_regions import emptiness_proof
 from davies_sym.efficiency.light_load import Derivation, LoadCase, case_draws, reached_cases
+from davies_sym.efficiency.mesh_reversals import MeshReversal, mesh_reversals, reached_points
 from davies_sym.efficiency.operating_point import INPUT_SPEED, INPUT_TORQUE, at_operating_point, zeta_forms
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point
 from davies_sym.efficiency.turning_conditions import MeshRole, TurningCondition
@@ -105,6 +106,7 @@ class VariantContext:
     conditions: tuple[TurningCondition, ...]
     combos: tuple[dict[str, int], ...]
     regions: Mapping[tuple[int, ...], list[Point]]
+    domain: ParameterDomain
     facts: tuple[Requirement, ...]
     etas: tuple[sympy.Symbol, ...]
     #: Laws besides the meshes' own friction change with the input side.
@@ -201,6 +203,48 @@ class VariantList:
                 loaded_forces=case.forces,
             )
             analysis = case.derivation.analysis
+            self.variants.append(checked_variant(variant, case.samples, ctx.etas, analysis, ctx.conditions, self.rng))
+
+    def reversed_meshes(self) -> list[tuple[str, str, MeshReversal]]:
+        """The cases where the losses turn a mesh's power round against its lossless
+        direction (`davies_sym.efficiency.mesh_reversals`): for each region's variant, the
+        other regions' variants of its input whose forces agree at some sampled point of
+        its region."""
+        ctx = self.context
+        meshes = [r.coupling for r in ctx.sides.roles]
+        plain = [v for v in self.variants if not v.reversed_forces]
+        out = []
+        for base in plain:
+            key = tuple(base.signs[c.name] for c in ctx.conditions)
+            others = [v for v in plain if v.input == base.input and dict(v.signs) != dict(base.signs)]
+            if not others or not ctx.regions.get(key):
+                continue
+            groups = list(reached_points(ctx.domain, ctx.conditions, ctx.regions, key))
+            for case in mesh_reversals(base, others, groups, meshes, ctx.etas, ctx.seed):
+                out.append((base.input, base.output, case))
+        return out
+
+    def add_reversed_meshes(self, cases: Sequence[tuple[str, str, MeshReversal]]) -> None:
+        """The variants of the mesh reversals ``cases``, numbered after the others: the
+        formula and driving gears of the variant they are like, the signs of their own
+        region, the reversed meshes named."""
+        ctx = self.context
+        analysis = ctx.sides.derivation(True, frozenset()).analysis
+        for port_in, port_out, case in cases:
+            number = self.next_number
+            ctx.say(f"variant {number}: input {port_in}, the losses reverse {', '.join(sorted(case.reversed))}")
+            like = case.like
+            variant = Variant(
+                number,
+                port_in,
+                port_out,
+                dict(case.signs),
+                like.first_drives,
+                like.efficiency_rf,
+                True,
+                reversed_forces=case.reversed,
+                loaded_forces=like.loaded_forces,
+            )
             self.variants.append(checked_variant(variant, case.samples, ctx.etas, analysis, ctx.conditions, self.rng))
 
 

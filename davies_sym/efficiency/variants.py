@@ -246,15 +246,21 @@ def derive_variants(
     # too) changes with the input side, and at light load can reverse a loaded force:
     # derive the other side again, and the cases the losses reach.
     again = not only_mesh_laws(analysis.network.laws, {r.coupling for r in roles})
-    context = VariantContext(train, sides, tuple(conditions), combos, regions, facts, tuple(etas), again, seed, say)
+    context = VariantContext(
+        train, sides, tuple(conditions), combos, regions, domain, facts, tuple(etas), again, seed, say
+    )
     found = VariantList(context)
     found.add_side(True, inputs)
     found.add_side(False, inputs)
     light = found.light_load()
-    if light and found.skipped and train.ports.input not in (inputs or ()):
-        # The light-load variants are numbered after the declared input's: derive those too.
+    turned = found.reversed_meshes()
+    declared_skipped = train.ports.input not in (inputs or ())
+    if found.skipped and ((light and declared_skipped) or turned):
+        # The light-load variants are numbered after the declared input's, the reversed
+        # meshes' after every light-load one: derive those too.
         return derive_variants(train, progress, samples, seed, layout)
     found.add_light_load(light)
+    found.add_reversed_meshes(turned)
     return VariantSet(
         train,
         analysis,

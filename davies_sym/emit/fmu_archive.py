@@ -15,21 +15,18 @@ import sys
 import tempfile
 import zipfile
 from collections.abc import Mapping
-from dataclasses import replace
+
+import sympy
 
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, parameters_of_train
-from davies_sym.efficiency.parameters import given_forms
 from davies_sym.emit.derived_result import OneInputResult
 from davies_sym.emit.fmu_sources import FmuModel, model_description, wrapper_source
-from davies_sym.emit.languages import program_of
-from davies_sym.emit.languages.registry import TARGETS
-from davies_sym.emit.languages.routines import formula_routine
+from davies_sym.emit.languages import emit_code, program_of
+from davies_sym.emit.languages.one_input_program import RATIO
 from davies_sym.errors import InputError, MissingDependencyError, Problem
 
-#: The unit's own routine of the speed ratio (the formulas' may leave out symbols it needs).
-RATIO_ROUTINE = "fmu_speed_ratio"
 #: Every entry of the archive has this time stamp (the same bytes from run to run).
 STAMP = (1980, 1, 1, 0, 0, 0)
 
@@ -82,21 +79,19 @@ def fmu_model(result: OneInputResult, starts: Mapping[str, float]) -> tuple[FmuM
     if any(n not in table for n in program.parameters) or any(str(s) in program.parameters for s in OPERATING_SYMBOLS):
         why = "the formulas depend on the load (the input torque or speed): an FMU takes formulas of the geometry "
         raise InputError([Problem("--emit", why + "and the efficiencies alone")], train.path)
-    ratio = given_forms(variants)(variants.analysis.speed_ratio().to_expr())
-    extra = sorted_symbols(s for s in ratio.free_symbols if str(s) not in program.parameters)
+    ratio = next(r for r in program.routines if r.name == RATIO)
+    extra = sorted_symbols(sympy.Symbol(n) for n in ratio.argument_names if n not in program.parameters)
     names = (*program.parameters, *(str(s) for s in extra))
     laws = variants.analysis.network.laws
+    by_name = {str(s): s for s in variants.train.symbols.values()}
     parameters = (
         *(table[n] for n in program.parameters),
-        *parameters_of_train(train, laws, extra, OPERATING_PARAMETERS),
+        *parameters_of_train(train, laws, [by_name.get(str(s), s) for s in extra], OPERATING_PARAMETERS),
     )
-    needed = [p.name for p in parameters if p.name not in starts]
+    needed = [n for n in names if n not in starts]
     if needed:
         why = f"give the start value of {', '.join(needed)} (NAME=VALUE): the FMU's parameters start there"
         raise InputError([Problem("--at", why)], train.path)
-    summary = "the speed ratio, input over output, in every symbol it takes"
-    speed = replace(formula_routine(RATIO_ROUTINE, summary, ratio, names), exported=False)
-    program = replace(program, routines=(*program.routines, speed))
     model = FmuModel(
         program.module,
         train.name or program.module,
@@ -107,7 +102,7 @@ def fmu_model(result: OneInputResult, starts: Mapping[str, float]) -> tuple[FmuM
         dict(starts),
         tuple((v.number, v.name) for v in variants.variants),
     )
-    return model, TARGETS["c"].write(program)
+    return model, emit_code(result, "c")
 
 
 def fmu_archive(result: OneInputResult, starts: Mapping[str, float]) -> bytes:

@@ -164,7 +164,7 @@ def wrapper_source(model: FmuModel, formulas_file: str, guid: str) -> str:
     by_name = {r.name: r for r in model.program.routines}
     names = [p.name for p in model.parameters]
     calls = {
-        "RATIO": _call(by_name["fmu_speed_ratio"], names),
+        "RATIO": _call(by_name["speed_ratio"], names),
         **{
             f"{what.upper()}_{k}": _call(by_name[what], names, str(k))
             for what in ("efficiency", "variant", "reason")

@@ -187,8 +187,50 @@ def write_modelica(program: Program) -> str:
     lines += [f"package {program.module} {_string(program.header[0])}"]
     for routine in program.routines:
         lines += ["", *_routine(routine)]
+    if program.ports:
+        lines += ["", *_flange_model(program)]
     lines += [f"end {program.module};"]
     return "\n".join(lines) + "\n"
+
+
+def _flange_model(program: Program) -> list[str]:
+    """``model Gear``: the train between two rotational flanges (``flange_a`` the input
+    port, ``flange_b`` the output port), its efficiency chosen as the FMU chooses it
+    (`davies_sym.emit.fmu_sources`): from the power the output flange takes in, the
+    input's variants where the load takes power, the output's where it gives power
+    (at standstill the input's); an assertion stops the model where no formula holds."""
+    by_name = {r.name: r for r in program.routines}
+    ratio = by_name["speed_ratio"]
+    names = [*program.parameters, *(n for n in ratio.argument_names if n not in program.parameters)]
+    local = {*names}
+    ratio_name, power, forward, backward = (fresh(n, local) for n in ("ratio", "power_b", "eta_ab", "eta_ba"))
+    arguments = "".join(f"{n}, " for n in program.parameters)
+    flange = "Modelica.Mechanics.Rotational.Interfaces"
+    model = fresh("Gear", set(by_name))
+    lines = [f"  model {model} {_string('the train between two rotational flanges, four quadrants')}"]
+    lines += [f"    parameter Real {n};" for n in names]
+    lines += [
+        f'    {flange}.Flange_a flange_a "{program.ports[0]}, the input port";',
+        f'    {flange}.Flange_b flange_b "{program.ports[1]}, the output port";',
+        f'    Real {ratio_name} "speed ratio, {program.ports[0]} over {program.ports[1]}";',
+        f'    Real {power} "power into the train at flange_b";',
+        f'    Real {forward} "efficiency with flange_a driving";',
+        f'    Real {backward} "efficiency with flange_b driving";',
+        "  equation",
+        f"    {ratio_name} = speed_ratio({', '.join(ratio.argument_names)});",
+        f"    {forward} = efficiency({arguments}0);",
+        f"    {backward} = efficiency({arguments}1);",
+        f"    flange_a.phi = {ratio_name} * flange_b.phi;",
+        f"    {power} = flange_b.tau * der(flange_b.phi);",
+        f"    flange_a.tau = if {power} > 0 then -{backward} * flange_b.tau / {ratio_name}",
+        f"      else -flange_b.tau / ({ratio_name} * {forward});",
+        f'    assert({power} > 0 or {forward} > 0, "no efficiency with flange_a driving: reason " +',
+        f"      String(reason({arguments}0)));",
+        f'    assert({power} <= 0 or {backward} > 0, "no efficiency with flange_b driving: reason " +',
+        f"      String(reason({arguments}1)));",
+        f"  end {model};",
+    ]
+    return lines
 
 
 MODELICA = Target("modelica", _NOT_COVERED, write_modelica)

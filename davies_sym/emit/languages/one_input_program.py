@@ -21,6 +21,7 @@ from dataclasses import replace
 
 import sympy
 
+from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.efficiency.parameters import (
     admissible_relations,
@@ -81,6 +82,10 @@ def _where(variants: VariantSet, variant: Variant) -> str:
     )
 
 
+#: The routine of the speed ratio in all its symbols (the Python module's ``speed_ratio``).
+RATIO = "speed_ratio"
+
+
 def one_input_program(variants: VariantSet, module: str, not_covered: str, state: str | None = None) -> Program:
     """The program of ``variants``; ``module``: the namespace's identifier; ``not_covered``:
     what the target language returns where there is no efficiency (``NaN``); ``state``:
@@ -119,6 +124,11 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     routines.append(admissible)
     ports = (train.ports.input, train.ports.output)
     ratio = public(variants.analysis.speed_ratio().to_expr())
+    extra = tuple(str(s) for s in sorted_symbols(ratio.free_symbols) if str(s) not in names)
+    summary = (
+        f"the speed ratio, {ports[0]} over {ports[1]}, in every symbol it takes; 0 or infinite: a port does not turn"
+    )
+    routines.append(formula_routine(RATIO, summary, ratio, (*names, *extra)))
     turning = None
     if {str(x) for x in ratio.free_symbols} <= set(names):
         summary = f"the speed ratio, {ports[0]} over {ports[1]}; 0 or infinite: a port does not turn"

@@ -156,3 +156,14 @@ def test_a_screen_beyond_its_bound_is_refused(monkeypatch: pytest.MonkeyPatch) -
     )
     assert_refused(result, None, ("--teeth",), line=False)
     assert "narrow the --teeth ranges" in result.stderr
+
+
+def test_ranges_no_design_fits_exit_3_with_the_count() -> None:
+    """A first gear of 2.5 that no design of these small ranges gives within 0.5 %: exit
+    3, the 6 x 3 x 3 = 54 designs of the ranges counted (every one admissible: the
+    rings follow from sun and planet, all above 17 teeth)."""
+    table = ["1=2.5", *TABLE[1:]]
+    result = run_main(
+        ["shifts", str(TEETH), "--target", *table, "--teeth", "zs=20:25", "zp1=17:19", "zp2=17:19", "--quiet"]
+    )
+    assert result.returncode == 3 and "none of the 54 admissible tooth designs" in result.stderr

@@ -148,6 +148,24 @@ def _fit(
     return model, best.best, best
 
 
+def _predictions(
+    model: TrainModel, result: Fit, others: list[Measurements], document: dict[str, object], lines: list[str]
+) -> None:
+    """The efficiency predicted at every row of the ``--predict`` files, added to the
+    answer's ``document`` and text ``lines`` (with the mean absolute error where the
+    files measure ``eta``)."""
+    predicted = np.concatenate([model.predict(other, result.parameters) for other in others])
+    document["predicted_efficiency"] = [None if np.isnan(v) else float(v) for v in predicted]
+    rows = [(other.path, line) for other in others for line in other.lines]
+    lines.append(f"predicted efficiency at the {len(rows)} rows of {', '.join(o.path for o in others)}:")
+    lines += [f"  {path}:{line}: {v:.4f}" for (path, line), v in zip(rows, predicted, strict=True)]
+    if all("eta" in other for other in others):
+        measured = np.concatenate([other.column("eta") for other in others])
+        error = float(np.nanmean(np.abs(predicted - measured)))
+        document["mean_absolute_error"] = error
+        lines.append(f"mean absolute error against the measured eta: {error:.4f}")
+
+
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     """The ``derive calibrate`` command, its arguments parsed by ``parser``; returns the
     exit status (0, or 2 for bad input)."""
@@ -192,16 +210,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         document["starts"] = starts.as_dict()
         lines.append(starts.text())
     if others:
-        predicted = np.concatenate([model.predict(other, result.parameters) for other in others])
-        document["predicted_efficiency"] = [None if np.isnan(v) else float(v) for v in predicted]
-        rows = [(other.path, line) for other in others for line in other.lines]
-        lines.append(f"predicted efficiency at the {len(rows)} rows of {', '.join(o.path for o in others)}:")
-        lines += [f"  {path}:{line}: {v:.4f}" for (path, line), v in zip(rows, predicted, strict=True)]
-        if all("eta" in other for other in others):
-            measured = np.concatenate([other.column("eta") for other in others])
-            error = float(np.nanmean(np.abs(predicted - measured)))
-            document["mean_absolute_error"] = error
-            lines.append(f"mean absolute error against the measured eta: {error:.4f}")
+        _predictions(model, result, others, document, lines)
     if args.out:
         try:
             write_atomic(args.out, residual_figure(result, suffix=suffix))

@@ -95,6 +95,43 @@ def _question(args: argparse.Namespace, train: Train, freedom: int) -> ShiftQues
     )
 
 
+def _search(
+    args: argparse.Namespace, parser: argparse.ArgumentParser, train: Train, question: ShiftQuestion, say: Display
+) -> ShiftResult:
+    """The schemes the options ask for: of the file's teeth, or with ``--teeth`` of every
+    tooth design within the ranges."""
+    if args.drag < 0:
+        raise InputError([Problem("--drag", f"a drag coefficient is >= 0, got {args.drag}")])
+    ranking = Ranking(_weights(args.weights, question.targets), float(args.drag))
+    workers = Workers(args.jobs, args.scheduler)
+    if args.teeth is not None:
+        if question.connections:
+            why = "searches the tooth numbers of the connections as written: give --connections 0 with --teeth"
+            raise InputError([Problem("--teeth", why)])
+        ranges = ToothRanges(tooth_bounds(args.teeth), args.planets, args.min_teeth)
+        return shift_teeth_search(train, question, ranges, ranking, workers, say)
+    for option in ("--planets", "--min-teeth"):
+        if getattr(args, option[2:].replace("-", "_")) != parser.get_default(option[2:].replace("-", "_")):
+            raise InputError([Problem(option, "applies to a tooth search: give --teeth NAME=LO:HI too")])
+    return shift_search(train, question, ranking, workers, say)
+
+
+def _not_found(
+    args: argparse.Namespace, train: Train, question: ShiftQuestion, result: ShiftResult, ports: tuple[str, str]
+) -> list[str]:
+    """Why no scheme gives the table: the closest ratios of each gear no combination
+    reaches, or the rule that leaves none."""
+    if result.tooth_designs is not None:
+        return [
+            f"none of the {result.tooth_designs} admissible tooth designs within the --teeth ranges gives every "
+            "gear under the rules: widen the ranges or the --tolerance"
+        ]
+    return unreached(member_speeds(train), ports, question) or [
+        f"every gear is reached, but no scheme of {args.elements or 'any number of'} elements meets the rules"
+        + ("" if args.any_shifts else " (single transitions: --any-shifts lifts that one)")
+    ]
+
+
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     """The ``derive shifts`` command; returns the exit status (0, 2 bad input, 3 no
     scheme gives the table)."""
@@ -116,31 +153,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             )
             raise InputError([train.problem("couplings", why)], train.path)
         question = _question(args, train, len(forms.free))
-        if args.drag < 0:
-            raise InputError([Problem("--drag", f"a drag coefficient is >= 0, got {args.drag}")])
-        ranking = Ranking(_weights(args.weights, question.targets), float(args.drag))
-        workers = Workers(args.jobs, args.scheduler)
-        if args.teeth is not None:
-            if question.connections:
-                why = "searches the tooth numbers of the connections as written: give --connections 0 with --teeth"
-                raise InputError([Problem("--teeth", why)])
-            ranges = ToothRanges(tooth_bounds(args.teeth), args.planets, args.min_teeth)
-            result = shift_teeth_search(train, question, ranges, ranking, workers, say)
-        else:
-            for option in ("--planets", "--min-teeth"):
-                if getattr(args, option[2:].replace("-", "_")) != parser.get_default(option[2:].replace("-", "_")):
-                    raise InputError([Problem(option, "applies to a tooth search: give --teeth NAME=LO:HI too")])
-            speeds = member_speeds(train)
-            result = shift_search(train, question, ranking, workers, say)
+        result = _search(args, parser, train, question, say)
     except DaviesError as exc:
         text = exc.report() if isinstance(exc, InputError) else f"{COMMAND}: {args.train}: {exc}"
         print(text.replace("<input>", args.train), file=sys.stderr)
         return 2
     if not result.candidates:
-        lines = ([] if args.teeth is not None else unreached(speeds, ports, question)) or [
-            f"every gear is reached, but no scheme of {args.elements or 'any number of'} elements meets the rules"
-            + ("" if args.any_shifts else " (single transitions: --any-shifts lifts that one)")
-        ]
+        lines = _not_found(args, train, question, result, ports)
         print("\n".join(f"{COMMAND}: {args.train}: {line}" for line in lines), file=sys.stderr)
         return 3
     answer = (

@@ -17,6 +17,7 @@ input_port)`` picks the port's choice.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import sympy
@@ -123,18 +124,8 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     )
     routines.append(admissible)
     ports = (train.ports.input, train.ports.output)
-    ratio = public(variants.analysis.speed_ratio().to_expr())
-    extra = tuple(str(s) for s in sorted_symbols(ratio.free_symbols) if str(s) not in names)
-    summary = (
-        f"the speed ratio, {ports[0]} over {ports[1]}, in every symbol it takes; 0 or infinite: a port does not turn"
-    )
-    routines.append(formula_routine(RATIO, summary, ratio, (*names, *extra)))
-    turning = None
-    if {str(x) for x in ratio.free_symbols} <= set(names):
-        summary = f"the speed ratio, {ports[0]} over {ports[1]}; 0 or infinite: a port does not turn"
-        # A helper (the Python module's speed_ratio screens its values; this one is raw).
-        turning = replace(formula_routine("raw_speed_ratio", summary, ratio, names), exported=False)
-        routines.append(turning)
+    speed, turning = _ratio_routines(variants, public, names, ports)
+    routines += [speed, *([turning] if turning is not None else [])]
     called = ChoiceRoutines({r.name: r for r in routines}, forces, admissible, turning)
     steps = [choice_steps(variants, port, names, called) for port in ports]
     choices = [port_choice(variants, port, names, st, not_covered) for port, st in zip(ports, steps, strict=True)]
@@ -149,6 +140,24 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     _check_unique(routines, names)
     header = _header(variants, signature, table, relations, routines, state)
     return Program(module, header, tuple(routines), entry.name, names, ports)
+
+
+def _ratio_routines(
+    variants: VariantSet, public: Callable[[sympy.Expr], sympy.Expr], names: tuple[str, ...], ports: tuple[str, str]
+) -> tuple[Routine, Routine | None]:
+    """``speed_ratio`` in every symbol the ratio takes, and the choice's raw ratio in the
+    formulas' parameters (None where the ratio takes others)."""
+    ratio = public(variants.analysis.speed_ratio().to_expr())
+    extra = tuple(str(s) for s in sorted_symbols(ratio.free_symbols) if str(s) not in names)
+    summary = (
+        f"the speed ratio, {ports[0]} over {ports[1]}, in every symbol it takes; 0 or infinite: a port does not turn"
+    )
+    speed = formula_routine(RATIO, summary, ratio, (*names, *extra))
+    if extra:
+        return speed, None
+    summary = f"the speed ratio, {ports[0]} over {ports[1]}; 0 or infinite: a port does not turn"
+    # A helper (the Python module's speed_ratio screens its values; this one is raw).
+    return speed, replace(formula_routine("raw_speed_ratio", summary, ratio, names), exported=False)
 
 
 def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:

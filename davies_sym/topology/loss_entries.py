@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import sympy
 
@@ -61,13 +61,13 @@ def read_friction(
     reader: EntryReader,
     default: Friction,
     name: str = "",
-    bearing: bool = False,
-    guide: bool = False,
+    on: Literal["", "bearing", "guide"] = "",
 ) -> Friction:
     """Read a ``friction`` entry of coupling ``name``: ``none``, or a mapping of laws to
-    coefficients (on a ``bearing``, a revolute, the ``bearing`` key gives the Coulomb law of a
-    journal, Laus App. D, and ``thrust`` that of a thrust face; on a ``guide``, a prismatic
-    pair, ``pressed_by`` names the mesh whose separating force loads its Coulomb law)."""
+    coefficients (``on`` a ``"bearing"``, a revolute, the ``bearing`` key gives the Coulomb
+    law of a journal, Laus App. D, and ``thrust`` that of a thrust face; on a ``"guide"``, a
+    prismatic pair, ``pressed_by`` names the mesh whose separating force loads its Coulomb
+    law)."""
     if value is None:
         return default
     if isinstance(value, str) and value.strip().lower() == "none":
@@ -77,14 +77,14 @@ def read_friction(
         return default
     reader.check_keys(entry, path, FRICTION)
     laws: dict[str, sympy.Expr | None] = {}
-    pressed_by = _read_pressed_by(entry, path, reader, guide)
+    pressed_by = _read_pressed_by(entry, path, reader, on == "guide")
     for f in FRICTION:
         if f.key in entry and f.key not in (*_BEARING_LAWS, "pressed_by"):
             role = "viscous" if f.key == "viscous" else "friction"
             laws[f.key] = reader.quantity(entry[f.key], f"{path}.{f.key}", role)
     definitions: tuple[Definition, ...] = ()
     given = [k for k in _BEARING_LAWS if k in entry]
-    if given and not bearing:
+    if given and on != "bearing":
         reader.problem(f"{path}.{given[0]}", f"`{given[0]}` is a law of a bearing: write it on a revolute coupling")
         given = []
     if len(given) == 2:

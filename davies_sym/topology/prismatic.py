@@ -39,7 +39,7 @@ class Prismatic(Coupling):
     ) -> Prismatic | None:
         links = read_links(entry, path, reader)
         direction = read_direction(entry["direction"], f"{path}.direction", reader) if "direction" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, guide=True)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, on="guide")
         if links is None or direction is None:
             return None
         return cls(name, links, friction, direction)

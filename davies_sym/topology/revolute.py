@@ -57,7 +57,7 @@ class Revolute(Coupling):
     ) -> Revolute | None:
         links = read_links(entry, path, reader)
         at = reader.quantity(entry["at"], f"{path}.at", "position") if "at" in entry else None
-        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, bearing=True)
+        friction = read_friction(entry.get("friction"), f"{path}.friction", reader, Friction(), name, on="bearing")
         axis = reader.name(entry["axis"], f"{path}.axis") if "axis" in entry else None
         return None if links is None else cls(name, links, friction, at, axis)
 

@@ -53,6 +53,9 @@ def test_the_lossless_rule_alone_would_be_wrong_here() -> None:
     chosen = vs.variant_for(values, "A")
     assert chosen.first_drives["C"] == oracle.first_drives["C"]
     assert Fraction(str(vs.evaluate(values, "A"))) == oracle.efficiency
-    laus = next(v for v in vs.variants if v.input == "A" and v is not chosen and not v.reversed_forces)
+    # The chosen variant lies in the design's own region, with C reversed by the losses;
+    # Laus's variant is that region's lossless one.
+    assert chosen.reversed_forces == {"C"}
+    laus = next(v for v in vs.variants if v.input == "A" and v.signs == chosen.signs and not v.reversed_forces)
     named = {vs.train.symbols[k]: v for k, v in values.items()}
     assert abs(float(laus.efficiency.subs(named)) - float(oracle.efficiency)) > 1e-4

@@ -113,33 +113,53 @@ def _member_order(sets: Sequence[PlanetarySet]) -> tuple[list[str], dict[str, in
     return list(home), home
 
 
-def join_prefixes(sets: Sequence[PlanetarySet], joins: int, depth: int) -> list[tuple[int, ...]]:
-    """The ways the first ``depth`` members can be grouped on the way to ``joins`` joins
-    (each member's group by number, groups numbered as they open): each prefix is one
-    task of the search, which `connection_choices` completes."""
-    members, home = _member_order(sets)
-    depth = min(depth, len(members))
-    out: list[tuple[int, ...]] = []
+def _groupings(
+    members: Sequence[str], home: Mapping[str, int], joins: int, groups: list[list[str]], start: int, stop: int
+) -> Iterator[list[list[str]]]:
+    """Every way to place ``members[start:stop]`` into ``groups`` (which hold the members
+    before ``start``; no group with two members of one set) on the way to ``joins``
+    joins, the groups themselves yielded at ``stop`` (changed after each yield)."""
+    made = start - len(groups)
+    if made > joins or len(members) - start < joins - made:
+        return
+    if start == stop:
+        yield groups
+        return
+    member = members[start]
+    for k in _open_to(member, groups, home):
+        _place(groups, k, member)
+        yield from _groupings(members, home, joins, groups, start + 1, stop)
+        if len(groups[k]) > 1:
+            groups[k].pop()
+        else:
+            groups.pop()
 
-    def extend(i: int, groups: list[list[str]], prefix: tuple[int, ...]) -> None:
-        if i - len(groups) > joins:
-            return
-        if i == depth:
-            out.append(prefix)
-            return
-        for k in _open_to(members[i], groups, home):
-            groups[k].append(members[i]) if k < len(groups) else groups.append([members[i]])
-            extend(i + 1, groups, (*prefix, k))
-            groups[k].pop() if groups[k][:-1] else groups.pop()
 
-    extend(0, [], ())
-    return out
+def _place(groups: list[list[str]], k: int, member: str) -> None:
+    """``member`` into group ``k``, or a group of its own where ``k`` is the next number."""
+    if k < len(groups):
+        groups[k].append(member)
+    else:
+        groups.append([member])
 
 
 def _open_to(member: str, groups: list[list[str]], home: Mapping[str, int]) -> list[int]:
     """The groups ``member`` may join (none holding a member of its set; a group of its
     own numbered last)."""
     return [k for k, g in enumerate(groups) if all(home[m] != home[member] for m in g)] + [len(groups)]
+
+
+def join_prefixes(sets: Sequence[PlanetarySet], joins: int, depth: int) -> list[tuple[int, ...]]:
+    """The ways the first ``depth`` members can be grouped on the way to ``joins`` joins
+    (each member's group by number, groups numbered as they open): each prefix is one
+    task of the search, which `connection_choices` completes."""
+    members, home = _member_order(sets)
+    depth = min(depth, len(members))
+    out = []
+    for groups in _groupings(members, home, joins, [], 0, depth):
+        number = {m: k for k, g in enumerate(groups) for m in g}
+        out.append(tuple(number[m] for m in members[:depth]))
+    return out
 
 
 def connection_choices(
@@ -153,23 +173,11 @@ def connection_choices(
     maps = relabellings(sets)
     groups: list[list[str]] = []
     for k, member in zip(prefix, members, strict=False):
-        groups[k].append(member) if k < len(groups) else groups.append([member])
-
-    def extend(i: int) -> Iterator[frozenset[Block]]:
-        made = i - len(groups)
-        if made > joins or len(members) - i < joins - made:
-            return
-        if i == len(members):
-            blocks = frozenset(frozenset(g) for g in groups if len(g) > 1)
-            if _renamed(blocks, maps[0]) == min(_renamed(blocks, m) for m in maps):
-                yield blocks
-            return
-        for k in _open_to(members[i], groups, home):
-            groups[k].append(members[i]) if k < len(groups) else groups.append([members[i]])
-            yield from extend(i + 1)
-            groups[k].pop() if groups[k][:-1] else groups.pop()
-
-    yield from extend(len(prefix))
+        _place(groups, k, member)
+    for grouped in _groupings(members, home, joins, groups, len(prefix), len(members)):
+        blocks = frozenset(frozenset(g) for g in grouped if len(g) > 1)
+        if _renamed(blocks, maps[0]) == min(_renamed(blocks, m) for m in maps):
+            yield blocks
 
 
 def joined_speeds(speeds: MemberSpeeds, blocks: frozenset[Block]) -> MemberSpeeds | None:

@@ -44,6 +44,12 @@ def operating_symbols(variants: VariantSet) -> list[sympy.Symbol]:
     return [s for s in OPERATING_SYMBOLS if s in used]
 
 
+def _published(file_train: Train, train: Train, state: str | None) -> dict[str, str]:
+    """The values of the file's first check (of ``state``) that ``train`` takes: the
+    defaults of ``--at``; a published value for a name written as a number is none."""
+    return {k: v for k, v in file_train.published_design(state).items() if k in train.symbols}
+
+
 def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     """The PNG of ``--plot`` (and ``--vs``): values from ``--at``, else the file's first check."""
     train = variants.train
@@ -57,7 +63,7 @@ def _plot(variants: VariantSet, args: argparse.Namespace) -> bytes:
     check_sweep_ranges((x, y), variants.parameter_table, train.path)
     port = eval_port(train, args)
     # A published value for a name the file no longer has (written as a number) is not a default.
-    published = {k: v for k, v in train.published_design(args.state).items() if k in train.symbols}
+    published = _published(train, train, args.state)
     given = {str(k): float(v) for k, v in values(train, args.at, "--at", operating, published).items()}
     fixed = held_values(train, given, [str(s) for s in formula_symbols(variants)], (x, y))
     if y is None:
@@ -73,8 +79,7 @@ def _fmu(result: OneInputResult, args: argparse.Namespace) -> bytes:
     train = result.train
     if not args.out:
         raise InputError([Problem("--emit", "fmu writes an archive: give its file with -o TRAIN.fmu")], train.path)
-    published = {k: v for k, v in result.file_train.published_design(args.state).items() if k in train.symbols}
-    given = values(train, args.at, "--at", (), published)
+    given = values(train, args.at, "--at", (), _published(result.file_train, train, args.state))
     return fmu_archive(result, {str(k): float(v) for k, v in given.items()})
 
 

@@ -113,7 +113,7 @@ def fmu_archive(result: OneInputResult, starts: Mapping[str, float]) -> bytes:
     sources = {formulas_file: formulas, f"{model.identifier}.c": wrapper_source(model, formulas_file, guid)}
     folder, suffix = platform_folder()
     entries = {
-        "modelDescription.xml": model_description(model, formulas),
+        "modelDescription.xml": model_description(model, guid),
         **{f"sources/{name}": text.encode("utf-8") for name, text in sources.items()},
         f"binaries/{folder}/{model.identifier}{suffix}": _compiled(model.identifier, sources, suffix),
     }

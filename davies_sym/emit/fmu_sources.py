@@ -83,7 +83,7 @@ class FmuModel:
         return "{" + str(uuid.UUID(digest[:32])) + "}"
 
 
-def model_description(model: FmuModel, formulas: str) -> bytes:
+def model_description(model: FmuModel, guid: str) -> bytes:
     """``modelDescription.xml`` (FMI 2.0): the parameters by their names with start values
     and ranges, the two inputs, the four real and two integer outputs."""
     root = ET.Element(
@@ -91,7 +91,7 @@ def model_description(model: FmuModel, formulas: str) -> bytes:
         {
             "fmiVersion": "2.0",
             "modelName": model.name,
-            "guid": model.guid(formulas),
+            "guid": guid,
             "description": model.description,
             "generationTool": "davies_sym",
             "variableNamingConvention": "flat",

@@ -6,6 +6,7 @@ import glob
 import os
 import random
 import sys
+import warnings
 
 import pytest
 import sympy
@@ -50,6 +51,19 @@ settings.register_profile(
 settings.register_profile("davies-slow", parent=settings.get_profile("davies"), derandomize=False, max_examples=60)
 SLOW_SEED = 20261123
 settings.load_profile("davies")
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_warning_recorded(warning_message: warnings.WarningMessage) -> None:
+    """A warning whose class lives in a generated formula module (its ``DesignWarning``,
+    loaded from a file under a name no other process can import) recorded as a
+    RuntimeWarning of the same text: a test worker sends its warnings to the controller
+    by the class's module and name, and the controller could not import the module."""
+    category = warning_message.category
+    if category.__module__ not in sys.modules:
+        text = f"{category.__module__}.{category.__name__}: {warning_message.message}"
+        warning_message.message = RuntimeWarning(text)
+        warning_message.category = RuntimeWarning
 
 
 def catalog_path(name: str) -> str:

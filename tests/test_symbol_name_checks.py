@@ -69,3 +69,18 @@ def test_a_radius_named_like_the_sign_of_a_friction_force_is_refused_at_its_line
     failed deep in the algebra ('two sets of assumptions') without a line."""
     old, new = "  1: {link: 1, radius: r1}", "  1: {link: 1, radius: sigma_C}"
     assert_edit_refused(tmp_path, PAIR, old, new, "sigma_C", "gears.1.radius", "sign of a friction force of coupling C")
+
+
+@pytest.mark.parametrize(("name", "language"), [("M_PI", "c"), ("fn", "rust")])
+def test_a_symbol_only_the_speed_ratio_takes_is_refused_too(tmp_path, name, language):
+    """A radius that enters the speed ratio and no efficiency (the mesh's efficiency is a
+    constant) is an argument of ``speed_ratio`` alone; named ``M_PI`` it collided with the
+    constant the C file defines, and the file did not compile."""
+    unchecked = PAIR.partition("expected:")[0]
+    text = replaced(unchecked, "friction: {coulomb: zeta_C}", "efficiency: eta_C")
+    text = replaced(text, "  1: {link: 1, radius: r1}", f"  1: {{link: 1, radius: {name}}}")
+    path = write(tmp_path, text)
+    result = run_main([path, "--quiet", "--emit", language, "-o", tmp_path / "m.out"])
+    assert_at(result, path, line_of(text, f"radius: {name}"), "gears.1.radius")
+    assert repr(name) in result.stderr, result.describe()
+    assert not (tmp_path / "m.out").exists()

@@ -36,7 +36,9 @@ def check_names(
     the file itself defines besides its functions (``extra``: the module's name, an
     output variable), or, where the language forbids it, one starting with ``_``."""
     functions = [r.name for r in program.routines]
-    for kind, names in (("symbol", program.parameters), ("generated function name", functions)):
+    # Every routine's arguments, not only the choice's: speed_ratio takes geometry alone.
+    symbols = dict.fromkeys((*program.parameters, *(a for r in program.routines for a in r.argument_names)))
+    for kind, names in (("symbol", tuple(symbols)), ("generated function name", functions)):
         for name in names:
             why = None
             if not (name.isascii() and name.isidentifier()):

@@ -34,17 +34,20 @@ from davies_sym.efficiency.parameters import (
 from davies_sym.efficiency.variant_result import Variant
 from davies_sym.efficiency.variants import VariantSet
 from davies_sym.emit.languages.names import RefusedName
-from davies_sym.emit.languages.program import Program, Routine
+from davies_sym.emit.languages.program import NOT_COVERED, Kind, Program, Routine, Step
 from davies_sym.emit.languages.routines import (
     Check,
+    call,
     checks_routine,
     forces_agree_routine,
     formula_routine,
     fresh,
+    relation,
 )
 from davies_sym.emit.languages.sensitivities import sensitivity_routines
 from davies_sym.emit.languages.text import origin_text, parameter_lines
 from davies_sym.emit.languages.variant_choice_program import (
+    LARGEST,
     REASONS,
     ChoiceRoutines,
     PortSignature,
@@ -124,8 +127,8 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     )
     routines.append(admissible)
     ports = (train.ports.input, train.ports.output)
-    speed, turning = _ratio_routines(variants, public, names, ports)
-    routines += [speed, *([turning] if turning is not None else [])]
+    ratio_routines, turning = _ratio_routines(variants, public, names, (table, relations), ports)
+    routines += ratio_routines
     called = ChoiceRoutines({r.name: r for r in routines}, forces, admissible, turning)
     steps = [choice_steps(variants, port, names, called) for port in ports]
     choices = [port_choice(variants, port, names, st, not_covered) for port, st in zip(ports, steps, strict=True)]
@@ -143,21 +146,41 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
 
 
 def _ratio_routines(
-    variants: VariantSet, public: Callable[[sympy.Expr], sympy.Expr], names: tuple[str, ...], ports: tuple[str, str]
-) -> tuple[Routine, Routine | None]:
-    """``speed_ratio`` in every symbol the ratio takes, and the choice's raw ratio in the
-    formulas' parameters (None where the ratio takes others)."""
+    variants: VariantSet,
+    public: Callable[[sympy.Expr], sympy.Expr],
+    names: tuple[str, ...],
+    screen: tuple[tuple[Parameter, ...], list[sympy.Expr]],
+    ports: tuple[str, str],
+) -> tuple[list[Routine], Routine | None]:
+    """``speed_ratio`` in every symbol the ratio takes, screened as the Python module's is
+    (NaN outside its symbols' ranges and relations ``screen``, or where it is not finite),
+    its helpers, and the choice's raw ratio in the formulas' parameters (None where the
+    ratio takes others)."""
     ratio = public(variants.analysis.speed_ratio().to_expr())
     extra = tuple(str(s) for s in sorted_symbols(ratio.free_symbols) if str(s) not in names)
-    summary = (
-        f"the speed ratio, {ports[0]} over {ports[1]}, in every symbol it takes; 0 or infinite: a port does not turn"
+    order = (*names, *extra)
+    raw_summary = f"the speed ratio, {ports[0]} over {ports[1]}, unscreened; 0 or infinite: a port does not turn"
+    raw = replace(formula_routine("raw_speed_ratio", raw_summary, ratio, order), exported=False)
+    own = set(raw.argument_names)
+    table, relations = screen
+    checks = [
+        *range_checks(table, tuple(own)),
+        *((r, ">", sympy.Integer(0)) for r in relations if {str(s) for s in r.free_symbols} <= own),
+    ]
+    in_ranges = checks_routine("ratio_admissible", "whether the speed ratio's symbols are admissible", checks, order)
+    value, ok, out = (fresh(n, order) for n in ("ratio", "ok", "screened"))
+    finite = sympy.And(sympy.Symbol(ok), relation(sympy.Abs(sympy.Symbol(value)), "<", LARGEST))
+    steps = (
+        Step(value, Kind.REAL, call(raw)),
+        Step(ok, Kind.BOOL, call(in_ranges)),
+        Step(out, Kind.REAL, sympy.Piecewise((sympy.Symbol(value), finite), (NOT_COVERED, True), evaluate=False)),
     )
-    speed = formula_routine(RATIO, summary, ratio, (*names, *extra))
-    if extra:
-        return speed, None
-    summary = f"the speed ratio, {ports[0]} over {ports[1]}; 0 or infinite: a port does not turn"
-    # A helper (the Python module's speed_ratio screens its values; this one is raw).
-    return speed, replace(formula_routine("raw_speed_ratio", summary, ratio, names), exported=False)
+    summary = (
+        f"the speed ratio, {ports[0]} over {ports[1]}, in every symbol it takes; NaN outside their ranges and "
+        "relations or where a port does not turn (0: the output stands still)"
+    )
+    speed = Routine(RATIO, summary, raw.arguments, Kind.REAL, steps, sympy.Symbol(out))
+    return [raw, in_ranges, speed], (raw if not extra else None)
 
 
 def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:

@@ -75,12 +75,13 @@ def _fmu(result: OneInputResult, args: argparse.Namespace) -> bytes:
     """The ``.fmu`` of ``--emit fmu -o TRAIN.fmu``: the parameters start at ``--at``'s
     values, else the file's first check's, each checked as ``--eval`` checks it."""
     from davies_sym.emit.fmu_archive import fmu_archive
+    from davies_sym.emit.fmu_one_input import one_input_fmu_model
 
     train = result.train
     if not args.out:
         raise InputError([Problem("--emit", "fmu writes an archive: give its file with -o TRAIN.fmu")], train.path)
     given = values(train, args.at, "--at", (), _published(result.file_train, train, args.state))
-    return fmu_archive(result, {str(k): float(v) for k, v in given.items()})
+    return fmu_archive(*one_input_fmu_model(result, {str(k): float(v) for k, v in given.items()}))
 
 
 def derive_sets(

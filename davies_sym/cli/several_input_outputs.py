@@ -75,15 +75,13 @@ def _refuse(train: Train, args: argparse.Namespace) -> None:
                 ],
                 train.path,
             )
-    if (args.vs or args.at) and not args.plot:
-        raise InputError([Problem("--vs" if args.vs else "--at", "only with --plot")], train.path)
+    if args.vs and not args.plot:
+        raise InputError([Problem("--vs", "only with --plot")], train.path)
+    if args.at and not (args.plot or args.emit == "fmu"):
+        raise InputError([Problem("--at", "only with --plot or --emit fmu")], train.path)
     check_emit(args, train.path)
-    if args.emit == "fmu":
-        why = (
-            "fmu: the unit is built for a train driven at one port; for one driven at several shafts write "
-            "--emit c (its regions by the shafts' speeds) and wrap it"
-        )
-        raise InputError([Problem("--emit", why)], train.path)
+    if args.emit == "fmu" and not args.out:
+        raise InputError([Problem("--emit", "fmu writes an archive: give its file with -o TRAIN.fmu")], train.path)
 
 
 def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
@@ -105,6 +103,15 @@ def _plot(si: SeveralInputs, args: argparse.Namespace) -> bytes:
     return figure_bytes(several_region_figure(si, x, y, fixed, module), figure_suffix(args.out, train.path))
 
 
+def _fmu(result: SeveralInputResult, args: argparse.Namespace) -> bytes:
+    """The ``.fmu`` of ``--emit fmu -o TRAIN.fmu``: the parameters start at ``--at``'s values."""
+    from davies_sym.emit.fmu_archive import fmu_archive
+    from davies_sym.emit.fmu_several_inputs import several_inputs_fmu_model
+
+    given = assignments(args.at, "--at", result.train.path)
+    return fmu_archive(*several_inputs_fmu_model(result, {n: float(v) for n, v in given.items()}))
+
+
 def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) -> list[tuple[str | None, str | bytes]]:
     """The outputs asked for, all computed before anything is written."""
     _refuse(train, args)
@@ -115,6 +122,8 @@ def several_outputs(train: Train, args: argparse.Namespace, progress: Progress) 
     if args.plot:
         return [(args.out, _plot(si, args))]
     result = SeveralInputResult(si)
+    if args.emit == "fmu":
+        return [(args.out, _fmu(result, args))]
 
     def answer() -> SeveralEvaluation:
         pairs, published = published_start(train, args.eval, None)

@@ -2,7 +2,9 @@
 as C text: instantiation, the getters and setters of the parameters, inputs and outputs,
 the step, and the optional functions a unit without states answers with an error.  The
 placeholders ``@GUID@``, ``@STARTS@`` and ``@RESET@`` are the unit's own (its GUID, and the
-assignments of the parameters' start values)."""
+assignments of the parameters' start values); the unit's own part defines ``REASONS``,
+``rest`` (the signs remembered for the limits at zero speed, before any motion) and
+``compute`` (the outputs ``y`` of the inputs ``u`` and the parameters ``p``)."""
 
 FMI_FUNCTIONS = r"""static void say(Instance *c, fmi2Status status, const char *category, const char *message) {
     if (c->callbacks.logger != NULL) {
@@ -14,7 +16,7 @@ static fmi2Status report(Instance *c) {
     if (c->status == 0) {
         return fmi2OK;
     }
-    say(c, fmi2Warning, "logStatusWarning", REASONS[c->status < 0 || c->status > 4 ? 2 : c->status]);
+    say(c, fmi2Warning, "logStatusWarning", REASONS[c->status < 0 || c->status >= STATUSES ? 2 : c->status]);
     return fmi2Warning;
 }
 
@@ -50,7 +52,7 @@ FMI_EXPORT fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2Str
     }
     c->logging = logging;
 @STARTS@
-    c->side = 1.0;
+    rest(c);
     compute(c);
     return c;
 }
@@ -84,9 +86,8 @@ FMI_EXPORT fmi2Status fmi2Terminate(fmi2Component c) { (void)c; return fmi2OK; }
 FMI_EXPORT fmi2Status fmi2Reset(fmi2Component c) {
     Instance *i = (Instance *)c;
 @RESET@
-    i->omega_in = 0.0;
-    i->tau_out = 0.0;
-    i->side = 1.0;
+    memset(i->u, 0, sizeof i->u);
+    rest(i);
     compute(i);
     return fmi2OK;
 }
@@ -99,18 +100,10 @@ FMI_EXPORT fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[]
         unsigned int r = vr[k];
         if (r < PARAMETERS) {
             value[k] = i->p[r];
-        } else if (r == OMEGA_IN) {
-            value[k] = i->omega_in;
-        } else if (r == TAU_OUT) {
-            value[k] = i->tau_out;
-        } else if (r == TAU_IN) {
-            value[k] = i->tau_in;
-        } else if (r == OMEGA_OUT) {
-            value[k] = i->omega_out;
-        } else if (r == P_LOSS) {
-            value[k] = i->p_loss;
-        } else if (r == EFFICIENCY) {
-            value[k] = i->eta;
+        } else if (r < FIRST_OUTPUT) {
+            value[k] = i->u[r - FIRST_INPUT];
+        } else if (r < REALS) {
+            value[k] = i->y[r - FIRST_OUTPUT];
         } else {
             return fmi2Error;
         }
@@ -125,10 +118,8 @@ FMI_EXPORT fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[]
         unsigned int r = vr[k];
         if (r < PARAMETERS) {
             i->p[r] = value[k];
-        } else if (r == OMEGA_IN) {
-            i->omega_in = value[k];
-        } else if (r == TAU_OUT) {
-            i->tau_out = value[k];
+        } else if (r < FIRST_OUTPUT) {
+            i->u[r - FIRST_INPUT] = value[k];
         } else {
             return fmi2Error;
         }

@@ -1,5 +1,5 @@
-"""``derive FILE --emit fmu -o TRAIN.fmu``: the Functional Mock-up Unit of a train driven at
-one port (FMI 2.0 co-simulation, `davies_sym.emit.fmu_sources`), its sources included so
+"""``derive FILE --emit fmu -o TRAIN.fmu``: the Functional Mock-up Unit of a train (FMI 2.0
+co-simulation, `davies_sym.emit.fmu_sources`), its sources included so
 that any tool can rebuild it, and its binary for this platform compiled with the C
 compiler found (``$CC``, else ``cc``).  The archive has the same bytes for the same
 formulas, start values and compiler."""
@@ -16,16 +16,8 @@ import tempfile
 import zipfile
 from collections.abc import Mapping
 
-import sympy
-
-from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
-from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, parameters_of_train
-from davies_sym.emit.derived_result import OneInputResult
 from davies_sym.emit.fmu_sources import FmuModel, model_description, wrapper_source
-from davies_sym.emit.languages import emit_code, program_of
-from davies_sym.emit.languages.one_input_program import RATIO
-from davies_sym.errors import InputError, MissingDependencyError, Problem
+from davies_sym.errors import MissingDependencyError
 
 #: Every entry of the archive has this time stamp (the same bytes from run to run).
 STAMP = (1980, 1, 1, 0, 0, 0)
@@ -60,7 +52,18 @@ def _compiled(identifier: str, sources: Mapping[str, str], suffix: str) -> bytes
             with open(os.path.join(folder, name), "w", encoding="utf-8") as handle:
                 handle.write(text)
         library = os.path.join(folder, identifier + suffix)
-        command = [compiler(), "-std=c99", "-O2", "-shared", "-fPIC", "-o", library, list(sources)[-1], "-lm"]
+        command = [
+            compiler(),
+            "-std=c99",
+            "-O2",
+            "-fvisibility=hidden",
+            "-shared",
+            "-fPIC",
+            "-o",
+            library,
+            list(sources)[-1],
+            "-lm",
+        ]
         done = subprocess.run(command, cwd=folder, capture_output=True, text=True, check=False)
         if done.returncode != 0:
             raise RuntimeError(f"the C compiler refused the unit's source: {done.stderr.strip()[:2000]}")
@@ -68,46 +71,8 @@ def _compiled(identifier: str, sources: Mapping[str, str], suffix: str) -> bytes
             return handle.read()
 
 
-def fmu_model(result: OneInputResult, starts: Mapping[str, float]) -> tuple[FmuModel, str]:
-    """The unit's model and the formulas' C source (with the speed ratio in every symbol
-    it takes, which the unit needs for the output speed); a train whose formulas take
-    the load (drag, Coulomb friction: `tau_in`, `omega_in`) is refused (exit status 2)."""
-    variants = result.chosen
-    train = result.train
-    program = program_of(result, "c")
-    table = {p.name: p for p in variants.parameter_table}
-    if any(n not in table for n in program.parameters) or any(str(s) in program.parameters for s in OPERATING_SYMBOLS):
-        why = "the formulas depend on the load (the input torque or speed): an FMU takes formulas of the geometry "
-        raise InputError([Problem("--emit", why + "and the efficiencies alone")], train.path)
-    ratio = next(r for r in program.routines if r.name == RATIO)
-    extra = sorted_symbols(sympy.Symbol(n) for n in ratio.argument_names if n not in program.parameters)
-    names = (*program.parameters, *(str(s) for s in extra))
-    laws = variants.analysis.network.laws
-    by_name = {str(s): s for s in variants.train.symbols.values()}
-    parameters = (
-        *(table[n] for n in program.parameters),
-        *parameters_of_train(train, laws, [by_name.get(str(s), s) for s in extra], OPERATING_PARAMETERS),
-    )
-    needed = [n for n in names if n not in starts]
-    if needed:
-        why = f"give the start value of {', '.join(needed)} (NAME=VALUE): the FMU's parameters start there"
-        raise InputError([Problem("--at", why)], train.path)
-    model = FmuModel(
-        program.module,
-        train.name or program.module,
-        f"{train.name}: efficiency by Davies' method, four quadrants"
-        + (f" (state {result.state})" if result.state else ""),
-        program,
-        tuple(parameters),
-        dict(starts),
-        tuple((v.number, v.name) for v in variants.variants),
-    )
-    return model, emit_code(result, "c")
-
-
-def fmu_archive(result: OneInputResult, starts: Mapping[str, float]) -> bytes:
-    """The ``.fmu`` archive (a zip) of ``result`` with the parameters' ``starts``."""
-    model, formulas = fmu_model(result, starts)
+def fmu_archive(model: FmuModel, formulas: str) -> bytes:
+    """The ``.fmu`` archive (a zip) of ``model``, around the formulas' C source ``formulas``."""
     guid = model.guid(formulas)
     formulas_file = f"{model.identifier}_formulas.c"
     sources = {formulas_file: formulas, f"{model.identifier}.c": wrapper_source(model, formulas_file, guid)}

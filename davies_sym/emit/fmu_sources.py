@@ -1,29 +1,15 @@
-"""The texts of a Functional Mock-up Unit (FMI 2.0, co-simulation) of a train driven at one
-port: ``modelDescription.xml`` and the C source of the FMI functions, around the formulas'
-own C file (`davies_sym.emit.languages.c`), which the source includes so that its
-helpers stay ``static``.
+"""The texts of a Functional Mock-up Unit (FMI 2.0, co-simulation): ``modelDescription.xml``
+and the C source of the FMI functions, around the formulas' own C file
+(`davies_sym.emit.languages.c`), which the source includes so that its helpers stay
+``static``.
 
-The unit is driven by the speed of the declared input port, ``omega_in`` (rad/s), and
-loaded by the torque the load applies at the output port, ``tau_out`` (N m; power into
-the train at a port is its torque times its speed).  Each step it chooses the variant
-from the direction of power flow (four quadrants):
-
-- the load takes power (``tau_out omega_out < 0``): the input drives, and the input's
-  variants hold (``efficiency(..., 0)``): ``P_in = -P_out / eta``;
-- the load gives power (``tau_out omega_out > 0``): the output drives the input
-  (``efficiency(..., 1)``): ``P_in = -eta P_out``; where the train self-locks this way
-  (``eta <= 0``) the input must still drive, the formula's value gives the torque the
-  locking asks of it, and ``status`` says 3;
-- at zero input speed the power is zero and the torque is the limit of the side the
-  speed last came from (the positive side before any motion), never a division by zero.
-
-Outputs: ``tau_in`` (the torque the driving shaft applies at the input port), ``omega_out``,
-``P_loss = P_in + P_out >= 0``, ``efficiency`` (of the variant that holds, the
-transmitted power over the driving power), ``variant`` (its number, as the text report
-numbers it; 0: none) and ``status`` (0: covered; else the formulas' reason: 1 outside the
-admissible parameters, 2 no variant's power flow agrees with its forces, 3 self-locking,
-4 a port does not turn), where a status other than 0 and 3 leaves the torque, loss and
-efficiency NaN and the step is reported to the logger.
+What is shared by every unit lives here: its variables (parameters by the formulas'
+names, then the inputs, the real outputs and the integer outputs ``variant`` and
+``status``), the instance (parameters ``p``, inputs ``u``, outputs ``y``, the signs
+``memory`` remembered for the limits at zero speed), the XML and the FMI functions.  What
+each kind of train computes per step, its ``Interface`` and its ``compute`` in C, comes from
+`davies_sym.emit.fmu_one_input` (driven at one port, four quadrants) and
+`davies_sym.emit.fmu_several_inputs` (driven at several shafts, by power-flow region).
 """
 
 from __future__ import annotations
@@ -39,34 +25,32 @@ from davies_sym.efficiency.parameter_ranges import Parameter
 from davies_sym.emit.fmi2_functions import FMI_FUNCTIONS
 from davies_sym.emit.languages.program import Program, Routine
 
-#: The inputs, the real outputs and the integer outputs, with units and descriptions.
-INPUTS = (
-    ("omega_in", "rad/s", "speed of the input port"),
-    ("tau_out", "N.m", "torque the load applies at the output port (power into the train: tau_out omega_out)"),
-)
-OUTPUTS = (
-    ("tau_in", "N.m", "torque applied at the input port (power into the train: tau_in omega_in)"),
-    ("omega_out", "rad/s", "speed of the output port"),
-    ("P_loss", "W", "power lost in the train, P_in + P_out >= 0"),
-    ("efficiency", "1", "efficiency of the variant that holds (transmitted over driving power)"),
-)
-COUNTS = (
-    ("variant", "number of the variant that holds, as the text report numbers it (0: none)"),
-    (
-        "status",
-        "0 covered; 1 outside the admissible parameters; 2 no variant's power flow agrees with its "
-        "forces; 3 self-locking (the input must drive); 4 a port does not turn",
-    ),
-)
 #: The SI units of the variables: name -> exponents of kg, m, s, rad.
 UNITS = {"rad/s": {"s": -1, "rad": 1}, "N.m": {"kg": 1, "m": 2, "s": -2}, "W": {"kg": 1, "m": 2, "s": -3}}
+
+
+@dataclass(frozen=True)
+class Interface:
+    """A kind of unit: its real inputs and outputs (name, unit, description), the
+    descriptions of its integer outputs ``variant`` and ``status``, the reasons its
+    status numbers, and how many signs it remembers."""
+
+    inputs: tuple[tuple[str, str, str], ...]
+    outputs: tuple[tuple[str, str, str], ...]
+    variant: str
+    reasons: tuple[str, ...]
+    memory: int
+
+    @property
+    def status(self) -> str:
+        return "; ".join(f"{k} {text}" for k, text in enumerate(self.reasons))
 
 
 @dataclass(frozen=True)
 class FmuModel:
     """What the unit is made of: its C identifier, its name and description, the
     formulas' program and parameters (with their start values) in value-reference order,
-    and the variants' routines."""
+    its interface and the C text of its step (``compute``, ``rest`` and their helpers)."""
 
     identifier: str
     name: str
@@ -74,8 +58,8 @@ class FmuModel:
     program: Program
     parameters: tuple[Parameter, ...]
     starts: Mapping[str, float]
-    #: Each variant's number and the name of its routine.
-    variants: tuple[tuple[int, str], ...]
+    interface: Interface
+    step: str
 
     def guid(self, formulas: str) -> str:
         """The same GUID for the same formulas and variables, a new one for any change."""
@@ -85,7 +69,7 @@ class FmuModel:
 
 def model_description(model: FmuModel, guid: str) -> bytes:
     """``modelDescription.xml`` (FMI 2.0): the parameters by their names with start values
-    and ranges, the two inputs, the four real and two integer outputs."""
+    and ranges, the inputs, the real outputs and the integer outputs."""
     root = ET.Element(
         "fmiModelDescription",
         {
@@ -114,15 +98,16 @@ def model_description(model: FmuModel, guid: str) -> bytes:
         if math.isfinite(p.high):
             bounds["max"] = repr(float(p.high))
         ET.SubElement(element, "Real", bounds)
+    interface = model.interface
     first = len(model.parameters)
-    for k, (name, unit, what) in enumerate(INPUTS):
+    for k, (name, unit, what) in enumerate(interface.inputs):
         ET.SubElement(_variable(variables, name, first + k, "input", what), "Real", {"unit": unit, "start": "0.0"})
     outputs = []
-    for k, (name, unit, what) in enumerate(OUTPUTS):
-        element = _variable(variables, name, first + len(INPUTS) + k, "output", what)
+    for k, (name, unit, what) in enumerate(interface.outputs):
+        element = _variable(variables, name, first + len(interface.inputs) + k, "output", what)
         ET.SubElement(element, "Real", {"unit": unit} if unit != "1" else {})
         outputs.append(len(variables))
-    for k, (name, what) in enumerate(COUNTS):
+    for k, (name, what) in enumerate((("variant", interface.variant), ("status", interface.status))):
         ET.SubElement(_variable(variables, name, k, "output", what, "discrete"), "Integer")
         outputs.append(len(variables))
     structure = ET.SubElement(root, "ModelStructure")
@@ -152,48 +137,48 @@ def _variable(
     )
 
 
-def _call(routine: Routine, parameters: Sequence[str], port: str | None = None) -> str:
-    """The C call of ``routine`` on the instance's parameters (and the port number)."""
-    index = {name: k for k, name in enumerate(parameters)}
-    arguments = [f"c->p[{index[a]}]" if a in index else str(port) for a in routine.argument_names]
-    return f"{routine.name}({', '.join(arguments)})"
+def c_call(routine: Routine, arguments: Mapping[str, str]) -> str:
+    """The C call of ``routine``, each argument the C text ``arguments`` gives for it."""
+    return f"{routine.name}({', '.join(arguments[a] for a in routine.argument_names)})"
+
+
+def parameter_texts(parameters: Sequence[str]) -> dict[str, str]:
+    """The C text of each of the instance's parameters."""
+    return {name: f"c->p[{k}]" for k, name in enumerate(parameters)}
 
 
 def wrapper_source(model: FmuModel, formulas_file: str, guid: str) -> str:
     """The C source of the FMI 2.0 co-simulation functions of ``model``."""
-    by_name = {r.name: r for r in model.program.routines}
     names = [p.name for p in model.parameters]
-    calls = {
-        "RATIO": _call(by_name["speed_ratio"], names),
-        **{
-            f"{what.upper()}_{k}": _call(by_name[what], names, str(k))
-            for what in ("efficiency", "variant", "reason")
-            for k in (0, 1)
-        },
-    }
-    cases = "\n".join(
-        f"    case {number}:\n        return {_call(by_name[routine], names)};" for number, routine in model.variants
-    )
+    interface = model.interface
     starts = "\n".join(f"    c->p[{k}] = {float(model.starts[n])!r};" for k, n in enumerate(names))
+    reasons = "\n".join(f"    {_c_string(text)}," for text in interface.reasons)
     fields = {
         "FORMULAS": formulas_file,
         "PARAMETERS": str(max(1, len(names))),
         "COUNT": str(len(names)),
+        "INPUTS": str(len(interface.inputs)),
+        "OUTPUTS": str(len(interface.outputs)),
+        "MEMORY": str(max(1, interface.memory)),
+        "STATUSES": str(len(interface.reasons)),
+        "REASONS": reasons,
         "IDENTIFIER": model.identifier,
         "GUID": guid,
-        "CASES": cases,
         "STARTS": starts,
         "RESET": starts.replace("c->p", "i->p"),
-        **calls,
     }
-    text = _TEMPLATE.replace("@FUNCTIONS@", FMI_FUNCTIONS)
+    text = _TEMPLATE.replace("@STEP@", model.step).replace("@FUNCTIONS@", FMI_FUNCTIONS)
     for key, value in fields.items():
         text = text.replace(f"@{key}@", value)
     return text
 
 
+def _c_string(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
 _TEMPLATE = r"""/* FMI 2.0 co-simulation functions of @IDENTIFIER@, around its formulas (@FORMULAS@).
- * Generated by davies_sym; do not edit.  Build: cc -std=c99 -O2 -shared -fPIC -o @IDENTIFIER@.so this.c -lm */
+ * Generated by davies_sym; do not edit.  Build: cc -std=c99 -O2 -fvisibility=hidden -shared -fPIC -o @IDENTIFIER@.so this.c -lm */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -232,19 +217,17 @@ typedef struct {
 } fmi2CallbackFunctions;
 
 #define PARAMETERS @COUNT@
-#define OMEGA_IN (PARAMETERS)
-#define TAU_OUT (PARAMETERS + 1)
-#define TAU_IN (PARAMETERS + 2)
-#define OMEGA_OUT (PARAMETERS + 3)
-#define P_LOSS (PARAMETERS + 4)
-#define EFFICIENCY (PARAMETERS + 5)
-#define REALS (PARAMETERS + 6)
+#define FIRST_INPUT (PARAMETERS)
+#define FIRST_OUTPUT (PARAMETERS + @INPUTS@)
+#define REALS (FIRST_OUTPUT + @OUTPUTS@)
+#define STATUSES @STATUSES@
 
 typedef struct {
     double p[@PARAMETERS@];
-    double omega_in, tau_out, tau_in, omega_out, p_loss, eta;
+    double u[@INPUTS@];
+    double y[@OUTPUTS@];
     int variant, status;
-    double side; /* the sign of the last non-zero input speed: the limit taken at zero speed */
+    double memory[@MEMORY@]; /* the signs last seen: the limits taken where a speed is zero */
     double time;
     char *name;
     fmi2CallbackFunctions callbacks;
@@ -252,51 +235,9 @@ typedef struct {
 } Instance;
 
 static const char *const REASONS[] = {
-    "covered",
-    "outside the admissible parameters",
-    "no variant's power flow agrees with its forces (the losses reverse forces as no variant covers)",
-    "the train self-locks this way: the input must drive (the torque the locking asks of it)",
-    "a port does not turn (speed ratio 0 or infinite)",
+@REASONS@
 };
 
-/* The raw efficiency of variant `number` (self-locking or not). */
-static double raw_efficiency(const Instance *c, int number) {
-    switch (number) {
-@CASES@
-    default:
-        return NAN;
-    }
-}
-
-/* The outputs of the present inputs and parameters (see the module's documentation). */
-static void compute(Instance *c) {
-    double ratio = @RATIO@;
-    double side = c->omega_in > 0 ? 1.0 : (c->omega_in < 0 ? -1.0 : c->side);
-    double per_speed, eta;
-    int port;
-    c->side = side;
-    if (!(isfinite(ratio) && ratio != 0.0)) {
-        ratio = NAN;
-    }
-    c->omega_out = c->omega_in / ratio;
-    /* The load's power per unit of input speed magnitude: its sign says which port drives. */
-    per_speed = c->tau_out * side / ratio;
-    port = per_speed > 0 ? 1 : 0;
-    c->variant = (int)(port == 0 ? @VARIANT_0@ : @VARIANT_1@);
-    c->status = (int)(port == 0 ? @REASON_0@ : @REASON_1@);
-    eta = port == 0 ? @EFFICIENCY_0@ : @EFFICIENCY_1@;
-    if (c->status == 3 && port == 1 && c->variant > 0) {
-        eta = raw_efficiency(c, c->variant); /* locked against the load: the input must drive */
-    } else if (c->status != 0) {
-        c->tau_in = NAN;
-        c->p_loss = NAN;
-        c->eta = NAN;
-        return;
-    }
-    c->tau_in = port == 0 ? -per_speed / eta / side : -eta * per_speed / side;
-    c->p_loss = c->tau_in * c->omega_in + c->tau_out * c->omega_out;
-    c->eta = eta;
-}
-
+@STEP@
 @FUNCTIONS@
 """

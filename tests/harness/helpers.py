@@ -318,3 +318,8 @@ def run_main_in(folder: str | os.PathLike[str], args: Sequence[str], timeout: fl
         return run_main(args, timeout)
     finally:
         os.chdir(previous)
+
+
+def unheard(*message: object) -> None:
+    """An FMI logger for every FMPy run: its logger proxy keeps the last logger a run gave
+    it, and a later run without one logged through it after it was freed (a crash)."""

@@ -44,7 +44,7 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
     """The program of ``si``; ``module`` and ``not_covered`` as for a one-input train."""
     public = given_forms(si)
     names = _parameter_names(si, public)
-    table = si.parameter_table([_known_symbols(si)[n] for n in names])
+    table = si.parameter_table([known_symbols(si)[n] for n in names])
     conditions = {
         c.name: formula_routine(
             f"condition_{c.name}",
@@ -55,10 +55,11 @@ def several_inputs_program(si: SeveralInputs, module: str, not_covered: str) -> 
         for c in si.conditions
     }
     regions, forces = _region_routines(si, public, names)
+    speeds, torques = _port_routines(si, public, names)
     in_ranges = checks_routine(
         "in_ranges", "whether every parameter is in its range", range_checks(table, names), names
     )
-    routines = [*conditions.values(), *regions.values(), *forces.values(), in_ranges]
+    routines = [*conditions.values(), *speeds, *regions.values(), *torques, *forces.values(), in_ranges]
     choice = _choice_steps(si, names, conditions, regions, forces, in_ranges)
     routines += [_choice(choice, names, not_covered), _reason(choice, names)]
     _check_routine_names(routines, names)
@@ -83,7 +84,7 @@ def _parameter_names(si: SeveralInputs, public: Callable[[sympy.Expr], sympy.Exp
     return tuple(str(s) for s in sorted_symbols({sympy.Symbol(str(s)) for s in used}))
 
 
-def _known_symbols(si: SeveralInputs) -> dict[str, sympy.Symbol]:
+def known_symbols(si: SeveralInputs) -> dict[str, sympy.Symbol]:
     """Every symbol a parameter name may stand for: speeds, the load torque, the train's
     symbols and the parameters of its loss definitions."""
     train = si.train
@@ -116,6 +117,31 @@ def _region_routines(
             needs = f"region ({r.number}) assumes"
             forces[r.number] = forces_agree_routine(f"region_{r.number}", needs, r.loaded_forces, public, names)
     return regions, forces
+
+
+def _port_routines(
+    si: SeveralInputs, public: Callable[[sympy.Expr], sympy.Expr], names: tuple[str, ...]
+) -> tuple[list[Routine], list[Routine]]:
+    """The speed of each port the inputs do not set, in the input speeds, and the torque
+    the outside applies at each port in each region (in the load torque; Mantriota and
+    Pennestri 2003, eqs. (3)-(5)): what a simulation needs besides the efficiency."""
+    ports = si.train.ports
+    speeds = [
+        (f"speed_{p}", f"speed of port {p} (signed, rad/s) in the input speeds", si.port_speeds[p])
+        for p in ports.every
+        if p not in ports.inputs
+    ]
+    torque = "torque the outside applies at port {} in region ({}) (power into the train: torque times speed)"
+    torques = [
+        (f"region_{r.number}_torque_{p}", torque.format(p, r.number), r.torques[p])
+        for r in si.regions
+        for p in ports.every
+    ]
+    speed_routines, torque_routines = (
+        [formula_routine(name, summary, public(form.to_expr()), names) for name, summary, form in group]
+        for group in (speeds, torques)
+    )
+    return speed_routines, torque_routines
 
 
 def _check_routine_names(routines: Sequence[Routine], names: tuple[str, ...]) -> None:

@@ -317,14 +317,22 @@ def test_consistent_both_routes(consistent, port):
 @pytest.mark.slow
 def test_printed_geometry_reproduces_table_6_and_42_5_percent():
     """Laus 2011, Table 6 and section 3.5.1.2: with the printed planet axis (eq. (80)) the
-    engine finds the three turning conditions of Table 6 (up to a constant factor),
-    sixteen variants, the signs (+, -, -) at z = 20, 56, 24, 35, 76 with gear 1 driving
-    gear 2, gear 2 driving gear 5 and gear 4 driving gear 3, and 42.5 % at 0.98 per mesh;
-    the virtual-power balance on the same geometry gives the same number."""
+    engine finds the three turning conditions of Table 6 (up to a constant factor), its
+    sixteen variants (and the regions where the losses reverse a mesh), the signs
+    (+, -, -) at z = 20, 56, 24, 35, 76 with gear 1 driving gear 2, gear 2 driving gear 5
+    and gear 4 driving gear 3, and 42.5 % at 0.98 per mesh; the virtual-power balance on
+    the same geometry gives the same number."""
     layout = printed_layout()
     vs = derive_variants(TRAIN, layout=layout)
     assert len(vs.conditions) == 3
-    assert len(vs.variants) == 16
+    # Table 6: every sign of the three conditions for each input port; the others are the
+    # regions where the losses reverse mesh D's force, listed as their own variants.
+    laus = [v for v in vs.variants if not v.reversed_forces]
+    assert len(laus) == 16
+    assert {(v.input, tuple(sorted(v.signs.items()))) for v in laus} == {
+        (port, (("c1", a), ("c2", b), ("c3", c))) for port in "AB" for a in (1, -1) for b in (1, -1) for c in (1, -1)
+    }
+    assert all(v.reversed_forces == {"D"} for v in vs.variants if v not in laus)
     for condition, laus in zip(vs.conditions, TABLE_6, strict=True):
         ratio = sympy.cancel(condition.expression / sympy.expand(laus))
         assert ratio.is_number and ratio != 0, (condition.name, ratio)

@@ -130,7 +130,7 @@ def test_ravigneaux_second_gear_small_sun_never_outgrows_the_ring():
     """2nd gear of the ZF 3HP12 (large sun held): its turning condition is rs1 - rr; the
     triangle of the drawing makes rs1 < rr (triangle inequality: rs1 + rps < (rr - rpl)
     + (rps + rpl)), so the combination c1 > 0 is proved empty for both inputs, not
-    derived, and the proof uses the placement's fact.  Checked against 20000 random
+    derived, and the proof uses that side of the placement's triangle.  Checked against 20000 random
     drawings by the triangle itself."""
     vs = derive_variants(SECOND)
     (c1,) = vs.conditions
@@ -138,7 +138,7 @@ def test_ravigneaux_second_gear_small_sun_never_outgrows_the_ring():
     assert [(v.number, v.input, v.signs["c1"]) for v in vs.excluded] == [(1, "A", 1), (3, "D", 1)]
     assert [v.number for v in vs.listed] == [1, 2, 3, 4, 5]
     (proof,) = {tuple(str(r) for r in v.facts) for v in vs.excluded}
-    assert any("(rr - rs1)" in fact for fact in proof)  # the triangle's radicand
+    assert any("rr - rs1 > 0" in fact and "triangle" in fact for fact in proof)  # a side of the triangle
     rng = random.Random(7)
     closes = 0
     for _ in range(20000):

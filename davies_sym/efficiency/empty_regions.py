@@ -31,14 +31,16 @@ CONDITION, FACT = "condition", "fact"
 
 def geometry_facts(train: Train, layout: Layout, conditions: Sequence[TurningCondition]) -> list[Requirement]:
     """What every admissible design satisfies: each pitch radius and layout fact positive,
-    and each symbol the file declares positive that they or the conditions use."""
+    each side of a triangle the drawing closes shorter than the other two, and each
+    symbol the file declares positive that they or the conditions use."""
     facts = admissible_facts(train, layout)
     used: set[sympy.Symbol] = set()
     for expr in [*(f for f, _ in facts), *(c.expression for c in conditions)]:
         used |= expr.free_symbols
     out = [Requirement(s, ">", FACT) for s in sorted_symbols(used) if s.is_positive]
     seen: set[sympy.Expr] = {s for s in used if s.is_positive}
-    for expr, description in facts:
+    sides = [(sympy.sympify(f), "a triangle of the drawing that closes") for f in layout.side_facts]
+    for expr, description in [*facts, *sides]:
         if expr not in seen and not expr.is_number:
             seen.add(expr)
             out.append(Requirement(expr, ">", FACT, description))

@@ -77,7 +77,7 @@ def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
     known = set(variants.symbols)
     out: list[sympy.Expr] = []
     facts = [expr for expr, _ in admissible_facts(variants.train, layout)]
-    for expr in facts + _implied_by_excluded(variants):
+    for expr in facts + list(layout.side_facts) + _implied_by_excluded(variants):
         relation = sympy.expand(restore(expr.subs(eliminate), layout.radicals))
         if relation.is_Symbol or relation.is_number or not relation.free_symbols <= known:
             continue

@@ -145,4 +145,5 @@ def _restricted(layout: Layout, train: Train) -> Layout:
         coupling_axes=keep(layout.coupling_axes, couplings),
         constraints=tuple(c for c in layout.constraints if c.expression.free_symbols <= radii),
         positive_facts=tuple(f for f in layout.positive_facts if f.free_symbols <= radii),
+        side_facts=tuple(f for f in layout.side_facts if f.free_symbols <= radii),
     )

@@ -48,6 +48,10 @@ class Layout:
     constraints: tuple[GeometricConstraint, ...]
     #: Expressions known to be positive, e.g. R - r of every internal mesh.
     positive_facts: tuple[sympy.Expr, ...] = ()
+    #: Each side of every triangle a 2-D drawing closes shorter than the other two: implied
+    #: by the triangle's radicand among ``positive_facts``, written out so that formulas
+    #: in fewer symbols can check it where a side's radius cancels (r2 + 2 r6 - r1 > 0).
+    side_facts: tuple[sympy.Expr, ...] = ()
     axis: Vector = Z_AXIS
     #: Axis direction of each gear and of each coupling's rotation, where it is not ``axis``
     #: (intersecting-axis trains).

@@ -49,7 +49,8 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
     used: set[str] = set()
-    positions = _place_classes(train, _Drawing(structure, meshes, gears, unit, radicals, problems, used, set()))
+    drawing = _Drawing(structure, meshes, gears, unit, radicals, problems, used, set())
+    positions = _place_classes(train, drawing)
     if problems:
         raise GeometryError(problems, train.file_lines)
     centres = {g.name: positions[structure.axis[g.axis_link]] for g in train.gears}
@@ -67,6 +68,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
         mesh_normals=pitch.normals,
         constraints=tuple(closures.constraints),
         positive_facts=tuple(pitch.facts) + tuple(r.radicand for r in radicals.radicals),
+        side_facts=tuple(drawing.sides),
         radicals=tuple(radicals.radicals),
         frame=unit,
         planet_second=structure.planet_second,
@@ -159,7 +161,8 @@ class _Drawing:
     """What placing the axis classes of a 2-D drawing reads (the axis structure, the
     meshes in name order, the gears, the placement direction, the square roots so far)
     and collects (``problems``; ``used``: the meshes that placed a class; ``bases``: the
-    ordered pairs of centres a triangle has closed on)."""
+    ordered pairs of centres a triangle has closed on; ``sides``: the triangle
+    inequalities of the triangles it closes)."""
 
     structure: AxisStructure
     meshes: Sequence[AxisSpacing]
@@ -169,6 +172,7 @@ class _Drawing:
     problems: list[Problem]
     used: set[str]
     bases: set[tuple[Point, Point]]
+    sides: list[sympy.Expr] = field(default_factory=list)
 
 
 def _place_classes(train: Train, drawing: _Drawing) -> dict[str, Point]:
@@ -248,7 +252,7 @@ def _place_one(drawing: _Drawing, positions: dict[str, Point]) -> bool:
                 # their line of centres: the four axes form a convex quadrilateral.
                 base, other = other, base
             drawing.bases.add((base[0], other[0]))
-            point = _triangle(base, other, radicals, drawing.problems)
+            point = _triangle(base, other, radicals, drawing.problems, drawing.sides)
             if point is None:
                 return False
             positions[group] = point
@@ -265,8 +269,11 @@ def _triangle(
     second: tuple[Point, sympy.Expr, str],
     radicals: RadicalTable,
     problems: list[Problem],
+    sides: list[sympy.Expr],
 ) -> Point | None:
-    """The point at distance d_A from A and d_B from B, counter-clockwise of A -> B."""
+    """The point at distance d_A from A and d_B from B, counter-clockwise of A -> B; the
+    triangle's inequalities (the sum of two sides less the third, positive) go to
+    ``sides``."""
     (a, da, mesh_a), (b, db, mesh_b) = first, second
     ab = (radicals.reduce(b[0] - a[0]), radicals.reduce(b[1] - a[1]))
     try:
@@ -297,5 +304,9 @@ def _triangle(
             Problem(f"couplings.{mesh_b}", f"the meshes {mesh_a} and {mesh_b} cannot close a triangle: {exc}")
         )
         return None
+    for side, others in ((length, da + db), (da, db + length), (db, da + length)):
+        excess = sympy.expand(radicals.reduce(others - side))
+        if not excess.is_number:
+            sides.append(excess)
     u = (radicals.reduce(ab[0] / length), radicals.reduce(ab[1] / length))
     return (radicals.reduce(a[0] + along * u[0] - height * u[1]), radicals.reduce(a[1] + along * u[1] + height * u[0]))

@@ -172,3 +172,9 @@ def test_start_values_are_asked_for_by_name(tmp_path: Path, at: list[str], words
     assert_refused(result, SR20, ("--at",), line=False)
     assert words in result.stderr
     assert not (tmp_path / "s.fmu").exists()
+
+
+def test_an_fmu_without_its_file_is_refused() -> None:
+    result = run_main([SR20, "--emit", "fmu", "--at", "eta_M=0.9", "D_P=0.1", "--quiet"])
+    assert_refused(result, SR20, ("--emit",), line=False)
+    assert "-o TRAIN.fmu" in result.stderr

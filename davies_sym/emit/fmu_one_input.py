@@ -32,7 +32,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameter_ranges import OPERATING_PARAMETERS, parameters_of_train
 from davies_sym.emit.derived_result import OneInputResult
-from davies_sym.emit.fmu_sources import FmuModel, Interface, c_call, parameter_texts
+from davies_sym.emit.fmu_sources import FmuModel, Interface, c_call, filled, parameter_texts
 from davies_sym.emit.languages import emit_code, program_of
 from davies_sym.emit.languages.one_input_program import RATIO
 from davies_sym.emit.languages.program import Kind, Program, Routine
@@ -81,10 +81,7 @@ def _step(program: Program, parameters: tuple[str, ...], variants: tuple[tuple[i
             f"    case {number}:\n        return {c_call(by_name[name], given)};" for number, name in variants
         ),
     }
-    text = _STEP
-    for key, value in fields.items():
-        text = text.replace(f"@{key}@", value)
-    return text
+    return filled(_STEP, fields)
 
 
 def one_input_fmu_model(result: OneInputResult, starts: Mapping[str, float]) -> tuple[FmuModel, str]:
@@ -122,7 +119,7 @@ def one_input_fmu_model(result: OneInputResult, starts: Mapping[str, float]) -> 
         INTERFACE,
         _step(program, names, tuple((v.number, v.name) for v in variants.variants)),
     )
-    return model, emit_code(result, "c")
+    return model, emit_code(result, "c", program)
 
 
 _STEP = r"""/* The raw efficiency of variant `number` (self-locking or not). */

@@ -26,10 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE
+from davies_sym.efficiency.power_flow_regions import LOAD_TORQUE, SeveralInputs
 from davies_sym.emit.derived_result import SeveralInputResult
-from davies_sym.emit.fmu_sources import FmuModel, Interface, c_call, parameter_texts
+from davies_sym.emit.fmu_sources import FmuModel, Interface, c_call, filled, parameter_texts
 from davies_sym.emit.languages import emit_code, program_of
+from davies_sym.emit.languages.program import Program
 from davies_sym.emit.languages.several_input_program import known_symbols
 from davies_sym.errors import InputError, Problem
 
@@ -45,7 +46,10 @@ REASONS = (
 )
 
 
-def _interface(inputs: tuple[str, ...], speeds: tuple[str, ...], output: str) -> Interface:
+def _interface(si: SeveralInputs, speeds: tuple[str, ...]) -> Interface:
+    """The unit's variables: each input port's speed and torque, the load; it remembers
+    a sign per speed condition, the output's sign and the last input speeds."""
+    inputs, output = tuple(si.train.ports.inputs), si.train.ports.output
     return Interface(
         inputs=(
             *((s, "rad/s", f"speed of input port {p}") for p, s in zip(inputs, speeds, strict=True)),
@@ -66,7 +70,7 @@ def _interface(inputs: tuple[str, ...], speeds: tuple[str, ...], output: str) ->
         ),
         variant="number of the power-flow region that holds, as the text report numbers it (0: none)",
         reasons=REASONS,
-        memory=0,  # set by the model: one sign per condition, the output's, the last input speeds
+        memory=len(si.conditions) + 1 + len(speeds),
     )
 
 
@@ -89,8 +93,6 @@ def several_inputs_fmu_model(result: SeveralInputResult, starts: Mapping[str, fl
     if needed:
         why = f"give the start value of {', '.join(needed)} (NAME=VALUE): the FMU's parameters start there"
         raise InputError([Problem("--at", why)], train.path)
-    interface = _interface(tuple(train.ports.inputs), speeds, train.ports.output)
-    memory = len(si.conditions) + 1 + len(speeds)
     model = FmuModel(
         program.module,
         train.name or program.module,
@@ -98,16 +100,14 @@ def several_inputs_fmu_model(result: SeveralInputResult, starts: Mapping[str, fl
         program,
         tuple(parameters),
         dict(starts),
-        Interface(interface.inputs, interface.outputs, interface.variant, interface.reasons, memory),
-        _step(result, names, speeds),
+        _interface(si, speeds),
+        _step(si, program, names, speeds),
     )
-    return model, emit_code(result, "c")
+    return model, emit_code(result, "c", program)
 
 
-def _step(result: SeveralInputResult, names: tuple[str, ...], speeds: tuple[str, ...]) -> str:
+def _step(si: SeveralInputs, program: Program, names: tuple[str, ...], speeds: tuple[str, ...]) -> str:
     """The C text of ``rest`` and ``compute``: the region of the present signs."""
-    si = result.regions
-    program = program_of(result, "c")
     by_name = {r.name: r for r in program.routines}
     conditions = len(si.conditions)
     probe = {s: f"probe[{k}]" for k, s in enumerate(speeds)}
@@ -143,10 +143,7 @@ def _step(result: SeveralInputResult, names: tuple[str, ...], speeds: tuple[str,
         "SPEED_OUT": c_call(by_name[f"speed_{output}"], {s: f"c->u[{k}]" for k, s in enumerate(speeds)}),
         "IN_RANGES": c_call(by_name["in_ranges"], {**given, str(LOAD_TORQUE): "(m > 0 ? m : 1.0)"}),
     }
-    text = _STEP
-    for key, value in fields.items():
-        text = text.replace(f"@{key}@", value)
-    return text
+    return filled(_STEP, fields)
 
 
 _STEP = r"""#define CONDITIONS @CONDITIONS@

@@ -167,10 +167,14 @@ def wrapper_source(model: FmuModel, formulas_file: str, guid: str) -> str:
         "STARTS": starts,
         "RESET": starts.replace("c->p", "i->p"),
     }
-    text = _TEMPLATE.replace("@STEP@", model.step).replace("@FUNCTIONS@", FMI_FUNCTIONS)
+    return filled(_TEMPLATE.replace("@STEP@", model.step).replace("@FUNCTIONS@", FMI_FUNCTIONS), fields)
+
+
+def filled(template: str, fields: Mapping[str, str]) -> str:
+    """``template`` with each ``@KEY@`` replaced by ``fields[KEY]``."""
     for key, value in fields.items():
-        text = text.replace(f"@{key}@", value)
-    return text
+        template = template.replace(f"@{key}@", value)
+    return template
 
 
 def _c_string(text: str) -> str:

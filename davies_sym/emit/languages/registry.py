@@ -53,10 +53,10 @@ def program_of(derived: Programmed, language: str) -> Program:
     return derived.program(module_name(train.path, derived.state, train.name), TARGETS[language].not_covered)
 
 
-def emit_code(derived: Programmed, language: str) -> str:
+def emit_code(derived: Programmed, language: str, program: Program | None = None) -> str:
     """The source text of ``derived`` in ``language`` (one of `LANGUAGES`); the same
-    train gives the same bytes."""
+    train gives the same bytes.  ``program``: its `program_of` where the caller built it."""
     try:
-        return TARGETS[language].write(program_of(derived, language))
+        return TARGETS[language].write(program or program_of(derived, language))
     except RefusedName as exc:
         raise refused_name(derived.train, exc.kind, exc.name, exc.why, exc.code) from None

@@ -258,8 +258,8 @@ def _check_state(train: davies_sym.Train, state: str, rng: np.random.Generator) 
     variant at two of those designs."""
     try:
         variants = davies_sym.derive(train_in_state(train, state))
-    except davies_sym.TopologyError:
-        return []  # a state the atlas draws without a carrier for a mesh: no formula is printed
+    except davies_sym.DaviesError as exc:  # every state of an atlas file derives
+        return [f"{state}: refused: {exc}"]
     module = compiled_module(python_module(variants), "state")
     values = _drawn(module, rng)
     failed = []
@@ -272,7 +272,7 @@ def _check_state(train: davies_sym.Train, state: str, rng: np.random.Generator) 
         numbers[~_positive_radii(module, values)] = 0
         failed += [f"{state} input {port}: {why}" for why in _printed_hold(module, numbers, values)]
         for k in np.flatnonzero(numbers)[:2]:
-            point = {n: sympy.nsimplify(float(v[k])) for n, v in values.items()}
+            point = {n: sympy.Rational(str(float(v[k]))) for n, v in values.items()}  # drawn k / 1000: exact
             try:
                 chosen = variants.design_point(point, port).variant.number
             except davies_sym.DaviesError as exc:

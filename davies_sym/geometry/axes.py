@@ -82,7 +82,8 @@ def axis_structure(train: Train, spaced: Sequence[AxisSpacing] | None = None) ->
     parent, depth, tree = _bearing_tree(train, revolutes)
     coaxial, bearing_on = _coaxial(train, revolutes, tree)
     _check_meshes_apart(train, meshes, revolutes, tree, coaxial)
-    frames, axis = _mesh_frames(train, meshes, _axis_holders(parent, coaxial), depth, revolutes, tree)
+    holders = _axis_holders(parent, coaxial)
+    frames, axis = _mesh_frames(train, meshes, holders, depth, revolutes, tree, coaxial)
     bearing_axis = {name: axis[link] for name, link in bearing_on.items()}
     return AxisStructure(
         parent=parent,
@@ -147,8 +148,16 @@ def axis_links(train: Train, mesh: AxisSpacing) -> tuple[str, str]:
     return first, second
 
 
-def _options(train: Train, mesh: AxisSpacing, parent: Mapping[str, str], depth: Mapping[str, int]) -> list[Choice]:
-    """The ways ``mesh`` can keep its centre distance: (frame, the two links it makes coaxial)."""
+def _options(
+    train: Train,
+    mesh: AxisSpacing,
+    parent: Mapping[str, str],
+    depth: Mapping[str, int],
+    coaxial: Mapping[str, str],
+) -> list[Choice]:
+    """The ways ``mesh`` can keep its centre distance: (frame, the two links it makes
+    coaxial), those the bearings make coaxial already (``coaxial``: each link's class)
+    first."""
     a, b = axis_links(train, mesh)
     pa, pb = parent.get(a), parent.get(b)
     if pa is not None and pa == pb:
@@ -162,8 +171,13 @@ def _options(train: Train, mesh: AxisSpacing, parent: Mapping[str, str], depth: 
         options.append((-depth[a], a, MeshFrame(pa, 0), (b, pa)))
     if pb is not None:
         options.append((-depth[b], b, MeshFrame(pb, 1), (a, pb)))
-    # The planet is the link farther from the reference; ties by name.
-    return [(frame, equal) for _, _, frame, equal in sorted(options, key=lambda o: (o[0], o[1]))]
+    # A gear turning about the other gear's holder's own axis already (a planet's gear
+    # meshing a ring on a pin of the same carrier) names that holder first; else the
+    # planet is the link farther from the reference; ties by name.
+    return [
+        (frame, equal)
+        for _, _, frame, equal in sorted(options, key=lambda o: (coaxial[o[3][0]] != coaxial[o[3][1]], o[0], o[1]))
+    ]
 
 
 def _coaxial(
@@ -254,13 +268,14 @@ def _mesh_frames(
     depth: Mapping[str, int],
     revolutes: Sequence[Revolute],
     tree: Mapping[str, str],
+    coaxial: Mapping[str, str],
 ) -> tuple[dict[str, MeshFrame], dict[str, str]]:
     """The first choice of a carrier per mesh (in order of preference) under which no mesh
     joins two coaxial links, and the axis classes of the links with the axes it makes
     coaxial (each link's class, named by its first link); the ``revolutes`` (``tree``:
     the bearing tree) make links coaxial before the meshes do."""
     ends = {m.name: axis_links(train, m) for m in meshes}
-    choices = [_options(train, m, parent, depth) for m in meshes]
+    choices = [_options(train, m, parent, depth, coaxial) for m in meshes]
     for assignment in _assignments(choices):
         equals = [equal for _, equal in assignment if equal is not None]
         groups = _coaxial(train, revolutes, tree, equals=equals)[0]

@@ -359,7 +359,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 IGNORED: Final[tuple[str, ...]] = ('eta_3', 'rpl', 'rps', 'rs2')
-RELATIONS: Final[tuple[str, ...]] = ()
+RELATIONS: Final[tuple[str, ...]] = ('rr - rs1 > 0',)
 DEPENDENT: Final[dict[str, str]] = {}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
 EXCLUDED: Final[tuple[int, ...]] = ()
@@ -403,6 +403,14 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'forces': (),
     },
 )
+
+
+def _relation_1(*, rr: ArrayLike, rs1: ArrayLike) -> NDArray[np.bool_]:
+    """Whether rr - rs1 > 0."""
+    xp = _namespace(rr, rs1)
+    rr = _array(rr, xp)
+    rs1 = _array(rs1, xp)
+    return _truth(rr - rs1 > 0, xp)
 
 
 def A_to_D(*, eta_1: ArrayLike, eta_2: ArrayLike, eta_4: ArrayLike) -> Array:
@@ -472,7 +480,7 @@ def _ratio_formula(*, rr: ArrayLike, rs1: ArrayLike) -> Array:
 
 
 _CONDITIONS: Final[_Table] = {}
-_RELATIONS: Final[_Table] = {}
+_RELATIONS: Final[_Table] = {'rr - rs1 > 0': (_relation_1, ('rr', 'rs1'))}
 _DEPENDENT: Final[_Table] = {}
 _EFFICIENCY: Final[_Table] = {
     'A_to_D': (A_to_D, ('eta_1', 'eta_2', 'eta_4')),

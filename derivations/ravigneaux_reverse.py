@@ -353,7 +353,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 IGNORED: Final[tuple[str, ...]] = ('eta_1', 'eta_2', 'rps', 'rs1')
-RELATIONS: Final[tuple[str, ...]] = ()
+RELATIONS: Final[tuple[str, ...]] = ('rr/2 - rs2/2 > 0',)
 DEPENDENT: Final[dict[str, str]] = {'rpl': 'rpl = rr/2 - rs2/2'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
 EXCLUDED: Final[tuple[int, ...]] = ()
@@ -389,6 +389,14 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'forces': (),
     },
 )
+
+
+def _relation_1(*, rr: ArrayLike, rs2: ArrayLike) -> NDArray[np.bool_]:
+    """Whether rr/2 - rs2/2 > 0."""
+    xp = _namespace(rr, rs2)
+    rr = _array(rr, xp)
+    rs2 = _array(rs2, xp)
+    return _truth(1 / 2 * rr - 1 / 2 * rs2 > 0, xp)
 
 
 def B_to_D(*, eta_3: ArrayLike, eta_4: ArrayLike) -> Array:
@@ -460,7 +468,7 @@ def _ratio_formula(*, rr: ArrayLike, rs2: ArrayLike) -> Array:
 
 
 _CONDITIONS: Final[_Table] = {}
-_RELATIONS: Final[_Table] = {}
+_RELATIONS: Final[_Table] = {'rr/2 - rs2/2 > 0': (_relation_1, ('rr', 'rs2'))}
 _DEPENDENT: Final[_Table] = {'rpl': (_dependent_rpl, ('rr', 'rs2'))}
 _EFFICIENCY: Final[_Table] = {'B_to_D': (B_to_D, ('eta_3', 'eta_4')), 'D_to_B': (D_to_B, ('eta_3', 'eta_4'))}
 _LOSSES: Final[_Table] = {

@@ -352,7 +352,7 @@ PARAMETERS: Final[tuple[Parameter, ...]] = (
     },
 )
 IGNORED: Final[tuple[str, ...]] = ('eta_C', 'eta_D', 'rp1', 'rr1')
-RELATIONS: Final[tuple[str, ...]] = ()
+RELATIONS: Final[tuple[str, ...]] = ('rr2/2 - rs/2 > 0',)
 DEPENDENT: Final[dict[str, str]] = {'rp2': 'rp2 = rr2/2 - rs/2'}
 CONDITIONS: Final[dict[str, tuple[str, str]]] = {}
 EXCLUDED: Final[tuple[int, ...]] = ()
@@ -388,6 +388,14 @@ VARIANTS: Final[tuple[Variant, ...]] = (
         'forces': (),
     },
 )
+
+
+def _relation_1(*, rr2: ArrayLike, rs: ArrayLike) -> NDArray[np.bool_]:
+    """Whether rr2/2 - rs/2 > 0."""
+    xp = _namespace(rr2, rs)
+    rr2 = _array(rr2, xp)
+    rs = _array(rs, xp)
+    return _truth(1 / 2 * rr2 - 1 / 2 * rs > 0, xp)
 
 
 def G_to_B(*, eta_E: ArrayLike, eta_F: ArrayLike) -> Array:
@@ -459,7 +467,7 @@ def _ratio_formula(*, rr2: ArrayLike, rs: ArrayLike) -> Array:
 
 
 _CONDITIONS: Final[_Table] = {}
-_RELATIONS: Final[_Table] = {}
+_RELATIONS: Final[_Table] = {'rr2/2 - rs/2 > 0': (_relation_1, ('rr2', 'rs'))}
 _DEPENDENT: Final[_Table] = {'rp2': (_dependent_rp2, ('rr2', 'rs'))}
 _EFFICIENCY: Final[_Table] = {'G_to_B': (G_to_B, ('eta_E', 'eta_F')), 'B_to_G': (B_to_G, ('eta_E', 'eta_F'))}
 _LOSSES: Final[_Table] = {

@@ -339,3 +339,26 @@ def test_a_design_whose_planets_triangle_cannot_close_is_refused_by_every_route(
     assert variants.design_point({**inside, **etas}, "B1").variant.number == number
     values = {k: np.array([v]) for k, v in {**inside, **etas}.items()}
     assert _printed_hold(module, np.array([number]), values) == []
+
+
+def test_a_relation_in_the_speed_ratios_symbols_alone_is_checked_by_the_module() -> None:
+    """atlas7_r138_d15 in state h0_i1_o4: a series of fixed-axis meshes whose efficiency,
+    eta_M0 eta_M3 eta_M4, takes no radius, while the speed ratio takes r1a, r3a and r6c,
+    and the planets' triangle closes only where r3a + 2 r6c > r1a.  A module given those
+    radii refuses a design that breaks it, as the engine does (the module took variant
+    (1) there, the engine refused); given the efficiencies alone, both answer."""
+    (place,) = [p for p in places(7) if (p.rotation, p.index) == (138, 15)]
+    train = davies_sym.loads(entry(place).train_text())
+    variants = davies_sym.derive(train_in_state(train, "h0_i1_o4"))
+    module = compiled_module(python_module(variants), "r138_d15")
+    etas = {"eta_M0": 0.9, "eta_M3": 0.95, "eta_M4": 0.97}
+    outside = {"r1a": 49.0, "r3a": 26.0, "r6c": 9.0}
+    with pytest.raises(module.DesignError, match="outside the admissible parameters"):
+        module.efficiency(input="B1", errors="raise", **outside, **etas)
+    with pytest.raises(davies_sym.DesignError, match="triangle"):
+        variants.design_point({**outside, **etas}, "B1")
+    inside = {**outside, "r1a": 40.0}
+    product = F("0.9") * F("0.95") * F("0.97")
+    assert float(module.efficiency(input="B1", errors="raise", **inside, **etas)) == pytest.approx(float(product))
+    assert variants.evaluate({k: sympy.Rational(str(v)) for k, v in {**inside, **etas}.items()}, "B1") == product
+    assert float(module.efficiency(input="B1", errors="raise", **etas)) == pytest.approx(float(product))

@@ -69,12 +69,14 @@ def _obviously_positive(expr: sympy.Expr) -> bool:
 
 
 def admissible_relations(variants: VariantSet) -> tuple[sympy.Expr, ...]:
-    """Expressions positive on every admissible design, in the formulas' symbols (radii
-    eliminated by the geometric constraints replaced; bare symbols and sums of positive
-    terms are left to the ranges)."""
+    """Expressions positive on every admissible design, in the symbols of the formulas and
+    the speed ratio, which a formula module takes alike (radii eliminated by the geometric
+    constraints replaced; bare symbols and sums of positive terms are left to the
+    ranges): a module checks each where it is given every symbol, as the engine does."""
     layout = variants.analysis.network.layout
     eliminate = eliminated_symbols(variants)
-    known = set(variants.symbols)
+    ratio = restore(variants.analysis.speed_ratio().to_expr(), layout.radicals)
+    known = set(variants.symbols) | ratio.free_symbols
     out: list[sympy.Expr] = []
     facts = [expr for expr, _ in admissible_facts(variants.train, layout)]
     for expr in facts + list(layout.side_facts) + _implied_by_excluded(variants):

@@ -23,10 +23,13 @@ from __future__ import annotations
 
 from collections.abc import Collection, Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 import sympy
+from flint import fmpq
 
+from davies_sym.algebra.point_values import Args
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.operating_point import INPUT_TORQUE, OPERATING_SYMBOLS
 from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, geometry_symbols
@@ -55,9 +58,9 @@ class MeshReversal:
     samples: tuple[Point, ...]
 
 
-def _signs_at(domain: ParameterDomain, conditions: Sequence[TurningCondition], point: Point) -> dict[str, int]:
-    """The sign of every turning condition at ``point`` (0 counts as positive)."""
-    return {c.name: 1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions}
+def _signs_at(domain: ParameterDomain, conditions: Sequence[TurningCondition], args: Args) -> tuple[int, ...]:
+    """The sign of every turning condition at the point ``args`` (0 counts as positive)."""
+    return tuple(1 if domain.value_at(c.expression, args) >= 0 else -1 for c in conditions)
 
 
 def near_boundary(
@@ -65,21 +68,28 @@ def near_boundary(
 ) -> list[Point]:
     """Admissible points of the region of ``inside`` on the segment towards ``outside``
     (another region's sample), at the `DEPTHS` of the way back from where the segment
-    leaves the region (bisection on the conditions' signs, eqs. (86)-(88))."""
+    leaves the region (bisection on the conditions' signs, eqs. (86)-(88)).  The
+    bisection runs on exact rationals of flint, read from the points once."""
     free = [s for s in geometry_symbols(domain.train) if s in inside and s in outside and s not in domain.eliminated]
-    signs = _signs_at(domain, conditions, inside)
+    start, end = domain.args(inside), domain.args(outside)
+    index = [domain.symbol_index[s] for s in free]
+    signs = _signs_at(domain, conditions, start)
 
-    def at(t: sympy.Rational) -> Point | None:
-        mixed = {**inside, **{s: inside[s] + t * (outside[s] - inside[s]) for s in free}}
-        point = domain.completed({k: v for k, v in mixed.items() if k not in domain.eliminated})
-        return point if point is not None and _signs_at(domain, conditions, point) == signs else None
+    def at(t: fmpq) -> Args | None:
+        mixed = list(start)
+        for k in index:
+            a, b = cast(fmpq, start[k]), cast(fmpq, end[k])
+            mixed[k] = a + t * (b - a)
+        args = domain.completed_args(mixed)
+        return args if args is not None and _signs_at(domain, conditions, args) == signs else None
 
-    low, high = sympy.Integer(0), sympy.Integer(1)
+    low, high = fmpq(0), fmpq(1)
     for _ in range(STEPS):
         middle = (low + high) / 2
         low, high = (middle, high) if at(middle) is not None else (low, middle)
-    points = (at(low * (1 - depth)) for depth in DEPTHS)
-    return [p for p in points if p is not None]
+    keys = [*(k for k in inside if k not in domain.eliminated), *domain.eliminated]
+    points = (at(low * (1 - fmpq(depth.p, depth.q))) for depth in DEPTHS)
+    return [domain.point_of(p, keys, inside) for p in points if p is not None]
 
 
 def reached_points(

@@ -15,10 +15,12 @@ import random
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import cast
 
 import sympy
-from flint import fmpz_mpoly
+from flint import fmpq, fmpz_mpoly
 
+from davies_sym.algebra.point_values import Args
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.geometry.layout import Layout, joint_substitution
@@ -65,6 +67,13 @@ class FloatPolynomial:
         if not abs(total) > 1e-9 * size:  # also nan
             return None
         return 1 if total > 0 else -1
+
+
+def _positive_in(p: fmpz_mpoly, symbols: Sequence[sympy.Symbol], drawn: set[sympy.Symbol]) -> bool:
+    """Whether ``p`` is positive wherever the ``drawn`` symbols are: a non-zero polynomial
+    in them alone with positive coefficients."""
+    used = {x for x, d in zip(symbols, p.degrees(), strict=False) if d > 0}  # no symbols: one dummy generator
+    return not p.is_zero() and used <= drawn and all(int(c) > 0 for c in p.coeffs())
 
 
 def admissible_facts(train: Train, layout: Layout) -> list[tuple[sympy.Expr, str]]:
@@ -164,7 +173,9 @@ class ParameterDomain:
             eliminated.append(
                 (symbol, FloatPolynomial.of(rf.num, ring.symbols), FloatPolynomial.of(rf.den, ring.symbols))
             )
-        facts = [FloatPolynomial.of(p, ring.symbols) for rf in self._positive for p in (rf.num, rf.den)]
+        # A fact in the drawn symbols with positive terms only (a pitch radius) is positive
+        # at every drawn point: it has nothing to tell.
+        facts = [FloatPolynomial.of(p, ring.symbols) for rf in self._undecided for p in (rf.num, rf.den)]
         return eliminated, facts
 
     def _float_verdict(self, point: Mapping[sympy.Symbol, int]) -> bool | None:
@@ -214,6 +225,67 @@ class ParameterDomain:
         """Exact value of a rational expression of the train's symbols at ``point``."""
         v = self._converted(sympy.sympify(expr)).evaluate(point)
         return sympy.Rational(int(v.p), int(v.q))
+
+    def args(self, point: Point) -> Args:
+        """``point`` read once as the values of the train's symbols (`value_at`)."""
+        return self._ring.points.args(point)
+
+    def value_at(self, expr: sympy.Expr, args: Args) -> fmpq:
+        """Exact value of a rational expression of the train's symbols at ``args``
+        (`args`): many expressions at one point without reading it again."""
+        return self._converted(expr).evaluate(args)
+
+    def completed_args(self, free: list[fmpq | None]) -> Args | None:
+        """`completed` on the symbols' values (``free``, indexed as the train's symbols,
+        the eliminated ones filled in place): the values of the admissible design, or
+        None where it is none."""
+        index = self.symbol_index
+        for symbol in self.eliminated:
+            free[index[symbol]] = None  # given by the free symbols alone
+        try:
+            for symbol, expr in self.eliminated.items():
+                free[index[symbol]] = self._converted(sympy.sympify(expr)).evaluate(tuple(free))
+        except ZeroDivisionError:
+            return None
+        args = tuple(free)
+        if any(cast(fmpq, args[index[s]]) <= 0 for s in self.eliminated):
+            return None
+        drawn = [args[index[s]] for s in self._drawn]
+        # With every drawn length positive, a fact with positive terms only holds.
+        facts = self._undecided if all(v is not None and v > 0 for v in drawn) else self._positive
+        try:
+            return args if all(e.evaluate(args) > 0 for e in facts) else None
+        except ZeroDivisionError:
+            return None
+
+    @cached_property
+    def _drawn(self) -> list[sympy.Symbol]:
+        """The symbols a design draws or computes: lengths, all positive on a design."""
+        return sorted_symbols((geometry_symbols(self.train) & set(self.symbol_index)) | set(self.eliminated))
+
+    @cached_property
+    def _undecided(self) -> list[RationalFunction]:
+        """The positive facts not positive by their terms alone (`_positive_in`)."""
+        drawn, symbols = set(self._drawn), self._ring.symbols
+        return [rf for rf in self._positive if not all(_positive_in(p, symbols, drawn) for p in (rf.num, rf.den))]
+
+    @cached_property
+    def symbol_index(self) -> dict[sympy.Symbol, int]:
+        """The place of each of the train's symbols in `args`."""
+        return {s: k for k, s in enumerate(self._ring.symbols)}
+
+    def point_of(self, args: Args, keys: Iterable[sympy.Symbol], given: Point) -> Point:
+        """The design of ``args`` as a point with the ``keys`` in order: a symbol of the
+        train from ``args``, any other from ``given``."""
+        index = self.symbol_index
+        out: Point = {}
+        for key in keys:
+            if key in index:
+                v = cast(fmpq, args[index[key]])
+                out[key] = sympy.Rational(int(v.p), int(v.q))
+            else:
+                out[key] = given[key]
+        return out
 
     def samples(
         self,

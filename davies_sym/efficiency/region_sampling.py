@@ -20,6 +20,7 @@ from itertools import pairwise
 
 import numpy as np
 import sympy
+from flint import fmpz_mpoly
 
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.efficiency.parameter_domain import ParameterDomain
@@ -89,12 +90,14 @@ class Draws:
         self.efficiencies = efficiencies
         self.rng = np.random.default_rng(seed)
         self.columns: dict[sympy.Symbol, np.ndarray] = {}
+        #: Each factor's values (by its text) once formed: forces share factors.
+        self.factors: dict[str, np.ndarray] = {}
 
     def column(self, symbol: sympy.Symbol) -> np.ndarray:
         if symbol not in self.columns:
             count = self.rows // len(self.points)
             if symbol in self.points[0]:
-                values = np.repeat([float(p[symbol]) for p in self.points], count)
+                values = np.repeat([_float(p[symbol]) for p in self.points], count)
             elif symbol in self.efficiencies:
                 values = self.rng.uniform(0.5, 1.0, self.rows)
             elif symbol == self.load:
@@ -111,6 +114,12 @@ class Draws:
             value = Fraction(f"{self.column(s)[row]:.6g}")
             out[s] = sympy.Rational(value.numerator, value.denominator)
         return out
+
+
+def _float(value: sympy.Expr) -> float:
+    """The float nearest ``value`` (a rational's p / q is correctly rounded, as sympy's
+    conversion is, without its multiprecision detour)."""
+    return value.p / value.q if isinstance(value, sympy.Rational) else float(value)
 
 
 def needed_signs(
@@ -132,15 +141,24 @@ def float_values(rf: RationalFunction, draws: Draws) -> np.ndarray:
     out = np.full(draws.rows, float(cn) / float(cd))
     for factors, power in ((fn, 1), (fd, -1)):
         for f, e in factors:
-            value = np.zeros(draws.rows)
-            for exponents, coefficient in zip(f.monoms(), f.coeffs(), strict=True):
-                term = np.full(draws.rows, float(int(coefficient)))
-                for symbol, k in zip(ring.symbols, exponents, strict=True):
-                    if k:
-                        term *= draws.column(symbol) ** int(k)
-                value += term
-            out *= value ** (power * e)
+            out *= _factor_values(f, ring.symbols, draws) ** (power * e)
     return out
+
+
+def _factor_values(f: fmpz_mpoly, symbols: Sequence[sympy.Symbol], draws: Draws) -> np.ndarray:
+    """One factor at every draw, formed once per draw table (the columns it reads exist
+    once it is formed, so the draws do not depend on what was formed before)."""
+    key = str(f)
+    if key not in draws.factors:
+        value = np.zeros(draws.rows)
+        for exponents, coefficient in zip(f.monoms(), f.coeffs(), strict=True):
+            term = np.full(draws.rows, float(int(coefficient)))
+            for symbol, k in zip(symbols, exponents, strict=True):
+                if k:
+                    term *= draws.column(symbol) ** int(k)
+            value += term
+        draws.factors[key] = value
+    return draws.factors[key]
 
 
 def holds_somewhere(

@@ -92,7 +92,8 @@ def sampled_regions(
         )
     regions: dict[tuple[int, ...], list[Point]] = {}
     for point in points:
-        key = tuple(1 if domain.value(c.expression, point) >= 0 else -1 for c in conditions)
+        args = domain.args(point)
+        key = tuple(1 if domain.value_at(c.expression, args) >= 0 else -1 for c in conditions)
         regions.setdefault(key, []).append(point)
     return regions
 

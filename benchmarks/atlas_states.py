@@ -1,0 +1,97 @@
+"""Seconds per operating state of the atlas of N links, as ``derive FILES --json`` spends
+them: each file derived in a worker (``--jobs N``), each state timed from the step that
+starts it to the next one, the file's JSON document shared out evenly over its states.
+Reports, for the trains drawn on a line and those drawn in 2-D apart: the median, the
+quartiles, the 90th percentile and the largest per-state time, the wall time of the
+whole and the ten slowest states.
+
+    python benchmarks/atlas_states.py [LINKS] [--jobs N] [--sample K] [--seed S]
+
+``--sample K`` derives K files drawn at random (seed S) from each kind, for atlases too
+big to derive whole on one machine (8 links); the whole is then extrapolated from them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import random
+import statistics
+import tempfile
+import time
+
+from davies_sym.atlas.atlas_entries import entry, places
+from davies_sym.cli.many_files import Task, derive_task
+from davies_sym.fan_out import Workers, fan_out
+
+Timed = tuple[str, list[tuple[str, float]]]
+
+
+def timed_file(task: Task) -> Timed:
+    """Seconds of each state of one file: from its ``state NAME`` step to the next one
+    (the last to the end of the file), with the document's writing shared evenly."""
+    marks: list[tuple[str, float]] = []
+
+    def progress(text: str) -> None:
+        if text.startswith("state "):
+            marks.append((text[len("state ") :], time.perf_counter()))
+
+    start = time.perf_counter()
+    derived = derive_task(task, progress)
+    end = time.perf_counter()
+    if derived.status != 0:
+        raise SystemExit(f"{task.path}: {derived.messages}")
+    if not marks:  # a train without states: the file is one state
+        return task.stem, [("", end - start)]
+    ends = [t for _, t in marks[1:]] + [end]
+    overhead = (marks[0][1] - start) / len(marks)
+    return task.stem, [(name, e - t + overhead) for (name, t), e in zip(marks, ends, strict=True)]
+
+
+def _report(kind: str, results: list[Timed], wall: float, total_files: int) -> None:
+    times = sorted((s, f"{stem} {state}") for stem, states in results for state, s in states)
+    values = [s for s, _ in times]
+    if not values:
+        return
+    q = statistics.quantiles(values, n=20) if len(values) > 1 else values * 19
+    print(
+        f"  drawn {kind}: {len(results)} of {total_files} files, {len(values)} states in {wall:.0f} s wall "
+        f"({wall / len(values):.3f} s per state)"
+    )
+    print(
+        f"    per state: median {statistics.median(values):.3f} s, quartiles {q[4]:.3f} / {q[14]:.3f} s, "
+        f"90th percentile {q[17]:.3f} s, largest {values[-1]:.2f} s"
+    )
+    if len(results) < total_files:
+        per_file = wall / len(results)
+        print(f"    the whole ({total_files} files) extrapolated: {per_file * total_files / 60:.1f} min wall")
+    print("    slowest: " + ", ".join(f"{name} {s:.2f} s" for s, name in reversed(times[-10:])))
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("links", type=int, nargs="?", default=7)
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--sample", type=int, default=None, help="files drawn at random from each kind")
+    p.add_argument("--seed", type=int, default=0)
+    args = p.parse_args()
+    start = time.perf_counter()
+    entries = [e for e in (entry(place) for place in places(args.links)) if not e.not_drawable]
+    print(f"{args.links} links: {len(entries)} drawable train files formed in {time.perf_counter() - start:.0f} s")
+    with tempfile.TemporaryDirectory() as folder:
+        kinds: dict[str, list[Task]] = {"on a line": [], "in 2-D": []}
+        for e in entries:
+            text = e.train_text()
+            path = os.path.join(folder, f"{e.name}.yaml")
+            kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), e.name, "json"))
+        for kind, tasks in kinds.items():
+            chosen = tasks
+            if args.sample is not None:
+                chosen = random.Random(args.seed).sample(tasks, min(args.sample, len(tasks)))
+            start = time.perf_counter()
+            results = list(fan_out(timed_file, chosen, Workers(jobs=args.jobs)))
+            _report(kind, results, time.perf_counter() - start, len(tasks))
+
+
+if __name__ == "__main__":
+    main()

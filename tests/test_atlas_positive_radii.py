@@ -114,8 +114,8 @@ def test_seven_link_trains_whose_line_asked_a_negative_radius() -> None:
 @pytest.mark.slow
 def test_every_six_and_seven_link_file_has_positive_radii(tmp_path) -> None:
     """Every file `derive atlas --links 6|7 --out DIR` writes has a design of positive
-    radii (81 and 646 files)."""
-    for links, count in ((6, 81), (7, 646)):
+    radii (81 and 647 files)."""
+    for links, count in ((6, 81), (7, 647)):
         folder = tmp_path / f"atlas{links}"
         result = _derive(["atlas", "--links", str(links), "--out", str(folder), "--jobs", "2", "--quiet"], tmp_path)
         assert result.returncode == 0, result.stderr

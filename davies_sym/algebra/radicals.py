@@ -38,6 +38,12 @@ class RadicalTable:
     #: Expressions known to be positive (an annulus larger than its pinion), for the signs
     #: of the factors a root takes out.
     facts: list[sympy.Expr] = field(default_factory=list)
+    #: Symbols the drawing is free to choose (an axis distance left free): a factor in
+    #: them whose sign nothing decides is taken positive, the other side being the mirror
+    #: drawing, and recorded in ``chosen``.
+    free: frozenset[sympy.Symbol] = frozenset()
+    #: The factors taken positive by the choice of drawing.
+    chosen: list[sympy.Expr] = field(default_factory=list)
 
     def sqrt(self, value: sympy.Expr) -> sympy.Expr:
         """``sqrt(value)`` of a rational expression positive on the design, as
@@ -54,6 +60,8 @@ class RadicalTable:
         for base, exponent in factors:
             if exponent >= 2:
                 sign = oracle.factor_sign(base)
+                if sign not in (1, -1) and base.free_symbols & self.free:
+                    sign = self._choose(base)
                 if sign not in (1, -1):
                     raise RadicalError(f"cannot tell the sign of {base} under a square root")
                 outside *= (sign * base) ** (exponent // 2)
@@ -66,6 +74,13 @@ class RadicalTable:
         if inside == 1:
             return sympy.expand(outside) if outside.is_polynomial() else outside
         return outside * self.symbol_for(inside)
+
+    def _choose(self, base: sympy.Expr) -> int:
+        """Draw where ``base`` (in a free symbol of the drawing) is positive: its sign from
+        now on, a fact of every design so drawn."""
+        self.chosen.append(base)
+        self.facts.append(base)
+        return 1
 
     def absorb(self, expr: sympy.Expr) -> sympy.Expr:
         """``expr`` with every square root written in it (``sqrt(4*r2**2 - ...)``, also

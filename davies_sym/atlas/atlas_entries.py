@@ -45,9 +45,9 @@ class Entry(GraphPlace):
     drawing: Realisation | None = None
     #: The choices in which every mesh carries a tooth force (no gear idle).
     loaded: tuple[Choice, ...] = ()
-    #: The axis whose distance from the main axis the meshes leave free (a parameter of
-    #: the train file the efficiency does not depend on), or None.
-    free_axis: int | None = None
+    #: The axes whose distances from the main axis the meshes leave free (parameters of
+    #: the train file the efficiency does not depend on).
+    free_axes: tuple[int, ...] = ()
     #: The order the train file writes its meshes in (the layout places them so), or
     #: None: that of the gear pairs.
     order: tuple[int, ...] | None = None
@@ -104,7 +104,7 @@ class Entry(GraphPlace):
         )
         coaxial = ", ".join(link_name(x) for x in self.graph.axes[drawn.main_axis])
         source = f"derive atlas --links {self.links}: {self.name}, coaxial members {coaxial}"
-        return TrainFile(drawn, title, source, self.choices, self.planar, self.free_axis, order=self.order)
+        return TrainFile(drawn, title, source, self.choices, self.planar, self.free_axes, order=self.order)
 
     def train(self) -> Train:
         """The train of `train_file`, built without YAML."""
@@ -124,15 +124,28 @@ class Entry(GraphPlace):
                 else f"Written by derive atlas: symbolic radii; link l{drawn.frame} is the frame;\n"
             )
             + "the ports are those of the first state. Suns, rings and planet gears as in docs/atlas.md."
-            + (
-                ""
-                if self.free_axis is None
-                else f"\nThe meshes leave the distance {distance_symbol(drawn, self.free_axis)} of axis "
-                f"{drawn.axis_name(self.free_axis)} from the main axis free: any value that closes the\n"
-                "triangles of its planets draws the train; the efficiency does not depend on it."
-            )
+            + _free_shapes(drawn, self.free_axes)
         )
         return written.text(comment)
+
+
+def _free_shapes(drawn: Realisation, axes: tuple[int, ...]) -> str:
+    """The comment's lines on the axis distances the meshes leave free, if any."""
+    if not axes:
+        return ""
+    if len(axes) == 1:
+        return (
+            f"\nThe meshes leave the distance {distance_symbol(drawn, axes[0])} of axis "
+            f"{drawn.axis_name(axes[0])} from the main axis free: any value that closes the\n"
+            "triangles of its planets draws the train; the efficiency does not depend on it."
+        )
+    symbols = " and ".join(distance_symbol(drawn, a) for a in axes)
+    names = " and ".join(drawn.axis_name(a) for a in axes)
+    return (
+        f"\nThe meshes leave the distances {symbols} of axes {names} from the main axis free:\n"
+        "any values that close the triangles of its planets draw the train; the efficiency does\n"
+        "not depend on them."
+    )
 
 
 def places(links: int) -> list[GraphPlace]:
@@ -162,7 +175,7 @@ def entry(place: GraphPlace) -> Entry:
                 planar=found.planar,
                 drawing=drawn,
                 loaded=found.loaded,
-                free_axis=found.free_axis,
+                free_axes=found.free_axes,
                 order=found.order,
             )
     reason = next((r for r in reasons if r), "no held member leaves two others turning at a ratio set by the gears")

@@ -51,8 +51,8 @@ class Admissible:
     loaded: tuple[Choice, ...] = ()
     #: Why there is no choice when the layout cannot be drawn.
     reason: str | None = None
-    #: The axis whose distance from the main axis is a free parameter, or None.
-    free_axis: int | None = None
+    #: The axes whose distances from the main axis are free parameters.
+    free_axes: tuple[int, ...] = ()
     #: The order the meshes are written (and placed) in, or None: that of the gear pairs.
     order: tuple[int, ...] | None = None
 
@@ -63,7 +63,7 @@ class _Way:
     none, the meshes in an order (None: that of the gear pairs)."""
 
     planar: bool
-    free_axis: int | None = None
+    free_axes: tuple[int, ...] = ()
     order: tuple[int, ...] | None = None
 
 
@@ -72,7 +72,7 @@ _Written = tuple[_Way, Train]
 
 
 def _written(drawn: Realisation, candidates: tuple[Choice, ...], way: _Way) -> Train:
-    return TrainFile(drawn, "choices", "atlas", candidates, way.planar, way.free_axis, order=way.order).train()
+    return TrainFile(drawn, "choices", "atlas", candidates, way.planar, way.free_axes, order=way.order).train()
 
 
 def admits_positive_radii(train: Train, layout: Layout) -> bool:
@@ -125,21 +125,21 @@ def _ordered(drawn: Realisation, candidates: tuple[Choice, ...], way: _Way) -> _
 
 
 def _free_drawing(drawn: Realisation, candidates: tuple[Choice, ...]) -> _Written | None:
-    """The first planet axis (in the order of the labelling) whose distance from the main
-    axis, left free, lets the 2-D placement close every loop of meshes, with the train so
-    written; None when none does. A loop of four planet axes and the main one (two planets
-    each meshing a coaxial gear and both meshing a third planet) keeps one free shape: the
-    distance of the third planet's axis, on which the efficiency does not depend (the
-    tangential tooth forces balance each planet whatever the angles, Laus eq. (2))."""
-    for axis in range(len(drawn.graph.axes)):
-        if axis == drawn.main_axis:
-            continue
-        found = _ordered(drawn, candidates, _Way(True, axis))
+    """The first planet axis (in the order of the labelling), else the first pair of them,
+    whose distances from the main axis, left free, let the 2-D placement close every loop
+    of meshes, with the train so written; None when none does. A loop of four planet axes
+    and the main one (two planets each meshing a coaxial gear and both meshing a third
+    planet) keeps one free shape: the distance of the third planet's axis; a loop of five
+    keeps two. The efficiency depends on none (the tangential tooth forces balance each
+    planet whatever the angles, Laus eq. (2))."""
+    planets = [axis for axis in range(len(drawn.graph.axes)) if axis != drawn.main_axis]
+    for free_axes in (*((a,) for a in planets), *combinations(planets, 2)):
+        found = _ordered(drawn, candidates, _Way(True, free_axes))
         if not isinstance(found, tuple):
             continue
         layout = train_layout(found[1])
-        free = distance_symbol(drawn, axis)
-        if not any(free in map(str, c.expression.free_symbols) for c in layout.constraints):
+        free = {distance_symbol(drawn, axis) for axis in free_axes}
+        if not any(free & set(map(str, c.expression.free_symbols)) for c in layout.constraints):
             return found
     return None
 
@@ -184,7 +184,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
                     loaded.append(choice)
         except (DaviesError, ZeroDivisionError):
             continue
-    return Admissible(tuple(kept), way.planar, tuple(loaded), free_axis=way.free_axis, order=way.order)
+    return Admissible(tuple(kept), way.planar, tuple(loaded), free_axes=way.free_axes, order=way.order)
 
 
 def _every_mesh_loaded(analysis: Analysis) -> bool:

@@ -77,7 +77,7 @@ def search_file(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> T
     tooth numbers (those the geometry does not fix) listed in ``independent:``."""
     title = f"{e.name} (tooth numbers to choose)"
     source = f"derive search --atlas: {e.name}"
-    written = TrainFile(e.drawn, title, source, choices, e.planar, e.free_axis, meshes, order=e.order)
+    written = TrainFile(e.drawn, title, source, choices, e.planar, e.free_axes, meshes, order=e.order)
     train = written.train()
     fixed = {str(r.symbol) for r in resolved_train(train).dependent or ()}
     return replace(written, independent=tuple(sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)))

@@ -78,14 +78,14 @@ def distance_symbol(drawn: Realisation, axis: int) -> str:
     return "e" + drawn.axis_name(axis)
 
 
-def _axis_bearings(drawn: Realisation, free_axis: int | None) -> dict[str, dict[str, Any]]:
+def _axis_bearings(drawn: Realisation, free_axes: tuple[int, ...]) -> dict[str, dict[str, Any]]:
     """The bearings of every axis but the main one: the first link about it turns in a
     bearing of the axis's holder (on its own axis), every other one in a bearing of that
     first link on the first link's axis (`axis:`), so the layout reads which links are
     coaxial from the file and never has to guess it from the meshes. On an axis the frame
     holds every link turns in a bearing of the frame (their ports), the others on the
-    first one's axis (`axis:` a third link). The first bearing of ``free_axis`` places it
-    at its symbolic distance from the main axis (`at:`)."""
+    first one's axis (`axis:` a third link). The first bearing of each of ``free_axes``
+    places it at its symbolic distance from the main axis (`at:`)."""
     bearings: dict[str, dict[str, Any]] = {}
     for axis, links in enumerate(drawn.graph.axes):
         if axis == drawn.main_axis:
@@ -99,7 +99,7 @@ def _axis_bearings(drawn: Realisation, free_axis: int | None) -> dict[str, dict[
                 if holder != drawn.frame:
                     bearing["links"] = [link_name(turning[0]), link_name(x)]
                 bearing["axis"] = link_name(turning[0])
-            if axis == free_axis and x == turning[0]:
+            if axis in free_axes and x == turning[0]:
                 bearing["at"] = distance_symbol(drawn, axis)
             bearings[f"J{name}{x}"] = bearing
     return bearings
@@ -133,8 +133,8 @@ def _gear_entry(drawn: Realisation, gear: GearSpec, toothed: ToothedForm | None)
 class TrainFile:
     """The train file of a drawn graph as a value: ``choices`` as its states (the first
     one's ports as the train's), drawn in 2-D when ``planar``, with the distance of
-    ``free_axis`` from the main axis a symbol (`distance_symbol`) when the meshes leave it
-    free, tooth numbers when ``toothed`` and the free ones listed in ``independent``; the
+    each of ``free_axes`` from the main axis a symbol (`distance_symbol`) where the meshes
+    leave it free, tooth numbers when ``toothed`` and the free ones listed in ``independent``; the
     meshes written in ``order`` (indices of the drawing's meshes; None: in the order of
     the gear pairs), which is the order the layout places them in.
 
@@ -146,7 +146,7 @@ class TrainFile:
     source: str
     choices: tuple[Choice, ...]
     planar: bool = False
-    free_axis: int | None = None
+    free_axes: tuple[int, ...] = ()
     toothed: ToothedForm | None = None
     independent: tuple[str, ...] | None = None
     order: tuple[int, ...] | None = None
@@ -163,7 +163,7 @@ class TrainFile:
             for x in drawn.graph.axes[drawn.main_axis]
             if link_name(x) != reference
         }
-        couplings |= _axis_bearings(drawn, self.free_axis)
+        couplings |= _axis_bearings(drawn, self.free_axes)
         couplings |= _meshes(drawn, self.toothed, self.order)
         first = self.choices[0]
         states = {

@@ -44,7 +44,10 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
     # writes in others (a coaxial planet's r4 = r3 + r5 - r6).
     known = [m.distance for m in structure.spacings if m.internal]
     known += [g.radius for g in train.gears if g.radius is not None and not g.radius.is_Symbol]
-    radicals = RadicalTable(facts=known)
+    # An axis the file places at a symbolic distance (a free shape of the drawing) may be
+    # drawn on either side of a triangle's base: the side taken is a fact of the design.
+    free = frozenset(s for c in all_bearings(train.couplings) if c.at is not None for s in c.at.free_symbols)
+    radicals = RadicalTable(facts=known, free=free)
     direction = (radicals.absorb(sympy.sympify(direction[0])), radicals.absorb(sympy.sympify(direction[1])))
     length = radicals.sqrt(sympy.expand(direction[0] ** 2 + direction[1] ** 2))
     unit = (radicals.reduce(direction[0] / length), radicals.reduce(direction[1] / length))
@@ -68,7 +71,7 @@ def plane_layout(train: Train, direction: Point, structure: AxisStructure) -> La
         mesh_normals=pitch.normals,
         constraints=tuple(closures.constraints),
         positive_facts=tuple(pitch.facts) + tuple(r.radicand for r in radicals.radicals),
-        side_facts=tuple(drawing.sides),
+        side_facts=tuple(drawing.sides) + tuple(radicals.chosen),
         radicals=tuple(radicals.radicals),
         frame=unit,
         planet_second=structure.planet_second,

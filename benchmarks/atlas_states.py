@@ -7,8 +7,9 @@ whole and the ten slowest states.
 
     python benchmarks/atlas_states.py [LINKS] [--jobs N] [--sample K] [--seed S]
 
-``--sample K`` derives K files drawn at random (seed S) from each kind, for atlases too
-big to derive whole on one machine (8 links); the whole is then extrapolated from them.
+``--sample K`` forms and derives K displacement graphs drawn at random (seed S), for
+atlases too big to derive whole on one machine (8 links); the whole is extrapolated from
+them.
 """
 
 from __future__ import annotations
@@ -48,23 +49,21 @@ def timed_file(task: Task) -> Timed:
     return task.stem, [(name, e - t + overhead) for (name, t), e in zip(marks, ends, strict=True)]
 
 
-def _report(kind: str, results: list[Timed], wall: float, total_files: int) -> None:
+def _report(kind: str, results: list[Timed], wall: float, total_files: int | None) -> None:
     times = sorted((s, f"{stem} {state}") for stem, states in results for state, s in states)
     values = [s for s, _ in times]
     if not values:
         return
-    q = statistics.quantiles(values, n=20) if len(values) > 1 else values * 19
+    q = statistics.quantiles(values, n=20, method="inclusive") if len(values) > 1 else values * 19
+    of = "" if total_files is None else f" of {total_files}"
     print(
-        f"  drawn {kind}: {len(results)} of {total_files} files, {len(values)} states in {wall:.0f} s wall "
+        f"  drawn {kind}: {len(results)}{of} files, {len(values)} states in {wall:.0f} s wall "
         f"({wall / len(values):.3f} s per state)"
     )
     print(
         f"    per state: median {statistics.median(values):.3f} s, quartiles {q[4]:.3f} / {q[14]:.3f} s, "
         f"90th percentile {q[17]:.3f} s, largest {values[-1]:.2f} s"
     )
-    if len(results) < total_files:
-        per_file = wall / len(results)
-        print(f"    the whole ({total_files} files) extrapolated: {per_file * total_files / 60:.1f} min wall")
     print("    slowest: " + ", ".join(f"{name} {s:.2f} s" for s, name in reversed(times[-10:])))
 
 
@@ -72,12 +71,18 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("links", type=int, nargs="?", default=7)
     p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--sample", type=int, default=None, help="files drawn at random from each kind")
+    p.add_argument("--sample", type=int, default=None, help="displacement graphs drawn at random")
     p.add_argument("--seed", type=int, default=0)
     args = p.parse_args()
     start = time.perf_counter()
-    entries = [e for e in (entry(place) for place in places(args.links)) if not e.not_drawable]
-    print(f"{args.links} links: {len(entries)} drawable train files formed in {time.perf_counter() - start:.0f} s")
+    found = places(args.links)
+    chosen = found if args.sample is None else random.Random(args.seed).sample(found, min(args.sample, len(found)))
+    print(f"{args.links} links: {len(found)} displacement graphs enumerated in {time.perf_counter() - start:.0f} s")
+    start = time.perf_counter()
+    entries = [e for e in (entry(place) for place in chosen) if not e.not_drawable]
+    formed = time.perf_counter() - start
+    print(f"  {len(entries)} drawable train files of {len(chosen)} formed in {formed:.0f} s (one process)")
+    whole = formed * len(found) / len(chosen)
     with tempfile.TemporaryDirectory() as folder:
         kinds: dict[str, list[Task]] = {"on a line": [], "in 2-D": []}
         for e in entries:
@@ -85,12 +90,16 @@ def main() -> None:
             path = os.path.join(folder, f"{e.name}.yaml")
             kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), e.name, "json"))
         for kind, tasks in kinds.items():
-            chosen = tasks
-            if args.sample is not None:
-                chosen = random.Random(args.seed).sample(tasks, min(args.sample, len(tasks)))
             start = time.perf_counter()
-            results = list(fan_out(timed_file, chosen, Workers(jobs=args.jobs)))
-            _report(kind, results, time.perf_counter() - start, len(tasks))
+            results = list(fan_out(timed_file, tasks, Workers(jobs=args.jobs)))
+            wall = time.perf_counter() - start
+            whole += wall * len(found) / len(chosen)
+            _report(kind, results, wall, None if args.sample is None else len(tasks))
+    if args.sample is not None:
+        print(
+            f"  the whole atlas ({len(found)} graphs), extrapolated from the sample: files formed and "
+            f"derived in {whole / 3600:.1f} h on this machine ({args.jobs} workers for the derivations)"
+        )
 
 
 if __name__ == "__main__":

@@ -59,6 +59,11 @@ def _remove_content(row: Row) -> Row:
 def _eliminate(target: Row, pivot_row: Row, col: int, reduce: Reduce | None = None) -> Row:
     """``target`` with column ``col`` eliminated by a fraction-free combination;
     ``reduce`` brings entries to canonical form (radical relations) before zero tests."""
+    return _remove_content(_combined(target, pivot_row, col, reduce))
+
+
+def _combined(target: Row, pivot_row: Row, col: int, reduce: Reduce | None = None) -> Row:
+    """`_eliminate` before the row's content is divided out."""
     p, a = pivot_row[col], target[col]
     g = p.gcd(a)
     if not g.is_one():
@@ -75,7 +80,7 @@ def _eliminate(target: Row, pivot_row: Row, col: int, reduce: Reduce | None = No
             value = reduce(value)
         if value is not None and not value.is_zero():
             out[c] = value
-    return _remove_content(out)
+    return out
 
 
 @dataclass(frozen=True)
@@ -130,12 +135,14 @@ def gauss_jordan(
     formed = [0]
 
     def eliminate(row: Row, pivot: Row, col: int) -> Row:
-        out = _eliminate(row, pivot, col, reduce)
+        out = _combined(row, pivot, col, reduce)
         if budget is not None:
+            # Counted before the content is divided out: the gcd of swollen entries is
+            # the work (entries of 10^5 terms sharing a factor of 10^5).
             formed[0] += sum(len(v) for v in out.values())
             if formed[0] > budget:
                 raise WorkExceeded(f"more than {budget} terms formed")
-        return out
+        return _remove_content(out)
 
     pivots = eliminate_rows(work, prefer_free, lambda v: (not v.is_constant(), len(v)), eliminate, progress)
     return Elimination(ncols, pivots)

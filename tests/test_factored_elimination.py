@@ -15,7 +15,7 @@ import sympy
 
 from davies_sym.algebra.factored import factored_gauss_jordan, radical_elimination
 from davies_sym.algebra.flint_conversion import factor
-from davies_sym.algebra.linalg import gauss_jordan
+from davies_sym.algebra.linalg import WorkExceeded, gauss_jordan
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.radicals import Radical, radicals_form_a_field
 from davies_sym.errors import DerivationError
@@ -290,3 +290,20 @@ def test_radicals_form_a_field_unless_a_product_is_a_square() -> None:
     assert radicals_form_a_field([root[0], root[3]])
     assert not radicals_form_a_field(root[:3])  # (a b)(b c)(a c) = (a b c)^2
     assert not radicals_form_a_field([Radical(sympy.Symbol("s", positive=True), 4 * a**2)])
+
+
+def test_the_budget_counts_the_terms_formed_before_the_content_is_divided_out() -> None:
+    """Eliminating x0 from [1, g] and [f, h] forms h - f g (64 terms here, a multiple of
+    the row's content), which the content division leaves as 1: the work is the 64 terms,
+    so a budget of 10 is exceeded although the rows kept hold one term each."""
+    ring = PolynomialRing(sympy.symbols("a b c d", positive=True))
+    a, b, c, d = (ring.gen(s) for s in ring.symbols)
+    f = (a + b + c + d + 1) ** 2
+    g = (a + 2 * b + 3 * c + 5 * d + 7) ** 2
+    h = f * g + (a + b - c) ** 3 * (b + d + 2)
+    rows = [{0: ring.one, 1: g}, {0: f, 1: h}]
+    combined = h - f * g
+    assert len(combined) > 10
+    assert gauss_jordan([dict(r) for r in rows], 2).rank == 2
+    with pytest.raises(WorkExceeded):
+        gauss_jordan([dict(r) for r in rows], 2, budget=10)

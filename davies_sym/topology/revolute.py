@@ -38,7 +38,10 @@ class Revolute(Coupling):
             "at",
             "number or expression",
             False,
-            "Position of the axis on the layout line (y), needed only when neither link carries a gear.",
+            "Position of the axis on the layout line (y), needed only when neither link carries a gear. "
+            "In a 2-D drawing a symbol here is a free shape: a planet placed from that axis closes its "
+            "triangle on the side where the distance involved is positive (the other side is the mirror "
+            "drawing); that side is a fact of the layout.",
         ),
         Field(
             "axis",

@@ -182,26 +182,26 @@ def test_the_atlas_draws_every_six_link_train(entries: dict[int, list[Entry]]) -
     assert len(loop.choices) == 3
 
 
-def _loop_of_planets() -> TrainSpec:
-    """The oracle's description of atlas6_r10_d6 at a drawing with whole coordinates: the
-    suns l1, l2 at the origin, the planets on carrier l0 at b = (-16, 12), c = (35, 12)
-    and d = (0, 12); |Ob| = 20 = r1 + r3, |bd| = 16 = r3 + r5, |Oc| = 37 = r2 + r4,
-    |cd| = 35 = r4 + r5, with r = 7, 5, 13, 32, 3."""
-    radii = {"G1a": ("l1", 7), "G2a": ("l2", 5), "G3b": ("l3", 13), "G4c": ("l4", 32), "G5d": ("l5", 3)}
-    pairs = {"M0": ("G1a", "G3b"), "M1": ("G2a", "G4c"), "M2": ("G3b", "G5d"), "M3": ("G4c", "G5d")}
-    etas = {"M0": F(97, 100), "M1": F(49, 50), "M2": F(24, 25), "M3": F(99, 100)}
+#: Ordinary efficiencies of the meshes M0, M1, ... of the oracle's drawings below.
+ORACLE_ETAS = (F(97, 100), F(49, 50), F(24, 25), F(99, 100), F(19, 20))
+
+
+def _planets_between_suns(
+    name: str, radii: dict[str, int], pairs: list[tuple[str, str]], at: dict[str, tuple[int, int]]
+) -> TrainSpec:
+    """The oracle's description of an atlas train of two suns l1, l2 at the origin and
+    planets on carrier l0 at the whole coordinates ``at``: gear G<k><axis> of radius
+    ``radii`` on link l<k>, meshes M0, M1, ... between ``pairs`` (`ORACLE_ETAS`)."""
     members = (
         Member("housing"),
         *(Member(f"l{k}") for k in range(3)),
-        Member("l3", "l0", (F(-16), F(12))),
-        Member("l4", "l0", (F(35), F(12))),
-        Member("l5", "l0", (F(0), F(12))),
+        *(Member(link, "l0", (F(x), F(y))) for link, (x, y) in at.items()),
     )
     return TrainSpec(
-        "loop of planets",
+        name,
         members,
-        tuple(Gear(name, link, F(r)) for name, (link, r) in radii.items()),
-        tuple(Mesh(name, gears, etas[name]) for name, gears in pairs.items()),
+        tuple(Gear(gear, f"l{gear[1]}", F(r)) for gear, r in radii.items()),
+        tuple(Mesh(f"M{k}", pair, ORACLE_ETAS[k]) for k, pair in enumerate(pairs)),
         "housing",
         {f"B{k}": f"l{k}" for k in range(3)},
         "B1",
@@ -209,15 +209,10 @@ def _loop_of_planets() -> TrainSpec:
     )
 
 
-def test_the_loop_of_planets_balances_as_the_oracle_says(entries: dict[int, list[Entry]]) -> None:
-    """The loop of four planets (atlas6_r10_d6), every state and both directions: the
-    efficiency derived from the written file (free distance ed) equals the independent
-    per-member torque and force balance (tests/oracle/balance.py) at the drawing above, and
-    does not change with ed, on which the formulas do not depend."""
-    (loop,) = [e for e in entries[6] if e.free_axes]
-    train = davies_sym.loads(loop.train_text())
-    spec = _loop_of_planets()
-    sizes = {"r1a": 7, "r2a": 5, "r3b": 13, "r4c": 32, "r5d": 3}
+def _agrees_with_the_balance(train: davies_sym.Train, spec: TrainSpec, designs: list[dict[str, object]]) -> int:
+    """Every state and both directions of ``train``: the efficiency at each of ``designs``
+    (radii, and the free distance ed where given) equals the oracle's, and the formulas
+    do not take ed; the number of (state, direction) checked."""
     etas = {f"eta_{m.name}": m.eta for m in spec.meshes}
     checked = 0
     for state in train.states:
@@ -227,46 +222,27 @@ def test_the_loop_of_planets_balances_as_the_oracle_says(entries: dict[int, list
         ports = (str(state.input), str(state.output))
         for port_in, port_out in (ports, ports[::-1]):
             expected = solve(in_state(spec, State(state.name, port_in, port_out, brake))).efficiency
-            for ed in (12, 15):
-                values = sizes | etas | {"ed": ed}
-                assert variants.evaluate(values, port_in) == expected, (state.name, port_in, ed)
+            for design in designs:
+                assert variants.evaluate(design | etas, port_in) == expected, (state.name, port_in, design)
             checked += 1
-    assert checked == 6
+    return checked
 
 
-def _pentagon_of_planets() -> TrainSpec:
-    """The oracle's description of atlas7_r43_d15 (suns l1, l2; the planets l3, l5, l6, l4
-    in a chain from one sun to the other on carrier l0) at a drawing with whole
-    coordinates: b = (-16, 12), d = (0, 12), e = (20, 12), c = (35, 12); |Ob| = 20 = r1 +
-    r3, |bd| = 16 = r3 + r5, |de| = 20 = r5 + r6, |ec| = 15 = r6 + r4, |Oc| = 37 = r2 +
-    r4, with r = 14, 32, 6, 5, 10, 10."""
-    radii = {
-        "G1a": ("l1", 14),
-        "G2a": ("l2", 32),
-        "G3b": ("l3", 6),
-        "G4c": ("l4", 5),
-        "G5d": ("l5", 10),
-        "G6e": ("l6", 10),
-    }
-    pairs = {"M0": ("G1a", "G3b"), "M1": ("G2a", "G4c"), "M2": ("G3b", "G5d"), "M3": ("G4c", "G6e")}
-    pairs["M4"] = ("G5d", "G6e")
-    etas = {"M0": F(97, 100), "M1": F(49, 50), "M2": F(24, 25), "M3": F(99, 100), "M4": F(19, 20)}
-    at = {"l3": (-16, 12), "l4": (35, 12), "l5": (0, 12), "l6": (20, 12)}
-    members = (
-        Member("housing"),
-        *(Member(f"l{k}") for k in range(3)),
-        *(Member(link, "l0", (F(x), F(y))) for link, (x, y) in at.items()),
-    )
-    return TrainSpec(
-        "pentagon of planets",
-        members,
-        tuple(Gear(name, link, F(r)) for name, (link, r) in radii.items()),
-        tuple(Mesh(name, gears, etas[name]) for name, gears in pairs.items()),
-        "housing",
-        {f"B{k}": f"l{k}" for k in range(3)},
-        "B1",
-        "B2",
-    )
+def test_the_loop_of_planets_balances_as_the_oracle_says(entries: dict[int, list[Entry]]) -> None:
+    """The loop of four planets (atlas6_r10_d6), every state and both directions: the
+    efficiency derived from the written file (free distance ed) equals the independent
+    per-member torque and force balance (tests/oracle/balance.py) at a drawing with whole
+    coordinates, and does not change with ed, on which the formulas do not depend.  The
+    drawing: the planets at b = (-16, 12), c = (35, 12) and d = (0, 12); |Ob| = 20 = r1 +
+    r3, |bd| = 16 = r3 + r5, |Oc| = 37 = r2 + r4, |cd| = 35 = r4 + r5, with r = 7, 5, 13,
+    32, 3."""
+    (loop,) = [e for e in entries[6] if e.free_axes]
+    radii = {"G1a": 7, "G2a": 5, "G3b": 13, "G4c": 32, "G5d": 3}
+    pairs = [("G1a", "G3b"), ("G2a", "G4c"), ("G3b", "G5d"), ("G4c", "G5d")]
+    spec = _planets_between_suns("loop of planets", radii, pairs, {"l3": (-16, 12), "l4": (35, 12), "l5": (0, 12)})
+    sizes = {f"r{g[1:]}": r for g, r in radii.items()}
+    designs = [sizes | {"ed": ed} for ed in (12, 15)]
+    assert _agrees_with_the_balance(davies_sym.loads(loop.train_text()), spec, designs) == 6
 
 
 def test_the_pentagon_of_planets_is_drawn_and_balances_as_the_oracle_says() -> None:
@@ -274,28 +250,21 @@ def test_the_pentagon_of_planets_is_drawn_and_balances_as_the_oracle_says() -> N
     axes keeps two free shapes: drawn with the distance ed of one planet's axis free and
     the next triangle closed on the side where ed > r2a + r4c (its mirror drawing has
     the same efficiency), so that all 647 trains of 7 links are written.  Every state, both
-    directions: the efficiency equals the independent per-member balance at the whole
-    drawing above and does not take ed."""
+    directions: the efficiency equals the independent per-member balance and does not
+    take ed.  The drawing: b = (-16, 12), d = (0, 12), e = (20, 12), c = (35, 12); |Ob| =
+    20 = r1 + r3, |bd| = 16 = r3 + r5, |de| = 20 = r5 + r6, |ec| = 15 = r6 + r4, |Oc| = 37
+    = r2 + r4, with r = 14, 32, 6, 5, 10, 10."""
     (place,) = [p for p in places(7) if (p.rotation, p.index) == (43, 15)]
     e = entry(place)
     assert e.not_drawable is None and len(e.choices) == 3
     text = e.train_text()
     assert "at: ed}" in text and "the efficiency does not depend on it" in text
-    train = davies_sym.loads(text)
-    spec = _pentagon_of_planets()
-    sizes = {"r1a": 14, "r2a": 32, "r3b": 6, "r4c": 5, "r5d": 10, "r6e": 10}
-    etas = {f"eta_{m.name}": m.eta for m in spec.meshes}
-    checked = 0
-    for state in train.states:
-        variants = davies_sym.derive(train_in_state(train, state))
-        assert "ed" not in {str(p) for p in variants.parameters}
-        brake = tuple(state.brake)
-        ports = (str(state.input), str(state.output))
-        for port_in, port_out in (ports, ports[::-1]):
-            expected = solve(in_state(spec, State(state.name, port_in, port_out, brake))).efficiency
-            assert variants.evaluate(sizes | etas, port_in) == expected, (state.name, port_in)
-            checked += 1
-    assert checked == 6
+    radii = {"G1a": 14, "G2a": 32, "G3b": 6, "G4c": 5, "G5d": 10, "G6e": 10}
+    pairs = [("G1a", "G3b"), ("G2a", "G4c"), ("G3b", "G5d"), ("G4c", "G6e"), ("G5d", "G6e")]
+    at = {"l3": (-16, 12), "l4": (35, 12), "l5": (0, 12), "l6": (20, 12)}
+    spec = _planets_between_suns("pentagon of planets", radii, pairs, at)
+    sizes = {f"r{g[1:]}": r for g, r in radii.items()}
+    assert _agrees_with_the_balance(davies_sym.loads(text), spec, [sizes]) == 6
 
 
 def test_a_gear_about_another_links_axis_is_read_and_checked(tmp_path) -> None:

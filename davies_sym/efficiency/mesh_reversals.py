@@ -58,11 +58,6 @@ class MeshReversal:
     samples: tuple[Point, ...]
 
 
-def _signs_at(domain: ParameterDomain, conditions: Sequence[TurningCondition], args: Args) -> tuple[int, ...]:
-    """The sign of every turning condition at the point ``args`` (0 counts as positive)."""
-    return tuple(1 if domain.value_at(c.expression, args) >= 0 else -1 for c in conditions)
-
-
 def near_boundary(
     domain: ParameterDomain, conditions: Sequence[TurningCondition], inside: Point, outside: Point
 ) -> list[Point]:
@@ -73,15 +68,16 @@ def near_boundary(
     free = [s for s in geometry_symbols(domain.train) if s in inside and s in outside and s not in domain.eliminated]
     start, end = domain.args(inside), domain.args(outside)
     index = [domain.symbol_index[s] for s in free]
-    signs = _signs_at(domain, conditions, start)
+    expressions = [c.expression for c in conditions]
+    signs = domain.signs_at(expressions, start)
 
     def at(t: fmpq) -> Args | None:
         mixed = list(start)
         for k in index:
             a, b = cast(fmpq, start[k]), cast(fmpq, end[k])
             mixed[k] = a + t * (b - a)
-        args = domain.completed_args(mixed)
-        return args if args is not None and _signs_at(domain, conditions, args) == signs else None
+        args = domain.completed(mixed)
+        return args if args is not None and domain.signs_at(expressions, args) == signs else None
 
     low, high = fmpq(0), fmpq(1)
     for _ in range(STEPS):

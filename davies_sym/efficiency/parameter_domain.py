@@ -201,25 +201,19 @@ class ParameterDomain:
                 return False
         return True if clear else None
 
-    def _admissible(self, point: Point) -> bool:
-        if any(point[s] <= 0 for s in self.eliminated):
+    def _admissible(self, args: Args) -> bool:
+        """Whether the symbols' values ``args`` (`args`) are an admissible design: every
+        eliminated symbol and every fact positive (a fact with positive terms only is,
+        where every drawn length is)."""
+        index = self.symbol_index
+        if any(cast(fmpq, args[index[s]]) <= 0 for s in self.eliminated):
             return False  # every geometric symbol is positive, eliminated ones too
-        args = self._ring.points.args(point)
+        drawn = [args[index[s]] for s in self._drawn]
+        facts = self._undecided if all(v is not None and v > 0 for v in drawn) else self._positive
         try:
-            return all(e.evaluate(args) > 0 for e in self._positive)
+            return all(e.evaluate(args) > 0 for e in facts)
         except ZeroDivisionError:  # a fact undefined here (a dependent module's pole): no design
             return False
-
-    def completed(self, free: Point) -> Point | None:
-        """``free`` (values of the symbols the constraints leave free, and of any others)
-        with the eliminated symbols added, or None where it is no admissible design."""
-        point = dict(free)
-        try:
-            for symbol, expr in self.eliminated.items():
-                point[symbol] = self.value(expr, point)
-        except ZeroDivisionError:
-            return None
-        return point if self._admissible(point) else None
 
     def value(self, expr: sympy.Expr, point: Point) -> sympy.Rational:
         """Exact value of a rational expression of the train's symbols at ``point``."""
@@ -230,15 +224,20 @@ class ParameterDomain:
         """``point`` read once as the values of the train's symbols (`value_at`)."""
         return self._ring.points.args(point)
 
+    def signs_at(self, expressions: Iterable[sympy.Expr], args: Args) -> tuple[int, ...]:
+        """The sign of each expression at ``args`` (`args`), 0 counted as positive: the
+        region of a point among the turning conditions."""
+        return tuple(1 if self.value_at(e, args) >= 0 else -1 for e in expressions)
+
     def value_at(self, expr: sympy.Expr, args: Args) -> fmpq:
         """Exact value of a rational expression of the train's symbols at ``args``
         (`args`): many expressions at one point without reading it again."""
         return self._converted(expr).evaluate(args)
 
-    def completed_args(self, free: list[fmpq | None]) -> Args | None:
-        """`completed` on the symbols' values (``free``, indexed as the train's symbols,
-        the eliminated ones filled in place): the values of the admissible design, or
-        None where it is none."""
+    def completed(self, free: list[fmpq | None]) -> Args | None:
+        """The symbols' values ``free`` (indexed as the train's symbols) with the
+        eliminated ones filled in place: the values of the admissible design, or None
+        where it is none."""
         index = self.symbol_index
         for symbol in self.eliminated:
             free[index[symbol]] = None  # given by the free symbols alone
@@ -248,15 +247,7 @@ class ParameterDomain:
         except ZeroDivisionError:
             return None
         args = tuple(free)
-        if any(cast(fmpq, args[index[s]]) <= 0 for s in self.eliminated):
-            return None
-        drawn = [args[index[s]] for s in self._drawn]
-        # With every drawn length positive, a fact with positive terms only holds.
-        facts = self._undecided if all(v is not None and v > 0 for v in drawn) else self._positive
-        try:
-            return args if all(e.evaluate(args) > 0 for e in facts) else None
-        except ZeroDivisionError:
-            return None
+        return args if self._admissible(args) else None
 
     @cached_property
     def _drawn(self) -> list[sympy.Symbol]:
@@ -313,7 +304,7 @@ class ParameterDomain:
                     point[symbol] = self.value(expr, point)
             except ZeroDivisionError:  # on the pole of an eliminated symbol: no design
                 continue
-            if verdict is None and not self._admissible(point):
+            if verdict is None and not self._admissible(self.args(point)):
                 continue
             for s in others:
                 point[s] = sympy.Rational(rng.randint(*extra_range), extra_scale)

@@ -91,10 +91,9 @@ def sampled_regions(
             }
         )
     regions: dict[tuple[int, ...], list[Point]] = {}
+    expressions = [c.expression for c in conditions]
     for point in points:
-        args = domain.args(point)
-        key = tuple(1 if domain.value_at(c.expression, args) >= 0 else -1 for c in conditions)
-        regions.setdefault(key, []).append(point)
+        regions.setdefault(domain.signs_at(expressions, domain.args(point)), []).append(point)
     return regions
 
 

@@ -249,7 +249,7 @@ def test_the_float_look_at_a_drawn_point_agrees_with_the_exact_test(name):
         verdict = domain._float_verdict(drawn)
         verdicts[verdict] += 1
         if verdict is not None:
-            assert domain._admissible(point) is verdict, (drawn, verdict)
+            assert domain._admissible(domain.args(point)) is verdict, (drawn, verdict)
     assert verdicts[True] > 100, verdicts  # the float look spares the exact test
     if name in ("ravigneaux[second]", "tuplin"):  # narrow domains: many draws fall outside
         assert verdicts[False] > 100, verdicts

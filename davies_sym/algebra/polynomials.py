@@ -116,6 +116,11 @@ class PolynomialRing:
             g = -g
         return (num / g if g != 1 else num), d // g
 
+    def integral(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
+        """A polynomial with rational coefficients as ``(p, d)``, expr = p / d with ``p``
+        integral and ``d`` the least positive integer that makes it so."""
+        return self._poly(expr)
+
     def rational(self, expr: sympy.Expr) -> RationalFunction:
         """A sympy rational expression as a `RationalFunction`."""
         num, den = self._converter.fraction(sympy.sympify(expr))

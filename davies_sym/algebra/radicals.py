@@ -17,10 +17,12 @@ from itertools import combinations
 
 import sympy
 
+from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.polynomials import PolynomialRing
 from davies_sym.algebra.screws import Vector, vector
 from davies_sym.algebra.signs import SignOracle
 from davies_sym.algebra.square_root_symbol import Radical
+from davies_sym.algebra.symbol_order import sorted_symbols
 
 __all__ = ["Radical", "RadicalError", "RadicalTable", "has_square_root", "radicals_form_a_field", "restore"]
 
@@ -53,7 +55,7 @@ class RadicalTable:
         if (num * den).free_symbols & {r.symbol for r in self.radicals}:
             raise RadicalError(f"nested square roots: sqrt({self.restore(value)})")
         # sqrt(n / d) = sqrt(n d) / |d|: only the product's square-free part stays inside.
-        content, factors = sympy.factor_list(sympy.expand(num * den))
+        content, factors = _factor_list(sympy.expand(num * den))
         oracle = SignOracle(self.facts)
         outside, inside = sympy.sqrt(sympy.Abs(content)).as_coeff_Mul()
         inside = inside**2 * (1 if content > 0 else -1)
@@ -61,6 +63,9 @@ class RadicalTable:
             if exponent >= 2:
                 sign = oracle.factor_sign(base)
                 if sign not in (1, -1) and base.free_symbols & self.free:
+                    # The drawing's side is recorded in sympy's sign convention for the
+                    # factor (leading coefficient positive in lex order).
+                    base = base if sympy.Poly(base).LC() > 0 else -base
                     sign = self._choose(base)
                 if sign not in (1, -1):
                     raise RadicalError(f"cannot tell the sign of {base} under a square root")
@@ -121,6 +126,20 @@ class RadicalTable:
 def restore(expr: sympy.Expr, radicals: Iterable[Radical]) -> sympy.Expr:
     """``expr`` with the symbols of ``radicals`` written as the square roots they are."""
     return expr.xreplace({r.symbol: r.expression for r in radicals})
+
+
+def _factor_list(polynomial: sympy.Expr) -> tuple[sympy.Rational, list[tuple[sympy.Expr, int]]]:
+    """The content and irreducible factors of a ``polynomial`` with rational
+    coefficients, factored by flint (sympy's ``factor_list`` gives the same up to the
+    factors' signs, many times slower in several symbols); the content carries the sign
+    of the whole."""
+    symbols = sorted_symbols(polynomial.free_symbols)
+    if not symbols:
+        return sympy.Rational(polynomial), []
+    ring = PolynomialRing(symbols)
+    integral, denominator = ring.integral(polynomial)
+    content, factors = factor(integral)
+    return sympy.Rational(content, denominator), [(ring.to_expr(f), e) for f, e in factors]
 
 
 def _is_half_power(expr: object) -> bool:

@@ -8,6 +8,7 @@ pinion it meshes).  An undecided sign is reported as such, never guessed.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from functools import lru_cache
 
 import sympy
 
@@ -90,18 +91,34 @@ def _slack_substitution(fact: sympy.Expr) -> dict[sympy.Symbol, sympy.Expr] | No
     return None
 
 
+# The states of one train share their layout's facts: each is prepared once (pure
+# functions of immutable expressions, memoised with a bound).
+@lru_cache(maxsize=4096)
+def _prepared_fact(fact: sympy.Expr) -> sympy.Expr:
+    """``fact`` > 0 as a polynomial of its sign without its plainly positive factors."""
+    return without_positive_factors(_numerator_times_denominator(fact))
+
+
+@lru_cache(maxsize=4096)
+def _slack_of(fact: sympy.Expr) -> tuple[tuple[sympy.Symbol, sympy.Expr], ...] | None:
+    """`_slack_substitution` of ``fact`` as items (its slack symbol shared by every
+    oracle that knows the fact)."""
+    found = _slack_substitution(fact)
+    return None if found is None else tuple(found.items())
+
+
 class SignOracle:
     """Decides signs of polynomial factors under positivity and known positive facts."""
 
     def __init__(
         self, facts: Iterable[sympy.Expr] = (), substitutions: Iterable[Mapping[sympy.Symbol, sympy.Expr]] = ()
     ):
-        self.facts = tuple(without_positive_factors(_numerator_times_denominator(f)) for f in facts)
+        self.facts = tuple(_prepared_fact(f) for f in facts)
         #: Ways to eliminate a symbol with a geometric constraint (r4 -> r2 - r1 + r3).
         self.substitutions = tuple(dict(s) for s in substitutions)
         #: Each fact f > 0 linear in a symbol, solved for it with a positive slack f = e:
         #: a radius 3 r2 - r1 gives r1 -> 3 r2 - e, so 4 r2 - r1 = r2 + e is positive.
-        self.slacks = tuple(s for s in map(_slack_substitution, self.facts) if s is not None)
+        self.slacks = tuple(dict(s) for s in map(_slack_of, self.facts) if s is not None)
         self._decided: dict[sympy.Expr, int | None] = {}  # memo: the same factors recur
 
     def factor_sign(self, factor: sympy.Expr) -> int | None:

@@ -19,13 +19,11 @@ from functools import cache
 
 import numpy as np
 import pytest
-import sympy
-from test_atlas_trains import _agrees_with_willis
+from test_atlas_trains import _agrees_with_willis, lossless_efficiency
 from test_mesh_reversals import _check_state
 
 import davies_sym
 from davies_sym.atlas.atlas_entries import Entry, GraphPlace, entry, places
-from davies_sym.geometry.dependent import resolved_train
 from davies_sym.topology.states import train_in_state
 
 #: Files formed per number of axes before a way of drawing is given up as absent.
@@ -62,22 +60,6 @@ def _drawn(axes: int, kind: str) -> Entry | None:
     return None
 
 
-def _lossless_efficiency(variants: davies_sym.Variants, train: davies_sym.Train, chooser: random.Random) -> object:
-    """The efficiency with every ordinary mesh efficiency 1 at the first drawn point of
-    positive radii the design space admits."""
-    resolved = resolved_train(train)
-    free = sorted({s for g in resolved.gears for s in sympy.sympify(g.radius).free_symbols}, key=str)
-    free += sorted({s for s in variants.parameters if not str(s).startswith("eta_")} - set(free), key=str)
-    lossless = {p: 1 for p in variants.parameters if str(p).startswith("eta_")}
-    for _ in range(400):
-        values: dict[object, object] = {s: chooser.randint(5, 60) for s in free} | lossless
-        try:
-            return variants.evaluate(values)
-        except davies_sym.DesignError:
-            continue
-    return None
-
-
 @pytest.mark.slow
 def test_a_sample_of_the_eight_link_atlas_derives() -> None:
     """One 8-link file per number of axes and way of drawing (one test: the atlas is
@@ -104,7 +86,7 @@ def _derived(e: Entry, chooser: random.Random, rng: np.random.Generator) -> list
         variants = davies_sym.derive(train_in_state(train, state))
         assert variants.variants, (e.name, state.name)
         _agrees_with_willis(e, state.name, variants.analysis.speed_ratio().to_expr(), chooser)
-        assert _lossless_efficiency(variants, train, chooser) == 1, (e.name, state.name)
+        assert lossless_efficiency(variants, train, chooser) == 1, (e.name, state.name)
         if state in checked:
             failed += [f"{e.name} {why}" for why in _check_state(train, state.name, rng)]
     return failed

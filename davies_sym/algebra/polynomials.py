@@ -104,7 +104,7 @@ class PolynomialRing:
     def gen(self, symbol: sympy.Symbol) -> fmpz_mpoly:
         return self._gens[symbol]
 
-    def _poly(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
+    def integral(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
         """``expr`` (polynomial, rational coefficients) as ``(p, d)`` with expr = p / d,
         ``d`` the least positive integer that makes ``p`` integral."""
         num, den = self._converter.fraction(sympy.sympify(expr))
@@ -116,11 +116,6 @@ class PolynomialRing:
             g = -g
         return (num / g if g != 1 else num), d // g
 
-    def integral(self, expr: sympy.Expr) -> tuple[fmpz_mpoly, int]:
-        """A polynomial with rational coefficients as ``(p, d)``, expr = p / d with ``p``
-        integral and ``d`` the least positive integer that makes it so."""
-        return self._poly(expr)
-
     def rational(self, expr: sympy.Expr) -> RationalFunction:
         """A sympy rational expression as a `RationalFunction`."""
         num, den = self._converter.fraction(sympy.sympify(expr))
@@ -130,7 +125,7 @@ class PolynomialRing:
 
     def polynomial(self, expr: sympy.Expr) -> fmpz_mpoly:
         """A polynomial with integer coefficients (after clearing denominators)."""
-        return self._poly(expr)[0]
+        return self.integral(expr)[0]
 
     def to_expr(self, p: fmpz_mpoly) -> sympy.Expr:
         """Expanded sympy expression of ``p``."""

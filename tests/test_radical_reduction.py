@@ -39,3 +39,20 @@ def test_reduction_equals_the_remainder_by_each_radicals_relation(seed: int) -> 
     assert got == ring.polynomial(sympy.expand(expected))
     for r in RADICALS:
         assert got.degrees()[ring.symbols.index(r.symbol)] <= 1
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_a_root_both_sides_share_cancels_before_any_conjugate(seed: int) -> None:
+    """A quotient whose value does not depend on the roots (as an efficiency does not
+    depend on where a free planet axis is drawn): ``(p h) / (q h)`` with ``h`` carrying
+    both roots comes out as ``p / q`` itself, the root-free p and q built here, not
+    ``p h h' / (q h h')`` with the conjugates multiplied in."""
+    rng = random.Random(seed)
+    ring = PolynomialRing([A, B, C], RADICALS)
+    p, q = (sympy.Add(*(rng.choice([-3, 1, 2]) * x ** rng.randint(0, 2) for x in (A, B, C))) for _ in "pq")
+    h = 1 + A * S + B * T + rng.randint(1, 4) * C * S * T
+    num, den = ring.rationalised(ring.polynomial(sympy.expand(p * h)), ring.polynomial(sympy.expand(q * h)))
+    # The same value, p / q, in the same terms up to the sign of both sides.
+    assert num * ring.polynomial(q) == den * ring.polynomial(p)
+    assert {len(num), len(den)} <= {len(ring.polynomial(p)), len(ring.polynomial(q))} | {0}
+    assert all(num.degrees()[ring.symbols.index(r.symbol)] == 0 for r in RADICALS)

@@ -84,11 +84,20 @@ class PolynomialRing:
 
     def rationalised(self, num: fmpz_mpoly, den: fmpz_mpoly) -> tuple[fmpz_mpoly, fmpz_mpoly]:
         """``num / den`` reduced, with every radical moved out of the denominator by
-        multiplying with its conjugate ``den(-s)``."""
+        multiplying with its conjugate ``den(-s)`` (after their common factor is
+        divided out: the quotients of reduced polynomials are reduced)."""
         num, den = self.reduce(num), self.reduce(den)
         for index, _ in self._relations:
             if den.degrees()[index] == 0:
                 continue
+            # A factor both share may carry the root (where the value does not depend on
+            # the drawing, it carries them all): taken out first, the conjugate
+            # multiplies the rest, not the whole (which can swell a thousandfold).
+            shared = num.gcd(den)
+            if not shared.is_one():
+                num, den = num / shared, den / shared
+                if den.degrees()[index] == 0:
+                    continue
             conjugate = self.ctx.from_dict({m: (-c if m[index] % 2 else c) for m, c in den.to_dict().items()})
             num, den = self.reduce(num * conjugate), self.reduce(den * conjugate)
         return num, den

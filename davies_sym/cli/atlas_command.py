@@ -11,7 +11,7 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator
 from typing import Any
 
 from davies_sym.emit.atomic import write_atomic
@@ -27,14 +27,15 @@ def folder_refused(command: str, folder: str | None) -> bool:
     return False
 
 
-def _entries(links: int, workers: Workers, say: Progress) -> list[Any]:
-    """Every entry of the atlas, in the order of the codes (workers read the motions)."""
+def _entries(links: int, workers: Workers, say: Progress) -> Iterator[Any]:
+    """Every entry of the atlas, in the order of the codes, each as its worker reads its
+    motions (so its files can be written at once)."""
     from davies_sym.atlas.atlas_entries import entry, places
 
     found = places(links)
     rotations = len({p.rotation for p in found})
     say(f"{rotations} rotation graphs, {len(found)} displacement graphs; reading their motions")
-    return list(fan_out(entry, found, workers, Counted(say, "graph")))
+    return fan_out(entry, found, workers, Counted(say, "graph"))
 
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
@@ -65,11 +66,14 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         else:
             sys.stdout.write(counts_text(args.links, counts, published))
         return 0
-    entries = _entries(args.links, Workers(args.jobs), say)
-    rotation = len({e.rotation for e in entries})
+    entries: list[Any] = []
     try:
+        for found in _entries(args.links, Workers(args.jobs), say):
+            entries.append(found)
+            if args.out:
+                _write_files(found, args.out, args.draw)
         if args.out:
-            _write_files(entries, args.out, args.draw, say)
+            say(f"{sum(not e.not_drawable for e in entries)} train files in {args.out}")
     except EditedFile as exc:
         print(
             f"derive atlas: --out: {exc.args[0]} is there with other contents; it is left as it is: "
@@ -80,6 +84,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     except OSError as exc:
         print(f"derive atlas: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
         return 2
+    rotation = len({e.rotation for e in entries})
     if args.json:
         document = _counts(args.links, (rotation, len(entries)), published, PUBLISHED)
         document["graphs"] = [e.document() for e in entries]
@@ -105,19 +110,18 @@ class EditedFile(Exception):
     """A file the atlas would write is there with other contents (someone edited it)."""
 
 
-def _write_files(entries: Sequence[Any], folder: str, draw: bool, say: Progress) -> None:
-    """One train file per drawable entry (and its drawings), each written atomically; a
-    file of the same name with other contents is never replaced (it may hold edits)."""
-    outputs: list[tuple[str, str]] = []
-    for e in entries:
-        if e.not_drawable:
-            continue
-        outputs.append((os.path.join(folder, f"{e.name}.yaml"), e.train_text()))
-        if draw:
-            from davies_sym.atlas.drawing import graph_svg, layout_svg
+def _write_files(found: Any, folder: str, draw: bool) -> None:
+    """The train file of a drawable entry (and its drawings), each written atomically as
+    the entry is formed, so a run cut short keeps what it wrote; a file of the same name
+    with other contents is never replaced (it may hold edits)."""
+    if found.not_drawable:
+        return
+    outputs = [(os.path.join(folder, f"{found.name}.yaml"), found.train_text())]
+    if draw:
+        from davies_sym.atlas.drawing import graph_svg, layout_svg
 
-            outputs.append((os.path.join(folder, f"{e.name}.graph.svg"), graph_svg(e)))
-            outputs.append((os.path.join(folder, f"{e.name}.layout.svg"), layout_svg(e)))
+        outputs.append((os.path.join(folder, f"{found.name}.graph.svg"), graph_svg(found)))
+        outputs.append((os.path.join(folder, f"{found.name}.layout.svg"), layout_svg(found)))
     for path, text in outputs:
         if os.path.exists(path):
             with open(path, encoding="utf-8") as handle:
@@ -126,4 +130,3 @@ def _write_files(entries: Sequence[Any], folder: str, draw: bool, say: Progress)
     os.makedirs(folder, exist_ok=True)
     for path, text in outputs:
         write_atomic(path, text)
-    say(f"{sum(p.endswith('.yaml') for p, _ in outputs)} train files in {folder}")

@@ -141,6 +141,11 @@ class NotCoveredError(DaviesError):
     variant's region): the command line gives the reason and exit status 3."""
 
 
+class BeyondWorkBound(NotCoveredError):
+    """A closed form whose derivation swells past the work bound (a bound by size, the
+    same on every machine): the reason instead of minutes and gigabytes."""
+
+
 class DerivationError(DaviesError):
     """The symbolic derivation cannot proceed (e.g. an unsupported friction case)."""
 

@@ -19,16 +19,19 @@ from flint import fmpz_mpoly
 
 from davies_sym.algebra.flint_conversion import factor
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Solution, eliminate_rows
+from davies_sym.algebra.linalg import Solution, WorkBudget, eliminate_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.products import SMALL_SUM, Product, common, divide, multiply, product_of
 from davies_sym.algebra.radicals import radicals_form_a_field
 
 
-def difference(t: Product, u: Product, one: fmpz_mpoly) -> Product | None:
-    """``t - u`` with their shared factors kept out of the expansion; None when zero."""
+def difference(t: Product, u: Product, one: fmpz_mpoly, spent: WorkBudget | None = None) -> Product | None:
+    """``t - u`` with their shared factors kept out of the expansion; None when zero.
+    The terms expanded are spent from ``spent``."""
     g = common(t, u)
     rest = divide(t, g).expand_in(one) - divide(u, g).expand_in(one)
+    if spent is not None:
+        spent.spend(len(rest))
     if rest.is_zero():
         return None
     return multiply(g, product_of(rest))
@@ -54,7 +57,14 @@ def _content(row: Row, divided: list[fmpz_mpoly] | None = None) -> Row:
     return {c: divide(v, shared) for c, v in row.items()}
 
 
-def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly, divided: list[fmpz_mpoly] | None = None) -> Row:
+def _eliminate(
+    target: Row,
+    pivot_row: Row,
+    col: int,
+    one: fmpz_mpoly,
+    divided: list[fmpz_mpoly] | None = None,
+    spent: WorkBudget | None = None,
+) -> Row:
     g = common(pivot_row[col], target[col])
     p, a = divide(pivot_row[col], g), divide(target[col], g)
     out: Row = {}
@@ -68,7 +78,7 @@ def _eliminate(target: Row, pivot_row: Row, col: int, one: fmpz_mpoly, divided: 
         elif u is None:
             value = t
         else:
-            value = difference(t, u, one)  # type: ignore[arg-type]
+            value = difference(t, u, one, spent)  # type: ignore[arg-type]
         if value is not None:
             out[c] = value
     return _content(out, divided) if out else out
@@ -133,16 +143,19 @@ def factored_gauss_jordan(
     prefer_free: Iterable[int] = (),
     progress: Callable[[int, int], None] | None = None,
     divided: list[fmpz_mpoly] | None = None,
+    budget: int | None = None,
 ) -> FactoredElimination:
     """Fraction-free Gauss-Jordan elimination as `davies_sym.algebra.linalg.gauss_jordan`
     (the same pivot order: constants first, Markowitz, ``prefer_free`` last), on
-    factored entries; ``divided`` collects the factors rows were divided by."""
+    factored entries; ``divided`` collects the factors rows were divided by.
+    `WorkExceeded` once the sums it expands hold more than ``budget`` terms in all."""
     work = [_content({c: product_of(v) for c, v in r.items()}, divided) for r in rows if r]
+    spent = WorkBudget(budget)
     pivots = eliminate_rows(
         work,
         prefer_free,
         lambda v: (not v.is_constant(), v.size),
-        lambda row, pivot, col: _eliminate(row, pivot, col, one, divided),
+        lambda row, pivot, col: _eliminate(row, pivot, col, one, divided, spent),
         progress,
     )
     return FactoredElimination(ncols, pivots)
@@ -153,18 +166,20 @@ def radical_elimination(
     rows: Iterable[dict[int, fmpz_mpoly]],
     ncols: int,
     prefer_free: Iterable[int] = (),
+    budget: int | None = None,
 ) -> FactoredElimination | None:
     """The factored elimination with the ring's square roots taken for free symbols:
     entries stay products, where the elimination modulo ``s^2 = m`` expands every
     product and swells. Sound where the radicals generate a field
     (`radicals_form_a_field`) and nothing it divides by (a pivot, a factor shared by a
     row) vanishes modulo their relations: every step is then a step of the elimination
-    over that field, with the same rank. None where one of these fails."""
+    over that field, with the same rank. None where one of these fails; `WorkExceeded`
+    past ``budget`` terms expanded."""
     if not radicals_form_a_field(ring.radicals):
         return None
     reduced = [{c: v for c, v in ((c, ring.reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
     divided: list[fmpz_mpoly] = []
-    elimination = factored_gauss_jordan(reduced, ncols, ring.one, prefer_free, divided=divided)
+    elimination = factored_gauss_jordan(reduced, ncols, ring.one, prefer_free, divided=divided, budget=budget)
     divided += [f for col, row in elimination.pivots.items() for f, _ in row[col].factors]
     if any(ring.reduce(f).is_zero() for f in divided):
         return None

@@ -117,6 +117,20 @@ class WorkExceeded(Exception):
     """The elimination formed more terms than its budget allowed."""
 
 
+class WorkBudget:
+    """Terms an elimination may form (None: no bound); `spend` raises `WorkExceeded`
+    past it, so work is bounded by size, the same on every machine."""
+
+    def __init__(self, terms: int | None) -> None:
+        self.terms = terms
+        self.formed = 0
+
+    def spend(self, terms: int) -> None:
+        self.formed += terms
+        if self.terms is not None and self.formed > self.terms:
+            raise WorkExceeded(f"more than {self.terms} terms formed")
+
+
 def gauss_jordan(
     rows: Iterable[Row],
     ncols: int,
@@ -132,16 +146,13 @@ def gauss_jordan(
     if reduce is not None:
         rows = [{c: v for c, v in ((c, reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]
     work = [_remove_content(dict(r)) for r in rows if r]
-    formed = [0]
+    spent = WorkBudget(budget)
 
     def eliminate(row: Row, pivot: Row, col: int) -> Row:
         out = _combined(row, pivot, col, reduce)
-        if budget is not None:
-            # Counted before the content is divided out: the gcd of swollen entries is
-            # the work (entries of 10^5 terms sharing a factor of 10^5).
-            formed[0] += sum(len(v) for v in out.values())
-            if formed[0] > budget:
-                raise WorkExceeded(f"more than {budget} terms formed")
+        # Counted before the content is divided out: the gcd of swollen entries is the
+        # work (entries of 10^5 terms sharing a factor of 10^5).
+        spent.spend(sum(len(v) for v in out.values()))
         return _remove_content(out)
 
     pivots = eliminate_rows(work, prefer_free, lambda v: (not v.is_constant(), len(v)), eliminate, progress)

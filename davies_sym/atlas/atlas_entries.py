@@ -10,6 +10,7 @@ from davies_sym.atlas.choices import admissible_choices
 from davies_sym.atlas.graphs import TrainGraph
 from davies_sym.atlas.realisation import Realisation, main_axis, realisations
 from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol, link_name
+from davies_sym.errors import BeyondWorkBound
 from davies_sym.topology.model import Train
 
 #: Where the counts are published (the docs compare them with the atlas's).
@@ -163,9 +164,13 @@ def entry(place: GraphPlace) -> Entry:
     """The entry of one displacement graph: drawn the first way of `realisations` that
     leaves a choice (the choices read from the train's motions), or the reason none does."""
     where: dict[str, Any] = {f.name: getattr(place, f.name) for f in fields(GraphPlace)}
-    reasons = []
+    reasons: list[str | None] = []
     for drawn in realisations(place.graph):
-        found = admissible_choices(drawn)
+        try:
+            found = admissible_choices(drawn)
+        except BeyondWorkBound as exc:
+            reasons.append(f"its choices are not read: {exc}")
+            continue
         reasons.append(found.reason)
         if found.choices:
             return Entry(

@@ -21,7 +21,7 @@ import sympy
 from davies_sym.algebra.linear_regions import Requirement, empty_region
 from davies_sym.atlas.realisation import Realisation
 from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol
-from davies_sym.errors import DaviesError, GeometryError
+from davies_sym.errors import BeyondWorkBound, DaviesError, GeometryError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout, polynomial_part
 from davies_sym.network.analysis import Analysis, analyse
@@ -182,6 +182,8 @@ def admissible_choices(drawn: Realisation) -> Admissible:
                 kept.append(choice)
                 if _every_mesh_loaded(analysis):
                     loaded.append(choice)
+        except BeyondWorkBound:
+            raise  # not a choice the motions refuse: the train is listed with the reason
         except (DaviesError, ZeroDivisionError):
             continue
     return Admissible(tuple(kept), way.planar, tuple(loaded), free_axes=way.free_axes, order=way.order)

@@ -17,6 +17,7 @@ from typing import Any
 from davies_sym.cli.completion import completion_script
 from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message, named_by_option, status_json
 from davies_sym.cli.parser import parser
+from davies_sym.cli.state_failures import StateFailures
 from davies_sym.cli.subcommand_parsers import SUBCOMMANDS
 from davies_sym.emit.atomic import same_file, write_atomic
 from davies_sym.errors import DaviesError, InputError, NotCoveredError, Problem, shortened
@@ -112,12 +113,12 @@ def _one_file(args: argparse.Namespace, progress: Progress) -> int:
     for target, option in targets:
         _check_target(target, option, [path])
     _check_distinct(targets, path)
-    failures: list[str] = []
+    failures = StateFailures()
     outputs = file_outputs(read_document(path), args, progress, failures)
     _write(outputs, {target: option for target, option in targets}, path)
     for line in failures:
         print(line, file=sys.stderr)
-    return 2 if failures else 0
+    return failures.status
 
 
 def _many_files(args: argparse.Namespace, progress: Progress) -> int:

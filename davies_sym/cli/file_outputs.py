@@ -10,6 +10,7 @@ import argparse
 from davies_sym.cli.machine_input import machine_outputs
 from davies_sym.cli.one_input_outputs import one_input_outputs
 from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, several_outputs
+from davies_sym.cli.state_failures import StateFailures
 from davies_sym.errors import InputError, Problem
 from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.progress import Progress
@@ -20,7 +21,7 @@ Outputs = list[tuple[str | None, str | bytes]]
 
 
 def file_outputs(
-    document: SourceDocument, args: argparse.Namespace, progress: Progress, failures: list[str]
+    document: SourceDocument, args: argparse.Namespace, progress: Progress, failures: StateFailures
 ) -> Outputs:
     """The outputs of ``document`` (the file ``args.files[0]``) for the options ``args``
     (target and content; None: the standard output); the states of a train that cannot be

@@ -19,8 +19,9 @@ from davies_sym.cli.messages import INTERNAL_ERROR, internal_error, message
 from davies_sym.cli.one_input_outputs import write_derivations
 from davies_sym.cli.parser import parser
 from davies_sym.cli.several_input_outputs import several_degrees_of_freedom, several_derivations
+from davies_sym.cli.state_failures import StateFailures
 from davies_sym.emit.atomic import same_file, write_atomic
-from davies_sym.errors import DaviesError, TopologyError
+from davies_sym.errors import DaviesError, NotCoveredError, TopologyError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.machines.machine_loader import build_machine, is_machine
 from davies_sym.progress import Progress, note, silent
@@ -44,7 +45,8 @@ class Task:
 
 @dataclass(frozen=True)
 class Derived:
-    """What one task gives back: its exit status (0, or 2 for a file or state refused),
+    """What one task gives back: its exit status (0; 2 for a file or state refused, 3
+    where every one refused is a design the formulas do not cover),
     the lines for standard error, and the files to write as (name in DIR, content)."""
 
     path: str
@@ -63,21 +65,21 @@ def derive_task(task: Task, progress: Progress = silent) -> Derived:
         if is_machine(document.data):
             return Derived(task.path, 0, (), tuple(machine_derivations(build_machine(document), task.stem, progress)))
         train = build_train(document)
-        failures: list[str] = []
+        failures = StateFailures()
         written = (
             several_derivations(train, task.stem, progress)
             if several_degrees_of_freedom(train)
             else write_derivations(train, task.stem, progress, failures)
         )
     except DaviesError as exc:
-        return Derived(task.path, 2, (message(exc, task.path),), ())
+        return Derived(task.path, 3 if isinstance(exc, NotCoveredError) else 2, (message(exc, task.path),), ())
     notes = tuple(failures)
     if not written:
         notes += (
             f"derive: {task.path}: {train.degrees_of_freedom} degrees of freedom and one input port: only its "
             "kinematics is derived (list one input port per degree of freedom for formulas)",
         )
-    return Derived(task.path, 2 if failures else 0, notes, tuple(written))
+    return Derived(task.path, failures.status, notes, tuple(written))
 
 
 #: The single-file option of each document, and the suffix of its file.
@@ -88,11 +90,11 @@ def _document_alone(document: SourceDocument, task: Task, kind: str, progress: P
     """The one document of ``kind`` (a key of `DOCUMENTS`) that ``task`` asks for: what
     ``derive FILE`` with its option prints (`file_outputs`, given the arguments that command
     line parses to)."""
-    failures: list[str] = []
+    failures = StateFailures()
     args = parser().parse_args([task.path, DOCUMENTS[kind]])
     ((_, text),) = file_outputs(document, args, progress, failures)
     content = text if isinstance(text, str) else text.decode()
-    return Derived(task.path, 2 if failures else 0, tuple(failures), ((f"{task.stem}.{kind}", content),))
+    return Derived(task.path, failures.status, tuple(failures), ((f"{task.stem}.{kind}", content),))
 
 
 def _crashed(path: str, exc: BaseException) -> Derived:
@@ -149,8 +151,8 @@ def derive_into(
     """LaTeX document and formula module of every train file into ``directory`` (a train
     with states gets one document and a module per state), or only the ``document``
     named (a key of `DOCUMENTS`), the files derived by ``workers``; the exit status is the
-    worst of the files' (0 all derived, 2 a file or state refused, 4 a task that failed:
-    an internal error)."""
+    worst of the files' (0 all derived, 3 a design the formulas do not cover, 2 a file or
+    state refused as bad input, 4 a task that failed: an internal error)."""
     os.makedirs(directory, exist_ok=True)
     tasks, refused = _tasks(directory, files, document)
     for line in refused:
@@ -171,7 +173,7 @@ def derive_into(
                 statuses.add(2)
         statuses.add(derived.status)
     # A task that failed (an internal error) outranks a refused input (2): it needs a look at the engine.
-    return next((s for s in (INTERNAL_ERROR, 2) if s in statuses), 0)
+    return next((s for s in (INTERNAL_ERROR, 2, 3) if s in statuses), 0)
 
 
 def _wrote(derived: Derived) -> str | None:

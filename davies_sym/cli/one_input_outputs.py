@@ -24,6 +24,7 @@ from davies_sym.cli.arguments import (
 )
 from davies_sym.cli.messages import message
 from davies_sym.cli.result_outputs import result_outputs
+from davies_sym.cli.state_failures import StateFailures
 from davies_sym.efficiency.design_values import solved_coefficients
 from davies_sym.efficiency.operating_point import OPERATING_SYMBOLS
 from davies_sym.efficiency.parameters import formula_symbols, given_parameters
@@ -32,7 +33,7 @@ from davies_sym.emit.derived_result import OneInputResult
 from davies_sym.emit.evaluation import Evaluation, evaluate
 from davies_sym.emit.plots import efficiency_figure, figure_bytes, region_figure
 from davies_sym.emit.sensitivity import sensitivity_latex, sensitivity_text
-from davies_sym.errors import DaviesError, InputError, MissingValuesError, Problem
+from davies_sym.errors import DaviesError, InputError, MissingValuesError, NotCoveredError, Problem
 from davies_sym.progress import Progress
 from davies_sym.topology.model import Train
 from davies_sym.topology.states import train_in_state
@@ -85,7 +86,7 @@ def _fmu(result: OneInputResult, args: argparse.Namespace) -> bytes:
 
 
 def derive_sets(
-    train: Train, state: str | None, progress: Progress, failures: list[str], inputs: Sequence[str] | None = None
+    train: Train, state: str | None, progress: Progress, failures: StateFailures, inputs: Sequence[str] | None = None
 ) -> list[tuple[str, VariantSet]]:
     """The variants of the train, or of each of its states (only ``state`` if given;
     only those with the ``inputs`` ports if given).  A state that cannot be derived is
@@ -106,7 +107,8 @@ def derive_sets(
             out.append((st.name, derive_variants(train_in_state(train, st), progress=progress, inputs=inputs)))
         except DaviesError as exc:
             first = first or _in_state(exc, st.name)
-            failures += [f"{line} (state {st.name})" for line in message(exc, train.path or "").splitlines()]
+            lines = [f"{line} (state {st.name})" for line in message(exc, train.path or "").splitlines()]
+            failures.add(lines, isinstance(exc, NotCoveredError))
     if not out and first is not None:
         failures.clear()
         raise first
@@ -190,7 +192,7 @@ def _eval_inputs(train: Train, args: argparse.Namespace) -> list[str] | None:
 
 
 def one_input_outputs(
-    train: Train, args: argparse.Namespace, progress: Progress, failures: list[str]
+    train: Train, args: argparse.Namespace, progress: Progress, failures: StateFailures
 ) -> list[tuple[str | None, str | bytes]]:
     """The outputs of a one-degree-of-freedom train: document, module, figure, evaluation
     (of the states that derive; the others are reported in ``failures``)."""
@@ -239,7 +241,7 @@ def one_input_outputs(
     return result_outputs(result, args, answer)
 
 
-def write_derivations(train: Train, stem: str, progress: Progress, failures: list[str]) -> list[tuple[str, str]]:
+def write_derivations(train: Train, stem: str, progress: Progress, failures: StateFailures) -> list[tuple[str, str]]:
     """(file name, content) of the LaTeX document and formula module of every state that
     derives (a state that does not is reported in ``failures``)."""
     return OneInputResult(train, tuple(derive_sets(train, None, progress, failures))).derivations(stem)

@@ -14,11 +14,11 @@ from functools import cached_property, partial
 import sympy
 
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Reduce, Row, polynomial_rows
+from davies_sym.algebra.linalg import Reduce, Row, WorkExceeded, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
-from davies_sym.errors import DerivationError, MobilityError
+from davies_sym.errors import BeyondWorkBound, DerivationError, MobilityError
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.geometry.layout import Layout, constraint_substitutions, joint_substitution
 from davies_sym.network.action_nullity import action_nullity_problems
@@ -28,7 +28,7 @@ from davies_sym.network.condensed_screws import condensed_screw, inner_product
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, coulomb_mode
 from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
-from davies_sym.network.null_space import Solved, null_space
+from davies_sym.network.null_space import ROUTE_WORK, Solved, null_space
 from davies_sym.network.sign_condition import SignCondition
 from davies_sym.progress import Progress
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
@@ -100,10 +100,25 @@ class Analysis:
         return polynomial_rows(self.ring, matrix)
 
     def _solve(
-        self, matrix: sympy.Matrix, prefer: list[int], columns: Sequence[ActionVariable] = (), laws: int = 0
+        self,
+        matrix: sympy.Matrix,
+        prefer: list[int],
+        columns: Sequence[ActionVariable] = (),
+        laws: int = 0,
+        instead: Sequence[int] = (),
+        what: str = "",
     ) -> Solved:
-        """`null_space` of ``matrix``: circuit or cutset blocks, then ``laws`` rows."""
-        return null_space(self.network, self.ring, matrix, prefer, columns, laws)
+        """`null_space` of ``matrix``: circuit or cutset blocks, then ``laws`` rows; the
+        columns ``instead`` taken free for the first of ``prefer`` where its route swells
+        (``what``: the null space, for the reason when every route does)."""
+        try:
+            return null_space(self.network, self.ring, matrix, prefer, columns, laws, instead)
+        except WorkExceeded as exc:
+            raise BeyondWorkBound(
+                f"{what}: the elimination over the square roots of the "
+                f"2-D drawing swells past {ROUTE_WORK:,} terms with the input's variable free and with the "
+                "output's; the closed form is not derived"
+            ) from exc
 
     # -- motions (eqs. (1), (56)-(59)) -----------------------------------------------
     @cached_property
@@ -117,7 +132,8 @@ class Analysis:
         self._progress("solving the motions (null space of M_N)")
         net = self.network
         index = net.motions.index(self.input_motion)
-        elimination = self._solve(net.network_motion_matrix(), [index])
+        output = net.motions.index(net.coupling_motions(self.train.ports.output)[0])
+        elimination = self._solve(net.network_motion_matrix(), [index], instead=[output], what="the motions")
         free = elimination.free
         problems = mobility_problems(self.train, net, free, index)
         if problems:
@@ -176,7 +192,10 @@ class Analysis:
         net = self.network
         cols = net.action_columns(lossless=True)
         index = cols.index(self.input_action)
-        elimination = self._solve(net.network_action_matrix(lossless=True), [index], cols)
+        output = cols.index(self.output_action)
+        elimination = self._solve(
+            net.network_action_matrix(lossless=True), [index], cols, instead=[output], what="the lossless actions"
+        )
         self._check_action_nullity(elimination.free, index, cols)
         solution = elimination.solution(self.ring)
         zero = RationalFunction.polynomial(self.ring, self.ring.zero)
@@ -298,7 +317,10 @@ class Analysis:
         for k in range(nu.rows):
             sources[D.rows - nu.rows + k] = -nu[k]
         index = net.actions.index(self.input_action)
-        elimination = self._solve(D.row_join(sources), [index, const], net.actions, len(net.laws))
+        output = net.actions.index(self.output_action)
+        elimination = self._solve(
+            D.row_join(sources), [index, const], net.actions, len(net.laws), [output], "the actions with friction"
+        )
         free = [j for j in elimination.free if j != const]
         self._check_action_nullity(tuple(free), index, list(net.actions))
         if const in elimination.pivots:

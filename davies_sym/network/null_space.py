@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import sympy
 
+from davies_sym.algebra.exchanged_free import ExchangedFree, exchangeable
 from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan, radical_elimination
 from davies_sym.algebra.lazy import LazyMapping
 from davies_sym.algebra.linalg import Elimination, Row, Solution, WorkExceeded, gauss_jordan, polynomial_rows
@@ -134,32 +135,41 @@ class TurnedElimination:
         return LazyMapping(list(turned), column)
 
 
-Solved = Elimination | FactoredElimination | TurnedElimination
+Solved = Elimination | FactoredElimination | TurnedElimination | ExchangedFree
 
 
 #: Terms the elimination modulo the radical relations may form before the factored one,
 #: the square roots taken for free symbols, is tried instead: work bounded by size.
 RADICAL_WORK = 300_000
 
+#: Terms the elimination over the square roots (factored, then reduced) may form with
+#: one choice of free column before another is tried (`null_space`'s ``instead``), about
+#: ten seconds of work: the most any 7-link file forms is 5.6 million (atlas7_r92_d23);
+#: an 8-link state that forms 45 million with the carrier's torque free (8 GB) forms
+#: 5.5 million with the output's.
+ROUTE_WORK = 12_000_000
+
 
 def eliminate(
-    ring: PolynomialRing, rows: list[Row], ncols: int, prefer: list[int]
+    ring: PolynomialRing, rows: list[Row], ncols: int, prefer: list[int], bounded: bool = False
 ) -> Elimination | FactoredElimination:
     """Stages in series multiply: factored entries keep them apart. With radicals the
     elimination reduces every entry modulo their relations; where its entries swell past
     `RADICAL_WORK` terms (planet triangles of several square roots), the factored
     elimination over the roots as free symbols takes over when it is sound there
-    (`radical_elimination`), else the reduced elimination runs to its end."""
+    (`radical_elimination`), else the reduced elimination runs to its end; ``bounded``:
+    each of these two past `ROUTE_WORK` terms raises `WorkExceeded`."""
     if not ring.radicals:
         return factored_gauss_jordan(rows, ncols, ring.one, prefer_free=prefer)
     try:
         return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=RADICAL_WORK)
     except WorkExceeded:
         pass
-    factored = radical_elimination(ring, rows, ncols, prefer)
+    budget = ROUTE_WORK if bounded else None
+    factored = radical_elimination(ring, rows, ncols, prefer, budget)
     if factored is not None:
         return factored
-    return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce)
+    return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=budget)
 
 
 def null_space(
@@ -169,18 +179,46 @@ def null_space(
     prefer: list[int],
     columns: Sequence[ActionVariable] = (),
     laws: int = 0,
+    instead: Sequence[int] = (),
 ) -> Solved:
     """The null space of ``matrix``: blocks of d circuit or cutset rows, then ``laws`` rows
     (D_A's constitutive and source rows); the columns ``prefer`` free where the system
     allows.  A turned drawing is solved turned back, ``columns`` naming the action
-    variables whose reaction pairs turn with it."""
+    variables whose reaction pairs turn with it.  Where the route with ``prefer[0]``
+    free swells past `ROUTE_WORK` terms, each column of ``instead`` is tried free in its
+    place and the solution read back in ``prefer[0]`` (`ExchangedFree`); `WorkExceeded`
+    when every one swells so."""
+    try:
+        return _null_space(network, ring, matrix, prefer, columns, laws, bounded=bool(instead))
+    except WorkExceeded:
+        if not instead:
+            raise
+    for other in instead:
+        try:
+            solved = _null_space(network, ring, matrix, [other, *prefer[1:]], columns, laws, bounded=True)
+        except WorkExceeded:
+            continue
+        if exchangeable(solved, ring, prefer[0], other, prefer[1:]):
+            return ExchangedFree(solved, prefer[0], other)
+    raise WorkExceeded(f"more than {ROUTE_WORK} terms formed with any of the columns tried free")
+
+
+def _null_space(
+    network: Network,
+    ring: PolynomialRing,
+    matrix: sympy.Matrix,
+    prefer: list[int],
+    columns: Sequence[ActionVariable],
+    laws: int,
+    bounded: bool,
+) -> Solved:
     frame = drawing_frame(network)
     if frame is not None:
         pairs = force_pairs(columns)
         turned = frame.turn_columns(frame.turn_rows(matrix, (matrix.rows - laws) // 3), pairs)
-        elimination = eliminate(ring, polynomial_rows(ring, turned), matrix.cols, prefer)
+        elimination = eliminate(ring, polynomial_rows(ring, turned), matrix.cols, prefer, bounded)
         # Only where the free columns are the preferred ones, as the plain elimination
         # leaves them (a free turned force would write the solution in other variables).
         if set(elimination.free) <= set(prefer):
             return TurnedElimination(elimination, frame, pairs)
-    return eliminate(ring, polynomial_rows(ring, matrix), matrix.cols, prefer)
+    return eliminate(ring, polynomial_rows(ring, matrix), matrix.cols, prefer, bounded)

@@ -89,6 +89,7 @@ def _every_route_swells(monkeypatch) -> None:
     """Every elimination over square roots swells past its bound at its first step."""
     monkeypatch.setattr(null_space_module, "RADICAL_WORK", 0)
     monkeypatch.setattr(null_space_module, "ROUTE_WORK", 0)
+    monkeypatch.setattr(null_space_module, "REDUCED_ROUTE_WORK", 0)
 
 
 def test_a_state_whose_every_route_swells_is_refused_with_the_reason(monkeypatch, capsys) -> None:

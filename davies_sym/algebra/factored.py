@@ -25,13 +25,23 @@ from davies_sym.algebra.products import SMALL_SUM, Product, common, divide, mult
 from davies_sym.algebra.radicals import radicals_form_a_field
 
 
+def expansion_work(p: Product) -> int:
+    """The products of terms a schoolbook expansion of ``p`` forms (the sizes of its
+    factors multiplied): known before it runs, where one expansion can take minutes."""
+    work = 1
+    for f, e in p.factors:
+        work *= len(f) ** e
+    return work
+
+
 def difference(t: Product, u: Product, one: fmpz_mpoly, spent: WorkBudget | None = None) -> Product | None:
     """``t - u`` with their shared factors kept out of the expansion; None when zero.
-    The terms expanded are spent from ``spent``."""
+    The work of the expansions is spent from ``spent`` before they run."""
     g = common(t, u)
-    rest = divide(t, g).expand_in(one) - divide(u, g).expand_in(one)
+    t, u = divide(t, g), divide(u, g)
     if spent is not None:
-        spent.spend(len(rest))
+        spent.spend(expansion_work(t) + expansion_work(u))
+    rest = t.expand_in(one) - u.expand_in(one)
     if rest.is_zero():
         return None
     return multiply(g, product_of(rest))
@@ -148,7 +158,8 @@ def factored_gauss_jordan(
     """Fraction-free Gauss-Jordan elimination as `davies_sym.algebra.linalg.gauss_jordan`
     (the same pivot order: constants first, Markowitz, ``prefer_free`` last), on
     factored entries; ``divided`` collects the factors rows were divided by.
-    `WorkExceeded` once the sums it expands hold more than ``budget`` terms in all."""
+    `WorkExceeded` once its expansions would form more than ``budget`` products of terms
+    in all (`expansion_work`)."""
     work = [_content({c: product_of(v) for c, v in r.items()}, divided) for r in rows if r]
     spent = WorkBudget(budget)
     pivots = eliminate_rows(
@@ -174,7 +185,7 @@ def radical_elimination(
     (`radicals_form_a_field`) and nothing it divides by (a pivot, a factor shared by a
     row) vanishes modulo their relations: every step is then a step of the elimination
     over that field, with the same rank. None where one of these fails; `WorkExceeded`
-    past ``budget`` terms expanded."""
+    past ``budget`` (`factored_gauss_jordan`)."""
     if not radicals_form_a_field(ring.radicals):
         return None
     reduced = [{c: v for c, v in ((c, ring.reduce(v)) for c, v in r.items()) if not v.is_zero()} for r in rows]

@@ -116,7 +116,7 @@ class Analysis:
         except WorkExceeded as exc:
             raise BeyondWorkBound(
                 f"{what}: the elimination over the square roots of the "
-                f"2-D drawing swells past {ROUTE_WORK:,} terms with the input's variable free and with the "
+                f"2-D drawing swells past {ROUTE_WORK:,} products of terms with the input's variable free and with the "
                 "output's; the closed form is not derived"
             ) from exc
 

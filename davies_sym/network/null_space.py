@@ -142,12 +142,19 @@ Solved = Elimination | FactoredElimination | TurnedElimination | ExchangedFree
 #: the square roots taken for free symbols, is tried instead: work bounded by size.
 RADICAL_WORK = 300_000
 
-#: Terms the elimination over the square roots (factored, then reduced) may form with
-#: one choice of free column before another is tried (`null_space`'s ``instead``), about
-#: ten seconds of work: the most any 7-link file forms is 5.6 million (atlas7_r92_d23);
-#: an 8-link state that forms 45 million with the carrier's torque free (8 GB) forms
-#: 5.5 million with the output's.
-ROUTE_WORK = 12_000_000
+#: Work the elimination over the square roots (factored, then reduced) may do with one
+#: choice of free column before another is tried (`null_space`'s ``instead``): products
+#: of terms its expansions form, counted before each runs (`expansion_work`; about a
+#: minute at most). The most a 7-link file takes is 0.82 billion (atlas7_r92_d23); an
+#: 8-link state that takes 1.7 billion and then 11.5 with the carrier's torque free
+#: (8 GB) takes 0.54 with the output's, and one step of forming atlas8_r239_d67 would
+#: have taken 149 billion.
+ROUTE_WORK = 1_500_000_000
+
+#: Terms the reduced elimination may form where the factored one is not sound (its
+#: entries are expanded: terms, not products, count); the 7-link files form 5.6 million
+#: at most.
+REDUCED_ROUTE_WORK = 12_000_000
 
 
 def eliminate(
@@ -158,17 +165,17 @@ def eliminate(
     `RADICAL_WORK` terms (planet triangles of several square roots), the factored
     elimination over the roots as free symbols takes over when it is sound there
     (`radical_elimination`), else the reduced elimination runs to its end; ``bounded``:
-    each of these two past `ROUTE_WORK` terms raises `WorkExceeded`."""
+    these two past `ROUTE_WORK` and `REDUCED_ROUTE_WORK` raise `WorkExceeded`."""
     if not ring.radicals:
         return factored_gauss_jordan(rows, ncols, ring.one, prefer_free=prefer)
     try:
         return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=RADICAL_WORK)
     except WorkExceeded:
         pass
-    budget = ROUTE_WORK if bounded else None
-    factored = radical_elimination(ring, rows, ncols, prefer, budget)
+    factored = radical_elimination(ring, rows, ncols, prefer, ROUTE_WORK if bounded else None)
     if factored is not None:
         return factored
+    budget = REDUCED_ROUTE_WORK if bounded else None
     return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=budget)
 
 
@@ -185,7 +192,7 @@ def null_space(
     (D_A's constitutive and source rows); the columns ``prefer`` free where the system
     allows.  A turned drawing is solved turned back, ``columns`` naming the action
     variables whose reaction pairs turn with it.  Where the route with ``prefer[0]``
-    free swells past `ROUTE_WORK` terms, each column of ``instead`` is tried free in its
+    free swells past its bound, each column of ``instead`` is tried free in its
     place and the solution read back in ``prefer[0]`` (`ExchangedFree`); `WorkExceeded`
     when every one swells so."""
     try:
@@ -200,7 +207,7 @@ def null_space(
             continue
         if exchangeable(solved, ring, prefer[0], other, prefer[1:]):
             return ExchangedFree(solved, prefer[0], other)
-    raise WorkExceeded(f"more than {ROUTE_WORK} terms formed with any of the columns tried free")
+    raise WorkExceeded("every column tried free swells past the bound")
 
 
 def _null_space(

@@ -139,15 +139,14 @@ def _join_slice(left: Table, right: Table) -> Table:
 
 
 def _size(left: Table, right: Table) -> int:
+    """The rows of the join of ``left`` and ``right``, counted without forming it."""
     shared = [s for s in left.symbols if s in right.symbols]
-    if not shared:
-        return len(left) * len(right)
+    if not shared or not len(left) or not len(right):
+        return len(left) * len(right)  # an empty table (a window no row meets) joins to none
     lk, rk = _keys(left, shared), _keys(right, shared)
     values, counts = np.unique(rk, return_counts=True)
-    where = np.searchsorted(values, lk)
-    where = np.clip(where, 0, max(len(values) - 1, 0))
-    hit = values[where] == lk if len(values) else np.zeros(len(lk), dtype=bool)
-    return int(counts[where][hit].sum())
+    where = np.clip(np.searchsorted(values, lk), 0, len(values) - 1)
+    return int(counts[where][values[where] == lk].sum())
 
 
 def _join(left: Table, right: Table, check: _Filter) -> Table:

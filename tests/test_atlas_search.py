@@ -89,6 +89,30 @@ def test_bad_atlas_search_options_get_one_clear_message(tmp_path: Path, args: li
     assert "Traceback" not in result.stderr
 
 
+def test_a_train_whose_search_fails_is_reported_and_the_others_ranked(tmp_path: Path, monkeypatch) -> None:
+    """One train's search raising past the refusals (as atlas7_r92_d24's once did, in the
+    tooth-number joins) costs that train, named with the cause and exit status 4, not the
+    whole search: the others are ranked as without the fault."""
+    import davies_sym.atlas.search as search
+
+    whole = run_derive(FIVE, tmp_path)
+    assert whole.returncode == 0, whole.describe()
+    real = search._designs_of
+
+    def faulty(task):
+        if task.place.name == "atlas5_r01_d1":
+            raise IndexError("made to fail")
+        return real(task)
+
+    monkeypatch.setattr(search, "_designs_of", faulty)
+    result = run_derive(FIVE, tmp_path)
+    assert result.returncode == 4, result.describe()
+    assert "internal error: derive search: atlas5_r01_d1: searching it: IndexError: made to fail" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert _listed(result.stdout) == _listed(whole.stdout)
+    assert len(_listed(result.stdout)) == 2
+
+
 @pytest.mark.slow
 def test_the_docs_six_link_example(tmp_path: Path) -> None:
     """docs/atlas.md: the best trains of at most 6 links for a reduction of 10 to 15,

@@ -31,6 +31,11 @@ class GraphPlace:
     rotation_code: str
     graph: TrainGraph
 
+    @property
+    def name(self) -> str:
+        """The train's name in files: atlas6_r03_d2."""
+        return f"atlas{self.links}_r{self.rotation:02d}_d{self.index}"
+
 
 @dataclass(frozen=True)
 class Entry(GraphPlace):
@@ -52,11 +57,6 @@ class Entry(GraphPlace):
     #: The order the train file writes its meshes in (the layout places them so), or
     #: None: that of the gear pairs.
     order: tuple[int, ...] | None = None
-
-    @property
-    def name(self) -> str:
-        """The train's name in files: atlas6_r03_d2."""
-        return f"atlas{self.links}_r{self.rotation:02d}_d{self.index}"
 
     @property
     def drawn(self) -> Realisation:

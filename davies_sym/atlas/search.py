@@ -128,20 +128,48 @@ def _designs_of(task: SearchTask) -> list[AtlasDesign]:
     return [] if e.not_drawable else _entry_designs(e, task.question)
 
 
+@dataclass(frozen=True)
+class SearchFailure:
+    """A train whose search raised past every refusal (a fault of the engine): reported
+    with its cause, and the other trains are still searched."""
+
+    train: str
+    error: Exception
+
+
+@dataclass(frozen=True)
+class AtlasSearch:
+    """The feasible designs, best first (score, then ratio error, then size), how many
+    trains were searched and those whose search failed."""
+
+    designs: tuple[AtlasDesign, ...]
+    trains: int
+    failures: tuple[SearchFailure, ...] = ()
+
+
+def _failure(task: SearchTask, exc: Exception) -> list[AtlasDesign] | SearchFailure:
+    return SearchFailure(task.place.name, exc)
+
+
 def atlas_search(
     most_links: int, question: AtlasQuestion, workers: Workers = IN_THIS_PROCESS, say: Progress = silent
-) -> tuple[tuple[AtlasDesign, ...], int]:
-    """Every feasible design of every atlas train of up to ``most_links`` links, best
-    first (score, then ratio error, then size), and how many trains were searched."""
+) -> AtlasSearch:
+    """Every feasible design of every atlas train of up to ``most_links`` links."""
     tasks = [SearchTask(p, question) for links in range(4, most_links + 1) for p in places(links)]
     say(f"searching {len(tasks)} trains of 4 to {most_links} links")
-    designs = [d for found in fan_out(_designs_of, tasks, workers, Counted(say, "train")) for d in found]
+    designs: list[AtlasDesign] = []
+    failures: list[SearchFailure] = []
+    for found in fan_out(_designs_of, tasks, workers, Counted(say, "train"), _failure):
+        if isinstance(found, SearchFailure):
+            failures.append(found)
+        else:
+            designs += found
     # Among equals the train of fewer links comes first (an extra link that carries no
     # power leaves the efficiency as it is).
     designs.sort(
         key=lambda d: (-d.candidate.score, d.candidate.ratio_error, d.links, d.candidate.size, d.train, d.choice.name)
     )
-    return tuple(designs), len(tasks)
+    return AtlasSearch(tuple(designs), len(tasks), tuple(failures))
 
 
 def design_file(design: AtlasDesign, rank: int) -> str:

@@ -16,10 +16,11 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from davies_sym.cli.atlas_command import folder_refused
+from davies_sym.cli.messages import INTERNAL_ERROR, internal_error
 from davies_sym.cli.subcommand_parsers import ATLAS_TOP, fraction, tooth_range
 from davies_sym.emit.atomic import write_atomic
 from davies_sym.fan_out import Workers
-from davies_sym.progress import Display
+from davies_sym.progress import Display, note
 
 if TYPE_CHECKING:
     from davies_sym.atlas.search import AtlasQuestion
@@ -77,7 +78,8 @@ def _question(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Atla
 
 
 def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
-    """``derive search --atlas N``; returns the exit status (0, or 2 for bad input)."""
+    """``derive search --atlas N``; returns the exit status (0, 2 for bad input, 4 where
+    the search of a train failed: the others are ranked)."""
     question = _question(args, parser)
     if question is None:
         return 2
@@ -88,7 +90,12 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
     from davies_sym.atlas.search import design_file
 
     say = Display("derive search", args.quiet)
-    designs, trains = search_atlas(args.atlas, question, Workers(args.jobs), say)
+    found = search_atlas(args.atlas, question, Workers(args.jobs), say)
+    designs, trains = found.designs, found.trains
+    for failure in found.failures:
+        note(say, internal_error(failure.error, f"derive search: {failure.train}", "searching it"))
+    # A train whose search failed needs a look at the engine: the ranking lacks it.
+    status = INTERNAL_ERROR if found.failures else 0
     shown = designs[:top]
     if args.out:
         os.makedirs(args.out, exist_ok=True)
@@ -102,10 +109,11 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
             "trains": trains,
             "kept_per_direction": question.per_state,
             "kept": len(designs),
+            "failed": [failure.train for failure in found.failures],
             "designs": [d.document() for d in shown],
         }
         sys.stdout.write(json.dumps(document, indent=2) + "\n")
-        return 0
+        return status
     lines = [
         f"atlas up to {args.atlas} links: {trains} trains searched for ratio {float(question.target):g} "
         f"within {float(question.tolerance):g}; {len(designs)} design(s) kept, "
@@ -115,4 +123,4 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
     if len(designs) > len(shown):
         lines.append(f"      ... {len(designs) - len(shown)} more (--top)")
     sys.stdout.write("\n".join(lines) + "\n")
-    return 0
+    return status

@@ -174,6 +174,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
         return Admissible((), True, (), found)
     way, train = found
     kept, loaded = [], []
+    drawing_fails: GeometryError | None = None
     for choice, state in zip(candidates, train.states, strict=True):
         try:
             analysis = analyse(train_in_state(train, state))
@@ -184,8 +185,15 @@ def admissible_choices(drawn: Realisation) -> Admissible:
                     loaded.append(choice)
         except BeyondWorkBound:
             raise  # not a choice the motions refuse: the train is listed with the reason
+        except GeometryError as exc:
+            # The radii solved from the loops of meshes draw the train again (a planet
+            # can land on nested square roots): a reason, where no choice is kept.
+            drawing_fails = drawing_fails or exc
         except (DaviesError, ZeroDivisionError):
             continue
+    if not kept and drawing_fails is not None:
+        why = drawing_fails.problems[0].message
+        return Admissible((), way.planar, reason=f"its radii, solved from the loops of meshes, cannot be drawn ({why})")
     return Admissible(tuple(kept), way.planar, tuple(loaded), free_axes=way.free_axes, order=way.order)
 
 

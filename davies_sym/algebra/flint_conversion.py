@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
-from math import lcm
+from math import gcd, lcm
 
 import sympy
 from flint import fmpz_mpoly, fmpz_mpoly_ctx
@@ -40,16 +40,24 @@ def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
 def _factored(p: fmpz_mpoly) -> tuple[int, tuple[tuple[fmpz_mpoly, int], ...]]:
     """Content and irreducible factors of ``p`` (flint), also where python-flint 0.9 cannot
     order factors whose coefficients exceed a C long (OverflowError in its sort key):
-    then sympy factors the same polynomial, a rare and slower path."""
+    then sympy factors the same polynomial, a rare and slower path.  A polynomial of
+    degree at most one is its content times its primitive part, which is irreducible (the
+    sign put in the content so that the factor leads positively, as flint writes it)."""
+    if p.total_degree() <= 1:
+        coefficients = [int(c) for c in p.coeffs()]
+        if not coefficients:
+            return 0, ()
+        content = gcd(*coefficients) * (1 if coefficients[0] > 0 else -1)
+        return (content, ()) if p.is_constant() else (content, ((p / content, 1),))
     try:
-        content, factors = p.factor()
+        whole, factors = p.factor()
     except OverflowError:
         ctx = p.context()
         gens = sympy.symbols([f"x{i}" for i in range(len(ctx.names()))])
         poly = sympy.Poly.from_dict({m: int(c) for m, c in zip(p.monoms(), p.coeffs(), strict=True)}, gens, domain="ZZ")
         whole, parts = poly.factor_list()
         return int(whole), tuple((ctx.from_dict({m: int(c) for m, c in f.as_dict().items()}), int(e)) for f, e in parts)
-    return int(content), tuple((f, int(e)) for f, e in factors)
+    return int(whole), tuple((f, int(e)) for f, e in factors)
 
 
 def expanded_expr(p: fmpz_mpoly, symbols: Sequence[sympy.Expr]) -> sympy.Expr:

@@ -16,8 +16,10 @@ from davies_sym.algebra.flint_conversion import factor_expression
 from davies_sym.algebra.symbol_order import sorted_symbols
 
 
+@lru_cache(maxsize=4096)
 def _poly_sign(expr: sympy.Expr) -> int | None:
-    """+1 or -1 if every coefficient has that sign and every symbol is positive."""
+    """+1 or -1 if every coefficient has that sign and every symbol is positive (a pure
+    function's memo: the states of a train ask of the same factors)."""
     expr = sympy.expand(expr)
     if expr == 0:
         return 0
@@ -47,11 +49,22 @@ def _constant_ratio(a: sympy.Expr, b: sympy.Expr) -> sympy.Rational | None:
     return ratios.pop() if len(ratios) == 1 else None
 
 
+@lru_cache(maxsize=4096)
+def _expanded(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` expanded (a pure function's memo: the turning conditions of a region are
+    compared with every factor of every force of its variants)."""
+    return sympy.expand(expr)
+
+
 def _known_sign(base: sympy.Expr, known: Mapping[sympy.Expr, int]) -> int | None:
+    """The sign ``known`` gives ``base`` (an expression equal to it or to its negative):
+    expanded sums are canonical, so equal ones are equal terms."""
+    expanded = _expanded(base)
     for expr, sign in known.items():
-        if sympy.expand(base - expr) == 0:
+        other = _expanded(expr)
+        if expanded == other:
             return sign
-        if sympy.expand(base + expr) == 0:
+        if expanded == -other:
             return -sign
     return None
 

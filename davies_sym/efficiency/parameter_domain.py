@@ -14,7 +14,7 @@ import math
 import random
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cache, cached_property
 from typing import cast
 
 import sympy
@@ -29,6 +29,13 @@ from davies_sym.topology.coupling_kinds import bearings, toothed_meshes
 from davies_sym.topology.model import Train
 
 Point = dict[sympy.Symbol, sympy.Rational]
+
+
+@cache
+def _hundredths(value: int) -> sympy.Rational:
+    """``value / 100`` (a drawn length): the few thousand values recur in every point
+    drawn, and sympy's constructor costs more than the rest of the draw."""
+    return sympy.Rational(value, 100)
 
 
 @dataclass(frozen=True)
@@ -298,7 +305,7 @@ class ParameterDomain:
             verdict = self._float_verdict(drawn)
             if verdict is False:
                 continue
-            point: Point = {s: sympy.Rational(v, 100) for s, v in drawn.items()}
+            point: Point = {s: _hundredths(v) for s, v in drawn.items()}
             try:
                 for symbol, expr in self.eliminated.items():
                     point[symbol] = self.value(expr, point)

@@ -339,11 +339,11 @@ class Network:
 
     def motion_circuit_matrix(self) -> sympy.Matrix:
         """B_M = B X_M, the circuit matrix of the motion graph (column replication)."""
-        return self.circuit_matrix() * self.motion_index_matrix()
+        return _replicated(self.circuit_matrix(), self.graph.edges, [v.coupling for v in self.motions])
 
     def action_cutset_matrix(self, lossless: bool = False) -> sympy.Matrix:
         """Q_A = Q X_A, the cutset matrix of the action graph (column replication)."""
-        return self.cutset_matrix() * self.action_index_matrix(lossless)
+        return _replicated(self.cutset_matrix(), self.graph.edges, [v.coupling for v in self.action_columns(lossless)])
 
     def network_motion_matrix(self) -> sympy.Matrix:
         """M_N (dl x F), eq. (56): blocks M_D diag(B_M row i)."""
@@ -352,6 +352,15 @@ class Network:
     def network_action_matrix(self, lossless: bool = False) -> sympy.Matrix:
         """A_N (dk x C), eq. (19): blocks A_D diag(Q_A row i)."""
         return _circuit_blocks(self.unit_action_matrix(lossless), self.action_cutset_matrix(lossless))
+
+
+def _replicated(matrix: sympy.Matrix, edges: Sequence[str], couplings: Sequence[str]) -> sympy.Matrix:
+    """``matrix X`` for the index matrix X of ``couplings`` over ``edges`` (App. E): each
+    variable's column is its edge's column of ``matrix``, the product without forming X."""
+    index = {edge: j for j, edge in enumerate(edges)}
+    rows = matrix.tolist()
+    out = [[row[index[c]] if c in index else 0 for c in couplings] for row in rows]
+    return sympy.Matrix(out) if out else sympy.zeros(0, len(couplings))
 
 
 def _circuit_blocks(unit: sympy.Matrix, incidence: sympy.Matrix) -> sympy.Matrix:

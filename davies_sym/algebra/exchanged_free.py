@@ -9,25 +9,12 @@ solution in the column taken free converts exactly to the wanted one.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Protocol
 
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Solution
+from davies_sym.algebra.linalg import Solution, SolvedSpace
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
-
-
-class Solved(Protocol):
-    """What `ExchangedFree` reads of the elimination it wraps."""
-
-    @property
-    def free(self) -> tuple[int, ...]: ...
-
-    @property
-    def pivots(self) -> Mapping[int, object]: ...
-
-    def solution(self, ring: PolynomialRing) -> Solution: ...
 
 
 @dataclass(frozen=True)
@@ -35,23 +22,24 @@ class ExchangedFree:
     """``inner`` solved with ``taken`` free where ``wanted`` is to be: every column
     ``x_c = a_c t + b`` in the taken column ``t`` (and the other free columns, ``b``)
     becomes ``x_c = (a_c / a_w) w + (b_c - a_c b_w / a_w)`` in the wanted one ``w``
-    (``a_w`` is not zero: `exchangeable` checks it)."""
+    (``a_w`` is not zero: `exchanged` checks it). ``read``: the inner solution, its
+    wanted column already formed (over square roots that reading takes seconds)."""
 
-    inner: Solved
+    inner: SolvedSpace
     wanted: int
     taken: int
+    read: Solution
 
     @property
     def free(self) -> tuple[int, ...]:
         return tuple(sorted(self.wanted if c == self.taken else c for c in self.inner.free))
 
     @property
-    def pivots(self) -> Mapping[int, object]:
-        inner = self.inner.pivots
-        return LazyMapping([*(c for c in inner if c != self.wanted), self.taken], lambda c: None)
+    def pivots(self) -> frozenset[int]:
+        return frozenset(c for c in self.inner.pivots if c != self.wanted) | {self.taken}
 
     def solution(self, ring: PolynomialRing) -> Solution:
-        inner = self.inner.solution(ring)
+        inner = self.read
         wanted = inner[self.wanted]
         scale = wanted[self.taken].inverse()
         zero = RationalFunction.polynomial(ring, ring.zero)
@@ -76,9 +64,15 @@ class ExchangedFree:
         return LazyMapping(list(inner), column)
 
 
-def exchangeable(solved: Solved, ring: PolynomialRing, wanted: int, taken: int, others: Iterable[int] = ()) -> bool:
-    """Whether the wanted column moves with the taken one, which stands free with none
-    but ``others`` (so the wanted one can stand free in its place)."""
+def exchanged(
+    solved: SolvedSpace, ring: PolynomialRing, wanted: int, taken: int, others: Iterable[int] = ()
+) -> ExchangedFree | None:
+    """``solved`` read back with the wanted column free in place of the taken one, or None
+    where it cannot be: the taken column must stand free with none but ``others``, and
+    the wanted one must move with it."""
     if taken not in solved.free or not set(solved.free) - {taken} <= set(others):
-        return False
-    return not solved.solution(ring)[wanted].get(taken, RationalFunction.polynomial(ring, ring.zero)).is_zero()
+        return None
+    read = solved.solution(ring)
+    if read[wanted].get(taken, RationalFunction.polynomial(ring, ring.zero)).is_zero():
+        return None
+    return ExchangedFree(solved, wanted, taken, read)

@@ -10,9 +10,9 @@ whenever the system allows it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import Protocol, TypeVar
 
 import sympy
 from flint import fmpz_mpoly
@@ -25,6 +25,19 @@ Row = dict[int, fmpz_mpoly]
 Reduce = Callable[[fmpz_mpoly], fmpz_mpoly]
 #: The columns of a solved system in the free ones.
 Solution = LazyMapping[int, dict[int, RationalFunction]]
+
+
+class SolvedSpace(Protocol):
+    """A null space solved: which columns stand free, which are pivots, and every column
+    in the free ones (`Elimination`, the factored and turned ones, `ExchangedFree`)."""
+
+    @property
+    def free(self) -> tuple[int, ...]: ...
+
+    @property
+    def pivots(self) -> Collection[int]: ...
+
+    def solution(self, ring: PolynomialRing) -> Solution: ...
 
 
 def polynomial_rows(ring: PolynomialRing, matrix: sympy.Matrix) -> list[Row]:

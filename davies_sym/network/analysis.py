@@ -14,7 +14,7 @@ from functools import cached_property, partial
 import sympy
 
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Reduce, Row, WorkExceeded, polynomial_rows
+from davies_sym.algebra.linalg import Reduce, Row, SolvedSpace, WorkExceeded, polynomial_rows
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.screws import power
 from davies_sym.algebra.signs import SignOracle
@@ -28,7 +28,7 @@ from davies_sym.network.condensed_screws import condensed_screw, inner_product
 from davies_sym.network.friction_laws import CoulombLaw, CoulombSigns, FrictionLaw, coulomb_mode
 from davies_sym.network.matrices import ActionVariable, Network
 from davies_sym.network.mobility import mobility_problems
-from davies_sym.network.null_space import ROUTE_WORK, Solved, null_space
+from davies_sym.network.null_space import ROUTE_WORK, null_space
 from davies_sym.network.sign_condition import SignCondition
 from davies_sym.progress import Progress
 from davies_sym.topology.coupling_kinds import as_toothed_mesh
@@ -107,7 +107,7 @@ class Analysis:
         laws: int = 0,
         instead: Sequence[int] = (),
         what: str = "",
-    ) -> Solved:
+    ) -> SolvedSpace:
         """`null_space` of ``matrix``: circuit or cutset blocks, then ``laws`` rows; the
         columns ``instead`` taken free for the first of ``prefer`` where its route swells
         (``what``: the null space, for the reason when every route does)."""

@@ -24,10 +24,18 @@ from dataclasses import dataclass
 
 import sympy
 
-from davies_sym.algebra.exchanged_free import ExchangedFree, exchangeable
+from davies_sym.algebra.exchanged_free import exchanged
 from davies_sym.algebra.factored import FactoredElimination, factored_gauss_jordan, radical_elimination
 from davies_sym.algebra.lazy import LazyMapping
-from davies_sym.algebra.linalg import Elimination, Row, Solution, WorkExceeded, gauss_jordan, polynomial_rows
+from davies_sym.algebra.linalg import (
+    Elimination,
+    Row,
+    Solution,
+    SolvedSpace,
+    WorkExceeded,
+    gauss_jordan,
+    polynomial_rows,
+)
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.network.matrices import ActionVariable, Network
 
@@ -135,9 +143,6 @@ class TurnedElimination:
         return LazyMapping(list(turned), column)
 
 
-Solved = Elimination | FactoredElimination | TurnedElimination | ExchangedFree
-
-
 #: Terms the elimination modulo the radical relations may form before the factored one,
 #: the square roots taken for free symbols, is tried instead: work bounded by size.
 RADICAL_WORK = 300_000
@@ -187,7 +192,7 @@ def null_space(
     columns: Sequence[ActionVariable] = (),
     laws: int = 0,
     instead: Sequence[int] = (),
-) -> Solved:
+) -> SolvedSpace:
     """The null space of ``matrix``: blocks of d circuit or cutset rows, then ``laws`` rows
     (D_A's constitutive and source rows); the columns ``prefer`` free where the system
     allows.  A turned drawing is solved turned back, ``columns`` naming the action
@@ -205,8 +210,9 @@ def null_space(
             solved = _null_space(network, ring, matrix, [other, *prefer[1:]], columns, laws, bounded=True)
         except WorkExceeded:
             continue
-        if exchangeable(solved, ring, prefer[0], other, prefer[1:]):
-            return ExchangedFree(solved, prefer[0], other)
+        found = exchanged(solved, ring, prefer[0], other, prefer[1:])
+        if found is not None:
+            return found
     raise WorkExceeded("every column tried free swells past the bound")
 
 
@@ -218,7 +224,7 @@ def _null_space(
     columns: Sequence[ActionVariable],
     laws: int,
     bounded: bool,
-) -> Solved:
+) -> SolvedSpace:
     frame = drawing_frame(network)
     if frame is not None:
         pairs = force_pairs(columns)

@@ -6,10 +6,13 @@ quartiles, the 90th percentile and the largest per-state time, the wall time of 
 whole and the ten slowest states.
 
     python benchmarks/atlas_states.py [LINKS] [--jobs N] [--sample K] [--seed S]
+                                      [--scheduler ADDRESS | --local-cluster N]
 
 ``--sample K`` forms and derives K displacement graphs drawn at random (seed S), for
 atlases too big to derive whole on one machine (8 links); the whole is extrapolated from
-them.
+them.  ``--scheduler ADDRESS`` derives the files on a Dask cluster (one file per task, as
+``derive FILES --scheduler ADDRESS`` does); ``--local-cluster N`` starts a cluster of N
+local worker processes for the run and derives there.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import random
 import statistics
 import tempfile
 import time
+from contextlib import ExitStack
 
 from davies_sym.atlas.atlas_entries import entry, places
 from davies_sym.cli.many_files import Task, derive_task
@@ -73,7 +77,21 @@ def main() -> None:
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--sample", type=int, default=None, help="displacement graphs drawn at random")
     p.add_argument("--seed", type=int, default=0)
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", default=None, help="address of a Dask scheduler")
+    where.add_argument("--local-cluster", type=int, default=None, metavar="N", help="a local Dask cluster of N")
     args = p.parse_args()
+    with ExitStack() as stack:
+        scheduler = args.scheduler
+        if args.local_cluster is not None:
+            from dask.distributed import LocalCluster
+
+            cluster = stack.enter_context(LocalCluster(n_workers=args.local_cluster, threads_per_worker=1))
+            scheduler = cluster.scheduler_address
+        _measure(args, Workers(jobs=args.jobs, scheduler=scheduler))
+
+
+def _measure(args: argparse.Namespace, workers: Workers) -> None:
     start = time.perf_counter()
     found = places(args.links)
     chosen = found if args.sample is None else random.Random(args.seed).sample(found, min(args.sample, len(found)))
@@ -91,14 +109,14 @@ def main() -> None:
             kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), e.name, "json"))
         for kind, tasks in kinds.items():
             start = time.perf_counter()
-            results = list(fan_out(timed_file, tasks, Workers(jobs=args.jobs)))
+            results = list(fan_out(timed_file, tasks, workers))
             wall = time.perf_counter() - start
             whole += wall * len(found) / len(chosen)
             _report(kind, results, wall, None if args.sample is None else len(tasks))
     if args.sample is not None:
         print(
             f"  the whole atlas ({len(found)} graphs), extrapolated from the sample: files formed and "
-            f"derived in {whole / 3600:.1f} h on this machine ({args.jobs} workers for the derivations)"
+            f"derived in {whole / 3600:.1f} h on this machine (the derivations {workers.describe(len(found))})"
         )
 
 

@@ -35,7 +35,7 @@ class PointValues:
         radicands: Callable[[], Sequence[tuple[int, Evaluable]]],
     ):
         self.ctx, self.symbols, self._radicand_forms = ctx, symbols, radicands
-        #: The last point filled for evaluation: (args, values with 0 for None, mask of the None).
+        #: The last point evaluated: (args, values with 0 for None, mask of the None).
         self._filled: tuple[Args | None, tuple[fmpq, ...], int] = (None, (), 0)
 
     @cached_property
@@ -72,15 +72,14 @@ class PointValues:
         ``used`` its generators (`used`), when known."""
         if not self.symbols:
             return fmpq(int(p.leading_coefficient())) if not p.is_zero() else fmpq(0)
-        if None in args:  # absent symbols: 0 where p does not use them
-            if args is not self._filled[0]:  # one point is evaluated in many polynomials
-                missing = sum(1 << i for i, v in enumerate(args) if v is None)
-                self._filled = (args, tuple(_ZERO if v is None else v for v in args), missing)
-            _, values, missing = self._filled
-            if absent := (self.used(p) if used is None else used) & missing:
-                raise KeyError(self.symbols[(absent & -absent).bit_length() - 1])
-        else:
-            values = cast(tuple[fmpq, ...], args)
+        filled, values, missing = self._filled
+        if args is not filled:  # one point is evaluated in many polynomials
+            missing = sum(1 << i for i, v in enumerate(args) if v is None)
+            values = tuple(_ZERO if v is None else v for v in args) if missing else cast(tuple[fmpq, ...], args)
+            self._filled = (args, values, missing)
+        # Absent symbols: 0 where p does not use them.
+        if missing and (absent := (self.used(p) if used is None else used) & missing):
+            raise KeyError(self.symbols[(absent & -absent).bit_length() - 1])
         return (rational if rational is not None else self.rational_form(p))(*values)
 
     def used(self, p: fmpz_mpoly) -> int:

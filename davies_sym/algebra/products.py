@@ -165,8 +165,11 @@ def lowest_terms(
     cn, cd = num_content // shared, den_content // shared
     if cd < 0:
         cn, cd = -cn, -cd
-    fn = sorted(((f, e) for f, e in merged if e > 0), key=factor_sort_key)
-    fd = sorted(((f, -e) for f, e in merged if e < 0), key=factor_sort_key)
+    fn = [(f, e) for f, e in merged if e > 0]
+    fd = [(f, -e) for f, e in merged if e < 0]
+    for side in (fn, fd):
+        if len(side) > 1:  # the key lists every term: not formed for a single factor
+            side.sort(key=factor_sort_key)
     return (cn, fn), (cd, fd)
 
 

@@ -319,18 +319,6 @@ class Network:
     def action_columns(self, lossless: bool = False) -> list[ActionVariable]:
         return [v for v in self.actions if not (lossless and v.role in LOSS_ROLES)]
 
-    def motion_index_matrix(self) -> sympy.Matrix:
-        """X_M (e x F): 1 where motion alpha belongs to edge j (App. E)."""
-        edges = self.graph.edges
-        return sympy.Matrix(
-            len(edges), len(self.motions), lambda j, a: 1 if self.motions[a].coupling == edges[j] else 0
-        )
-
-    def action_index_matrix(self, lossless: bool = False) -> sympy.Matrix:
-        """X_A (e x C): 1 where action alpha belongs to edge j (App. E)."""
-        edges, cols = self.graph.edges, self.action_columns(lossless)
-        return sympy.Matrix(len(edges), len(cols), lambda j, a: 1 if cols[a].coupling == edges[j] else 0)
-
     def circuit_matrix(self) -> sympy.Matrix:
         return self.graph.circuit_matrix(self.tree)
 
@@ -338,11 +326,13 @@ class Network:
         return self.graph.cutset_matrix(self.action_tree)
 
     def motion_circuit_matrix(self) -> sympy.Matrix:
-        """B_M = B X_M, the circuit matrix of the motion graph (column replication)."""
+        """B_M = B X_M, the circuit matrix of the motion graph, X_M (e x F) holding 1 where
+        motion alpha belongs to edge j (App. E): B's columns replicated."""
         return _replicated(self.circuit_matrix(), self.graph.edges, [v.coupling for v in self.motions])
 
     def action_cutset_matrix(self, lossless: bool = False) -> sympy.Matrix:
-        """Q_A = Q X_A, the cutset matrix of the action graph (column replication)."""
+        """Q_A = Q X_A, the cutset matrix of the action graph, X_A (e x C) holding 1 where
+        action alpha belongs to edge j (App. E): Q's columns replicated."""
         return _replicated(self.cutset_matrix(), self.graph.edges, [v.coupling for v in self.action_columns(lossless)])
 
     def network_motion_matrix(self) -> sympy.Matrix:
@@ -356,7 +346,8 @@ class Network:
 
 def _replicated(matrix: sympy.Matrix, edges: Sequence[str], couplings: Sequence[str]) -> sympy.Matrix:
     """``matrix X`` for the index matrix X of ``couplings`` over ``edges`` (App. E): each
-    variable's column is its edge's column of ``matrix``, the product without forming X."""
+    variable's column is its edge's column of ``matrix`` (a column of X holds a single 1),
+    so the product is read off without forming X."""
     index = {edge: j for j, edge in enumerate(edges)}
     rows = matrix.tolist()
     out = [[row[index[c]] if c in index else 0 for c in couplings] for row in rows]

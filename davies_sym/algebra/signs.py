@@ -20,7 +20,7 @@ from davies_sym.algebra.symbol_order import sorted_symbols
 def _poly_sign(expr: sympy.Expr) -> int | None:
     """+1 or -1 if every coefficient has that sign and every symbol is positive (a pure
     function's memo: the states of a train ask of the same factors)."""
-    expr = sympy.expand(expr)
+    expr = _expanded(expr)
     if expr == 0:
         return 0
     if expr.is_number:
@@ -144,7 +144,7 @@ class SignOracle:
         sign = _poly_sign(factor)
         if sign is not None:
             return sign
-        expanded = sympy.expand(factor)
+        expanded = _expanded(factor)
         for fact in self.facts:
             # The factor may be a positive multiple of a fact, or of its negative.
             ratio = _constant_ratio(expanded, fact)

@@ -41,7 +41,7 @@ def main() -> None:
         start = time.perf_counter()
         e = entry(task.place)
         formed = time.perf_counter()
-        designs = [] if e.not_drawable else _entry_designs(e, task.question)
+        designs = [] if e.not_drawable else _entry_designs(e, task.question).designs
         timed.append((time.perf_counter() - start, formed - start, e.name, len(designs)))
     seconds = sorted(t for t, _, _, _ in timed)
     forming = sum(f for _, f, _, _ in timed)

@@ -4,6 +4,7 @@ by ``derive --eval`` on the file it writes, and the docs' example of 6 links."""
 
 from __future__ import annotations
 
+import json
 import re
 import shlex
 from fractions import Fraction as F
@@ -71,6 +72,40 @@ def test_every_listed_design_evaluates_to_its_efficiency(tmp_path: Path) -> None
     for (train, _, ratio, efficiency), path in zip(listed, files, strict=True):
         assert train in path.name
         assert _evaluated(path, tmp_path) == pytest.approx((ratio, efficiency), abs=6e-5)
+
+
+def test_a_dask_cluster_ranks_the_atlas_as_this_process_does(tmp_path: Path) -> None:
+    """``--scheduler`` hands the trains to a cluster, one task per train."""
+    distributed = pytest.importorskip("dask.distributed")
+    here = run_derive([*FIVE, "--json"], tmp_path)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        there = run_derive([*FIVE, "--json", "--scheduler", cluster.scheduler_address], tmp_path)
+    assert here.returncode == there.returncode == 0, there.describe()
+    assert json.loads(there.stdout) == json.loads(here.stdout)
+    assert all(d["proven_best"] for d in json.loads(here.stdout)["designs"])
+
+
+@pytest.mark.slow  # three searches of the 6-link atlas
+def test_a_search_stopped_by_its_budget_keeps_only_what_it_knows(tmp_path: Path) -> None:
+    """Six links with a budget of 300 designs per direction: each design it lists is the
+    one the whole budget finds, or marked as only the best it scored (with a bound at
+    least its efficiency); the directions it could not decide are listed, not dropped."""
+    six = ["search", "--atlas", "6", *FIVE[3:], "--json", "--top", "100", "--jobs", "2"]
+    whole = {(d["train"], d["state"]): d for d in json.loads(run_derive(six, tmp_path).stdout)["designs"]}
+    result = run_derive([*six, "--budget", "300"], tmp_path)
+    assert result.returncode == 0, result.describe()
+    document = json.loads(result.stdout)
+    assert document["undecided"]
+    for design in document["designs"]:
+        if design["proven_best"]:
+            assert design == whole[(design["train"], design["state"])]
+        else:
+            assert design["unexplored_bound"] >= design["score"]
+    listed = {(d["train"], d["state"]) for d in document["designs"]}
+    undecided = {tuple(u.split()) for u in document["undecided"]}
+    assert set(whole) <= listed | undecided  # every direction the whole search ranks is accounted for
+    text = run_derive([*six[:-5], "--budget", "300", "--jobs", "2"], tmp_path)
+    assert "stopped at the work budget before a design reaching the ratio was found" in text.stdout
 
 
 @pytest.mark.parametrize(

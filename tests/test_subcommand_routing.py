@@ -49,6 +49,7 @@ def test_atlas_written_after_a_file_is_no_longer_a_command(capsys: pytest.Captur
         (["--target", "4", "5"], "--target: with --atlas, one speed ratio"),
         (["--teeth", "17:30", "20:40"], "--teeth: with --atlas, one LO:HI"),
         (["--tolerance", "tight"], "--tolerance: expected a number such as 12.5 or 25/2, got 'tight'"),
+        (["--budget", "0"], "--budget: expected a whole number of designs, at least 1, got '0'"),
     ],
 )
 def test_options_of_a_file_search_are_refused_with_atlas(
@@ -66,6 +67,22 @@ def test_a_search_needs_a_file_or_the_atlas(capsys: pytest.CaptureFixture[str]) 
     status, _, err = _run(["search", "--target", "4", "--teeth", "z=17:20"], capsys)
     assert status == 2
     assert "give the train file TRAIN.yaml, or --atlas N" in err
+
+
+def test_a_budget_is_refused_for_a_file_search(capsys: pytest.CaptureFixture[str]) -> None:
+    """A train file's search scores every design: a budget would stop it unannounced."""
+    train = str(CATALOG / "planetary_simple.yaml")
+    status, _, err = _run(["search", train, "--target", "4", "--teeth", "z=17:20", "--budget", "10"], capsys)
+    assert status == 2
+    assert "--budget is for a search over the atlas (--atlas N)" in err and "Traceback" not in err
+
+
+def test_the_budgets_default_is_the_searchs(capsys: pytest.CaptureFixture[str]) -> None:
+    from davies_sym.synthesis.best_first import BUDGET
+
+    status, out, _ = _run(["search", "--help"], capsys)
+    assert status == 0
+    assert f"(default {BUDGET})" in " ".join(out.split())
 
 
 def test_a_file_search_needs_its_tooth_bounds(capsys: pytest.CaptureFixture[str]) -> None:

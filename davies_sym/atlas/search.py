@@ -3,23 +3,30 @@ member and both directions between two others, ranked by the closed-form efficie
 
 Each train is written with tooth numbers (module 1) and fixed ordinary mesh
 efficiencies; a state's efficiency is derived only when its speed ratio, from the motions
-alone, can reach the target within the bounds (`davies_sym.synthesis.tooth_search.ratio_feasible`).
+alone, can reach the target within the bounds, and its best tooth numbers are found
+best-first (`davies_sym.synthesis.bounded_search`) within a bounded work: exact where the
+search finishes, and said otherwise.  A gear on which neither the ratio nor the efficiency
+depends is held at its least teeth (`SearchProblem.idle_fixed`).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
 from davies_sym.atlas.atlas_entries import Entry, GraphPlace, entry, places
 from davies_sym.atlas.train_file import Choice, ToothedForm, TrainFile, train_text
+from davies_sym.errors import NotCoveredError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
 from davies_sym.geometry.dependent import resolved_train
 from davies_sym.progress import Progress, silent
-from davies_sym.synthesis.formulas import state_ratio
-from davies_sym.synthesis.problem import search_problem, tooth_symbols
-from davies_sym.synthesis.tooth_search import Candidate, ratio_feasible, run_search
+from davies_sym.synthesis.best_first import BUDGET
+from davies_sym.synthesis.bounded_search import best_designs, ratio_reachable
+from davies_sym.synthesis.formulas import state_formulas, state_motion
+from davies_sym.synthesis.problem import SearchProblem, search_problem, tooth_symbols
+from davies_sym.synthesis.tooth_search import Candidate, run_search
 
 #: Ordinary efficiencies of the meshes (an external spur mesh loses about 2 %, an
 #: internal one about half as much), as in the search example of docs/search.md.
@@ -40,6 +47,9 @@ class AtlasQuestion:
     #: Designs kept per train and direction: the best, so that the ranking lists
     #: different trains and uses, not one train with its idle gears resized.
     per_state: int = 1
+    #: Designs scored plus boxes bounded per train and direction before its search stops
+    #: unfinished (`davies_sym.synthesis.best_first`).
+    budget: int = BUDGET
 
 
 @dataclass(frozen=True)
@@ -53,6 +63,14 @@ class AtlasDesign:
     candidate: Candidate
     #: The train file searched: tooth symbols, every direction of the train as a state.
     searched: TrainFile
+    #: The highest efficiency a design not scored could reach when the search of this
+    #: direction stopped at its budget; -inf: it finished, the design is the best.
+    unexplored: float = -math.inf
+
+    @property
+    def proven(self) -> bool:
+        """Whether no other design of this train and direction scores higher."""
+        return self.unexplored == -math.inf
 
     def document(self) -> dict[str, Any]:
         return {
@@ -64,6 +82,8 @@ class AtlasDesign:
             "output": self.choice.output,
             "state": self.choice.name,
             **self.candidate.document(),
+            "proven_best": self.proven,
+            "unexplored_bound": None if self.proven else self.unexplored,
         }
 
 
@@ -83,18 +103,33 @@ def search_file(e: Entry, choices: tuple[Choice, ...], meshes: ToothedForm) -> T
     return replace(written, independent=tuple(sorted(str(s) for s in tooth_symbols(train) if str(s) not in fixed)))
 
 
-def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
+@dataclass(frozen=True)
+class TrainDesigns:
+    """What the search of one train found: the best designs of each direction, and the
+    directions (``train state``) whose search stopped at its budget before it found
+    whether their ratio can reach the target."""
+
+    designs: tuple[AtlasDesign, ...] = ()
+    undecided: tuple[str, ...] = ()
+    #: Directions whose efficiency is not derived (``train state: reason``): a closed
+    #: form past the work bound, as `derive` refuses it with exit status 3.
+    refused: tuple[str, ...] = ()
+
+
+def _entry_designs(e: Entry, question: AtlasQuestion) -> TrainDesigns:
     """The best designs of every direction of every loaded choice of one train (no gear
     idle: an idle one makes it a train of fewer links, searched there): the train
     written and read once with every direction as a state."""
-    out: list[AtlasDesign] = []
     directions = oriented(e.loaded)
     if not directions:
-        return out
+        return TrainDesigns()
     searched = search_file(e, directions, question.meshes)
     train = searched.train()
     free = searched.independent or ()
     states = {s.name: s for s in train.states}
+    designs: list[AtlasDesign] = []
+    undecided: list[str] = []
+    refused: list[str] = []
     for choice in directions:
         # The search asks a target of every state of its train: this direction alone.
         problem = search_problem(
@@ -105,14 +140,38 @@ def _entry_designs(e: Entry, question: AtlasQuestion) -> list[AtlasDesign]:
             question.planets,
             question.min_teeth,
         )
-        feasible = ratio_feasible(problem, [state_ratio(problem, choice.name)])
-        if not len(feasible[0]):
+        try:
+            found = _direction_designs(problem, choice.name, question)
+        except NotCoveredError as exc:
+            refused.append(f"{e.name} {choice.name}: {exc}")
             continue
-        result = run_search(problem, best=question.per_state, feasible=feasible)
-        out += [
-            AtlasDesign(e.name, e.links, e.code, choice, c, searched) for c in result.candidates[: question.per_state]
-        ]
-    return out
+        if found is None:
+            undecided.append(f"{e.name} {choice.name}")
+            continue
+        candidates, unexplored = found
+        designs += [AtlasDesign(e.name, e.links, e.code, choice, c, searched, unexplored) for c in candidates]
+    return TrainDesigns(tuple(designs), tuple(undecided), tuple(refused))
+
+
+def _direction_designs(
+    problem: SearchProblem, state: str, question: AtlasQuestion
+) -> tuple[tuple[Candidate, ...], float] | None:
+    """The best designs of one direction and the highest efficiency a design not scored
+    could reach (-inf: none), its efficiency derived only where the ratio can be reached;
+    None where the budget ran out before that was found, or before a design that runs."""
+    ratio, singular = state_motion(problem, state)
+    reads = set(ratio.free_symbols).union(*(x.free_symbols for x in singular))
+    reachable = ratio_reachable(problem.idle_fixed(reads), [ratio], singular, question.budget)
+    if not reachable:
+        return None if reachable is None else ((), -math.inf)
+    formulas = state_formulas(problem)
+    used = reads.union(*(v.free_symbols for f in formulas for v in f.variants))
+    narrowed = problem.idle_fixed(used)
+    best = best_designs(narrowed, formulas, question.per_state, question.budget)
+    result = run_search(narrowed, best=question.per_state, feasible=best.feasible, formulas=formulas)
+    if not result.candidates and best.unexplored > -math.inf:
+        return None  # stopped before any design that runs was scored: nothing is known
+    return result.candidates[: question.per_state], best.unexplored
 
 
 @dataclass(frozen=True)
@@ -123,9 +182,9 @@ class SearchTask:
     question: AtlasQuestion
 
 
-def _designs_of(task: SearchTask) -> list[AtlasDesign]:
+def _designs_of(task: SearchTask) -> TrainDesigns:
     e = entry(task.place)
-    return [] if e.not_drawable else _entry_designs(e, task.question)
+    return TrainDesigns() if e.not_drawable else _entry_designs(e, task.question)
 
 
 @dataclass(frozen=True)
@@ -140,14 +199,17 @@ class SearchFailure:
 @dataclass(frozen=True)
 class AtlasSearch:
     """The feasible designs, best first (score, then ratio error, then size), how many
-    trains were searched and those whose search failed."""
+    trains were searched, those whose search failed and the directions left undecided
+    or refused (`TrainDesigns`)."""
 
     designs: tuple[AtlasDesign, ...]
     trains: int
     failures: tuple[SearchFailure, ...] = ()
+    undecided: tuple[str, ...] = ()
+    refused: tuple[str, ...] = ()
 
 
-def _failure(task: SearchTask, exc: Exception) -> list[AtlasDesign] | SearchFailure:
+def _failure(task: SearchTask, exc: Exception) -> TrainDesigns | SearchFailure:
     return SearchFailure(task.place.name, exc)
 
 
@@ -159,17 +221,21 @@ def atlas_search(
     say(f"searching {len(tasks)} trains of 4 to {most_links} links")
     designs: list[AtlasDesign] = []
     failures: list[SearchFailure] = []
+    undecided: list[str] = []
+    refused: list[str] = []
     for found in fan_out(_designs_of, tasks, workers, Counted(say, "train"), _failure):
         if isinstance(found, SearchFailure):
             failures.append(found)
         else:
-            designs += found
+            designs += found.designs
+            undecided += found.undecided
+            refused += found.refused
     # Among equals the train of fewer links comes first (an extra link that carries no
     # power leaves the efficiency as it is).
     designs.sort(
         key=lambda d: (-d.candidate.score, d.candidate.ratio_error, d.links, d.candidate.size, d.train, d.choice.name)
     )
-    return AtlasSearch(tuple(designs), len(tasks), tuple(failures))
+    return AtlasSearch(tuple(designs), len(tasks), tuple(failures), tuple(undecided), tuple(refused))
 
 
 def design_file(design: AtlasDesign, rank: int) -> str:

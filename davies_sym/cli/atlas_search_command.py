@@ -13,6 +13,7 @@ import json
 import os
 import sys
 from collections.abc import Callable
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from davies_sym.cli.atlas_command import folder_refused
@@ -32,10 +33,12 @@ def _line(rank: int, design: Any) -> str:
     c, choice = design.candidate, design.choice
     teeth = " ".join(f"{n}={v}" for n, v in c.teeth.items())
     ratio = float(c.ratios[choice.name])
-    return (
+    line = (
         f"{rank:4d}. {design.train} l{choice.held} held, l{choice.input} in, l{choice.output} out: "
         f"{teeth}  ratio {ratio:.4f}  efficiency {c.score:.5f}"
     )
+    # A search stopped at its budget gives the best it scored, not a proven best.
+    return line if design.proven else f"{line}  (best scored; others may reach {design.unexplored:.5f})"
 
 
 def _read(parser: argparse.ArgumentParser, option: str, reader: Callable[[str], Value], text: str) -> Value:
@@ -55,7 +58,6 @@ def _question(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Atla
         ("--weights", args.weights),
         ("--plot", args.plot),
         ("--write-best", args.write_best),
-        ("--scheduler", args.scheduler),
     ):
         if given:
             parser.error(f"{option} is for a search over one train file, not with --atlas")
@@ -74,7 +76,8 @@ def _question(args: argparse.Namespace, parser: argparse.ArgumentParser) -> Atla
         return None
     from davies_sym.atlas.search import AtlasQuestion
 
-    return AtlasQuestion(target, tolerance, teeth, args.planets, args.min_teeth)
+    question = AtlasQuestion(target, tolerance, teeth, args.planets, args.min_teeth)
+    return question if args.budget is None else replace(question, budget=args.budget)
 
 
 def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
@@ -90,7 +93,7 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
     from davies_sym.atlas.search import design_file
 
     say = Display("derive search", args.quiet)
-    found = search_atlas(args.atlas, question, Workers(args.jobs), say)
+    found = search_atlas(args.atlas, question, Workers(args.jobs, args.scheduler), say)
     designs, trains = found.designs, found.trains
     for failure in found.failures:
         note(say, internal_error(failure.error, f"derive search: {failure.train}", "searching it"))
@@ -110,6 +113,8 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
             "kept_per_direction": question.per_state,
             "kept": len(designs),
             "failed": [failure.train for failure in found.failures],
+            "undecided": list(found.undecided),
+            "refused": list(found.refused),
             "designs": [d.document() for d in shown],
         }
         sys.stdout.write(json.dumps(document, indent=2) + "\n")
@@ -122,5 +127,13 @@ def atlas_search(args: argparse.Namespace, parser: argparse.ArgumentParser) -> i
     lines += [_line(rank, d) for rank, d in enumerate(shown, 1)]
     if len(designs) > len(shown):
         lines.append(f"      ... {len(designs) - len(shown)} more (--top)")
+    if found.refused:
+        lines.append(f"{len(found.refused)} direction(s) not derived (--json gives each reason): {found.refused[0]}")
+    if found.undecided:
+        lines.append(
+            f"{len(found.undecided)} direction(s) stopped at the work budget before a design reaching the ratio "
+            f"was found (--json lists them): {', '.join(found.undecided[:3])}"
+            + (", ..." if len(found.undecided) > 3 else "")
+        )
     sys.stdout.write("\n".join(lines) + "\n")
     return status

@@ -77,6 +77,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         return atlas_search(args, parser)
     if args.train is None:
         parser.error("give the train file TRAIN.yaml, or --atlas N to search the atlas")
+    if args.budget is not None:
+        parser.error("--budget is for a search over the atlas (--atlas N): a train file's search scores every design")
     if args.teeth is None:
         parser.error("the following arguments are required: --teeth")
     args.top = TOP if args.top is None else args.top

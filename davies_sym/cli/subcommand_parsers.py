@@ -34,6 +34,12 @@ def _most_links(text: str) -> int:
     return int(text)
 
 
+def _work(text: str) -> int:
+    if not text.isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number of designs, at least 1, got {text!r}")
+    return int(text)
+
+
 def fraction(text: str) -> Fraction:
     """A number as written (12.5, 25/2), exactly."""
     try:
@@ -160,6 +166,13 @@ def search_parser() -> argparse.ArgumentParser:
         "--weights", nargs="+", default=[], metavar="STATE=W", help="weight of each state in the score (default equal)"
     )
     p.add_argument("--top", type=int, metavar="K", help=f"designs listed (default {TOP}; with --atlas {ATLAS_TOP})")
+    p.add_argument(
+        "--budget",
+        type=_work,
+        metavar="DESIGNS",
+        help="with --atlas: designs scored per train and direction before its search stops and says its design "
+        "is the best it scored, not a proven best (default 2000000)",
+    )
     p.add_argument("--json", action="store_true", help="one JSON document")
     p.add_argument(
         "-o",
@@ -172,7 +185,11 @@ def search_parser() -> argparse.ArgumentParser:
     p.add_argument("--write-best", metavar="OUT.yaml", help="write the best design as a train file with numbers")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--jobs", type=jobs, default=1, metavar="N", help="worker processes ('auto': one per core)")
-    where.add_argument("--scheduler", metavar="ADDRESS", help="derive the states on the Dask cluster at ADDRESS")
+    where.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="derive the states (with --atlas: search the trains) on the Dask cluster at ADDRESS",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress messages")
     return p
 

@@ -10,6 +10,13 @@ closed-form efficiency (``derive search``).
 - `davies_sym.synthesis.formulas`: the closed forms of each state (ratio, formula module),
   derived once per state through the one fan-out
 - `davies_sym.synthesis.exact_values`: exact ratios of integer designs
+- `davies_sym.synthesis.feasible_designs`: the exact rules a design meets before it is scored
+- `davies_sym.synthesis.box_bounds`: rigorous ranges of a rational function over boxes of
+  tooth numbers
+- `davies_sym.synthesis.best_first`: branch and bound over boxes of tooth numbers, its
+  work bounded
+- `davies_sym.synthesis.bounded_search`: the best designs of a search found best-first
+  (``derive search --atlas``)
 - `davies_sym.synthesis.tooth_search`: the whole search -> `SearchResult`
 - `davies_sym.synthesis.best_design`: the chosen design as a train file with numbers
 - `davies_sym.synthesis.search_report`: the search's text and Pareto figure

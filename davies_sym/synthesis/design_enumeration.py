@@ -68,7 +68,7 @@ class Enumeration:
     examined: int
 
 
-class _Filter:
+class WindowFilter:
     """The windows as vectorised tests on the columns of a table."""
 
     def __init__(self, windows: Sequence[Window]) -> None:
@@ -149,7 +149,7 @@ def _size(left: Table, right: Table) -> int:
     return int(counts[where][values[where] == lk].sum())
 
 
-def _join(left: Table, right: Table, check: _Filter) -> Table:
+def _join(left: Table, right: Table, check: WindowFilter) -> Table:
     """The join of two tables, filtered by every window it binds, in slices of `MAX_ROWS`."""
     if len(right) > len(left):
         left, right = right, left
@@ -169,7 +169,7 @@ def enumerate_designs(
     """Every whole assignment of ``free`` within ``bounds`` that no window excludes (up to
     `SLACK`)."""
     say = progress or (lambda message: None)
-    check = _Filter(windows)
+    check = WindowFilter(windows)
     tables: list[Table] = []
     # Each window's table, smallest first: from the tables that cover some of its tooth
     # numbers and the ranges of the rest, while one pass stays within MAX_ROWS.

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import inspect
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from types import ModuleType
 
@@ -23,7 +24,7 @@ from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
 from davies_sym.errors import InputError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
-from davies_sym.network.analysis import analyse
+from davies_sym.network.analysis import Analysis, analyse
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.problem import SearchProblem, Target
 from davies_sym.topology.loader import load
@@ -41,6 +42,10 @@ class DerivedState:
     source: str
     #: Parameters of the formulas that are not tooth numbers (the file must fix them).
     others: tuple[str, ...]
+    #: The efficiency of every variant of the input port (srepr), whichever holds.
+    variants: tuple[str, ...] = ()
+    #: The denominators of the motions (srepr, `state_motion`).
+    singular: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -72,7 +77,26 @@ def derived_in_state(train: Train, chosen: State | None, teeth: frozenset[str]) 
     others = tuple(sorted(str(s) for s in variants.parameters if str(s) not in teeth))
     ratio = sympy.srepr(variants.analysis.speed_ratio().to_expr())
     name = chosen.name if chosen is not None else None
-    return DerivedState(name, in_state.ports.input, ratio, python_module(variants) if not others else "", others)
+    port = in_state.ports.input
+    singular = tuple(sympy.srepr(d) for d in _motion_denominators(variants.analysis))
+    if others:
+        return DerivedState(name, port, ratio, "", others, singular=singular)
+    forms = tuple(sympy.srepr(v.efficiency_rf.to_expr()) for v in variants.variants if v.input == port)
+    return DerivedState(name, port, ratio, python_module(variants), others, forms, singular)
+
+
+def _motion_denominators(analysis: Analysis) -> list[sympy.Expr]:
+    """The distinct factors of the denominators of every member's speed over the input's
+    that can vanish at positive tooth numbers: a factor whose terms all have one sign
+    (a planet's own teeth, a sum of products of teeth) never does."""
+    out: list[sympy.Expr] = []
+    for coefficient in analysis.motion_coefficients.values():
+        denominator = sympy.fraction(coefficient.to_expr())[1]
+        for factor, _ in sympy.factor_list(denominator)[1]:
+            signs = {c > 0 for c in sympy.Poly(factor, *sorted(factor.free_symbols, key=str)).coeffs()}
+            if len(signs) > 1 and factor not in out:
+                out.append(factor)
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -84,8 +108,13 @@ class StateFormulas:
     #: Input speed over output speed, in the free tooth numbers.
     ratio: sympy.Expr
     module: ModuleType
+    #: The efficiency of each variant of the port in the free tooth numbers: where a
+    #: design runs, its efficiency is one of them (what a best-first search bounds).
+    variants: tuple[sympy.Expr, ...] = ()
+    #: Polynomials in the free tooth numbers that vanish where the motions do not hold.
+    singular: tuple[sympy.Expr, ...] = ()
 
-    def efficiency(self, teeth: dict[str, NDArray[np.int64]]) -> NDArray[np.float64]:
+    def efficiency(self, teeth: Mapping[str, NDArray[np.int64] | NDArray[np.float64]]) -> NDArray[np.float64]:
         """The efficiency at every design of ``teeth`` (arrays by name); NaN where the
         train self-locks or no variant holds (the module's reasons)."""
         accepted = inspect.signature(self.module.efficiency).parameters
@@ -124,18 +153,33 @@ def state_formulas(
     out = []
     for target, d in zip(problem.targets, derived, strict=True):
         ratio = sympy.cancel(_symbols_of(problem.train, sympy.sympify(d.ratio)).subs(substitution))
-        out.append(StateFormulas(target, d.port, ratio, compiled_module(d.source, problem.train.name)))
+        forms = tuple(_symbols_of(problem.train, sympy.sympify(v)).subs(substitution) for v in d.variants)
+        singular = tuple(_symbols_of(problem.train, sympy.sympify(x)).subs(substitution) for x in d.singular)
+        module = compiled_module(d.source, problem.train.name)
+        out.append(StateFormulas(target, d.port, ratio, module, forms, singular))
     return tuple(out)
 
 
 def state_ratio(problem: SearchProblem, state: str | None) -> sympy.Expr:
     """The speed ratio of ``state`` in the free tooth numbers, from the motions alone (the
     null space of M_N): what a search over many trains asks before deriving any efficiency."""
+    return state_motion(problem, state)[0]
+
+
+def state_motion(problem: SearchProblem, state: str | None) -> tuple[sympy.Expr, tuple[sympy.Expr, ...]]:
+    """The speed ratio of ``state`` and the denominators of every member's speed over the
+    input's (Laus eq. (56)), in the free tooth numbers.  Where one of them vanishes the
+    motions of the solution do not hold: the train does not move as one degree of freedom
+    from its input there (it locks, or a member turns freely), whatever value the reduced
+    ratio keeps."""
     train = problem.train
     chosen = next((s for s in train.states if s.name == state), None)
     in_state = train_in_state(train, chosen) if chosen is not None else train
-    ratio = analyse(in_state).speed_ratio().to_expr()
-    return sympy.cancel(_symbols_of(train, ratio).subs(dict(problem.dependent)))
+    analysis = analyse(in_state)
+    ratio = analysis.speed_ratio().to_expr()
+    substitution = dict(problem.dependent)
+    singular = tuple(_symbols_of(train, d).subs(substitution) for d in _motion_denominators(analysis))
+    return sympy.cancel(_symbols_of(train, ratio).subs(substitution)), singular
 
 
 def _symbols_of(train: Train, expr: sympy.Expr) -> sympy.Expr:

@@ -4,8 +4,8 @@ the train before any search (every refusal names the option, exit status 2)."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Collection, Mapping, Sequence
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import sympy
@@ -56,6 +56,24 @@ class SearchProblem:
         """The ratios within the tolerance of ``target``."""
         spread = abs(target.ratio) * self.tolerance
         return target.ratio - spread, target.ratio + spread
+
+    def idle_fixed(self, used: Collection[sympy.Symbol]) -> SearchProblem:
+        """The problem with every free tooth number outside ``used`` (what the ratios and
+        efficiencies depend on) held at its least admissible value.  Such a gear changes
+        neither a ratio nor an efficiency, nor any dependent tooth number; of its designs the
+        ranking prefers the smallest set, then the smallest teeth in order, both reached at
+        its least value.  With ``planets`` nothing is held: the planet rules read every
+        tooth number."""
+        reads = set(used) | {x for _, e in self.dependent for x in e.free_symbols}
+        if self.planets is not None:
+            return self
+        bounds = dict(self.bounds)
+        for s in self.free:
+            low, high = bounds[s]
+            least = max(low, self.min_teeth)
+            if s not in reads and least <= high:
+                bounds[s] = (least, least)
+        return replace(self, bounds=bounds)
 
 
 def tooth_symbols(train: Train) -> dict[sympy.Symbol, list[str]]:

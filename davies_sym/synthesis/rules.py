@@ -71,6 +71,14 @@ def ratio_within(exact: ExactRational, columns: Sequence[Column], window: tuple[
     return exact.within_rows(columns, *window)
 
 
+def moves(singular: ExactRational, columns: Sequence[Column]) -> Mask:
+    """Where a denominator of the motions (a member's speed over the input's) does not
+    vanish: elsewhere the train does not move as one degree of freedom from its input,
+    however finite the reduced speed ratio stays."""
+    numerator, _ = singular.rows(columns)
+    return np.asarray(numerator != 0, dtype=bool)
+
+
 def equally_spaced(sets: Sequence[PlanetSet], gears: Mapping[str, Column], planets: int) -> Mask:
     """Where every planet set assembles with ``planets`` copies equally spaced (a set whose
     condition is not decided within `MAX_PHASINGS` counts as not assembling)."""

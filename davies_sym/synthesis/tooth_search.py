@@ -21,6 +21,7 @@ from davies_sym.progress import Progress, silent
 from davies_sym.synthesis import rules
 from davies_sym.synthesis.design_enumeration import Window, enumerate_designs
 from davies_sym.synthesis.exact_values import ExactRational
+from davies_sym.synthesis.feasible_designs import ExactRules
 from davies_sym.synthesis.formulas import StateFormulas, state_formulas
 from davies_sym.synthesis.planet_sets import PlanetSet, planet_sets
 from davies_sym.synthesis.problem import SearchProblem
@@ -95,7 +96,9 @@ class SearchResult:
         }
 
 
-def _windows(problem: SearchProblem, ratios: Sequence[sympy.Expr]) -> list[Window]:
+def windows(problem: SearchProblem, ratios: Sequence[sympy.Expr]) -> list[Window]:
+    """What a design must meet, as floats (the exact rules decide after them): each ratio
+    within its target's window, every tooth number at least the minimum."""
     out = []
     for target, ratio in zip(problem.targets, ratios, strict=True):
         low, high = problem.window(target)
@@ -149,19 +152,22 @@ def run_search(
     workers: Workers = IN_THIS_PROCESS,
     best: int | None = None,
     feasible: tuple[NDArray[np.int64], dict[str, NDArray[np.int64]], int] | None = None,
+    formulas: Sequence[StateFormulas] | None = None,
 ) -> SearchResult:
     """Every feasible design of ``problem``, ranked (see the module's docstring); the states
     derived by ``workers``.  With ``best``,
     only the designs whose score reaches the ``best``-th highest (ties kept) are ranked,
     for a search over many trains that keeps a few designs of each; ``feasible``: what
-    `ratio_feasible` gave for these ratios already."""
+    `ratio_feasible` gave for these ratios already; ``formulas``: the states derived
+    already."""
     start = time.perf_counter()
-    formulas = state_formulas(problem, progress, workers)
+    formulas = formulas or state_formulas(problem, progress, workers)
     whole_train = resolved_train(problem.train)
     sets = planet_sets(whole_train, train_layout(whole_train))
     free = problem.free
     planet_applied = planet_rules(problem, sets)
-    rows, teeth, examined = feasible or ratio_feasible(problem, [f.ratio for f in formulas], progress)
+    singular = [x for f in formulas for x in f.singular]
+    rows, teeth, examined = feasible or ratio_feasible(problem, [f.ratio for f in formulas], progress, singular)
     ratio_parts = [ExactRational.of(f.ratio, free) for f in formulas]
     rows, teeth = planet_filtered(problem, sets, rows, teeth)
     if best is not None and len(rows) > best:
@@ -216,38 +222,40 @@ def planet_filtered(
 
 
 def ratio_feasible(
-    problem: SearchProblem, ratios: Sequence[sympy.Expr], progress: Progress | None = None
+    problem: SearchProblem,
+    ratios: Sequence[sympy.Expr],
+    progress: Progress | None = None,
+    singular: Sequence[sympy.Expr] = (),
 ) -> tuple[NDArray[np.int64], dict[str, NDArray[np.int64]], int]:
     """The designs whose tooth numbers are whole and large enough and whose speed ratios
     (one per target, in the free tooth numbers) lie within the tolerance, decided exactly:
     the rows of free tooth numbers, every tooth number by name, and the designs examined.
     Needs only the ratios, so a search over many trains derives the efficiency of those
     that can reach the targets alone."""
-    free = problem.free
-    enumeration = enumerate_designs(free, dict(problem.bounds), _windows(problem, ratios), progress)
-    rows = enumeration.candidates
-    teeth = {str(s): rows[:, k] for k, s in enumerate(free)}
-    columns = list(rows.T)
-    keep = np.ones(len(rows), dtype=bool)
-    for s, expression in problem.dependent:
-        whole, value = rules.dependent_whole(ExactRational.of(expression, free), columns)
-        keep &= whole
-        teeth[str(s)] = value
-    keep &= rules.enough_teeth(teeth, problem.min_teeth)
-    for target, ratio in zip(problem.targets, ratios, strict=True):
-        keep &= rules.ratio_within(ExactRational.of(ratio, free), columns, problem.window(target))
-    return rows[keep], {n: t[keep] for n, t in teeth.items()}, enumeration.examined
+    enumeration = enumerate_designs(problem.free, dict(problem.bounds), windows(problem, ratios), progress)
+    rows, teeth = ExactRules.of(problem, ratios, singular).feasible(enumeration.candidates)
+    return rows, teeth, enumeration.examined
+
+
+def design_scores(
+    formulas: Sequence[StateFormulas], teeth: Mapping[str, NDArray[np.int64] | NDArray[np.float64]]
+) -> NDArray[np.float64]:
+    """The score of every design (the weighted mean of the states' efficiencies), -inf
+    where a state does not run (`rules.runs`), in one vectorised call per state."""
+    weights = np.array([f.target.weight for f in formulas])
+    size = len(next(iter(teeth.values()))) if teeth else 1
+    etas = {f.target.state: np.broadcast_to(f.efficiency(dict(teeth)), (size,)) for f in formulas}
+    stacked = np.stack([etas[f.target.state] for f in formulas])
+    score = weights @ np.where(np.isfinite(stacked), stacked, 0.0) / weights.sum()
+    return np.where(rules.runs(etas), score, -np.inf)
 
 
 def _among_the_best(
     formulas: Sequence[StateFormulas], teeth: Mapping[str, NDArray[np.int64]], best: int
 ) -> NDArray[np.bool_]:
-    """The rows whose score (mean efficiency over the states, NaN counted as not running)
-    is at least the ``best``-th highest, evaluated in one vectorised call per state."""
-    weights = np.array([f.target.weight for f in formulas])
-    etas = np.stack([np.asarray(f.efficiency(dict(teeth)), dtype=float) for f in formulas])
-    etas = np.where(np.isfinite(etas), etas, -np.inf)
-    score = weights @ etas / weights.sum()
+    """The rows whose score (mean efficiency over the states, a state that does not run
+    counted as -inf) is at least the ``best``-th highest."""
+    score = design_scores(formulas, teeth)
     threshold = np.sort(score)[-best]
     return np.asarray(score >= threshold, dtype=bool)
 

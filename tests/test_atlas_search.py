@@ -87,12 +87,12 @@ def test_a_dask_cluster_ranks_the_atlas_as_this_process_does(tmp_path: Path) -> 
 
 @pytest.mark.slow  # three searches of the 6-link atlas
 def test_a_search_stopped_by_its_budget_keeps_only_what_it_knows(tmp_path: Path) -> None:
-    """Six links with a budget of 300 designs per direction: each design it lists is the
+    """Six links with a budget of 100 designs per direction: each design it lists is the
     one the whole budget finds, or marked as only the best it scored (with a bound at
     least its efficiency); the directions it could not decide are listed, not dropped."""
     six = ["search", "--atlas", "6", *FIVE[3:], "--json", "--top", "100", "--jobs", "2"]
     whole = {(d["train"], d["state"]): d for d in json.loads(run_derive(six, tmp_path).stdout)["designs"]}
-    result = run_derive([*six, "--budget", "300"], tmp_path)
+    result = run_derive([*six, "--budget", "100"], tmp_path)
     assert result.returncode == 0, result.describe()
     document = json.loads(result.stdout)
     assert document["undecided"]
@@ -104,7 +104,7 @@ def test_a_search_stopped_by_its_budget_keeps_only_what_it_knows(tmp_path: Path)
     listed = {(d["train"], d["state"]) for d in document["designs"]}
     undecided = {tuple(u.split()) for u in document["undecided"]}
     assert set(whole) <= listed | undecided  # every direction the whole search ranks is accounted for
-    text = run_derive([*six[:-5], "--budget", "300", "--jobs", "2"], tmp_path)
+    text = run_derive([*six[:-5], "--budget", "100", "--jobs", "2"], tmp_path)
     assert "stopped at the work budget before a design reaching the ratio was found" in text.stdout
 
 

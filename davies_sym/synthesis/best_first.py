@@ -68,7 +68,7 @@ def _margin(threshold: float) -> float:
 
 
 @dataclass
-class _Kept:
+class Kept:
     """The best designs so far: those scoring at least the ``keep``-th best."""
 
     keep: int
@@ -104,7 +104,7 @@ def best_first(
     ``keep``-th best score reaches ``enough`` (a feasibility probe asks for one design).
     ``estimate`` orders boxes of equal bound (it bounds nothing)."""
     root_low, root_high = np.asarray(low, dtype=np.int64), np.asarray(high, dtype=np.int64)
-    kept = _Kept(keep, np.zeros((0, len(root_low)), dtype=np.int64), np.zeros(0))
+    kept = Kept(keep, np.zeros((0, len(root_low)), dtype=np.int64), np.zeros(0))
     order = count()
     queue: list[tuple[float, float, int, int, Rows, Rows]] = []
 

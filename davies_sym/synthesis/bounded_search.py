@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.dependent import resolved_train
-from davies_sym.synthesis.best_first import BUDGET, BestFirst, Score, Upper, best_first, grid
+from davies_sym.synthesis.best_first import BUDGET, BestFirst, Kept, Score, Upper, best_first, grid
 from davies_sym.synthesis.box_bounds import RationalRange
 from davies_sym.synthesis.design_enumeration import SLACK, Table, WindowFilter
 from davies_sym.synthesis.feasible_designs import ExactRules
@@ -185,15 +185,13 @@ def _climbed(found: BestFirst, low: Rows, high: Rows, score: Score, keep: int, b
     if not len(found.rows):
         return found
     reach = max(1, int((NEIGHBOURHOOD ** (1 / len(low)) - 1) // 2))
-    rows, scores, work = found.rows, found.scores, found.examined
+    kept, work = Kept(keep, found.rows, found.scores), found.examined
     while work < 2 * budget:
-        centre = rows[int(np.argmax(scores))]
+        centre = kept.rows[int(np.argmax(kept.scores))]
         near = grid(np.maximum(centre - reach, low), np.minimum(centre + reach, high))
         more, values = score(near)
         work += len(near)
-        if not len(values) or values.max() <= scores.max():
+        if not len(values) or values.max() <= kept.scores.max():
             break
-        rows, scores = np.concatenate([rows, more]), np.concatenate([scores, values])
-        best = np.sort(scores)[-keep] if len(scores) >= keep else -math.inf
-        rows, scores = rows[scores >= best], scores[scores >= best]
-    return BestFirst(rows, scores, work, found.unexplored)
+        kept.add(more, values)
+    return BestFirst(kept.rows, kept.scores, work, found.unexplored)

@@ -421,6 +421,7 @@ _EFFICIENCY: Final[_Table] = {'A_to_D': (A_to_D, ()), 'D_to_A': (D_to_A, ())}
 _LOSSES: Final[_Table] = {'A_to_D': (_losses_A_to_D, ()), 'D_to_A': (_losses_D_to_A, ())}
 _GRADIENT: Final[_Table] = {}
 _RATIO: Final[_Table] = {'A': (_ratio_formula, ())}
+_MOTION: Final[_Table] = {}
 _FORCES: Final[_Table] = {}
 
 
@@ -605,16 +606,29 @@ def _nan_where(
 
 
 def _still(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
-    """Where a port does not turn (speed ratio 0 or infinite), as far as the given values
-    tell (all False when the ratio's parameters are not among them)."""
+    """Where a port does not turn (speed ratio 0 or infinite, or the train locks:
+    `_locked`), as far as the given values tell (False where they do not)."""
+    still = _locked(values, xp)
     function, names = _RATIO[PORTS[0]]
-    if not all(n in values for n in names):
-        if xp is not np:
-            return cast(NDArray[np.bool_], xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=_device(values)))
-        return np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
-    with np.errstate(all="ignore"):
-        ratio = xp.asarray(function(**{n: values[n] for n in names}))
-    return cast(NDArray[np.bool_], xp.asarray(~xp.isfinite(ratio) | (ratio == 0)))
+    if all(n in values for n in names):
+        with np.errstate(all="ignore"):
+            ratio = xp.asarray(function(**{n: values[n] for n in names}))
+        return cast(NDArray[np.bool_], still | ~xp.isfinite(ratio) | (ratio == 0))
+    return still
+
+
+def _locked(values: dict[str, Array], xp: Any = np) -> NDArray[np.bool_]:
+    """Where a denominator of the motions (a member's speed over the input's) is 0: the
+    train does not move from its input, however finite the reduced speed ratio."""
+    if xp is not np:
+        locked = xp.zeros(_shape_of(xp, values), dtype=xp.bool, device=_device(values))
+    else:
+        locked = np.zeros(np.broadcast_shapes(*(v.shape for v in values.values())), dtype=bool)
+    for function, names in _MOTION.values():
+        if all(n in values for n in names):
+            with np.errstate(all="ignore"):
+                locked = locked | (xp.asarray(function(**{n: values[n] for n in names})) == 0)
+    return cast(NDArray[np.bool_], locked)
 
 
 def _screened(
@@ -640,8 +654,9 @@ def _screened(
     message = (
         f"{_count(outside, xp)} design point(s) outside the admissible parameters "
         f"(PARAMETERS, RELATIONS), {_count(still, xp)} where a port does not turn (speed ratio 0 "
-        f"or infinite), {_count(uncovered, xp)} where no variant's power flow agrees with its "
-        f"own forces (the losses reverse forces as no variant covers) and {_count(locked, xp)} "
+        f"or infinite, or the train locks: a denominator of the motions vanishes), {_count(uncovered, xp)} "
+        "where no variant's power flow agrees with its own forces (the losses reverse forces as no "
+        f"variant covers) and {_count(locked, xp)} "
         "where the train self-locks (efficiency outside (0, 1]): NaN there"
     )
     return _nan_where(outside | still | uncovered | locked, result, message, errors, depth, xp)
@@ -728,7 +743,7 @@ def _speed_ratio(input: str, errors: str, values: dict[str, Array], xp: Any = np
             admissible, dtype = _admissible(values), np.float64
         ratio = xp.asarray(function(**{n: values[n] for n in names}), dtype=dtype)
         ratio = ratio if input == PORTS[0] else xp.asarray(1 / ratio)
-    outside = ~admissible | ~xp.isfinite(ratio)
+    outside = ~admissible | ~xp.isfinite(ratio) | _locked(values, xp)
     message = (
         f"{_count(outside, xp)} design point(s) outside the admissible parameters "
         "(PARAMETERS, RELATIONS) or where a port does not turn: NaN there"

@@ -6,7 +6,8 @@ the reason the formulas do not cover it.
 agree with it.  The refusals:
 
 - values that break a geometric constraint (`DesignError`, exit status 2);
-- a port that does not turn, a train that self-locks (an efficiency outside (0, 1],
+- a port that does not turn (a speed ratio of 0 or infinite, or a vanishing denominator
+  of the motions: the train locks), a train that self-locks (an efficiency outside (0, 1],
   Laus section 2.4), an input torque below the load-independent losses
   (`NotCoveredError`, exit status 3).
 
@@ -79,6 +80,20 @@ def turning_ratio(ratio: sympy.Expr, values: Values, port: str, other: str, decl
         f"port {other if infinite else port} does not turn at these values (speed ratio {port} over {other} "
         f"{'infinite' if infinite else '0'}): no efficiency"
     )
+
+
+def check_moving(denominators: Iterable[sympy.Expr], values: Values, input: str) -> None:
+    """No denominator of the motions (`davies_sym.network.motion_singularities`) vanishes
+    at ``values``; else `NotCoveredError`: the train does not move from its input there,
+    however finite the reduced speed ratio stays."""
+    for factor in denominators:
+        value = sympy.sympify(factor.subs(values))
+        if value.is_number and _sign(value, f"the denominator {factor} of the motions") == 0:
+            raise NotCoveredError(
+                f"port {input} does not turn at these values: the train locks (the denominator "
+                f"{sympy.sstr(factor)} of the members' speeds over the input's vanishes), however finite the "
+                "reduced speed ratio: no efficiency"
+            )
 
 
 def check_working(value: sympy.Expr, port: str, source: str, operating: bool = False) -> None:

@@ -27,7 +27,13 @@ from davies_sym.algebra.linear_regions import Requirement
 from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.algebra.radicals import restore
 from davies_sym.algebra.symbol_order import sorted_symbols
-from davies_sym.efficiency.design_point import DesignPoint, check_constraints, check_working, turning_ratio
+from davies_sym.efficiency.design_point import (
+    DesignPoint,
+    check_constraints,
+    check_moving,
+    check_working,
+    turning_ratio,
+)
 from davies_sym.efficiency.design_values import design_values
 from davies_sym.efficiency.empty_regions import check_facts, geometry_facts
 from davies_sym.efficiency.light_load import Derivation
@@ -50,6 +56,7 @@ from davies_sym.losses.definitions import completed, parameters_of
 from davies_sym.network.analysis import Analysis
 from davies_sym.network.analysis_options import AnalysisOptions
 from davies_sym.network.friction_laws import CoulombSigns
+from davies_sym.network.motion_singularities import vanishing_denominators
 from davies_sym.progress import Progress
 from davies_sym.topology.model import State, Train
 from davies_sym.topology.states import train_to_derive
@@ -195,6 +202,7 @@ class VariantSet:
         ports = self.train.ports
         other = ports.output if port == ports.input else ports.input
         ratio = turning_ratio(self.analysis.speed_ratio().to_expr(), given, port, other, port == ports.input)
+        check_moving(vanishing_denominators(self.analysis), given, ports.input)
         variant = self._variant_at(given, port)
         value = sympy.sympify(variant.efficiency.subs(given))
         check_working(value, port, f"variant ({variant.number})", INPUT_TORQUE in variant.efficiency.free_symbols)

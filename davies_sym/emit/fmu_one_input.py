@@ -55,7 +55,7 @@ INTERFACE = Interface(
         "outside the admissible parameters",
         "no variant's power flow agrees with its forces (the losses reverse forces as no variant covers)",
         "the train self-locks this way: the input must drive (the torque the locking asks of it)",
-        "a port does not turn (speed ratio 0 or infinite)",
+        "a port does not turn (speed ratio 0 or infinite, or the train locks: a denominator of the motions vanishes)",
     ),
     memory=1,
 )

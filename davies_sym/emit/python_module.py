@@ -60,6 +60,7 @@ from davies_sym.emit.formula_code import (
     usable,
 )
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
+from davies_sym.network.motion_singularities import vanishing_denominators
 from davies_sym.topology.symbol_display import latex as display_latex
 
 #: The entry points' own arguments: a train's names may not take them.
@@ -244,7 +245,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
             raise refused_name(train, "symbol", s, NOT_A_PARAMETER)
     lossy = lossy_couplings(variants)
     formulas = FormulaTables.named(
-        "_CONDITIONS", "_RELATIONS", "_DEPENDENT", "_EFFICIENCY", "_LOSSES", "_GRADIENT", "_RATIO", "_FORCES"
+        "_CONDITIONS", "_RELATIONS", "_DEPENDENT", "_EFFICIENCY", "_LOSSES", "_GRADIENT", "_RATIO", "_MOTION", "_FORCES"
     )
     relations = admissible_relations(variants)
     _add_conditions(formulas, variants, relations)
@@ -263,8 +264,13 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     ratio = public(variants.analysis.speed_ratio().to_expr())
     port = train.ports.input
     ratio_args = formulas.add("_RATIO", port, "_ratio_formula", f"Speed ratio with {port} as input.", [ratio])
-    every = sorted({*symbols, *accepted, *dependent_of, *ratio_args})
-    ignored = sorted(set(every) - {*symbols, *ratio_args, *dependent_of})
+    # Checked where the call gives their arguments (`_locked`), required by no entry point.
+    motion_args: set[str] = set()
+    for k, factor in enumerate(vanishing_denominators(variants.analysis), start=1):
+        text = f"Denominator {sympy.sstr(factor)} of the motions (0: the train locks)."
+        motion_args |= set(formulas.add("_MOTION", str(k), f"_motion_denominator_{k}", text, [public(factor)]))
+    every = sorted({*symbols, *accepted, *dependent_of, *ratio_args, *motion_args})
+    ignored = sorted(set(every) - {*symbols, *ratio_args, *dependent_of, *motion_args})
     given = _Arguments(tuple(every), tuple(symbols), ratio_args, needs, port)
     constants = _tables(variants, lossy, ignored, relations, symbols)
     entries = _entries(given, f"{sympy.sstr(ratio)} with {port} as input")

@@ -24,7 +24,8 @@ from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.python_module import python_module
 from davies_sym.errors import InputError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
-from davies_sym.network.analysis import Analysis, analyse
+from davies_sym.network.analysis import analyse
+from davies_sym.network.motion_singularities import vanishing_denominators
 from davies_sym.progress import Progress, silent
 from davies_sym.synthesis.problem import SearchProblem, Target
 from davies_sym.topology.loader import load
@@ -44,7 +45,7 @@ class DerivedState:
     others: tuple[str, ...]
     #: The efficiency of every variant of the input port (srepr), whichever holds.
     variants: tuple[str, ...] = ()
-    #: The denominators of the motions (srepr, `state_motion`).
+    #: The denominators of the motions that can vanish (srepr, `vanishing_denominators`).
     singular: tuple[str, ...] = ()
 
 
@@ -78,25 +79,11 @@ def derived_in_state(train: Train, chosen: State | None, teeth: frozenset[str]) 
     ratio = sympy.srepr(variants.analysis.speed_ratio().to_expr())
     name = chosen.name if chosen is not None else None
     port = in_state.ports.input
-    singular = tuple(sympy.srepr(d) for d in _motion_denominators(variants.analysis))
+    singular = tuple(sympy.srepr(d) for d in vanishing_denominators(variants.analysis))
     if others:
         return DerivedState(name, port, ratio, "", others, singular=singular)
     forms = tuple(sympy.srepr(v.efficiency_rf.to_expr()) for v in variants.variants if v.input == port)
     return DerivedState(name, port, ratio, python_module(variants), others, forms, singular)
-
-
-def _motion_denominators(analysis: Analysis) -> list[sympy.Expr]:
-    """The distinct factors of the denominators of every member's speed over the input's
-    that can vanish at positive tooth numbers: a factor whose terms all have one sign
-    (a planet's own teeth, a sum of products of teeth) never does."""
-    out: list[sympy.Expr] = []
-    for coefficient in analysis.motion_coefficients.values():
-        denominator = sympy.fraction(coefficient.to_expr())[1]
-        for factor, _ in sympy.factor_list(denominator)[1]:
-            signs = {c > 0 for c in sympy.Poly(factor, *sorted(factor.free_symbols, key=str)).coeffs()}
-            if len(signs) > 1 and factor not in out:
-                out.append(factor)
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,7 +165,7 @@ def state_motion(problem: SearchProblem, state: str | None) -> tuple[sympy.Expr,
     analysis = analyse(in_state)
     ratio = analysis.speed_ratio().to_expr()
     substitution = dict(problem.dependent)
-    singular = tuple(_symbols_of(train, d).subs(substitution) for d in _motion_denominators(analysis))
+    singular = tuple(_symbols_of(train, d).subs(substitution) for d in vanishing_denominators(analysis))
     return sympy.cancel(_symbols_of(train, ratio).subs(substitution)), singular
 
 

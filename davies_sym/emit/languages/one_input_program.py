@@ -58,6 +58,7 @@ from davies_sym.emit.languages.variant_choice_program import (
     port_variant,
 )
 from davies_sym.emit.variant_report import condition_text, mesh_text, variant_forces
+from davies_sym.network.motion_singularities import vanishing_denominators
 
 
 def bound(value: float) -> sympy.Expr:
@@ -129,7 +130,9 @@ def one_input_program(variants: VariantSet, module: str, not_covered: str, state
     ports = (train.ports.input, train.ports.output)
     ratio_routines, turning = _ratio_routines(variants, public, names, (table, relations), ports)
     routines += ratio_routines
-    called = ChoiceRoutines({r.name: r for r in routines}, forces, admissible, turning)
+    moving = _moving_routine(variants, public, names)
+    routines += [moving] if moving is not None else []
+    called = ChoiceRoutines({r.name: r for r in routines}, forces, admissible, turning, moving)
     steps = [choice_steps(variants, port, names, called) for port in ports]
     choices = [port_choice(variants, port, names, st, not_covered) for port, st in zip(ports, steps, strict=True)]
     reasons = [port_reason(variants, port, names, st) for port, st in zip(ports, steps, strict=True)]
@@ -181,6 +184,19 @@ def _ratio_routines(
     )
     speed = Routine(RATIO, summary, raw.arguments, Kind.REAL, steps, sympy.Symbol(out))
     return [raw, in_ranges, speed], (raw if not extra else None)
+
+
+def _moving_routine(
+    variants: VariantSet, public: Callable[[sympy.Expr], sympy.Expr], names: tuple[str, ...]
+) -> Routine | None:
+    """``train_moves``: whether no denominator of the motions vanishes (`vanishing_denominators`,
+    those in the formulas' parameters); None where none can."""
+    factors = [public(d) for d in vanishing_denominators(variants.analysis)]
+    checks = [(d, "!=", sympy.Integer(0)) for d in factors if {str(s) for s in d.free_symbols} <= set(names)]
+    if not checks:
+        return None
+    summary = "whether no denominator of the motions vanishes (where one does the train locks)"
+    return checks_routine("train_moves", summary, checks, names)
 
 
 def _check_unique(routines: list[Routine], names: tuple[str, ...]) -> None:

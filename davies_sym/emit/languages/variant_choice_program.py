@@ -41,13 +41,15 @@ class Choice:
 class ChoiceRoutines:
     """The routines a port's choice calls: every routine by name (each condition's as
     ``condition_<name>``, each variant's as its name), the loaded-force checks by variant,
-    ``admissible``, and ``turning``, the raw speed ratio (None where the ratio has
-    parameters the routines do not take)."""
+    ``admissible``, ``turning``, the raw speed ratio (None where the ratio has
+    parameters the routines do not take), and ``moving``, whether no denominator of the
+    motions vanishes (None where none can)."""
 
     by_name: Mapping[str, Routine]
     forces: Mapping[str, Routine]
     admissible: Routine
     turning: Routine | None
+    moving: Routine | None = None
 
 
 @dataclass(frozen=True)
@@ -120,18 +122,26 @@ def _local_names(names: tuple[str, ...]) -> Callable[[str], str]:
 
 def _screen_steps(local: Callable[[str], str], called: ChoiceRoutines) -> tuple[list[Step], str, str]:
     """The first steps of a choice and the names they set: ``ok`` (the design is
-    admissible) and ``turns`` (both ports turn: the speed ratio is finite and not 0)."""
+    admissible) and ``turns`` (both ports turn: the speed ratio is finite and not 0, and
+    no denominator of the motions vanishes)."""
     steps: list[Step] = []
     ok = local("ok")
     steps.append(Step(ok, Kind.BOOL, call(called.admissible)))
     turns = local("turns")
+    # Where a denominator of the motions vanishes the train locks, however finite the ratio.
+    moving = []
+    if called.moving is not None:
+        moves = local("moves")
+        steps.append(Step(moves, Kind.BOOL, call(called.moving)))
+        moving.append(sympy.Symbol(moves))
     if called.turning is None:
-        steps.append(Step(turns, Kind.BOOL, sympy.true))
+        steps.append(Step(turns, Kind.BOOL, sympy.And(*moving)))
     else:
         ratio = local("ratio")
         steps.append(Step(ratio, Kind.REAL, call(called.turning)))
         finite = relation(sympy.Abs(sympy.Symbol(ratio)), "<", LARGEST)
-        steps.append(Step(turns, Kind.BOOL, sympy.And(finite, relation(sympy.Symbol(ratio), "!=", sympy.Integer(0)))))
+        nonzero = relation(sympy.Symbol(ratio), "!=", sympy.Integer(0))
+        steps.append(Step(turns, Kind.BOOL, sympy.And(finite, nonzero, *moving)))
     return steps, ok, turns
 
 
@@ -168,7 +178,7 @@ REASONS = (
     (1, "outside the admissible parameters (PARAMETERS, RELATIONS)"),
     (2, "no variant's power flow agrees with its own forces (the losses reverse forces as no variant covers)"),
     (3, "the train self-locks (efficiency outside (0, 1])"),
-    (4, "a port does not turn (speed ratio 0 or infinite)"),
+    (4, "a port does not turn (speed ratio 0 or infinite, or the train locks: a denominator of the motions vanishes)"),
 )
 
 #: Beyond this a speed ratio counts as infinite (a division by zero in floating point; a

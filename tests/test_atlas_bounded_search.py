@@ -149,11 +149,12 @@ def test_tooth_numbers_at_which_the_train_locks_are_not_a_design(tmp_path: Path)
     (87/7) and the lossless formulas give an efficiency of exactly 1, but the train does
     not move from its input: ``derive`` refuses the file with these numbers (its own
     check, on the numbers).  The search's exact rules refuse the design too (a
-    denominator of the motions vanishes), and the design it keeps evaluates as ranked."""
+    denominator of the motions vanishes), so does the state's formula module (NaN), and
+    the design it keeps evaluates as ranked."""
     import numpy as np
 
     from davies_sym.synthesis.feasible_designs import ExactRules
-    from davies_sym.synthesis.formulas import state_motion
+    from davies_sym.synthesis.formulas import state_formulas, state_motion
 
     state = "h2_i3_o1"
     problem, e, written, choice = _searched("atlas8_r495_d38", state, QUESTION)
@@ -161,6 +162,9 @@ def test_tooth_numbers_at_which_the_train_locks_are_not_a_design(tmp_path: Path)
     row = np.array([[LOCKED[str(s)] for s in problem.free]], dtype=np.int64)
     assert len(ExactRules.of(problem, [ratio]).feasible(row)[0]) == 1  # the ratio alone admits it
     assert len(ExactRules.of(problem, [ratio], singular).feasible(row)[0]) == 0
+    # The state's formula module refuses it too (NaN: the train locks), as derive does.
+    (formulas,) = state_formulas(problem)
+    assert np.isnan(formulas.efficiency({k: np.array([float(v)]) for k, v in LOCKED.items()}))[0]
 
     found = search._direction_designs(problem, state, QUESTION)
     assert found is not None

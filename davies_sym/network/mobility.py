@@ -5,7 +5,10 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import sympy
+
 from davies_sym.errors import Problem
+from davies_sym.geometry.layout import Layout
 from davies_sym.network.matrices import Network
 from davies_sym.topology.coupling_kinds import gear_meshes
 from davies_sym.topology.model import Train
@@ -25,11 +28,9 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
             )
         ]
     if input_index not in free:
+        hint = _ring_hint(train, network.layout)
         problems.append(
-            Problem(
-                "ports.input",
-                f"the input coupling {train.ports.input!r} cannot move: the train is locked{_ring_hint(train)}",
-            )
+            Problem("ports.input", f"the input coupling {train.ports.input!r} cannot move: the train is locked{hint}")
         )
     if train.degrees_of_freedom is not None and dof != train.degrees_of_freedom:
         problems.append(
@@ -53,10 +54,12 @@ def mobility_problems(train: Train, network: Network, free: Sequence[int], input
     return problems
 
 
-def _ring_hint(train: Train) -> str:
-    """A locked train whose gear meshes two external gears on two other links: a ring gear
-    written without ``internal: true`` (the planet then rolls between two equal external
-    gears on one axis, which locks the set) is the usual cause."""
+def _ring_hint(train: Train, layout: Layout) -> str:
+    """A locked train whose gear meshes two external gears on two other links about one
+    axis: a ring gear written without ``internal: true`` (the planet then rolls between
+    two equal external gears on one axis, which locks the set) is the usual cause.  Two
+    partners on different axes (a planet between a sun and another planet) give no hint:
+    such a train locks by its numbers, not by a missing ``internal``."""
     gears = {g.name: g for g in train.gears}
     partners: dict[str, list[str]] = {}
     for mesh in gear_meshes(train.couplings):
@@ -68,7 +71,8 @@ def _ring_hint(train: Train) -> str:
             partners.setdefault(b.name, []).append(a.name)
     for gear, others in partners.items():
         links = {gears[o].link for o in others}
-        if len(others) >= 2 and len(links) >= 2:
+        centres = {tuple(sympy.expand(x) for x in layout.gear_centres[o]) for o in others if o in layout.gear_centres}
+        if len(others) >= 2 and len(links) >= 2 and len(centres) < len(others):
             shown = " and ".join(repr(o) for o in others[:2])
             return (
                 f"; gear {gear!r} meshes {shown}, both external: if one is a ring gear (an annulus), "

@@ -31,6 +31,7 @@ from davies_sym.emit.formula_code import compiled_module
 from davies_sym.emit.languages import emit_code
 from davies_sym.emit.python_module import python_module
 from davies_sym.errors import InputError, NotCoveredError
+from davies_sym.synthesis.best_design import best_design_text
 from davies_sym.topology.loader import load, loads
 
 FILE = Path(__file__).parent / "data" / "three_sun_relay.yaml"
@@ -69,10 +70,7 @@ def _designs(count: int, seed: int) -> list[dict[str, int]]:
 def _numeric_train_moves(teeth: dict[str, int]) -> bool:
     """The numeric route: the file with the numbers written in, loaded and its motions
     solved; False where the mobility check finds the input cannot move."""
-    text = FILE.read_text()
-    for name, value in teeth.items():
-        text = re.sub(rf"teeth: {name},", f"teeth: {value},", text)
-    text = re.sub(r"\nindependent:.*\n", "\n", text)
+    text = best_design_text(FILE.read_text(), teeth, "the three-sun relay with numbers")
     try:
         derive_variants(loads(text), state=STATE, inputs=["in_shaft"])
     except InputError as exc:

@@ -19,6 +19,7 @@ from itertools import combinations, permutations
 import sympy
 
 from davies_sym.algebra.linear_regions import Requirement, empty_region
+from davies_sym.algebra.polynomials import RationalFunction
 from davies_sym.atlas.realisation import Realisation
 from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol
 from davies_sym.errors import BeyondWorkBound, DaviesError, GeometryError
@@ -175,26 +176,130 @@ def admissible_choices(drawn: Realisation) -> Admissible:
     way, train = found
     kept, loaded = [], []
     drawing_fails: GeometryError | None = None
-    for choice, state in zip(candidates, train.states, strict=True):
+    read = _Readings(train, candidates)
+    for choice in candidates:
         try:
-            analysis = analyse(train_in_state(train, state))
-            ratio = analysis.speed_ratio()
-            if ratio.num.total_degree() > 0 or ratio.den.total_degree() > 0:
-                kept.append(choice)
-                if _every_mesh_loaded(analysis):
-                    loaded.append(choice)
+            reading = read.choice(choice)
         except BeyondWorkBound:
             raise  # not a choice the motions refuse: the train is listed with the reason
         except GeometryError as exc:
             # The radii solved from the loops of meshes draw the train again (a planet
             # can land on nested square roots): a reason, where no choice is kept.
             drawing_fails = drawing_fails or exc
+            continue
         except (DaviesError, ZeroDivisionError):
             continue
+        if reading.kept:
+            kept.append(choice)
+            if reading.loaded:
+                loaded.append(choice)
     if not kept and drawing_fails is not None:
         why = drawing_fails.problems[0].message
         return Admissible((), way.planar, reason=f"its radii, solved from the loops of meshes, cannot be drawn ({why})")
     return Admissible(tuple(kept), way.planar, tuple(loaded), free_axes=way.free_axes, order=way.order)
+
+
+class _Readings:
+    """The choices of one written train read from their motions and lossless actions.
+
+    The choices that hold one member and drive the first of the others are analysed
+    (`analyse`); a choice between two later members is read from two of those by
+    superposition, without an analysis of its own: with the member held, the motion is
+    one, so its speed ratio is the ratio of the two members' speeds in either analysis;
+    the lossless actions are linear in the ports' torques, so the difference of the two
+    analyses' (each per unit torque on the first member) is an equilibrium with no
+    torque on the first member, the choice's own (Laus eq. (2)).  Where either analysis
+    fails, the choice is analysed itself.
+    """
+
+    def __init__(self, train: Train, candidates: tuple[Choice, ...]):
+        self.train = train
+        self.states = dict(zip(candidates, train.states, strict=True))
+        self.first: dict[int, int] = {}
+        for choice in candidates:
+            self.first.setdefault(choice.held, choice.input)
+        self.analysed: dict[Choice, Analysis | Exception] = {}
+
+    def choice(self, choice: Choice) -> _Reading:
+        """Whether the choice's speed ratio depends on the radii, and whether every mesh
+        carries a tooth force; the analysis's error where it fails."""
+        first = self.first[choice.held]
+        if choice.input != first:
+            read = self._superposed(Choice(choice.held, first, choice.input), Choice(choice.held, first, choice.output))
+            if read is not None:
+                return read
+        analysis = self._analysis(choice)
+        if isinstance(analysis, Exception):
+            raise analysis
+        if not _radii_set(analysis.speed_ratio()):
+            return _Reading(False, False)
+        return _Reading(True, _every_mesh_loaded(analysis))
+
+    def _analysis(self, choice: Choice) -> Analysis | Exception:
+        known = self.analysed.get(choice)
+        if known is None:
+            try:
+                known = analyse(train_in_state(self.train, self.states[choice]))
+            except BeyondWorkBound:
+                raise
+            except (DaviesError, ZeroDivisionError) as exc:
+                known = exc
+            self.analysed[choice] = known
+        return known
+
+    def _superposed(self, to_input: Choice, to_output: Choice) -> _Reading | None:
+        """The reading of the choice between the outputs of ``to_input`` and
+        ``to_output`` (both driving the first member); None where either analysis or
+        its lossless actions fail, or their meshes' actions differ."""
+        a, b = self._analysis(to_input), self._analysis(to_output)
+        if isinstance(a, Exception) or isinstance(b, Exception):
+            return None
+        try:
+            speeds = a.motion_coefficients
+            into, out_of = (speeds[_port_motion(a, x.train.ports.output)] for x in (a, b))
+            if out_of.is_zero():
+                raise ZeroDivisionError("the output does not turn")
+            if not _radii_set(into / out_of):
+                return _Reading(False, False)
+            forces = (a.lossless_action_coefficients, b.lossless_action_coefficients)
+            names = [_mesh_actions(x) for x in (a, b)]
+        except BeyondWorkBound:
+            raise
+        except (DaviesError, ZeroDivisionError):
+            return None
+        if names[0] != names[1]:
+            return None
+        loaded = all(any(not (forces[0][n] - forces[1][n]).is_zero() for n in mesh) for mesh in names[0])
+        return _Reading(True, loaded)
+
+
+@dataclass(frozen=True)
+class _Reading:
+    """What a choice's motions and lossless actions say: whether its speed ratio
+    depends on the radii (it is kept), and whether every mesh carries a tooth force."""
+
+    kept: bool
+    loaded: bool
+
+
+def _port_motion(analysis: Analysis, coupling: str) -> str:
+    """The motion variable of a bearing in ``analysis``."""
+    return analysis.network.coupling_motions(coupling)[0].name
+
+
+def _radii_set(ratio: RationalFunction) -> bool:
+    """Whether a speed ratio depends on the radii (a constant: the members turn as one,
+    or one stands still, whatever the gears)."""
+    return ratio.num.total_degree() > 0 or ratio.den.total_degree() > 0
+
+
+def _mesh_actions(analysis: Analysis) -> list[tuple[str, ...]]:
+    """The lossless actions of each mesh (its tooth force, Laus eq. (2))."""
+    network = analysis.network
+    return [
+        tuple(a.name for a in network.coupling_actions(mesh.name, lossless=True))
+        for mesh in gear_meshes(analysis.train.couplings)
+    ]
 
 
 def _every_mesh_loaded(analysis: Analysis) -> bool:
@@ -202,8 +307,4 @@ def _every_mesh_loaded(analysis: Analysis) -> bool:
     carries none, its gears turn idle and the use is that of a train of fewer links,
     which the atlas lists there."""
     actions = analysis.lossless_action_coefficients
-    network = analysis.network
-    return all(
-        any(not actions[a.name].is_zero() for a in network.coupling_actions(mesh.name, lossless=True))
-        for mesh in gear_meshes(analysis.train.couplings)
-    )
+    return all(any(not actions[n].is_zero() for n in mesh) for mesh in _mesh_actions(analysis))

@@ -60,10 +60,7 @@ def absolute_motions(analysis: Analysis, reference: str) -> dict[str, Twist]:
 def walk_path(analysis: Analysis, start: str, end: str) -> list[tuple[str, int]]:
     """A shortest walk from ``start`` to ``end``: (edge, +1 along / -1 against)."""
     graph = analysis.network.graph
-    undirected = nx.MultiGraph()
-    undirected.add_nodes_from(graph.links)
-    for e in graph.edges:
-        undirected.add_edge(*graph.ends[e], key=e)
+    undirected = graph.undirected
     nodes = nx.shortest_path(undirected, start, end)
     steps = []
     for u, v in pairwise(nodes):

@@ -92,6 +92,8 @@ class Draws:
         self.columns: dict[sympy.Symbol, np.ndarray] = {}
         #: Each factor's values (by its text) once formed: forces share factors.
         self.factors: dict[str, np.ndarray] = {}
+        #: Each drawn value made exact once: the cases of a state read the same rows.
+        self._exact: dict[tuple[sympy.Symbol, int], sympy.Rational] = {}
 
     def column(self, symbol: sympy.Symbol) -> np.ndarray:
         if symbol not in self.columns:
@@ -111,8 +113,11 @@ class Draws:
         """Row ``row`` as exact values (rounded to six significant digits)."""
         out: Point = {}
         for s in symbols:
-            value = Fraction(f"{self.column(s)[row]:.6g}")
-            out[s] = sympy.Rational(value.numerator, value.denominator)
+            exact = self._exact.get((s, row))
+            if exact is None:
+                value = Fraction(f"{self.column(s)[row]:.6g}")
+                exact = self._exact[(s, row)] = sympy.Rational(value.numerator, value.denominator)
+            out[s] = exact
         return out
 
 

@@ -86,6 +86,8 @@ class Analysis:
             symbols |= law.coefficient.free_symbols
         self.ring = PolynomialRing(symbols, net.layout.radicals)
         self._reduce = self.ring.reduce if self.ring.radicals else None
+        # The condensed motion screws, each formed once: the reports read them per mesh.
+        self._twists: dict[str, tuple[RationalFunction, ...]] = {}
 
     # -- helpers ---------------------------------------------------------------------
     @property
@@ -343,8 +345,13 @@ class Analysis:
     # -- condensed screws and powers (eqs. (25)-(31), (45)-(49), (59), (65)) ---------
     def coupling_twist(self, coupling: str) -> list[RationalFunction]:
         """Condensed motion screw of a coupling (a column of M, eq. (59))."""
-        units = [(v.name, v.twist) for v in self.network.coupling_motions(coupling)]
-        return condensed_screw(self.ring, self.network.order, self.motion_magnitudes, units)
+        known = self._twists.get(coupling)
+        if known is None:
+            units = [(v.name, v.twist) for v in self.network.coupling_motions(coupling)]
+            known = self._twists[coupling] = tuple(
+                condensed_screw(self.ring, self.network.order, self.motion_magnitudes, units)
+            )
+        return list(known)
 
     def action_wrench(self, names: Sequence[str]) -> list[RationalFunction]:
         """Sum of the wrenches of the given action variables."""
@@ -361,6 +368,10 @@ class Analysis:
 
     def lossless_input_power(self) -> RationalFunction:
         """Input power of the lossless network per unit input torque (T_in = 1)."""
+        return self._lossless_input_power
+
+    @cached_property
+    def _lossless_input_power(self) -> RationalFunction:
         wrench = [self._rf(v) for v in self.input_action.wrench]
         return self.inner(wrench, self.coupling_twist(self.train.ports.input))
 

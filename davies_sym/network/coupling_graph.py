@@ -27,6 +27,12 @@ class CouplingGraph:
         self.graph.add_nodes_from(self.links)
         for name, a, b in edges:
             self.graph.add_edge(a, b, key=name)
+        #: The same graph without directions, built in the same order: the walks between
+        #: links follow it.
+        self.undirected = nx.MultiGraph()
+        self.undirected.add_nodes_from(self.links)
+        for name, a, b in edges:
+            self.undirected.add_edge(a, b, key=name)
 
     def default_tree(self, root: str) -> tuple[str, ...]:
         """Spanning tree grown breadth-first from ``root``, edges in declaration order."""

@@ -34,12 +34,16 @@ Timed = tuple[str, list[tuple[str, float]]]
 
 def timed_file(task: Task) -> Timed:
     """Seconds of each state of one file: from its ``state NAME`` step to the next one
-    (the last to the end of the file), with the document's writing shared evenly."""
+    (the last to the ``writing the report`` step), with the file's reading and its
+    document's writing shared evenly."""
     marks: list[tuple[str, float]] = []
+    report: list[float] = []
 
     def progress(text: str) -> None:
         if text.startswith("state "):
             marks.append((text[len("state ") :], time.perf_counter()))
+        elif text == "writing the report":
+            report.append(time.perf_counter())
 
     start = time.perf_counter()
     derived = derive_task(task, progress)
@@ -48,8 +52,11 @@ def timed_file(task: Task) -> Timed:
         raise SystemExit(f"{task.path}: {derived.messages}")
     if not marks:  # a train without states: the file is one state
         return task.stem, [("", end - start)]
-    ends = [t for _, t in marks[1:]] + [end]
-    overhead = (marks[0][1] - start) / len(marks)
+    last = report[0] if report else end
+    ends = [t for _, t in marks[1:]] + [last]
+    # The file's own work (read before the first state, its document after the last) is
+    # shared out evenly.
+    overhead = (marks[0][1] - start + end - last) / len(marks)
     return task.stem, [(name, e - t + overhead) for (name, t), e in zip(marks, ends, strict=True)]
 
 

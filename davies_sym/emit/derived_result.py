@@ -84,6 +84,7 @@ class OneInputResult:
 
     def report(self, as_json: bool) -> str:
         """The text report (or the JSON document) of the variants, or of each state's."""
+        self.progress("writing the report")
         train = self.file_train
         if not train.states:
             analysis = Analysis(train, progress=self.progress)

@@ -23,6 +23,7 @@ from flint import fmpq, fmpz_mpoly
 from davies_sym.algebra.point_values import Args
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
 from davies_sym.algebra.symbol_order import sorted_symbols
+from davies_sym.caches import IdentityCache
 from davies_sym.geometry.layout import Layout, joint_substitution
 from davies_sym.topology.angles import AngleFunctions
 from davies_sym.topology.coupling_kinds import bearings, toothed_meshes
@@ -285,6 +286,26 @@ class ParameterDomain:
                 out[key] = given[key]
         return out
 
+    def drawn_samples(self, count: int, seed: int, extra: Sequence[sympy.Symbol]) -> list[Point]:
+        """The points of `samples` as a list, each a new dict: drawn once for the states
+        of one whole train whose domains agree (their symbols, constraints, facts and
+        angles: the draw reads nothing else)."""
+        whole = self.train.whole
+        if whole is None:
+            return list(self.samples(count, seed=seed, extra=extra))
+        key = (
+            tuple(sorted_symbols(self.train.symbols.values())),
+            tuple(sorted_symbols(geometry_symbols(self.train))),
+            tuple(self.eliminated.items()),
+            tuple(e for e, _ in admissible_facts(self.train, self.layout)),
+            tuple((a.angle, a.cos, a.sin) for a in self._angles),
+            count,
+            seed,
+            tuple(extra),
+        )
+        drawn = _SAMPLES.get(whole, lambda: list(self.samples(count, seed=seed, extra=extra)), key)
+        return [dict(point) for point in drawn]
+
     def samples(
         self,
         count: int,
@@ -321,3 +342,7 @@ class ParameterDomain:
             produced += 1
             if produced == count or not free:
                 return
+
+
+#: The points drawn for the states of each whole train, by what the draw reads.
+_SAMPLES: IdentityCache[Train, list[Point]] = IdentityCache()

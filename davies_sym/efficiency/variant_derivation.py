@@ -81,7 +81,7 @@ def sampled_regions(
     """Admissible design points drawn at random, by the signs of the turning conditions
     they give; each with an input torque and speed well above what the small drawn loss
     coefficients take."""
-    points = list(domain.samples(count, seed=seed, extra=extra))
+    points = domain.drawn_samples(count, seed, extra)
     operating = random.Random(seed)
     for point in points:
         point.update(

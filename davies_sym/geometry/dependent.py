@@ -27,6 +27,7 @@ from davies_sym.errors import DesignError, GeometryError, Problem
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout, linear_roots, polynomial_part, tidy_quotient
 from davies_sym.topology.coupling_kinds import gear_meshes
+from davies_sym.topology.gear import Gear
 from davies_sym.topology.model import Relation, Train
 
 
@@ -45,17 +46,32 @@ _RESOLVED: IdentityCache[Train, Train] = IdentityCache()
 def _resolved(train: Train) -> Train:
     if train.whole is not None:
         whole = resolved_train(train.whole)
-        return _substituted(replace(train, whole=whole), whole.dependent or ())
+        # A state's gear is its whole's (on a renamed link): its radius resolved there.
+        written = {g.name: g.radius for g in train.whole.gears}
+        done = {g.name: g for g in whole.gears if written.get(g.name) is not None}
+        return _substituted(replace(train, whole=whole), whole.dependent or (), done, written)
     return _substituted(train, _solve(train, train_layout(train)))
 
 
-def _substituted(train: Train, relations: tuple[Relation, ...]) -> Train:
+def _substituted(
+    train: Train,
+    relations: tuple[Relation, ...],
+    done: Mapping[str, Gear] | None = None,
+    written: Mapping[str, sympy.Expr] | None = None,
+) -> Train:
+    """``train`` with ``relations`` substituted into its radii; a gear of ``done`` (the
+    whole train's, resolved) whose radius is as ``written`` there takes its radius."""
     values = {r.symbol: r.expression for r in relations}
-    gears = tuple(
-        replace(g, radius=sympy.expand(g.radius.subs(values)), written=g.written_radius) if values else g
-        for g in train.gears
-    )
-    return replace(train, gears=gears, dependent=relations)
+
+    def resolved(g: Gear) -> Gear:
+        if not values:
+            return g
+        known = (done or {}).get(g.name)
+        if known is not None and written is not None and written[g.name] == g.radius:
+            return replace(g, radius=known.radius, written=known.written)
+        return replace(g, radius=sympy.expand(g.radius.subs(values)), written=g.written_radius)
+
+    return replace(train, gears=tuple(resolved(g) for g in train.gears), dependent=relations)
 
 
 def _solve(train: Train, layout: Layout) -> tuple[Relation, ...]:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 import sympy
 
 from davies_sym.algebra.radicals import RadicalTable
-from davies_sym.algebra.screws import NamedScrew, action_along_motion, cross, power, torque_magnitude_name
+from davies_sym.algebra.screws import NamedScrew, Screw, action_along_motion, cross, power, torque_magnitude_name
 from davies_sym.errors import DerivationError, Problem, TopologyError
 from davies_sym.geometry import train_layout
 from davies_sym.geometry.layout import Layout
@@ -109,6 +109,7 @@ class Network:
                 essential_twists(full.values(), self.layout.spatial), self.layout.radicals
             )
         self._friction_wrenches = {name: s.friction for name, s in full.items() if s.friction is not None}
+        self._shared = shared
         self.reduced: dict[str, ReducedCoupling] = {}
         for c in train.couplings:
             written = as_written_screws(c)
@@ -171,8 +172,7 @@ class Network:
                 actions += self._constraint_actions(c, red)
                 continue
             given = self._friction_wrenches.get(c.name)
-            along = given.screw if given is not None else action_along_motion(_lift(self.system, cm[0].twist))
-            wrench = self.system.reduce_wrench(along)
+            along, wrench = self._axis_action(c.name, cm[0].twist)
             if given is not None:
                 base = given.name
             else:
@@ -203,6 +203,17 @@ class Network:
                 laws.append(law)
             actions += constraints
         return tuple(motions), tuple(actions), pressed_laws(self.train, laws)
+
+    def _axis_action(self, name: str, twist: tuple[sympy.Expr, ...]) -> tuple[Screw, tuple[sympy.Expr, ...]]:
+        """The unit action along ``twist`` (the friction wrench where one is given), full
+        and reduced; formed once for the states that share the screw system."""
+
+        def formed() -> tuple[Screw, tuple[sympy.Expr, ...]]:
+            given = self._friction_wrenches.get(name)
+            along = given.screw if given is not None else action_along_motion(_lift(self.system, twist))
+            return along, self.system.reduce_wrench(along)
+
+        return formed() if self._shared is None else self._shared.formed(self.system, f"axis {name}", formed)
 
     def _constraint_actions(self, c: Coupling, red: ReducedCoupling, taken: str = "") -> list[ActionVariable]:
         """The constraint actions of ``c``, named apart from each other and from ``taken``

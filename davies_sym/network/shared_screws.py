@@ -15,8 +15,9 @@ them a state takes.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import replace
+from typing import Any, TypeVar, cast
 
 import sympy
 
@@ -33,6 +34,8 @@ from davies_sym.network.screw_system import (
 from davies_sym.topology.couplings import Coupling
 from davies_sym.topology.kind_screws import CouplingScrews
 from davies_sym.topology.model import Train
+
+T = TypeVar("T")
 
 
 def written_square_root(screws: CouplingScrews) -> bool:
@@ -64,6 +67,9 @@ class SharedScrews:
         self._rooted: dict[str, bool] = {}
         self._systems: dict[tuple[str, ...], ScrewSystem] = {}
         self._reduced: dict[tuple[tuple[int, ...], tuple[sympy.Expr, ...], str], ReducedCoupling] = {}
+        #: Each system's key (its coordinates and lift), by identity: systems are kept.
+        self._keys: dict[int, tuple[ScrewSystem, tuple[tuple[int, ...], tuple[sympy.Expr, ...]]]] = {}
+        self._formed: dict[tuple[tuple[int, ...], tuple[sympy.Expr, ...], str], Any] = {}
 
     def screws(self, name: str) -> CouplingScrews:
         """The full unit screws of coupling ``name`` (`coupling_screws`)."""
@@ -94,11 +100,26 @@ class SharedScrews:
     def reduced(self, system: ScrewSystem, name: str) -> ReducedCoupling:
         """Coupling ``name`` reduced to ``system`` (`reduce_coupling`); a coupling that
         does not fit raises `CouplingScrewError` every time it is asked for."""
-        key = (system.coordinates, tuple(system.lift), name)
+        key = (*self._key(system), name)
         known = self._reduced.get(key)
         if known is None:
             known = self._reduced[key] = reduce_coupling(system, self.screws(name), name)
         return known
+
+    def formed(self, system: ScrewSystem, what: str, form: Callable[[], T]) -> T:
+        """What ``form`` makes of ``system`` (``what`` names it), formed once for the
+        states whose systems agree."""
+        key = (*self._key(system), what)
+        if key not in self._formed:
+            self._formed[key] = form()
+        return cast(T, self._formed[key])
+
+    def _key(self, system: ScrewSystem) -> tuple[tuple[int, ...], tuple[sympy.Expr, ...]]:
+        """The system by value (equal systems of different states share their work)."""
+        known = self._keys.get(id(system))
+        if known is None or known[0] is not system:
+            known = self._keys[id(system)] = (system, (system.coordinates, tuple(system.lift)))
+        return known[1]
 
 
 #: The screw work of each whole train, shared by its states while the whole train lives.

@@ -134,7 +134,7 @@ class FactoredElimination:
 
         def read(num: Product, den: Product) -> RationalFunction:
             if self.over_radicals:
-                return RationalFunction.make(ring, num.expand_in(ring.one), den.expand_in(ring.one))
+                return RationalFunction.make(ring, _reduced_expansion(ring, num), _reduced_expansion(ring, den))
             return quotient(ring, num, den)
 
         def column(col: int) -> dict[int, RationalFunction]:
@@ -144,6 +144,17 @@ class FactoredElimination:
             return {j: read(Product(-v.content, v.factors), row[col]) for j, v in row.items() if j != col}
 
         return LazyMapping(range(self.ncols), column)
+
+
+def _reduced_expansion(ring: PolynomialRing, p: Product) -> fmpz_mpoly:
+    """``p`` expanded modulo the radical relations, one factor at a time: the same
+    canonical polynomial as the whole expansion reduced (reduction is a ring
+    homomorphism onto it), without the powers of the roots the whole would form."""
+    out = ring.one * p.content
+    for f, e in p.factors:
+        for _ in range(e):
+            out = ring.reduce(out * f)
+    return out
 
 
 def factored_gauss_jordan(

@@ -19,7 +19,7 @@ upright drawing's and their solution is the same rational functions.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Hashable, Mapping, Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -37,7 +37,9 @@ from davies_sym.algebra.linalg import (
     polynomial_rows,
 )
 from davies_sym.algebra.polynomials import PolynomialRing, RationalFunction
+from davies_sym.caches import IdentityCache
 from davies_sym.network.matrices import ActionVariable, Network
+from davies_sym.topology.model import Train
 
 #: The twist coordinates (t; u, v) of a planar train: within a block of three rows of
 #: M_N or A_N, the second and third rows are the ones a turn of the drawing mixes.
@@ -162,21 +164,40 @@ ROUTE_WORK = 1_500_000_000
 REDUCED_ROUTE_WORK = 12_000_000
 
 
+@dataclass(frozen=True)
+class Swelling:
+    """Which kinds of matrix (``key``: the couplings a state keeps, the matrix's shape
+    and law rows) swelled past `RADICAL_WORK` in the elimination modulo the radical
+    relations, in a state of one whole train (``known``): its other states skip that
+    attempt.  Both routes are exact; this only spares the attempt bound to fail."""
+
+    known: set[Hashable]
+    key: Hashable
+
+
 def eliminate(
-    ring: PolynomialRing, rows: list[Row], ncols: int, prefer: list[int], bounded: bool = False
+    ring: PolynomialRing,
+    rows: list[Row],
+    ncols: int,
+    prefer: list[int],
+    bounded: bool = False,
+    swelling: Swelling | None = None,
 ) -> Elimination | FactoredElimination:
     """Stages in series multiply: factored entries keep them apart. With radicals the
     elimination reduces every entry modulo their relations; where its entries swell past
     `RADICAL_WORK` terms (planet triangles of several square roots), the factored
     elimination over the roots as free symbols takes over when it is sound there
     (`radical_elimination`), else the reduced elimination runs to its end; ``bounded``:
-    these two past `ROUTE_WORK` and `REDUCED_ROUTE_WORK` raise `WorkExceeded`."""
+    these two past `ROUTE_WORK` and `REDUCED_ROUTE_WORK` raise `WorkExceeded`;
+    ``swelling``: where the same kind of matrix swelled before, straight to the second."""
     if not ring.radicals:
         return factored_gauss_jordan(rows, ncols, ring.one, prefer_free=prefer)
-    try:
-        return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=RADICAL_WORK)
-    except WorkExceeded:
-        pass
+    if swelling is None or swelling.key not in swelling.known:
+        try:
+            return gauss_jordan(rows, ncols, prefer_free=prefer, reduce=ring.reduce, budget=RADICAL_WORK)
+        except WorkExceeded:
+            if swelling is not None:
+                swelling.known.add(swelling.key)
     factored = radical_elimination(ring, rows, ncols, prefer, ROUTE_WORK if bounded else None)
     if factored is not None:
         return factored
@@ -226,12 +247,24 @@ def _null_space(
     bounded: bool,
 ) -> SolvedSpace:
     frame = drawing_frame(network)
+    whole = network.train.whole
+    known = _SWELLED.get(whole, set) if whole is not None else None
+    kept = tuple(c.name for c in network.train.couplings)
+
+    def swelling(turned: bool) -> Swelling | None:
+        return None if known is None else Swelling(known, (kept, matrix.shape, laws, bounded, turned))
+
     if frame is not None:
         pairs = force_pairs(columns)
         turned = frame.turn_columns(frame.turn_rows(matrix, (matrix.rows - laws) // 3), pairs)
-        elimination = eliminate(ring, polynomial_rows(ring, turned), matrix.cols, prefer, bounded)
+        elimination = eliminate(ring, polynomial_rows(ring, turned), matrix.cols, prefer, bounded, swelling(True))
         # Only where the free columns are the preferred ones, as the plain elimination
         # leaves them (a free turned force would write the solution in other variables).
         if set(elimination.free) <= set(prefer):
             return TurnedElimination(elimination, frame, pairs)
-    return eliminate(ring, polynomial_rows(ring, matrix), matrix.cols, prefer, bounded)
+    return eliminate(ring, polynomial_rows(ring, matrix), matrix.cols, prefer, bounded, swelling(False))
+
+
+#: The kinds of matrix whose elimination modulo the radical relations swelled, in some
+#: state of each whole train (`Swelling`), while the train lives.
+_SWELLED: IdentityCache[Train, set[Hashable]] = IdentityCache()

@@ -44,9 +44,13 @@ def polynomial_rows(ring: PolynomialRing, matrix: sympy.Matrix) -> list[Row]:
     """The sparse polynomial rows of ``matrix``; a row with fractions (pitch points of
     tilted bevel axes) is multiplied by the lcm of its denominators, which leaves its
     equation."""
+    # The non-zero entries only, row by row in column order (a dense read compares every zero).
+    nonzero: dict[int, dict[int, sympy.Expr]] = {}
+    for (i, j), value in sorted(matrix.todok().items()):
+        nonzero.setdefault(i, {})[j] = value
     rows = []
     for i in range(matrix.rows):
-        entries = {j: ring.rational(matrix[i, j]) for j in range(matrix.cols) if matrix[i, j] != 0}
+        entries = {j: ring.rational(value) for j, value in nonzero.get(i, {}).items()}
         common = ring.one
         for rf in entries.values():
             if not rf.den.is_one():

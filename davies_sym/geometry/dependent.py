@@ -47,27 +47,23 @@ def _resolved(train: Train) -> Train:
     if train.whole is not None:
         whole = resolved_train(train.whole)
         # A state's gear is its whole's (on a renamed link): its radius resolved there.
-        written = {g.name: g.radius for g in train.whole.gears}
-        done = {g.name: g for g in whole.gears if written.get(g.name) is not None}
-        return _substituted(replace(train, whole=whole), whole.dependent or (), done, written)
+        done = {(g.name, g.radius): r for g, r in zip(train.whole.gears, whole.gears, strict=True)}
+        return _substituted(replace(train, whole=whole), whole.dependent or (), done)
     return _substituted(train, _solve(train, train_layout(train)))
 
 
 def _substituted(
-    train: Train,
-    relations: tuple[Relation, ...],
-    done: Mapping[str, Gear] | None = None,
-    written: Mapping[str, sympy.Expr] | None = None,
+    train: Train, relations: tuple[Relation, ...], done: Mapping[tuple[str, sympy.Expr], Gear] | None = None
 ) -> Train:
-    """``train`` with ``relations`` substituted into its radii; a gear of ``done`` (the
-    whole train's, resolved) whose radius is as ``written`` there takes its radius."""
+    """``train`` with ``relations`` substituted into its radii; a gear found in ``done``
+    (by its name and radius as written: the whole train's, resolved) takes its radius."""
     values = {r.symbol: r.expression for r in relations}
 
     def resolved(g: Gear) -> Gear:
         if not values:
             return g
-        known = (done or {}).get(g.name)
-        if known is not None and written is not None and written[g.name] == g.radius:
+        known = (done or {}).get((g.name, g.radius))
+        if known is not None:
             return replace(g, radius=known.radius, written=known.written)
         return replace(g, radius=sympy.expand(g.radius.subs(values)), written=g.written_radius)
 

@@ -10,6 +10,7 @@ the incidence matrix and the reduced incidence matrix A_i.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
+from functools import cached_property
 from itertools import combinations, pairwise
 
 import networkx as nx
@@ -27,12 +28,16 @@ class CouplingGraph:
         self.graph.add_nodes_from(self.links)
         for name, a, b in edges:
             self.graph.add_edge(a, b, key=name)
-        #: The same graph without directions, built in the same order: the walks between
-        #: links follow it.
-        self.undirected = nx.MultiGraph()
-        self.undirected.add_nodes_from(self.links)
-        for name, a, b in edges:
-            self.undirected.add_edge(a, b, key=name)
+
+    @cached_property
+    def undirected(self) -> nx.MultiGraph:
+        """The same graph without directions, edges in declaration order: the walks
+        between links follow it."""
+        graph = nx.MultiGraph()
+        graph.add_nodes_from(self.links)
+        for name in self.edges:
+            graph.add_edge(*self.ends[name], key=name)
+        return graph
 
     def default_tree(self, root: str) -> tuple[str, ...]:
         """Spanning tree grown breadth-first from ``root``, edges in declaration order."""

@@ -66,7 +66,6 @@ class SharedScrews:
         self._screws: dict[str, CouplingScrews] = {}
         self._rooted: dict[str, bool] = {}
         self._systems: dict[tuple[str, ...], ScrewSystem] = {}
-        self._reduced: dict[tuple[tuple[int, ...], tuple[sympy.Expr, ...], str], ReducedCoupling] = {}
         #: Each system's key (its coordinates and lift), by identity: systems are kept.
         self._keys: dict[int, tuple[ScrewSystem, tuple[tuple[int, ...], tuple[sympy.Expr, ...]]]] = {}
         self._formed: dict[tuple[tuple[int, ...], tuple[sympy.Expr, ...], str], Any] = {}
@@ -100,15 +99,11 @@ class SharedScrews:
     def reduced(self, system: ScrewSystem, name: str) -> ReducedCoupling:
         """Coupling ``name`` reduced to ``system`` (`reduce_coupling`); a coupling that
         does not fit raises `CouplingScrewError` every time it is asked for."""
-        key = (*self._key(system), name)
-        known = self._reduced.get(key)
-        if known is None:
-            known = self._reduced[key] = reduce_coupling(system, self.screws(name), name)
-        return known
+        return self.formed(system, f"reduced {name}", lambda: reduce_coupling(system, self.screws(name), name))
 
     def formed(self, system: ScrewSystem, what: str, form: Callable[[], T]) -> T:
         """What ``form`` makes of ``system`` (``what`` names it), formed once for the
-        states whose systems agree."""
+        states whose systems agree; where ``form`` raises, nothing is kept."""
         key = (*self._key(system), what)
         if key not in self._formed:
             self._formed[key] = form()

@@ -39,7 +39,7 @@ import time
 import networkx as nx
 from networkx.algorithms.isomorphism import GraphMatcher
 
-from davies_sym.atlas.canonical import canonical_code, rotation_code
+from davies_sym.atlas.canonical import canonical_code, refine, rotation_code
 from davies_sym.atlas.enumeration import displacement_graphs, is_one_dof
 from davies_sym.atlas.graphs import TrainGraph
 
@@ -87,21 +87,6 @@ def structure(train: TrainGraph) -> tuple[list[int], list[list[tuple[int, int]]]
         neighbours[u].append((v, kind))
         neighbours[v].append((u, kind))
     return colours, neighbours
-
-
-def refine(colours: list[int], neighbours: list[list[tuple[int, int]]]) -> list[int]:
-    """Colour refinement: a node's new colour is the rank of (its colour, the multiset of
-    (edge kind, neighbour colour)), repeated until no class splits (order of classes kept)."""
-    count = len(set(colours))
-    while True:
-        signatures = [
-            (colours[v], tuple(sorted((kind, colours[u]) for u, kind in neighbours[v]))) for v in range(len(colours))
-        ]
-        rank = {s: r for r, s in enumerate(sorted(set(signatures)))}
-        colours = [rank[s] for s in signatures]
-        if len(rank) == count:
-            return colours
-        count = len(rank)
 
 
 def individualise(colours: list[int], chosen: int) -> list[int]:

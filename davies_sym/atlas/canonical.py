@@ -33,7 +33,7 @@ RotationKey = tuple[tuple[int, int, int], ...]
 K = TypeVar("K", TrainKey, RotationKey)
 
 
-def _refine(colours: list[int], neighbours: Sequence[Sequence[tuple[int, int]]]) -> list[int]:
+def refine(colours: list[int], neighbours: Sequence[Sequence[tuple[int, int]]]) -> list[int]:
     """Colour refinement to the coarsest equitable partition finer than ``colours``.
 
     A node's new colour is its rank among the distinct (old colour, sorted multiset of
@@ -67,7 +67,7 @@ def canonical_labelling(
     best: list[tuple[K, list[int]]] = []
 
     def search(current: list[int]) -> None:
-        current = _refine(current, neighbours)
+        current = refine(current, neighbours)
         cells: dict[int, list[int]] = {}
         for v, colour in enumerate(current):
             cells.setdefault(colour, []).append(v)

@@ -27,6 +27,8 @@ from davies_sym.efficiency.parameter_domain import ParameterDomain, Point, effic
 from davies_sym.efficiency.parameters import admissible_relations, formula_symbols, parameter_table
 from davies_sym.efficiency.power_losses import loss_fractions, lossy_couplings
 from davies_sym.efficiency.variants import VariantSet, derive_variants
+from davies_sym.emit.formula_code import compiled_module
+from davies_sym.emit.python_module import python_module
 from davies_sym.errors import NotCoveredError
 from davies_sym.losses.definitions import completed, parameters_of, substituted
 
@@ -231,6 +233,29 @@ def test_module_agrees_with_derive_eval(name):
             geometry = {k: v for k, v in kwargs.items() if k in inspect.signature(module.speed_ratio).parameters}
             ratio = float(module.speed_ratio(input=port, **geometry))
             assert ratio == pytest.approx(float(ratio_line.rsplit(": ", 1)[1]), rel=1e-12)
+
+
+@pytest.mark.parametrize("name", (*TWO_REGIONS, "ravigneaux[second]", "simpson[second]"))
+def test_the_scoring_module_scores_as_the_full_module(name):
+    """The module a search compiles (no gradient, no losses) gives the full module's
+    efficiency and speed ratio bit for bit, both inputs, NaN where it does, and each agrees
+    with the exact variant; it writes neither gradient nor loss functions."""
+    vs = variant_set(name)
+    full = module_of(name)
+    scoring = compiled_module(python_module(vs, scoring=True), name)
+    assert not scoring._LOSSES and not scoring._GRADIENT and full._LOSSES
+    points = design_points(vs, 12, seed=11)
+    kwargs = kwargs_of(points, formula_symbols(vs))
+    for port in (vs.train.ports.input, vs.train.ports.output):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", full.DesignWarning)
+            warnings.simplefilter("ignore", scoring.DesignWarning)
+            got = scoring.efficiency(input=port, **kwargs)
+            want = full.efficiency(input=port, **kwargs)
+            ratios = (scoring.speed_ratio(input=port, **kwargs), full.speed_ratio(input=port, **kwargs))
+        assert np.array_equal(got, want, equal_nan=True)
+        assert np.array_equal(*ratios, equal_nan=True)
+        assert agree(got, [expected(vs, p, port) for p in points])
 
 
 @pytest.mark.parametrize("name", PARAMETRISED)

@@ -232,9 +232,13 @@ def _tables(
     return [_constant(name, literal(value)) for name, value in data.items()]
 
 
-def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
+def python_module(variants: VariantSet, accepted: Sequence[str] = (), scoring: bool = False) -> str:
     """Source text of the module.  ``accepted``: the parameters of the whole file (every
-    state's module takes them all and ignores those its formulas do not use)."""
+    state's module takes them all and ignores those its formulas do not use).
+    ``scoring``: the module a search compiles in memory to score designs with, never
+    written out: its ``efficiency``, ``speed_ratio`` and choice of variant are the full
+    module's, line for line, but it has no gradient and no losses (the search reads
+    neither, and they are most of the module's writing time)."""
     train = variants.train
     public = given_forms(variants)
     by_name = given_parameters(variants)
@@ -249,9 +253,9 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = ()) -> str:
     )
     relations = admissible_relations(variants)
     _add_conditions(formulas, variants, relations)
-    fractions = all_loss_fractions(variants)
+    fractions = {} if scoring else all_loss_fractions(variants)
     for v in variants.variants:
-        _add_variant(formulas, variants, v, by_name, lossy, fractions[v.name])
+        _add_variant(formulas, variants, v, by_name, lossy, fractions.get(v.name, {}), scoring)
     needs = {}
     for name, r in dependent_of.items():
         needs[name] = formulas.add(
@@ -301,15 +305,17 @@ def _add_variant(
     by_name: Mapping[str, sympy.Symbol],
     lossy: Sequence[str],
     fractions: Mapping[str, RationalFunction],
+    scoring: bool = False,
 ) -> None:
     """A variant's efficiency, its gradient, its losses (``fractions`` of the input
-    power, by coupling) and its loaded forces."""
+    power, by coupling) and its loaded forces (``scoring``: the efficiency and the forces
+    that pick the variant alone)."""
     public = given_forms(variants)
     doc = f"Variant ({v.number}): {_where(variants, v)}.  " + "; ".join(mesh_text(variants, v)) + "."
     eta = public(v.efficiency)
     formulas.add("_EFFICIENCY", v.name, v.name, doc, [eta])
     symbols = list(by_name)
-    if symbols:  # the exact partial derivatives in SENSITIVE's order, sharing their subexpressions
+    if symbols and not scoring:  # the exact partial derivatives in SENSITIVE's order, sharing their subexpressions
         formulas.add(
             "_GRADIENT",
             v.name,
@@ -318,14 +324,15 @@ def _add_variant(
             [sympy.diff(eta, by_name[n]) for n in symbols],
             "tuple[Array, ...]" if len(symbols) > 1 else "Array",
         )
-    formulas.add(
-        "_LOSSES",
-        v.name,
-        f"_losses_{v.name}",
-        f"Losses over the input power in variant ({v.number}).",
-        [public(fractions[n].to_expr()) for n in lossy],
-        "tuple[Array, ...]" if len(lossy) > 1 else "Array",
-    )
+    if not scoring:
+        formulas.add(
+            "_LOSSES",
+            v.name,
+            f"_losses_{v.name}",
+            f"Losses over the input power in variant ({v.number}).",
+            [public(fractions[n].to_expr()) for n in lossy],
+            "tuple[Array, ...]" if len(lossy) > 1 else "Array",
+        )
     forces = [public(f.to_expr() * sign) for f, sign in v.loaded_forces.values()]
     if forces:
         formulas.add(

@@ -40,6 +40,8 @@ class DerivedState:
     state: str | None
     port: str
     ratio: str
+    #: The formula module for scoring (`python_module` with ``scoring``: its efficiency
+    #: and variant choice, no gradient or losses).
     source: str
     #: Parameters of the formulas that are not tooth numbers (the file must fix them).
     others: tuple[str, ...]
@@ -83,7 +85,7 @@ def derived_in_state(train: Train, chosen: State | None, teeth: frozenset[str]) 
     if others:
         return DerivedState(name, port, ratio, "", others, singular=singular)
     forms = tuple(sympy.srepr(v.efficiency_rf.to_expr()) for v in variants.variants if v.input == port)
-    return DerivedState(name, port, ratio, python_module(variants), others, forms, singular)
+    return DerivedState(name, port, ratio, python_module(variants, scoring=True), others, forms, singular)
 
 
 @dataclass(frozen=True, eq=False)

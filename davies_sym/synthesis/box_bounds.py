@@ -40,12 +40,15 @@ class PolynomialRange:
         return cls(exponents, np.array([float(c) for _, c in terms], dtype=float))
 
     def _monomials(self, corner: Floats) -> Floats:
-        """Every term's monomial at every box's corner (boxes x terms)."""
+        """Every term's monomial at every box's corner (boxes x terms): each variable's
+        powers computed once per box and gathered by the terms' exponents (a power 0 is
+        exactly 1, so the products are those of the used powers alone)."""
         out = np.ones((corner.shape[0], len(self.coefficients)))
         for k in range(self.exponents.shape[1]):
-            used = self.exponents[:, k] > 0
-            if used.any():
-                out[:, used] *= corner[:, k : k + 1] ** self.exponents[used, k]
+            column = self.exponents[:, k]
+            top = int(column.max()) if len(column) else 0
+            if top > 0:
+                out *= (corner[:, k : k + 1] ** np.arange(top + 1))[:, column]
         return out
 
     def range(self, low: Floats, high: Floats) -> tuple[Floats, Floats]:

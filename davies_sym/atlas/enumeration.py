@@ -56,7 +56,7 @@ def _ratio(first: int, second: int, carrier: int) -> int:
     return 2 + (z ^ (z >> 31)) % (PRIME - 3)
 
 
-def _relation(links: int, pair: GearPair) -> list[int]:
+def speed_relation(links: int, pair: GearPair) -> list[int]:
     """The speed relation of a gear pair, Willis' equation (w_i - w_k) + n (w_j - w_k) = 0,
     as a row over the link speeds modulo `PRIME`."""
     n = _ratio(pair.first, pair.second, pair.carrier)
@@ -76,7 +76,7 @@ def _reduce(row: list[int], basis: Sequence[tuple[int, list[int]]]) -> list[int]
     return row
 
 
-def _with(basis: list[tuple[int, list[int]]], row: list[int]) -> list[tuple[int, list[int]]] | None:
+def echelon_with(basis: list[tuple[int, list[int]]], row: list[int]) -> list[tuple[int, list[int]]] | None:
     """The echelon basis extended by ``row``, or None when ``row`` depends on it."""
     row = _reduce(row, basis)
     pivot = next((c for c, x in enumerate(row) if x), None)
@@ -114,7 +114,7 @@ def is_one_dof(graph: TrainGraph) -> bool:
     basis: list[tuple[int, list[int]]] | None = []
     for pair in graph.gear_pairs:
         assert basis is not None
-        basis = _with(basis, _relation(graph.links, pair))
+        basis = echelon_with(basis, speed_relation(graph.links, pair))
         if basis is None:
             return False
     return _no_locked_links(graph.links, basis or [])
@@ -155,7 +155,7 @@ def _gear_sets(tree: TrainGraph) -> Iterator[TrainGraph]:
     admissible pairs: a pair is taken only when its relation is independent of the others)."""
     links, wanted = tree.links, tree.links - 2
     pairs = admissible_pairs(tree)
-    rows = [_relation(links, p) for p in pairs]
+    rows = [speed_relation(links, p) for p in pairs]
     reach = [{p.first, p.second, p.carrier} for p in pairs]
 
     def extend(
@@ -169,7 +169,7 @@ def _gear_sets(tree: TrainGraph) -> Iterator[TrainGraph]:
         if links - len(seen) > 3 * left:
             return
         for n in range(start, len(pairs) - left + 1):
-            grown = _with(basis, rows[n])
+            grown = echelon_with(basis, rows[n])
             if grown is not None:
                 yield from extend(n + 1, [*chosen, n], grown, seen | reach[n])
 

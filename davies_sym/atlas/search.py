@@ -17,6 +17,7 @@ from fractions import Fraction
 from typing import Any
 
 from davies_sym.atlas.atlas_entries import Entry, GraphPlace, entry, places
+from davies_sym.atlas.idle_meshes import loadable_uses
 from davies_sym.atlas.train_file import Choice, ToothedForm, TrainFile, train_text
 from davies_sym.errors import NotCoveredError
 from davies_sym.fan_out import IN_THIS_PROCESS, Counted, Workers, fan_out
@@ -126,20 +127,21 @@ def _entry_designs(e: Entry, question: AtlasQuestion) -> TrainDesigns:
     searched = search_file(e, directions, question.meshes)
     train = searched.train()
     free = searched.independent or ()
-    states = {s.name: s for s in train.states}
+    every = search_problem(
+        train,
+        [(choice.name, question.target) for choice in directions],
+        question.tolerance,
+        dict.fromkeys(free, question.teeth),
+        question.planets,
+        question.min_teeth,
+    )
     designs: list[AtlasDesign] = []
     undecided: list[str] = []
     refused: list[str] = []
-    for choice in directions:
-        # The search asks a target of every state of its train: this direction alone.
-        problem = search_problem(
-            replace(train, states=(states[choice.name],)),
-            [(choice.name, question.target)],
-            question.tolerance,
-            dict.fromkeys(free, question.teeth),
-            question.planets,
-            question.min_teeth,
-        )
+    for choice, target in zip(directions, every.targets, strict=True):
+        # Each direction searched alone, its state one of the whole train's: the states
+        # share what the train gives (its layout, resolved radii, sampled points).
+        problem = replace(every, targets=(target,))
         try:
             found = _direction_designs(problem, choice.name, question)
         except NotCoveredError as exc:
@@ -183,6 +185,10 @@ class SearchTask:
 
 
 def _designs_of(task: SearchTask) -> TrainDesigns:
+    # A graph whose every use idles a gear at generic ratios idles one in any drawing:
+    # nothing to search, and nothing to draw (most trains of 8 links).
+    if not loadable_uses(task.place.graph):
+        return TrainDesigns()
     e = entry(task.place)
     return TrainDesigns() if e.not_drawable else _entry_designs(e, task.question)
 

@@ -20,6 +20,7 @@ import sympy
 
 from davies_sym.algebra.linear_regions import Requirement, empty_region
 from davies_sym.algebra.polynomials import RationalFunction
+from davies_sym.atlas.idle_meshes import loadable_uses
 from davies_sym.atlas.realisation import Realisation
 from davies_sym.atlas.train_file import Choice, TrainFile, distance_symbol
 from davies_sym.errors import BeyondWorkBound, DaviesError, GeometryError
@@ -176,7 +177,7 @@ def admissible_choices(drawn: Realisation) -> Admissible:
     way, train = found
     kept, loaded = [], []
     drawing_fails: GeometryError | None = None
-    read = _Readings(train, candidates)
+    read = _Readings(train, candidates, frozenset(loadable_uses(drawn.graph)))
     for choice in candidates:
         try:
             reading = read.choice(choice)
@@ -209,11 +210,14 @@ class _Readings:
     the lossless actions are linear in the ports' torques, so the difference of the two
     analyses' (each per unit torque on the first member) is an equilibrium with no
     torque on the first member, the choice's own (Laus eq. (2)).  Where either analysis
-    fails, the choice is analysed itself.
+    fails, the choice is analysed itself.  The lossless actions are read only for the
+    choices among the ``loadable`` uses (`davies_sym.atlas.idle_meshes`): any other
+    idles a gear whatever the radii.
     """
 
-    def __init__(self, train: Train, candidates: tuple[Choice, ...]):
+    def __init__(self, train: Train, candidates: tuple[Choice, ...], loadable: frozenset[tuple[int, int, int]]):
         self.train = train
+        self.loadable = loadable
         self.states = dict(zip(candidates, train.states, strict=True))
         self.first: dict[int, int] = {}
         for choice in candidates:
@@ -224,8 +228,10 @@ class _Readings:
         """Whether the choice's speed ratio depends on the radii, and whether every mesh
         carries a tooth force; the analysis's error where it fails."""
         first = self.first[choice.held]
+        loadable = (choice.held, *sorted((choice.input, choice.output))) in self.loadable
         if choice.input != first:
-            read = self._superposed(Choice(choice.held, first, choice.input), Choice(choice.held, first, choice.output))
+            to_input, to_output = Choice(choice.held, first, choice.input), Choice(choice.held, first, choice.output)
+            read = self._superposed(to_input, to_output, loadable)
             if read is not None:
                 return read
         analysis = self._analysis(choice)
@@ -233,7 +239,7 @@ class _Readings:
             raise analysis
         if not _radii_set(analysis.speed_ratio()):
             return _Reading(False, False)
-        return _Reading(True, _every_mesh_loaded(analysis))
+        return _Reading(True, loadable and _every_mesh_loaded(analysis))
 
     def _analysis(self, choice: Choice) -> Analysis | Exception:
         known = self.analysed.get(choice)
@@ -247,10 +253,11 @@ class _Readings:
             self.analysed[choice] = known
         return known
 
-    def _superposed(self, to_input: Choice, to_output: Choice) -> _Reading | None:
+    def _superposed(self, to_input: Choice, to_output: Choice, loadable: bool) -> _Reading | None:
         """The reading of the choice between the outputs of ``to_input`` and
-        ``to_output`` (both driving the first member); None where either analysis or
-        its lossless actions fail, or their meshes' actions differ."""
+        ``to_output`` (both driving the first member; ``loadable``: whether its actions
+        are read); None where either analysis or its lossless actions fail, or their
+        meshes' actions differ."""
         a, b = self._analysis(to_input), self._analysis(to_output)
         if isinstance(a, Exception) or isinstance(b, Exception):
             return None
@@ -261,6 +268,8 @@ class _Readings:
                 raise ZeroDivisionError("the output does not turn")
             if not _radii_set(into / out_of):
                 return _Reading(False, False)
+            if not loadable:
+                return _Reading(True, False)
             forces = (a.lossless_action_coefficients, b.lossless_action_coefficients)
             names = [_mesh_actions(x) for x in (a, b)]
         except BeyondWorkBound:

@@ -36,21 +36,22 @@ def _every_use(graph: TrainGraph) -> tuple[tuple[int, int, int], ...]:
     return tuple((h, a, b) for h in range(graph.links) for a, b in combinations(range(graph.links), 2))
 
 
-def _agreement(monkeypatch: pytest.MonkeyPatch, links: int, step: int = 1) -> None:
+def _agreement(monkeypatch: pytest.MonkeyPatch, links: int, step: int = 1, entries: bool = True) -> None:
     """Every graph: the drawn train's choices with every mesh loaded, read from the
     lossless actions of every choice, are exactly its choices among the generically
     loadable uses (a drawing's radii never unloaded a generic force in these atlases);
-    and the atlas entry, which reads the actions of those alone, is the same."""
+    and (``entries``) the atlas entry, which reads the actions of those alone, is the same."""
     for place in places(links)[::step]:
         uses = set(loadable_uses(place.graph))
-        kept = entry(place)
         with monkeypatch.context() as patched:
             patched.setattr(atlas_choices, "loadable_uses", _every_use)
             e = entry(place)
         choices = {(c.held, *sorted((c.input, c.output))) for c in e.choices}
         loaded = {(c.held, *sorted((c.input, c.output))) for c in e.loaded}
         assert loaded == choices & uses, place.name
-        assert (kept.choices, kept.loaded) == (e.choices, e.loaded), place.name
+        if entries:
+            kept = entry(place)
+            assert (kept.choices, kept.loaded) == (e.choices, e.loaded), place.name
 
 
 def test_the_loadable_uses_of_six_links_are_the_drawn_trains_loaded_choices(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -61,6 +62,7 @@ def test_the_loadable_uses_of_six_links_are_the_drawn_trains_loaded_choices(monk
 def test_the_loadable_uses_of_seven_and_eight_links_are_the_drawn_trains_loaded_choices(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """All 647 graphs of 7 links; every 40th of the 6360 of 8."""
-    _agreement(monkeypatch, 7)
-    _agreement(monkeypatch, 8, step=40)
+    """All 647 graphs of 7 links; every 80th of the 6360 of 8, whose entries are also
+    compared with those formed reading every choice's actions (as on 6 links)."""
+    _agreement(monkeypatch, 7, entries=False)
+    _agreement(monkeypatch, 8, step=80)

@@ -46,8 +46,8 @@ def _agreement(monkeypatch: pytest.MonkeyPatch, links: int, step: int = 1, entri
         with monkeypatch.context() as patched:
             patched.setattr(atlas_choices, "loadable_uses", _every_use)
             e = entry(place)
-        choices = {(c.held, *sorted((c.input, c.output))) for c in e.choices}
-        loaded = {(c.held, *sorted((c.input, c.output))) for c in e.loaded}
+        choices = {c.use for c in e.choices}
+        loaded = {c.use for c in e.loaded}
         assert loaded == choices & uses, place.name
         if entries:
             kept = entry(place)

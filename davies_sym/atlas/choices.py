@@ -228,7 +228,7 @@ class _Readings:
         """Whether the choice's speed ratio depends on the radii, and whether every mesh
         carries a tooth force; the analysis's error where it fails."""
         first = self.first[choice.held]
-        loadable = (choice.held, *sorted((choice.input, choice.output))) in self.loadable
+        loadable = choice.use in self.loadable
         if choice.input != first:
             to_input, to_output = Choice(choice.held, first, choice.input), Choice(choice.held, first, choice.output)
             read = self._superposed(to_input, to_output, loadable)

@@ -40,6 +40,12 @@ class Choice:
     def name(self) -> str:
         return f"h{self.held}_i{self.input}_o{self.output}"
 
+    @property
+    def use(self) -> tuple[int, int, int]:
+        """The held member and the two ports, the lower first: the use in either
+        direction (as `davies_sym.atlas.idle_meshes.loadable_uses` lists them)."""
+        return (self.held, min(self.input, self.output), max(self.input, self.output))
+
 
 def link_name(link: int) -> str:
     return f"l{link}"

@@ -255,7 +255,7 @@ def python_module(variants: VariantSet, accepted: Sequence[str] = (), scoring: b
     _add_conditions(formulas, variants, relations)
     fractions = {} if scoring else all_loss_fractions(variants)
     for v in variants.variants:
-        _add_variant(formulas, variants, v, by_name, lossy, fractions.get(v.name, {}), scoring)
+        _add_variant(formulas, variants, v, by_name, lossy, {} if scoring else fractions[v.name], scoring)
     needs = {}
     for name, r in dependent_of.items():
         needs[name] = formulas.add(

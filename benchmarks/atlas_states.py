@@ -25,17 +25,26 @@ import tempfile
 import time
 from contextlib import ExitStack
 
-from davies_sym.atlas.atlas_entries import entry, places
+from davies_sym.atlas.atlas_entries import GraphPlace, entry, places
 from davies_sym.cli.many_files import Task, derive_task
 from davies_sym.fan_out import Workers, fan_out
 
-Timed = tuple[str, list[tuple[str, float]]]
+Timed = tuple[str, list[tuple[str, float]], int, tuple[str, ...]]
+Formed = tuple[str, str | None, str | None]
+
+
+def formed_file(place: GraphPlace) -> Formed:
+    """One displacement graph's train file: its name, its text (None where it is not
+    drawn) and the reason it is not drawn."""
+    e = entry(place)
+    return e.name, None if e.not_drawable else e.train_text(), e.not_drawable
 
 
 def timed_file(task: Task) -> Timed:
     """Seconds of each state of one file: from its ``state NAME`` step to the next one
     (the last to the ``writing the report`` step), with the file's reading and its
-    document's writing shared evenly."""
+    document's writing shared evenly; with the file's exit status and messages (a state
+    refused is listed, not fatal)."""
     marks: list[tuple[str, float]] = []
     report: list[float] = []
 
@@ -48,20 +57,19 @@ def timed_file(task: Task) -> Timed:
     start = time.perf_counter()
     derived = derive_task(task, progress)
     end = time.perf_counter()
-    if derived.status != 0:
-        raise SystemExit(f"{task.path}: {derived.messages}")
+    told = (derived.status, derived.messages)
     if not marks:  # a train without states: the file is one state
-        return task.stem, [("", end - start)]
+        return task.stem, [("", end - start)], *told
     last = report[0] if report else end
     ends = [t for _, t in marks[1:]] + [last]
     # The file's own work (read before the first state, its document after the last) is
     # shared out evenly.
     overhead = (marks[0][1] - start + end - last) / len(marks)
-    return task.stem, [(name, e - t + overhead) for (name, t), e in zip(marks, ends, strict=True)]
+    return task.stem, [(name, e - t + overhead) for (name, t), e in zip(marks, ends, strict=True)], *told
 
 
 def _report(kind: str, results: list[Timed], wall: float, total_files: int | None) -> None:
-    times = sorted((s, f"{stem} {state}") for stem, states in results for state, s in states)
+    times = sorted((s, f"{stem} {state}") for stem, states, _, _ in results for state, s in states)
     values = [s for s, _ in times]
     if not values:
         return
@@ -76,6 +84,9 @@ def _report(kind: str, results: list[Timed], wall: float, total_files: int | Non
         f"90th percentile {q[17]:.3f} s, largest {values[-1]:.2f} s"
     )
     print("    slowest: " + ", ".join(f"{name} {s:.2f} s" for s, name in reversed(times[-10:])))
+    for stem, _, status, messages in results:
+        if status != 0:
+            print(f"    {stem}: exit status {status}: " + " | ".join(messages))
 
 
 def main() -> None:
@@ -104,16 +115,20 @@ def _measure(args: argparse.Namespace, workers: Workers) -> None:
     chosen = found if args.sample is None else random.Random(args.seed).sample(found, min(args.sample, len(found)))
     print(f"{args.links} links: {len(found)} displacement graphs enumerated in {time.perf_counter() - start:.0f} s")
     start = time.perf_counter()
-    entries = [e for e in (entry(place) for place in chosen) if not e.not_drawable]
+    files = list(fan_out(formed_file, chosen, workers))
     formed = time.perf_counter() - start
-    print(f"  {len(entries)} drawable train files of {len(chosen)} formed in {formed:.0f} s (one process)")
+    drawn = [(name, text) for name, text, _ in files if text is not None]
+    where = workers.describe(len(chosen))
+    print(f"  {len(drawn)} drawable train files of {len(chosen)} formed in {formed:.0f} s ({where})")
+    for name, _, reason in files:
+        if reason is not None:
+            print(f"    {name} not drawn: {reason}")
     whole = formed * len(found) / len(chosen)
     with tempfile.TemporaryDirectory() as folder:
         kinds: dict[str, list[Task]] = {"on a line": [], "in 2-D": []}
-        for e in entries:
-            text = e.train_text()
-            path = os.path.join(folder, f"{e.name}.yaml")
-            kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), e.name, "json"))
+        for name, text in drawn:
+            path = os.path.join(folder, f"{name}.yaml")
+            kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), name, "json"))
         for kind, tasks in kinds.items():
             start = time.perf_counter()
             results = list(fan_out(timed_file, tasks, workers))

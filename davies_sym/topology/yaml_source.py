@@ -226,13 +226,14 @@ def _deep_line(text: str) -> int | None:
     return None
 
 
-_CONSTRUCTOR = yaml.constructor.SafeConstructor()
 _PLAIN_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool", "null", "map", "seq")}
 
 
 def _scalar(node: yaml.Node) -> Any:
-    """Resolve a scalar (int, float, bool, null, string) with PyYAML's safe rules."""
-    return _CONSTRUCTOR.construct_object(node, deep=True)
+    """Resolve a scalar (int, float, bool, null, string) with PyYAML's safe rules.  A
+    constructor of its own: a constructor keeps every node it has built, so one shared
+    by the process would keep every file it ever read (a worker deriving thousands)."""
+    return yaml.constructor.SafeConstructor().construct_object(node, deep=True)
 
 
 def parse_yaml(text: str, name: str | None = None) -> SourceDocument:

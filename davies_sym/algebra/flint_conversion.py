@@ -7,7 +7,7 @@ expressions (`davies_sym.algebra.signs`)."""
 from __future__ import annotations
 
 from collections import OrderedDict
-from collections.abc import Mapping, Sequence
+from collections.abc import Hashable, Mapping, Sequence
 from math import gcd, lcm
 
 import sympy
@@ -16,17 +16,24 @@ from flint import fmpz_mpoly, fmpz_mpoly_ctx
 from davies_sym.algebra.symbol_order import sorted_symbols
 from davies_sym.errors import DerivationError
 
-#: Factorisations already found, by context and polynomial text (most recent last): the
+#: Factorisations already found, by context and polynomial terms (most recent last): the
 #: turning conditions, loaded forces and sums of one derivation factor the same
 #: polynomials again and again (some ten times each on a 7-link planetary train).
-_FACTORED: OrderedDict[tuple[fmpz_mpoly_ctx, str], tuple[int, tuple[tuple[fmpz_mpoly, int], ...]]] = OrderedDict()
+_FACTORED: OrderedDict[tuple[fmpz_mpoly_ctx, Hashable], tuple[int, tuple[tuple[fmpz_mpoly, int], ...]]] = OrderedDict()
 _FACTORED_LIMIT = 4096
+
+
+def polynomial_key(p: fmpz_mpoly) -> tuple[tuple[tuple[int, ...], ...], tuple[int, ...]]:
+    """``p``'s terms (exponents, coefficients) as a hashable value.  Not its text:
+    python-flint 0.9 keeps the buffer of every polynomial it writes as text (some 5 kB
+    each), which a process deriving thousands of files never gets back."""
+    return tuple(p.monoms()), tuple(map(int, p.coeffs()))
 
 
 def factor(p: fmpz_mpoly) -> tuple[int, list[tuple[fmpz_mpoly, int]]]:
     """Content and irreducible factors of ``p`` (flint); a polynomial factored before is
     looked up (a pure function's memo, bounded: flint polynomials are immutable)."""
-    key = (p.context(), str(p))
+    key = (p.context(), polynomial_key(p))
     found = _FACTORED.get(key)
     if found is None:
         found = _FACTORED[key] = _factored(p)

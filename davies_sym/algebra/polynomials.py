@@ -15,7 +15,7 @@ from math import factorial, gcd
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpz_mpoly, fmpz_mpoly_ctx
 
-from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor
+from davies_sym.algebra.flint_conversion import ExpressionConverter, expanded_expr, factor, polynomial_key
 from davies_sym.algebra.point_values import PointValues
 from davies_sym.algebra.products import (
     Product,
@@ -315,7 +315,7 @@ class RationalFunction:
         return bool(self.num * other.den == other.num * self.den)
 
     def __hash__(self) -> int:  # pragma: no cover - not used as a key
-        return hash((str(self.num), str(self.den)))
+        return hash((polynomial_key(self.num), polynomial_key(self.den)))
 
     def substitute(self, values: Mapping[sympy.Symbol, RationalFunction]) -> RationalFunction:
         """``self`` with every symbol of ``values`` replaced at once (the values must not

@@ -40,3 +40,20 @@ def test_deriving_files_in_one_process_keeps_no_train() -> None:
         derived = derive_task(Task(str(path), path.read_bytes(), name, "json"))
         assert derived.status == 0, derived.messages
     assert _alive(Train) == before
+
+
+def test_a_factorisation_is_remembered_by_the_polynomials_terms() -> None:
+    """The memo of `factor` knows a polynomial by its terms (python-flint keeps the text
+    of every polynomial it writes, so the memo never asks for it): one polynomial built
+    two ways has one key and one factorisation, a polynomial one coefficient away
+    another."""
+    from flint import fmpz_mpoly_ctx
+
+    from davies_sym.algebra.flint_conversion import factor, polynomial_key
+
+    x, y, z = fmpz_mpoly_ctx.get(("x", "y", "z"), "degrevlex").gens()
+    built = (x + 2 * y) * (y - z) ** 2
+    expanded = x * y**2 - 2 * x * y * z + x * z**2 + 2 * y**3 - 4 * y**2 * z + 2 * y * z**2
+    assert polynomial_key(built) == polynomial_key(expanded)
+    assert polynomial_key(built + 1) != polynomial_key(built)
+    assert factor(built) == factor(expanded) == (1, [(x + 2 * y, 1), (y - z, 2)])

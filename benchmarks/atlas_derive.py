@@ -4,6 +4,10 @@ line apart from those drawn in 2-D (``placement:``, whose planet triangles bring
 roots into the elimination). Each step is one ``derive`` process, as a user runs it.
 
     python benchmarks/atlas_derive.py [LINKS] [--jobs N] [--line-only]
+
+The time of each operating state (its distribution and the ten slowest), a sample of an
+atlas too big for one machine with the whole extrapolated, and a run on a Dask cluster
+are measured by ``benchmarks/atlas_states.py``.
 """
 
 from __future__ import annotations

@@ -7,12 +7,16 @@ whole and the ten slowest states.
 
     python benchmarks/atlas_states.py [LINKS] [--jobs N] [--sample K] [--seed S]
                                       [--scheduler ADDRESS | --local-cluster N]
+                                      [--every M] [--log FILE]
 
 ``--sample K`` forms and derives K displacement graphs drawn at random (seed S), for
 atlases too big to derive whole on one machine (8 links); the whole is extrapolated from
 them.  ``--scheduler ADDRESS`` derives the files on a Dask cluster (one file per task, as
 ``derive FILES --scheduler ADDRESS`` does); ``--local-cluster N`` starts a cluster of N
-local worker processes for the run and derives there.
+local worker processes for the run and derives there.  A long run reports as it goes:
+the figures so far after every M files (``--every``), and each file's state times as a
+line of ``--log FILE`` (tab-separated: file, state, seconds, exit status) as soon as it is
+derived, so that a run stopped early still tells what it measured.
 """
 
 from __future__ import annotations
@@ -24,6 +28,7 @@ import statistics
 import tempfile
 import time
 from contextlib import ExitStack
+from typing import TextIO
 
 from davies_sym.atlas.atlas_entries import GraphPlace, entry, places
 from davies_sym.cli.many_files import Task, derive_task
@@ -69,6 +74,8 @@ def timed_file(task: Task) -> Timed:
 
 
 def _report(kind: str, results: list[Timed], wall: float, total_files: int | None) -> None:
+    """Median, quartiles, 90th percentile, largest and slowest ten of the states so far,
+    with the files refused."""
     times = sorted((s, f"{stem} {state}") for stem, states, _, _ in results for state, s in states)
     values = [s for s, _ in times]
     if not values:
@@ -95,6 +102,8 @@ def main() -> None:
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--sample", type=int, default=None, help="displacement graphs drawn at random")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--every", type=int, default=500, metavar="M", help="report the figures so far every M files")
+    p.add_argument("--log", default=None, metavar="FILE", help="each state's seconds, one line each, as derived")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", default=None, help="address of a Dask scheduler")
     where.add_argument("--local-cluster", type=int, default=None, metavar="N", help="a local Dask cluster of N")
@@ -106,10 +115,27 @@ def main() -> None:
 
             cluster = stack.enter_context(LocalCluster(n_workers=args.local_cluster, threads_per_worker=1))
             scheduler = cluster.scheduler_address
-        _measure(args, Workers(jobs=args.jobs, scheduler=scheduler))
+        log = stack.enter_context(open(args.log, "w", encoding="utf-8")) if args.log else None
+        _measure(args, Workers(jobs=args.jobs, scheduler=scheduler), log)
 
 
-def _measure(args: argparse.Namespace, workers: Workers) -> None:
+def _derived(tasks: list[Task], workers: Workers, kind: str, every: int, log: TextIO | None) -> list[Timed]:
+    """Each file's state times, logged as it comes and summed up every ``every`` files."""
+    results: list[Timed] = []
+    start = time.perf_counter()
+    for result in fan_out(timed_file, tasks, workers):
+        results.append(result)
+        stem, states, status, _ = result
+        if log is not None:
+            log.writelines(f"{stem}\t{state}\t{s:.4f}\t{status}\n" for state, s in states)
+            log.flush()
+        if len(results) % every == 0 and len(results) < len(tasks):
+            print(f"  so far ({len(results)} of {len(tasks)} files):")
+            _report(kind, results, time.perf_counter() - start, len(tasks))
+    return results
+
+
+def _measure(args: argparse.Namespace, workers: Workers, log: TextIO | None) -> None:
     start = time.perf_counter()
     found = places(args.links)
     chosen = found if args.sample is None else random.Random(args.seed).sample(found, min(args.sample, len(found)))
@@ -131,7 +157,7 @@ def _measure(args: argparse.Namespace, workers: Workers) -> None:
             kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), name, "json"))
         for kind, tasks in kinds.items():
             start = time.perf_counter()
-            results = list(fan_out(timed_file, tasks, workers))
+            results = _derived(tasks, workers, kind, args.every, log)
             wall = time.perf_counter() - start
             whole += wall * len(found) / len(chosen)
             _report(kind, results, wall, None if args.sample is None else len(tasks))

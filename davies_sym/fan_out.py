@@ -105,11 +105,14 @@ def _in_order(
     count: Tally,
     line: Callable[[Any], str | None],
 ) -> Iterator[Result]:
-    """The results in the order of the tasks, each counted as it arrives."""
+    """The results in the order of the tasks, each counted as it arrives.  A future is
+    let go as soon as its result is taken: on a cluster a future held keeps its result
+    in a worker's memory (and a worker lost or restarted has every result it holds
+    computed again); here it would keep every result until the last."""
     waiting: dict[int, Result] = {}
     following = 0
     for future in finished(futures):
-        k = futures[future]
+        k = futures.pop(future)
         try:
             waiting[k] = future.result()
         except Exception as exc:  # a task that failed, or a worker that died

@@ -5,9 +5,11 @@ or as a bar on a terminal."""
 
 from __future__ import annotations
 
+import gc
 import io
 import re
 import sys
+import weakref
 from dataclasses import dataclass
 
 import pytest
@@ -49,6 +51,33 @@ def test_a_failed_task_stands_in_its_place(workers: Workers) -> None:
 def test_without_a_report_the_failure_ends_the_fan_out(workers: Workers) -> None:
     with pytest.raises(ValueError, match="thirteen"):
         list(fan_out(square, [Square(1), Square(13)], workers))
+
+
+@dataclass
+class Held:
+    """A result that can be watched for being freed (``weakref``)."""
+
+    n: int
+
+
+def held(task: Square) -> Held:
+    return Held(task.n)
+
+
+def test_a_result_taken_is_not_kept_by_the_fan_out() -> None:
+    """Each future is let go once its result is taken (the same code serves a Dask
+    cluster, where a future held pins its result in a worker's memory): after the last
+    result is taken, every earlier one the caller dropped is freed."""
+    results = fan_out(held, TASKS, Workers(jobs=2))
+    watched = []
+    for _ in TASKS:
+        result = next(results)
+        watched.append(weakref.ref(result))
+        del result
+    gc.collect()
+    alive = [ref().n for ref in watched[:-1] if ref() is not None]  # type: ignore[union-attr]
+    assert alive == []
+    assert list(results) == []
 
 
 def test_where_tasks_run() -> None:

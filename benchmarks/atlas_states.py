@@ -7,7 +7,7 @@ whole and the ten slowest states.
 
     python benchmarks/atlas_states.py [LINKS] [--jobs N] [--sample K] [--seed S]
                                       [--scheduler ADDRESS | --local-cluster N]
-                                      [--every M] [--log FILE]
+                                      [--every M] [--log FILE [--resume]]
 
 ``--sample K`` forms and derives K displacement graphs drawn at random (seed S), for
 atlases too big to derive whole on one machine (8 links); the whole is extrapolated from
@@ -15,8 +15,10 @@ them.  ``--scheduler ADDRESS`` derives the files on a Dask cluster (one file per
 ``derive FILES --scheduler ADDRESS`` does); ``--local-cluster N`` starts a cluster of N
 local worker processes for the run and derives there.  A long run reports as it goes:
 the figures so far after every M files (``--every``), and each file's state times as a
-line of ``--log FILE`` (tab-separated: file, state, seconds, exit status) as soon as it is
-derived, so that a run stopped early still tells what it measured.
+line of ``--log FILE`` (tab-separated: file, state, seconds, exit status, how it is
+drawn) as soon as it is derived, so that a run stopped early still tells what it measured; ``--resume`` reads
+the files already in the log, forms and derives only the others (appending to the log) and reports
+on all of them (the wall time is this run's).
 """
 
 from __future__ import annotations
@@ -104,6 +106,7 @@ def main() -> None:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--every", type=int, default=500, metavar="M", help="report the figures so far every M files")
     p.add_argument("--log", default=None, metavar="FILE", help="each state's seconds, one line each, as derived")
+    p.add_argument("--resume", action="store_true", help="derive only the files not in the log yet")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", default=None, help="address of a Dask scheduler")
     where.add_argument("--local-cluster", type=int, default=None, metavar="N", help="a local Dask cluster of N")
@@ -115,30 +118,49 @@ def main() -> None:
 
             cluster = stack.enter_context(LocalCluster(n_workers=args.local_cluster, threads_per_worker=1))
             scheduler = cluster.scheduler_address
-        log = stack.enter_context(open(args.log, "w", encoding="utf-8")) if args.log else None
-        _measure(args, Workers(jobs=args.jobs, scheduler=scheduler), log)
+        logged = _logged(args.log) if args.resume else {}
+        log = stack.enter_context(open(args.log, "a" if args.resume else "w", encoding="utf-8")) if args.log else None
+        _measure(args, Workers(jobs=args.jobs, scheduler=scheduler), log, logged)
 
 
-def _derived(tasks: list[Task], workers: Workers, kind: str, every: int, log: TextIO | None) -> list[Timed]:
-    """Each file's state times, logged as it comes and summed up every ``every`` files."""
-    results: list[Timed] = []
+def _logged(path: str) -> dict[str, tuple[str, Timed]]:
+    """The files a log of an earlier run holds: how each is drawn and its result (no
+    messages)."""
+    found: dict[str, tuple[str, Timed]] = {}
+    with open(path, encoding="utf-8") as handle:
+        for line in handle:
+            stem, state, seconds, status, kind = line.rstrip("\n").split("\t")
+            _, (_, states, _, _) = found.setdefault(stem, (kind, (stem, [], int(status), ())))
+            states.append((state, float(seconds)))
+    return found
+
+
+def _derived(
+    tasks: list[Task], workers: Workers, kind: str, every: int, log: TextIO | None, logged: list[Timed]
+) -> list[Timed]:
+    """Each file's state times after those ``logged`` already, logged as it comes and
+    summed up every ``every`` files."""
+    results = list(logged)
     start = time.perf_counter()
     for result in fan_out(timed_file, tasks, workers):
         results.append(result)
         stem, states, status, _ = result
         if log is not None:
-            log.writelines(f"{stem}\t{state}\t{s:.4f}\t{status}\n" for state, s in states)
+            log.write("".join(f"{stem}\t{state}\t{s:.4f}\t{status}\t{kind}\n" for state, s in states))
             log.flush()
-        if len(results) % every == 0 and len(results) < len(tasks):
-            print(f"  so far ({len(results)} of {len(tasks)} files):")
-            _report(kind, results, time.perf_counter() - start, len(tasks))
+        if len(results) % every == 0 and len(results) < len(tasks) + len(logged):
+            print(f"  so far ({len(results)} of {len(tasks) + len(logged)} files):")
+            _report(kind, results, time.perf_counter() - start, len(tasks) + len(logged))
     return results
 
 
-def _measure(args: argparse.Namespace, workers: Workers, log: TextIO | None) -> None:
+def _measure(
+    args: argparse.Namespace, workers: Workers, log: TextIO | None, logged: dict[str, tuple[str, Timed]]
+) -> None:
     start = time.perf_counter()
     found = places(args.links)
     chosen = found if args.sample is None else random.Random(args.seed).sample(found, min(args.sample, len(found)))
+    chosen = [place for place in chosen if place.name not in logged]
     print(f"{args.links} links: {len(found)} displacement graphs enumerated in {time.perf_counter() - start:.0f} s")
     start = time.perf_counter()
     files = list(fan_out(formed_file, chosen, workers))
@@ -149,7 +171,7 @@ def _measure(args: argparse.Namespace, workers: Workers, log: TextIO | None) -> 
     for name, _, reason in files:
         if reason is not None:
             print(f"    {name} not drawn: {reason}")
-    whole = formed * len(found) / len(chosen)
+    whole = formed * len(found) / max(1, len(chosen))
     with tempfile.TemporaryDirectory() as folder:
         kinds: dict[str, list[Task]] = {"on a line": [], "in 2-D": []}
         for name, text in drawn:
@@ -157,9 +179,10 @@ def _measure(args: argparse.Namespace, workers: Workers, log: TextIO | None) -> 
             kinds["in 2-D" if "\nplacement:" in text else "on a line"].append(Task(path, text.encode(), name, "json"))
         for kind, tasks in kinds.items():
             start = time.perf_counter()
-            results = _derived(tasks, workers, kind, args.every, log)
+            before = [timed for drawn_so, timed in logged.values() if drawn_so == kind]
+            results = _derived(tasks, workers, kind, args.every, log, before)
             wall = time.perf_counter() - start
-            whole += wall * len(found) / len(chosen)
+            whole += wall * len(found) / max(1, len(chosen))
             _report(kind, results, wall, None if args.sample is None else len(tasks))
     if args.sample is not None:
         print(

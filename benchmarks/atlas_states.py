@@ -16,9 +16,9 @@ them.  ``--scheduler ADDRESS`` derives the files on a Dask cluster (one file per
 local worker processes for the run and derives there.  A long run reports as it goes:
 the figures so far after every M files (``--every``), and each file's state times as a
 line of ``--log FILE`` (tab-separated: file, state, seconds, exit status, how it is
-drawn) as soon as it is derived, so that a run stopped early still tells what it measured; ``--resume`` reads
-the files already in the log, forms and derives only the others (appending to the log) and reports
-on all of them (the wall time is this run's).
+drawn) as soon as it is derived, so that a run stopped early still tells what it
+measured; ``--resume`` reads the files already in the log, forms and derives only the
+others (appending to the log) and reports on all of them (the wall time is this run's).
 """
 
 from __future__ import annotations
@@ -141,6 +141,7 @@ def _derived(
     """Each file's state times after those ``logged`` already, logged as it comes and
     summed up every ``every`` files."""
     results = list(logged)
+    total = len(tasks) + len(logged)
     start = time.perf_counter()
     for result in fan_out(timed_file, tasks, workers):
         results.append(result)
@@ -148,9 +149,9 @@ def _derived(
         if log is not None:
             log.write("".join(f"{stem}\t{state}\t{s:.4f}\t{status}\t{kind}\n" for state, s in states))
             log.flush()
-        if len(results) % every == 0 and len(results) < len(tasks) + len(logged):
-            print(f"  so far ({len(results)} of {len(tasks) + len(logged)} files):")
-            _report(kind, results, time.perf_counter() - start, len(tasks) + len(logged))
+        if len(results) % every == 0 and len(results) < total:
+            print(f"  so far ({len(results)} of {total} files):")
+            _report(kind, results, time.perf_counter() - start, total)
     return results
 
 
